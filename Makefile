@@ -1,0 +1,21 @@
+# vd: the two commands of the README are `make demo` and `make test`.
+# Both set the workspace up first (idempotent: a second run installs nothing).
+SHELL := /bin/bash
+ENV := tools/env.sh
+
+.PHONY: setup demo test bench clean
+
+setup:
+	@bash tools/setup.sh
+
+demo: setup
+	@$(ENV) python -m vd_events.demo
+
+test: setup
+	@$(ENV) python -m pytest -q
+
+bench: setup
+	@$(ENV) python -m vd_events.cli bench
+
+clean:
+	rm -rf build install log out

@@ -1,0 +1,1 @@
+"""vd data side: vehicle data files, master files, feedback, data-server node."""

@@ -1,0 +1,274 @@
+"""Load one vehicle data file (one variant of one input group) into SI values.
+
+File layout::
+
+    kind: spring                # one of schema.KINDS
+    description: ...            # optional
+    source: ...                 # optional, where the numbers come from
+    units: {length: mm, force: N}
+    mirror: true                # hardpoints only: left side given, right mirrored
+    data:
+      rate: 36.9                # in the units block's stiffness unit (N/mm here)
+      free_length: 306
+
+Every problem is reported as ``file: key: message (line N)``; all problems of a
+file are collected before raising.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from . import schema
+from .errors import DataError, DataErrors
+from .model import GroupData, Value
+from .units import SI_UNITS, UnitSystem, parse_quantity, si_factor, to_si
+from .yamlio import line_of, load_file
+
+TOP_KEYS = ("kind", "description", "source", "units", "mirror", "data")
+
+
+class _Collector:
+    def __init__(self, file: str) -> None:
+        self.file = file
+        self.errors: list[DataError] = []
+
+    def add(self, key: str, message: str, container: Any = None, name: str | None = None) -> None:
+        line = line_of(container, name) if name is not None else None
+        suffix = f" (line {line})" if line else ""
+        self.errors.append(DataError(message + suffix, file=self.file, key=key or None))
+
+    def raise_if_any(self) -> None:
+        if len(self.errors) == 1:
+            raise self.errors[0]
+        if self.errors:
+            raise DataErrors(self.errors)
+
+
+def load_group_file(path: Path, *, display: str, group: str, variant: str) -> GroupData:
+    """Read, validate and convert one data file. ``display`` is the path users see."""
+    raw = load_file(path, display=display)
+    return parse_group(raw, display=display, group=group, variant=variant)
+
+
+def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupData:
+    col = _Collector(display)
+    if not isinstance(raw, Mapping):
+        raise DataError("expected a mapping with 'kind', 'units' and 'data'", file=display)
+    for key in raw:
+        if key not in TOP_KEYS:
+            col.add(key, f"unknown key (expected one of: {', '.join(TOP_KEYS)})", raw, key)
+    expected_kind = schema.group_kind(group)
+    kind = raw.get("kind")
+    if kind is None:
+        col.add("kind", f"missing required key (expected '{expected_kind}')")
+    elif kind != expected_kind:
+        col.add("kind", f"file is of kind '{kind}' but group '{group}' needs kind "
+                f"'{expected_kind}'", raw, "kind")
+    if "data" not in raw:
+        col.add("data", "missing required key")
+    col.raise_if_any()
+    try:
+        units = UnitSystem(raw.get("units"), file=display)
+    except DataError:
+        raise
+    if raw.get("units") is not None and not isinstance(raw.get("units"), Mapping):
+        raise DataError("expected a mapping of quantity: unit", file=display, key="units")
+    mirror = raw.get("mirror", True)
+    if "mirror" in raw and kind != "hardpoints":
+        col.add("mirror", "only hardpoints files may set 'mirror'", raw, "mirror")
+    if not isinstance(mirror, bool):
+        col.add("mirror", f"expected true or false, found {mirror!r}", raw, "mirror")
+    values: dict[str, Value] = {}
+    _walk(schema.KINDS[expected_kind], raw["data"], "", units, col, values, raw, "data")
+    if expected_kind == "hardpoints" and not col.errors:
+        _check_template_points(values, col, raw["data"])
+    col.raise_if_any()
+    source = display if variant == "" else f"{display} (variant {variant})"
+    values = {k: v.with_source(source) for k, v in values.items()}
+    return GroupData(group=group, kind=expected_kind, variant=variant, file=display,
+                     values=values, description=str(raw.get("description") or ""))
+
+
+def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Collector,
+          out: dict[str, Value], parent: Any, name: str) -> None:
+    key = path
+    if isinstance(spec, schema.Section):
+        if not isinstance(node, Mapping):
+            col.add(key, f"expected a mapping, found {_kind_of(node)}", parent, name)
+            return
+        for sub in node:
+            if sub not in spec.fields:
+                col.add(_join(path, sub), "unknown key (expected one of: "
+                        f"{', '.join(spec.fields)})", node, sub)
+        for group in spec.one_of:
+            given = [g for g in group if g in node]
+            if len(given) != 1:
+                col.add(path, f"give exactly one of: {', '.join(group)} (found "
+                        f"{', '.join(given) if given else 'none'})", parent, name)
+        for sub, sub_spec in spec.fields.items():
+            if sub in node:
+                _walk(sub_spec, node[sub], _join(path, sub), units, col, out, node, sub)
+            elif sub_spec.required and not any(sub in g for g in spec.one_of):
+                col.add(_join(path, sub), "missing required key", parent, name)
+            elif isinstance(sub_spec, schema.Scalar) and sub_spec.default is not None:
+                out[_join(path, sub)] = _scalar_value(_join(path, sub), sub_spec.default,
+                                                      sub_spec.quantity, units)
+        return
+    if isinstance(spec, schema.MapOf):
+        if not isinstance(node, Mapping) or not node:
+            col.add(key, f"expected a non-empty mapping of names, found {_kind_of(node)}",
+                    parent, name)
+            return
+        for sub, value in node.items():
+            _walk(spec.value, value, _join(path, sub), units, col, out, node, sub)
+        return
+    try:
+        out[key] = _leaf(spec, node, key, units)
+    except DataError as err:
+        line = line_of(parent, name)
+        col.errors.append(DataError(err.detail + (f" (line {line})" if line else ""),
+                                    file=col.file, key=key))
+
+
+def _leaf(spec: schema.Spec, node: Any, key: str, units: UnitSystem) -> Value:
+    file = units.file
+    if isinstance(spec, schema.Scalar):
+        si = to_si(node, spec.quantity, units, key=key)
+        _check_range(si, spec, file, key, node)
+        return _scalar_value(key, si, spec.quantity, units)
+    if isinstance(spec, schema.Point):
+        xyz = _triple(node, file, key)
+        factor = si_factor(units.unit("length"), "length")
+        return Value(key, "point", tuple(c * factor for c in xyz), "m",
+                     display_unit=units.display("length"))
+    if isinstance(spec, schema.Vector):
+        xyz = _triple(node, file, key)
+        norm = math.sqrt(sum(c * c for c in xyz))
+        if norm == 0.0:
+            raise DataError("direction must not be zero", file=file, key=key)
+        return Value(key, "vector", tuple(c / norm for c in xyz), "", display_unit="-")
+    if isinstance(spec, schema.Text):
+        if not isinstance(node, str) or not node:
+            raise DataError(f"expected a text, found {_kind_of(node)}", file=file, key=key)
+        if spec.choices and node not in spec.choices:
+            raise DataError(f"'{node}' is not one of: {', '.join(spec.choices)}", file=file,
+                            key=key)
+        return Value(key, "text", node)
+    if isinstance(spec, schema.Curve):
+        return _curve(spec, node, key, units)
+    raise TypeError(spec)  # pragma: no cover - the schema only holds the types above
+
+
+def _scalar_value(key: str, si: float, quantity: str, units: UnitSystem) -> Value:
+    return Value(key, "scalar", float(si), SI_UNITS[quantity],
+                 display_unit=units.unit(quantity) and units.display(quantity))
+
+
+def _check_range(si: float, spec: schema.Scalar, file: str, key: str, raw: Any) -> None:
+    if spec.positive and not si > 0.0:
+        raise DataError(f"must be positive, found {raw!r}", file=file, key=key)
+    if spec.minimum is not None and si < spec.minimum:
+        raise DataError(f"must be >= {spec.minimum:g} {SI_UNITS[spec.quantity]}, found {raw!r}",
+                        file=file, key=key)
+
+
+def _triple(node: Any, file: str, key: str) -> tuple[float, float, float]:
+    if (not isinstance(node, (list, tuple)) or len(node) != 3
+            or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in node)):
+        raise DataError(f"expected [x, y, z] numbers, found {node!r}", file=file, key=key)
+    if not all(math.isfinite(c) for c in node):
+        raise DataError(f"coordinates must be finite, found {node!r}", file=file, key=key)
+    return (float(node[0]), float(node[1]), float(node[2]))
+
+
+def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
+    file = units.file
+    if not isinstance(node, Mapping) or set(node) - {"x", "y", "x_unit", "y_unit"} \
+            or "x" not in node or "y" not in node:
+        raise DataError("expected a curve {x: [...], y: [...]} (optional x_unit, y_unit)",
+                        file=file, key=key)
+    x_unit = node.get("x_unit", units.unit(spec.x_quantity))
+    y_unit = node.get("y_unit", units.unit(spec.y_quantity))
+    try:
+        fx = si_factor(str(x_unit), spec.x_quantity)
+        fy = si_factor(str(y_unit), spec.y_quantity)
+    except ValueError as err:
+        raise DataError(str(err), file=file, key=key) from None
+    xs, ys = node["x"], node["y"]
+    for axis, seq in (("x", xs), ("y", ys)):
+        if (not isinstance(seq, list) or len(seq) < 2
+                or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in seq)):
+            raise DataError(f"curve {axis} must be a list of at least 2 numbers", file=file,
+                            key=key)
+        if not all(math.isfinite(c) for c in seq):
+            raise DataError(f"curve {axis} values must be finite (no NaN)", file=file, key=key)
+    if len(xs) != len(ys):
+        raise DataError(f"curve x has {len(xs)} values but y has {len(ys)}", file=file, key=key)
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise DataError("curve x must be strictly increasing", file=file, key=key)
+    if spec.increasing and any(b < a for a, b in zip(ys, ys[1:])):
+        raise DataError("curve y must not decrease (non-monotonic force curve)", file=file,
+                        key=key)
+    x_si = tuple(float(c) * fx for c in xs)
+    if spec.x_minimum is not None and x_si[0] < spec.x_minimum:
+        raise DataError(f"curve x must start at >= {spec.x_minimum:g}", file=file, key=key)
+    return Value(key, "curve", (x_si, tuple(float(c) * fy for c in ys)),
+                 SI_UNITS[spec.y_quantity], SI_UNITS[spec.x_quantity],
+                 display_unit=_short(str(y_unit)), x_display_unit=_short(str(x_unit)))
+
+
+def _short(unit: str) -> str:
+    from .units import parse_unit
+
+    return format(parse_unit(unit), "~") if unit else "-"
+
+
+def _check_template_points(values: Mapping[str, Value], col: _Collector, data: Any) -> None:
+    template = str(values["template"].si)
+    given = {k.split(".", 1)[1] for k in values if k.startswith("points.")}
+    allowed = set(schema.TEMPLATE_POINTS[template]) | set(schema.OPTIONAL_POINTS)
+    for missing in schema.TEMPLATE_POINTS[template]:
+        if missing not in given:
+            col.add(f"points.{missing}", f"missing hard point required by template "
+                    f"'{template}'", data, "points")
+    points = data.get("points", {}) if isinstance(data, Mapping) else {}
+    for extra in sorted(given - allowed):
+        col.add(f"points.{extra}", f"unknown hard point for template '{template}' (expected: "
+                f"{', '.join(sorted(allowed))})", points, extra)
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else str(key)
+
+
+def _kind_of(node: Any) -> str:
+    return "nothing" if node is None else f"{type(node).__name__} {node!r}"
+
+
+def parse_override(value: Any, template: Value, *, file: str, key: str) -> Value:
+    """Convert a master-file override of an existing value, keeping its display unit."""
+    if template.type == "scalar":
+        quantity = next(q for q, u in SI_UNITS.items() if u == template.unit)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            if quantity != "dimensionless":
+                raise DataError(f"override {value!r} needs a unit (e.g. '{value} "
+                                f"{template.display_unit or SI_UNITS[quantity]}')",
+                                file=file, key=key)
+            number, unit = float(value), ""
+        elif isinstance(value, str):
+            number, unit = parse_quantity(value, quantity, file=file, key=key)
+        else:
+            raise DataError(f"expected a number with a unit, found {value!r}", file=file, key=key)
+        si = number * si_factor(unit, quantity)
+        if not math.isfinite(si):
+            raise DataError(f"value must be finite, found {value!r}", file=file, key=key)
+        return Value(template.key, "scalar", si, template.unit, display_unit=template.display_unit)
+    if template.type == "text":
+        if not isinstance(value, str) or not value:
+            raise DataError(f"expected a text, found {value!r}", file=file, key=key)
+        return Value(template.key, "text", value)
+    raise DataError(f"a {template.type} cannot be overridden as a whole; override a single "
+                    "value (e.g. a coordinate '.x', '.y' or '.z' of a point)", file=file, key=key)

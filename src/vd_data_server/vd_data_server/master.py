@@ -1,0 +1,301 @@
+"""Master files (studies): configurations that pick variants and override values.
+
+Layout::
+
+    study:
+      name: Sample sedan study
+      vehicle: sedan            # folder of the vehicle under the data root
+      data_root: ..             # relative to this file (default: ..)
+    defaults:                   # variant per input group, for every configuration
+      front_spring: X
+    configurations:
+      baseline:
+        description: reference car
+      soft_front:
+        variants: {front_spring: Y}
+        overrides:
+          front_alignment.camber: -1.2 deg
+          front_hardpoints.points.lca_outer.z: -170 mm
+        flexible: false
+
+A variant ``V`` of group ``G`` is the file ``<data_root>/<vehicle>/<G>/<V>.yaml``.
+Only files under the data root are ever read.
+"""
+from __future__ import annotations
+
+import hashlib
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from . import schema
+from .datafile import _check_range, load_group_file, parse_override
+from .errors import DataError, DataErrors
+from .model import Configuration, GroupData, Value
+from .yamlio import line_of, load_file
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+MASTER_TOP = ("study", "defaults", "configurations")
+STUDY_KEYS = ("name", "description", "vehicle", "data_root")
+CONFIG_KEYS = ("description", "variants", "overrides", "flexible")
+COORDS = {"x": 0, "y": 1, "z": 2}
+
+
+@dataclass(frozen=True)
+class ConfigurationSpec:
+    name: str
+    description: str
+    variants: Mapping[str, str]
+    overrides: Mapping[str, Any]
+    flexible: bool
+    flexible_components: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class MasterFile:
+    path: Path
+    name: str
+    description: str
+    vehicle: str
+    data_root: Path
+    configurations: Mapping[str, ConfigurationSpec]
+    raw_overrides_lines: Mapping[tuple[str, str], int] = field(default_factory=dict)
+
+    @property
+    def display(self) -> str:
+        return str(self.path)
+
+
+def inside(root: Path, path: Path) -> bool:
+    """True if ``path`` (resolved, links followed) lies under ``root``."""
+    try:
+        path.resolve().relative_to(root.resolve())
+    except ValueError:
+        return False
+    return True
+
+
+def load_master(path: str | Path, *, data_root: str | Path | None = None) -> MasterFile:
+    path = Path(path)
+    display = str(path)
+    raw = load_file(path, display=display)
+    errors: list[DataError] = []
+
+    def err(key: str, message: str, container: Any = None, name: str | None = None) -> None:
+        line = line_of(container, name) if name is not None else None
+        errors.append(DataError(message + (f" (line {line})" if line else ""), file=display,
+                                key=key or None))
+
+    if not isinstance(raw, Mapping):
+        raise DataError("expected a mapping with 'study', 'defaults' and 'configurations'",
+                        file=display)
+    for key in raw:
+        if key not in MASTER_TOP:
+            err(key, f"unknown key (expected one of: {', '.join(MASTER_TOP)})", raw, key)
+    study = raw.get("study")
+    if not isinstance(study, Mapping):
+        raise DataError("missing required mapping 'study' (name, vehicle)", file=display,
+                        key="study")
+    for key in study:
+        if key not in STUDY_KEYS:
+            err(f"study.{key}", f"unknown key (expected one of: {', '.join(STUDY_KEYS)})",
+                study, key)
+    for key in ("name", "vehicle"):
+        if not isinstance(study.get(key), str) or not study.get(key):
+            err(f"study.{key}", "missing required text", raw, "study")
+    vehicle = str(study.get("vehicle", ""))
+    if vehicle and not _NAME.match(vehicle):
+        err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
+    if data_root is None:
+        root = (path.parent / str(study.get("data_root", ".."))).resolve()
+    else:
+        root = Path(data_root).resolve()
+    defaults = raw.get("defaults") or {}
+    if not isinstance(defaults, Mapping):
+        err("defaults", "expected a mapping of group: variant", raw, "defaults")
+        defaults = {}
+    _check_variants(defaults, "defaults", err)
+    configs_raw = raw.get("configurations")
+    if not isinstance(configs_raw, Mapping) or not configs_raw:
+        err("configurations", "expected a non-empty mapping of configuration names", raw,
+            "configurations")
+        configs_raw = {}
+    configs: dict[str, ConfigurationSpec] = {}
+    for name, body in configs_raw.items():
+        where = f"configurations.{name}"
+        if not _NAME.match(name):
+            err(where, "configuration names may hold letters, digits, '_', '-' and '.'",
+                configs_raw, name)
+            continue
+        body = body or {}
+        if not isinstance(body, Mapping):
+            err(where, "expected a mapping", configs_raw, name)
+            continue
+        for key in body:
+            if key not in CONFIG_KEYS:
+                err(f"{where}.{key}", f"unknown key (expected one of: {', '.join(CONFIG_KEYS)})",
+                    body, key)
+        variants = body.get("variants") or {}
+        overrides = body.get("overrides") or {}
+        if not isinstance(variants, Mapping):
+            err(f"{where}.variants", "expected a mapping of group: variant", body, "variants")
+            variants = {}
+        if not isinstance(overrides, Mapping):
+            err(f"{where}.overrides", "expected a mapping of group.key: value", body, "overrides")
+            overrides = {}
+        _check_variants(variants, f"{where}.variants", err)
+        merged = {**defaults, **variants}
+        for group in schema.REQUIRED_GROUPS:
+            if group not in merged:
+                err(f"{where}.variants.{group}", "no variant chosen (neither in 'defaults' nor "
+                    "in the configuration)", configs_raw, name)
+        flexible, components = _flexible(body.get("flexible", False), f"{where}.flexible", err)
+        configs[name] = ConfigurationSpec(name, str(body.get("description") or ""),
+                                          {str(k): str(v) for k, v in merged.items()},
+                                          dict(overrides), flexible, components)
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    return MasterFile(path=path, name=str(study["name"]), description=str(study.get(
+        "description") or ""), vehicle=vehicle, data_root=root, configurations=configs)
+
+
+def _check_variants(variants: Mapping[str, Any], where: str, err: Any) -> None:
+    names = schema.all_group_names()
+    for group, variant in variants.items():
+        if group not in names:
+            err(f"{where}.{group}", f"unknown input group (expected one of: {', '.join(names)})",
+                variants, group)
+        elif not isinstance(variant, (str, int)) or not _NAME.match(str(variant)):
+            err(f"{where}.{group}", f"variant must be a plain name, found {variant!r}", variants,
+                group)
+
+
+def _flexible(raw: Any, where: str, err: Any) -> tuple[bool, tuple[str, ...]]:
+    if isinstance(raw, bool):
+        return raw, ()
+    if isinstance(raw, list) and all(isinstance(c, str) for c in raw):
+        return bool(raw), tuple(raw)
+    err(where, f"expected true, false or a list of component names, found {raw!r}")
+    return False, ()
+
+
+class GroupCache:
+    """Loads each (group, variant) file once per study load."""
+
+    def __init__(self, master: MasterFile) -> None:
+        self.master = master
+        self._cache: dict[tuple[str, str], GroupData] = {}
+        self.extra_hashes: dict[str, str] = {}
+
+    def variant_path(self, group: str, variant: str) -> tuple[Path, str]:
+        rel = f"{self.master.vehicle}/{group}/{variant}.yaml"
+        return self.master.data_root / rel, rel
+
+    def get(self, group: str, variant: str) -> GroupData:
+        key = (group, variant)
+        if key not in self._cache:
+            path, rel = self.variant_path(group, variant)
+            if not inside(self.master.data_root, path):
+                raise DataError(f"path is outside the data root {self.master.data_root}",
+                                file=rel)
+            if not path.is_file():
+                available = self.available(group)
+                raise DataError(
+                    f"variant '{variant}' of group '{group}' does not exist (no file {rel}; "
+                    f"available: {', '.join(available) or 'none'})", file=self.master.display)
+            data = load_group_file(path, display=rel, group=group, variant=variant)
+            if data.kind == "tire":
+                self._check_tire(data)
+            self._cache[key] = data
+        return self._cache[key]
+
+    def available(self, group: str) -> list[str]:
+        folder = self.master.data_root / self.master.vehicle / group
+        return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
+
+    def _check_tire(self, data: GroupData) -> None:
+        from .tir import read_tir
+
+        rel = data.text("file")
+        path = self.master.data_root / rel
+        if not inside(self.master.data_root, path):
+            raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
+                            file=data.file, key="file")
+        read_tir(path)
+        self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
+
+
+def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
+            extra_overrides: Mapping[str, Any] | None = None) -> Configuration:
+    """Resolve one configuration: variants, then master overrides, then ``extra_overrides``
+    (``vd run --set``), each value keeping its source."""
+    if name not in master.configurations:
+        raise DataError(f"configuration '{name}' does not exist (available: "
+                        f"{', '.join(master.configurations)})", file=master.display)
+    spec = master.configurations[name]
+    cache = cache or GroupCache(master)
+    groups = {group: cache.get(group, variant) for group, variant in spec.variants.items()}
+    groups = apply_overrides(groups, spec.overrides, file=master.display,
+                             where=f"configurations.{name}.overrides")
+    if extra_overrides:
+        groups = apply_overrides(groups, extra_overrides, file="--set", where="")
+    tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
+    hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
+    return Configuration(name=name, master_file=master.display, description=spec.description,
+                         groups=groups, flexible=spec.flexible,
+                         flexible_components=spec.flexible_components, extra_hashes=hashes)
+
+
+def apply_overrides(groups: Mapping[str, GroupData], overrides: Mapping[str, Any], *, file: str,
+                    where: str) -> dict[str, GroupData]:
+    out = dict(groups)
+    errors: list[DataError] = []
+    for dotted, raw in overrides.items():
+        key_label = f"{where}.{dotted}" if where else str(dotted)
+        try:
+            out = _apply_one(out, str(dotted), raw, file=file, label=key_label)
+        except DataError as err:
+            errors.append(err)
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    return out
+
+
+def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str,
+               label: str) -> dict[str, GroupData]:
+    group_name, _, key = dotted.partition(".")
+    if group_name not in groups or not key:
+        raise DataError(f"override of unknown group '{group_name}' (groups: "
+                        f"{', '.join(groups)}); write GROUP.KEY", file=file, key=label)
+    group = groups[group_name]
+    source = f"master override {label}" if file != "--set" else f"--set {dotted}"
+    coord = None
+    if key not in group.values and key[-2:] in (".x", ".y", ".z") and key[:-2] in group.values:
+        key, coord = key[:-2], key[-1]
+    if key not in group.values:
+        raise DataError(f"key '{key}' does not exist in group '{group_name}' ({group.file}); "
+                        f"keys: {', '.join(sorted(group.values))}", file=file, key=label)
+    old = group.values[key]
+    if coord is not None:
+        if old.type != "point":
+            raise DataError(f"'{key}' is a {old.type}, not a point", file=file, key=label)
+        axis = Value(key, "scalar", 0.0, "m", display_unit=old.display_unit)
+        number = parse_override(raw, axis, file=file, key=label).si
+        xyz = list(old.si)  # type: ignore[arg-type]
+        xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
+        new = Value(key, "point", tuple(xyz), "m", display_unit=old.display_unit, source=source)
+    else:
+        new = parse_override(raw, old, file=file, key=label).with_source(source)
+        spec = schema.leaf_spec(group.kind, key)
+        if isinstance(spec, schema.Scalar):
+            _check_range(float(new.si), spec, file, label, raw)  # type: ignore[arg-type]
+        if isinstance(spec, schema.Text) and spec.choices and new.si not in spec.choices:
+            raise DataError(f"'{new.si}' is not one of: {', '.join(spec.choices)}", file=file,
+                            key=label)
+    values = dict(group.values)
+    values[key] = new
+    groups[group_name] = GroupData(group.group, group.kind, group.variant, group.file, values,
+                                   group.description)
+    return groups

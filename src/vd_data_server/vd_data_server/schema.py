@@ -1,0 +1,277 @@
+"""What each kind of vehicle data file holds: keys, quantities, ranges.
+
+The schema is data (specs below), read by :mod:`vd_data_server.datafile` to
+validate and convert files and by ``docs/data-format.md`` (generated check in
+the tests) to document every key. Units are pint quantities checked for
+dimension, which is why this is not a JSON Schema.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Union
+
+
+@dataclass(frozen=True)
+class Scalar:
+    quantity: str
+    doc: str
+    required: bool = True
+    default: float | None = None  # SI
+    minimum: float | None = None  # SI, inclusive
+    positive: bool = False  # strictly > 0
+
+
+@dataclass(frozen=True)
+class Curve:
+    """A table y(x) given as ``{x: [...], y: [...]}``; x strictly increasing."""
+
+    x_quantity: str
+    y_quantity: str
+    doc: str
+    required: bool = True
+    increasing: bool = True  # y must be non-decreasing (physical force curves)
+    x_minimum: float | None = None
+
+
+@dataclass(frozen=True)
+class Point:
+    """A point ``[x, y, z]`` in the vehicle frame, in the file's length unit."""
+
+    doc: str
+    required: bool = True
+
+
+@dataclass(frozen=True)
+class Vector:
+    """A dimensionless direction ``[x, y, z]``, normalised at load."""
+
+    doc: str
+    required: bool = True
+
+
+@dataclass(frozen=True)
+class Text:
+    doc: str
+    choices: tuple[str, ...] | None = None
+    required: bool = True
+
+
+@dataclass(frozen=True)
+class Section:
+    fields: Mapping[str, "Spec"]
+    doc: str = ""
+    required: bool = True
+    #: groups of keys of which exactly one must be given
+    one_of: tuple[tuple[str, ...], ...] = ()
+
+
+@dataclass(frozen=True)
+class MapOf:
+    """Free names (hard points, bushing connections) -> the same spec."""
+
+    value: "Spec"
+    doc: str
+    required: bool = True
+
+
+Spec = Union[Scalar, Curve, Point, Vector, Text, Section, MapOf]
+
+AXLES = ("front", "rear")
+
+# --- suspension templates: the hard points each one needs (left side) ---
+TEMPLATE_POINTS: Mapping[str, tuple[str, ...]] = {
+    "macpherson": ("lca_front", "lca_rear", "lca_outer", "tierod_inner", "tierod_outer",
+                   "strut_top", "strut_lower", "wheel_centre"),
+    "double_wishbone": ("uca_front", "uca_rear", "uca_outer", "lca_front", "lca_rear",
+                        "lca_outer", "tierod_inner", "tierod_outer", "spring_upper",
+                        "spring_lower", "damper_upper", "damper_lower", "wheel_centre"),
+    "multilink": ("upper_front", "upper_rear", "upper_outer", "lateral_inner", "lateral_outer",
+                  "trailing_inner", "trailing_outer", "tierod_inner", "tierod_outer",
+                  "spring_upper", "spring_lower", "damper_upper", "damper_lower",
+                  "wheel_centre"),
+}
+#: optional points every template understands (anti-roll bar drop link and pivot)
+OPTIONAL_POINTS = ("arb_link_lower", "arb_link_upper", "arb_pivot")
+
+_STOP = Section({
+    "clearance": Scalar("length", "travel of the spring/damper from design length before the "
+                        "stop touches", minimum=0.0),
+    "curve": Curve("length", "force", "stop force versus compression beyond the clearance",
+                   x_minimum=0.0),
+})
+
+_SIX = ("x", "y", "z", "rx", "ry", "rz")
+
+
+def _six(trans: str, rot: str, what: str, required: bool) -> Section:
+    return Section({
+        d: Scalar(trans if len(d) == 1 else rot,
+                  f"{what} along/about the bushing's {d[-1]} axis", minimum=0.0,
+                  required=required, default=None if required else 0.0)
+        for d in _SIX
+    }, required=required)
+
+
+KINDS: Mapping[str, Section] = {
+    "hardpoints": Section({
+        "template": Text("suspension template", choices=tuple(TEMPLATE_POINTS)),
+        "points": MapOf(Point("hard point, left side, vehicle frame (origin on the ground under "
+                              "the front axle centre, x forward, y left, z up)"),
+                        "hard points by name; the template fixes which are required"),
+    }),
+    "spring": Section({
+        "rate": Scalar("stiffness", "linear coil-spring rate along its axis", required=False,
+                       positive=True),
+        "curve": Curve("length", "force", "spring force versus compression from the free length "
+                       "(extension negative)", required=False),
+        "free_length": Scalar("length", "unloaded length", required=False, positive=True),
+        "preload": Scalar("force", "force at the design (hard-point) length; the free length "
+                          "follows from it and the rate or curve", required=False, minimum=0.0),
+    }, one_of=(("rate", "curve"), ("free_length", "preload"))),
+    "damper": Section({
+        "curve": Curve("velocity", "force", "damper force versus compression velocity "
+                       "(rebound negative)"),
+        "scale": Scalar("dimensionless", "damping scale factor (the thesis' 'damping %')",
+                        required=False, default=1.0, positive=True),
+    }),
+    "bump_stop": _STOP,
+    "rebound_stop": _STOP,
+    "bushings": Section({
+        "connections": MapOf(Section({
+            "stiffness": _six("stiffness", "torsional_stiffness", "linear stiffness", True),
+            "damping": _six("damping", "torsional_damping", "linear damping", False),
+            "axis": Vector("bushing axial (z) direction in the vehicle frame; default vehicle z",
+                           required=False),
+        }), "bushings by the hard point of the connection they make compliant"),
+    }),
+    "stabilizer": Section({
+        "torsional_stiffness": Scalar("torsional_stiffness", "bar twist stiffness (left arm "
+                                      "relative to right)", required=False, positive=True),
+        "bar_radius": Scalar("length", "bar radius (solid round bar)", required=False,
+                             positive=True),
+        "torsion_length": Scalar("length", "length of the bar's straight torsion part",
+                                 required=False, positive=True),
+        "shear_modulus": Scalar("pressure", "bar material shear modulus", required=False,
+                                default=79.3e9, positive=True),
+    }, one_of=(("torsional_stiffness", "bar_radius"),)),
+    "steering": Section({
+        "rack_ratio": Scalar("rack_ratio", "rack travel per steering-wheel angle (c-factor)",
+                             positive=True),
+        "rack_travel_limit": Scalar("length", "rack travel from centre to either stop",
+                                    positive=True),
+        "rack_stiffness": Scalar("stiffness", "rack housing mounting stiffness along y",
+                                 required=False, positive=True),
+        "column_stiffness": Scalar("torsional_stiffness", "steering column torsional stiffness",
+                                   required=False, positive=True),
+    }),
+    "alignment": Section({
+        "camber": Scalar("angle", "static camber at design (negative: top of wheel inward)"),
+        "toe": Scalar("angle", "static toe per wheel at design (positive: toe-in)"),
+    }),
+    "tire": Section({
+        "file": Text("TeimOrbit .tir property file, path relative to the data root"),
+    }),
+    "mass": Section({
+        "sprung_mass": Scalar("mass", "sprung (body) mass", positive=True),
+        "sprung_cog": Point("sprung-mass centre of gravity, vehicle frame"),
+        "sprung_inertia": Section({
+            "ixx": Scalar("inertia", "roll moment of inertia about the sprung COG", positive=True),
+            "iyy": Scalar("inertia", "pitch moment of inertia about the sprung COG", positive=True),
+            "izz": Scalar("inertia", "yaw moment of inertia about the sprung COG", positive=True),
+            "ixy": Scalar("inertia", "product of inertia", required=False, default=0.0),
+            "ixz": Scalar("inertia", "product of inertia", required=False, default=0.0),
+            "iyz": Scalar("inertia", "product of inertia", required=False, default=0.0),
+        }),
+        "unsprung_mass_front": Scalar("mass", "unsprung mass per front corner", positive=True),
+        "unsprung_mass_rear": Scalar("mass", "unsprung mass per rear corner", positive=True),
+    }),
+    "geometry": Section({
+        "wheelbase": Scalar("length", "front to rear axle distance at design", positive=True),
+        "track_front": Scalar("length", "front wheel-centre track at design", positive=True),
+        "track_rear": Scalar("length", "rear wheel-centre track at design", positive=True),
+    }),
+    "targets": Section({
+        "roll_stiffness_front": Scalar("torsional_stiffness", "front suspension roll stiffness "
+                                       "(incl. anti-roll bar), design target", positive=True),
+        "roll_stiffness_rear": Scalar("torsional_stiffness", "rear suspension roll stiffness "
+                                      "(incl. anti-roll bar), design target", positive=True),
+        "roll_centre_height_front": Scalar("length", "front roll-centre height above ground, "
+                                           "design target"),
+        "roll_centre_height_rear": Scalar("length", "rear roll-centre height above ground, "
+                                          "design target"),
+    }),
+}
+
+#: vehicle-level groups (no axle prefix)
+VEHICLE_KINDS = ("mass", "geometry", "targets", "steering")
+#: per-axle groups are named ``front_<kind>`` / ``rear_<kind>``
+AXLE_KINDS = ("hardpoints", "spring", "damper", "bump_stop", "rebound_stop", "bushings",
+              "stabilizer", "alignment", "tire")
+#: groups a configuration must pick a variant for
+REQUIRED_GROUPS = ("mass", "geometry", "targets",
+                   *(f"{a}_{k}" for a in AXLES for k in
+                     ("hardpoints", "spring", "damper", "bump_stop", "rebound_stop",
+                      "alignment", "tire")))
+
+
+def group_kind(group: str) -> str:
+    """Kind of an input group name (``front_spring`` -> ``spring``)."""
+    for axle in AXLES:
+        prefix = f"{axle}_"
+        if group.startswith(prefix) and group[len(prefix):] in AXLE_KINDS:
+            return group[len(prefix):]
+    if group in VEHICLE_KINDS:
+        return group
+    raise KeyError(group)
+
+
+def all_group_names() -> tuple[str, ...]:
+    names = list(VEHICLE_KINDS)
+    names += [f"{a}_{k}" for a in AXLES for k in AXLE_KINDS]
+    return tuple(names)
+
+
+@dataclass(frozen=True)
+class FieldDoc:
+    key: str
+    kind: str
+    quantity: str
+    required: bool
+    doc: str
+
+
+def describe(spec: Spec, prefix: str = "") -> list[FieldDoc]:
+    """Flat documentation rows of a spec (used to check docs/data-format.md)."""
+    rows: list[FieldDoc] = []
+    if isinstance(spec, Section):
+        for name, sub in spec.fields.items():
+            rows += describe(sub, f"{prefix}{name}" if not prefix else f"{prefix}.{name}")
+        return rows
+    if isinstance(spec, MapOf):
+        return describe(spec.value, f"{prefix}.<name>")
+    quantity = {Scalar: lambda s: s.quantity, Curve: lambda s: f"{s.x_quantity} -> {s.y_quantity}",
+                Point: lambda s: "length", Vector: lambda s: "dimensionless",
+                Text: lambda s: "text"}[type(spec)](spec)
+    rows.append(FieldDoc(prefix, type(spec).__name__.lower(), quantity, spec.required, spec.doc))
+    return rows
+
+
+__all__ = ["AXLES", "KINDS", "TEMPLATE_POINTS", "OPTIONAL_POINTS", "REQUIRED_GROUPS",
+           "Scalar", "Curve", "Point", "Vector", "Text", "Section", "MapOf", "group_kind",
+           "all_group_names", "describe"]
+
+
+def leaf_spec(kind: str, key: str) -> Spec | None:
+    """The leaf spec a flat key of a group of ``kind`` refers to (None if unknown)."""
+    spec: Spec = KINDS[kind]
+    for part in key.split("."):
+        if isinstance(spec, MapOf):
+            spec = spec.value
+            continue
+        if not isinstance(spec, Section) or part not in spec.fields:
+            return None
+        spec = spec.fields[part]
+    if isinstance(spec, MapOf):
+        return None
+    return spec

@@ -1,0 +1,570 @@
+"""Reader for TeimOrbit tire property files (.tir): PAC2002, MF-Tyre 5.2, 6.1, 6.2.
+
+The files tire suppliers deliver for MF-Tyre and Adams/Tire are line based
+(TeimOrbit format; Pacejka, "Tire and Vehicle Dynamics", 3rd ed., ch. 4 and
+app. 3 list the Magic Formula parameters they carry):
+
+* ``[BLOCK]`` starts a block. Block and key names are case-insensitive and are
+  stored upper-case.
+* ``KEY = value``: a number (``4850``, ``1e+006``, ``-3.7604e-005``), a quoted
+  string (``'PAC2002'`` or ``"PAC2002"``) or a bare word.
+* ``$`` and ``!`` start a comment anywhere outside a quoted string, which covers
+  whole comment lines and the trailing ``$description`` of a key.
+* A block may hold a table instead of keys, e.g. ``[SHAPE]`` with a
+  ``{radial width}`` header and rows of numbers; the rows are kept in
+  :attr:`TireProperties.tables` as written (they are ratios, no units).
+* Tabs, Windows line endings and a UTF-8 byte-order mark are accepted. A file
+  that is not UTF-8 is read as Latin-1 because suppliers' Windows tools write
+  degree signs and the like into comments.
+
+Units
+-----
+[UNITS] names the units of LENGTH, FORCE, ANGLE, MASS, TIME and PRESSURE; an
+entry that is absent means the SI unit (PAC2002 files often have no PRESSURE).
+Names are looked up in pint, first as written and then in lower case, so
+'meter', 'mm', 'millimeter', 'centimeter', 'inch', 'newton', 'N', 'kN',
+'radian', 'rad', 'deg', 'degree', 'kg', 'gram', 'second', 'sec', 's',
+'pascal', 'Pa', 'kPa', 'bar', 'psi' all work. A name pint does not know, or one
+of the wrong kind (a force for LENGTH), is an error.
+
+Only the keys in :data:`DIMENSIONAL_KEYS` carry units and are converted to SI.
+Every other value is stored as written: the Magic Formula coefficients and
+scaling factors of PAC2002 / MF 6.x are dimensionless by the format's
+definition (loads normalised by FNOMIN, lengths by UNLOADED_RADIUS, slip and
+camber in radians), so [UNITS] does not apply to them.
+"""
+from __future__ import annotations
+
+import enum
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+from typing import Final
+
+import pint
+
+from vd_data_server.errors import DataError, DataErrors
+
+__all__ = [
+    "DIMENSIONAL_KEYS",
+    "REQUIRED_BLOCKS",
+    "REQUIRED_KEYS",
+    "TireProperties",
+    "TireTable",
+    "parse_tir_text",
+    "read_tir",
+]
+
+#: Blocks every supported file must contain, in the order problems are reported.
+REQUIRED_BLOCKS: Final[tuple[str, ...]] = (
+    "UNITS",
+    "MODEL",
+    "DIMENSION",
+    "VERTICAL",
+    "SCALING_COEFFICIENTS",
+    "LONGITUDINAL_COEFFICIENTS",
+    "LATERAL_COEFFICIENTS",
+)
+
+#: Keys without which no steady-state force can be computed. Other Magic
+#: Formula coefficients default to 0 and scaling factors to 1, as in MF-Tyre.
+REQUIRED_KEYS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
+    {
+        "DIMENSION": ("UNLOADED_RADIUS",),
+        "VERTICAL": ("FNOMIN",),
+        "LONGITUDINAL_COEFFICIENTS": ("PCX1", "PDX1", "PKX1"),
+        "LATERAL_COEFFICIENTS": ("PCY1", "PDY1", "PKY1", "PKY2"),
+    }
+)
+
+#: Keys with units: key -> ((quantity in [UNITS], exponent), ...). Key names are
+#: unique across the PAC2002 and MF 6.x blocks, so the block is not needed.
+DIMENSIONAL_KEYS: Final[Mapping[str, tuple[tuple[str, int], ...]]] = MappingProxyType(
+    {
+        # [MODEL]: measurement speed and the speed below which forces fade out, m/s
+        "LONGVL": (("LENGTH", 1), ("TIME", -1)),
+        "VXLOW": (("LENGTH", 1), ("TIME", -1)),
+        # [DIMENSION], m
+        "UNLOADED_RADIUS": (("LENGTH", 1),),
+        "WIDTH": (("LENGTH", 1),),
+        "RIM_RADIUS": (("LENGTH", 1),),
+        "RIM_WIDTH": (("LENGTH", 1),),
+        "BOTTOMING_RADIUS": (("LENGTH", 1),),
+        # [VERTICAL]: N, N/m, N s/m, m
+        "FNOMIN": (("FORCE", 1),),
+        "VERTICAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
+        "VERTICAL_DAMPING": (("FORCE", 1), ("TIME", 1), ("LENGTH", -1)),
+        "BOTTOM_OFFST": (("LENGTH", 1),),
+        "BOTTOM_STIFF": (("FORCE", 1), ("LENGTH", -1)),
+        # [VERTICAL_FORCE_RANGE], N
+        "FZMIN": (("FORCE", 1),),
+        "FZMAX": (("FORCE", 1),),
+        # [SLIP_ANGLE_RANGE], [INCLINATION_ANGLE_RANGE], rad
+        "ALPMIN": (("ANGLE", 1),),
+        "ALPMAX": (("ANGLE", 1),),
+        "CAMMIN": (("ANGLE", 1),),
+        "CAMMAX": (("ANGLE", 1),),
+        # PAC2002 [TIRE_CONDITIONS], MF 6.x [OPERATING_CONDITIONS] and
+        # [INFLATION_PRESSURE_RANGE], Pa
+        "IP": (("PRESSURE", 1),),
+        "IP_NOM": (("PRESSURE", 1),),
+        "INFLPRES": (("PRESSURE", 1),),
+        "NOMPRES": (("PRESSURE", 1),),
+        "PRESMIN": (("PRESSURE", 1),),
+        "PRESMAX": (("PRESSURE", 1),),
+        # PAC2002 belt mass in [ALIGNING_COEFFICIENTS]; MF 6.x [INERTIA]: kg, kg m^2, m/s^2
+        "MBELT": (("MASS", 1),),
+        "MASS": (("MASS", 1),),
+        "IXX": (("MASS", 1), ("LENGTH", 2)),
+        "IYY": (("MASS", 1), ("LENGTH", 2)),
+        "BELT_MASS": (("MASS", 1),),
+        "BELT_IXX": (("MASS", 1), ("LENGTH", 2)),
+        "BELT_IYY": (("MASS", 1), ("LENGTH", 2)),
+        "GRAVITY": (("LENGTH", 1), ("TIME", -2)),
+        # MF 6.x [STRUCTURAL]: N/m, N m/rad, Hz
+        "LONGITUDINAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
+        "LATERAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
+        "YAW_STIFFNESS": (("FORCE", 1), ("LENGTH", 1), ("ANGLE", -1)),
+        "FREQ_LONG": (("TIME", -1),),
+        "FREQ_LAT": (("TIME", -1),),
+        "FREQ_YAW": (("TIME", -1),),
+        "FREQ_WINDUP": (("TIME", -1),),
+    }
+)
+
+# SI unit each [UNITS] quantity is converted to, and the word used in messages.
+_SI_UNITS: Final[Mapping[str, str]] = MappingProxyType(
+    {
+        "LENGTH": "meter",
+        "FORCE": "newton",
+        "ANGLE": "radian",
+        "MASS": "kilogram",
+        "TIME": "second",
+        "PRESSURE": "pascal",
+    }
+)
+_QUANTITY_WORDS: Final[Mapping[str, str]] = MappingProxyType(
+    {
+        "LENGTH": "length",
+        "FORCE": "force",
+        "ANGLE": "angle",
+        "MASS": "mass",
+        "TIME": "time",
+        "PRESSURE": "pressure",
+    }
+)
+# pint treats angles as dimensionless, so a dimension check would let
+# 'percent' through as an ANGLE; only these (pint's canonical names) are angles.
+_ANGLE_UNITS: Final[frozenset[str]] = frozenset({"radian", "degree"})
+
+# PROPERTY_FILE_FORMAT values naming one version. 'MF_05' is TNO's MF-Tyre 5.x
+# format, whose steady-state equations are those of MF 5.2 / PAC2002.
+_FORMAT_NAMES: Final[Mapping[str, str]] = MappingProxyType(
+    {"PAC2002": "PAC2002", "MF_05": "MF52", "MF52": "MF52", "MF61": "MF61", "MF62": "MF62"}
+)
+# PROPERTY_FILE_FORMAT values that leave the version to FITTYP.
+_GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({"MF-TYRE", "MF_TYRE"})
+# FITTYP (MF-Tyre "Magic Formula version number"): 6 and 21 are MF 5.2.
+_FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType({6: "MF52", 21: "MF52", 61: "MF61", 62: "MF62"})
+
+# Blocks in which every value must be a number.
+_NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset({"DIMENSION", "VERTICAL"})
+_NUMERIC_BLOCK_SUFFIXES: Final[tuple[str, ...]] = ("_COEFFICIENTS", "_RANGE")
+
+_COMMENT_CHARS: Final[str] = "$!"
+_QUOTE_CHARS: Final[str] = "'\""
+# No inf/nan: they are not numbers a supplier writes, float() would accept them.
+_NUMBER_RE: Final = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+_BLOCK_RE: Final = re.compile(r"\[\s*([A-Za-z][A-Za-z0-9_]*)\s*\]")
+_KEY_RE: Final = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_TABLE_HEADER_RE: Final = re.compile(r"\{([^{}]*)\}")
+# A unit is one name; pint's expression parser would accept 'm,' or 'm=1'.
+_UNIT_NAME_RE: Final = re.compile(r"[A-Za-z][A-Za-z_]*")
+
+_UREG: Final = pint.UnitRegistry()
+
+
+class _Required(enum.Enum):
+    """Marker for "no default": a missing block or key is an error."""
+
+    TOKEN = enum.auto()
+
+
+_REQUIRED: Final = _Required.TOKEN
+
+
+@dataclass(frozen=True)
+class TireTable:
+    """Rows of a table block such as [SHAPE] (``{radial width}``), as written."""
+
+    columns: tuple[str, ...]  # names in the {...} header, empty if there is none
+    rows: tuple[tuple[float, ...], ...]
+
+
+@dataclass(frozen=True)
+class TireProperties:
+    """Contents of one .tir file, dimensional values in SI (see module doc).
+
+    ``sections`` maps upper-case block names to upper-case keys and values
+    (``float`` for numbers, ``str`` for quoted strings and bare words).
+    """
+
+    path: str  # file the data came from (or the source name given to parse_tir_text)
+    file_format: str  # 'PAC2002', 'MF52', 'MF61' or 'MF62'
+    sections: Mapping[str, Mapping[str, float | str]]
+    tables: Mapping[str, TireTable] = field(default_factory=lambda: MappingProxyType({}))
+
+    def get(self, section: str, key: str, default: float | str | _Required = _REQUIRED) -> float | str:
+        """Value of ``key`` in block ``section`` (names case-insensitive).
+
+        Without ``default`` a missing block or key raises :class:`DataError`.
+        """
+        block_name, key_name = section.upper(), key.upper()
+        block = self.sections.get(block_name)
+        if block is None:
+            if isinstance(default, _Required):
+                raise DataError(f"missing block [{block_name}]", file=self.path)
+            return default
+        if key_name not in block:
+            if isinstance(default, _Required):
+                raise DataError(_missing_key_message(key_name, block_name), file=self.path, key=key_name)
+            return default
+        return block[key_name]
+
+    def number(self, section: str, key: str, default: float | _Required = _REQUIRED) -> float:
+        """Like :meth:`get`, but the value must be a number."""
+        value = self.get(section, key, default)
+        if isinstance(value, str):
+            raise DataError(
+                f"key {key.upper()!r} in block [{section.upper()}] is not a number: {value!r}",
+                file=self.path,
+                key=key.upper(),
+            )
+        return value
+
+    @property
+    def unloaded_radius(self) -> float:
+        """Free tire radius R0, m."""
+        return self.number("DIMENSION", "UNLOADED_RADIUS")
+
+    @property
+    def fnomin(self) -> float:
+        """Nominal wheel load Fz0 (before the LFZO scaling), N."""
+        return self.number("VERTICAL", "FNOMIN")
+
+    @property
+    def vertical_stiffness(self) -> float:
+        """Vertical tire stiffness, N/m."""
+        return self.number("VERTICAL", "VERTICAL_STIFFNESS")
+
+
+@dataclass(frozen=True)
+class _Entry:
+    """One ``KEY = value`` line before unit conversion."""
+
+    value: float | str
+    text: str  # value as written, for messages
+    line: int
+
+
+@dataclass
+class _RawTable:
+    """Table rows collected while reading one block."""
+
+    columns: tuple[str, ...] = ()
+    rows: list[tuple[float, ...]] = field(default_factory=list)
+
+
+@dataclass
+class _RawFile:
+    """Result of the line-by-line pass."""
+
+    blocks: dict[str, dict[str, _Entry]] = field(default_factory=dict)
+    tables: dict[str, _RawTable] = field(default_factory=dict)
+
+
+def read_tir(path: str | Path) -> TireProperties:
+    """Read a .tir file; see the module doc for syntax, units and checks.
+
+    Raises :class:`DataError` (or :class:`DataErrors` for several independent
+    problems) naming the file, the key and, where known, the line.
+    """
+    file = Path(path)
+    try:
+        data = file.read_bytes()
+    except OSError as exc:
+        raise DataError(f"cannot read tire property file: {exc.strerror or exc}", file=str(file)) from exc
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return parse_tir_text(text, str(file))
+
+
+def parse_tir_text(text: str, source: str) -> TireProperties:
+    """Parse the text of a .tir file; ``source`` names it in messages and ``path``."""
+    raw = _read_lines(text, source)
+    _raise_if_any(_check_structure(raw.blocks, source))
+    file_format = _file_format(raw.blocks["MODEL"], source)
+    factors = _unit_factors(raw.blocks["UNITS"], source)
+    sections = {
+        block: {key: _to_si(block, key, entry.value, factors) for key, entry in entries.items()}
+        for block, entries in raw.blocks.items()
+    }
+    _raise_if_any(_check_physical(raw.blocks, sections, source))
+    return TireProperties(
+        path=source,
+        file_format=file_format,
+        sections=MappingProxyType({block: MappingProxyType(values) for block, values in sections.items()}),
+        tables=MappingProxyType(
+            {block: TireTable(table.columns, tuple(table.rows)) for block, table in raw.tables.items()}
+        ),
+    )
+
+
+def _read_lines(text: str, source: str) -> _RawFile:
+    """Split ``text`` into blocks, keys and table rows; collect syntax errors."""
+    raw = _RawFile()
+    errors: list[DataError] = []
+    block_lines: dict[str, int] = {}
+    block: str | None = None
+    # Keys of a repeated block go here so they are not reported a second time.
+    entries: dict[str, _Entry] = {}
+    for number, line in enumerate(text.splitlines(), start=1):
+        code, quote_closed = _strip_comment(line)
+        code = code.strip()
+        if not quote_closed:
+            errors.append(DataError(f"line {number}: unterminated quoted string in {code!r}", file=source))
+            continue
+        if not code:
+            continue
+        if match := _BLOCK_RE.fullmatch(code):
+            block = match[1].upper()
+            if block in raw.blocks:
+                errors.append(
+                    DataError(f"line {number}: block [{block}] repeats line {block_lines[block]}", file=source)
+                )
+                entries = {}
+            else:
+                entries = raw.blocks[block] = {}
+                block_lines[block] = number
+            continue
+        if block is None:
+            errors.append(DataError(f"line {number}: {code!r} comes before the first [BLOCK]", file=source))
+        elif "=" in code:
+            error = _read_key_line(code, number, block, entries, source)
+            if error is not None:
+                errors.append(error)
+        else:
+            error = _read_table_line(code, number, block, raw.tables, source)
+            if error is not None:
+                errors.append(error)
+    _raise_if_any(errors)
+    return raw
+
+
+def _strip_comment(line: str) -> tuple[str, bool]:
+    """Cut ``line`` at the first ``$`` or ``!`` outside quotes; False if a quote is left open."""
+    quote: str | None = None
+    for index, char in enumerate(line):
+        if quote is not None:
+            if char == quote:
+                quote = None
+        elif char in _QUOTE_CHARS:
+            quote = char
+        elif char in _COMMENT_CHARS:
+            return line[:index], True
+    return line, quote is None
+
+
+def _read_key_line(
+    code: str, number: int, block: str, entries: dict[str, _Entry], source: str
+) -> DataError | None:
+    """Store one ``KEY = value`` line in ``entries``; return the problem if any."""
+    key_text, _, value_text = code.partition("=")
+    key, value_text = key_text.strip().upper(), value_text.strip()
+    if not _KEY_RE.fullmatch(key):
+        return DataError(f"line {number}: {key_text.strip()!r} is not a key name", file=source)
+    if not value_text:
+        return DataError(f"line {number}: key {key!r} in block [{block}] has no value", file=source, key=key)
+    if key in entries:
+        return DataError(
+            f"line {number}: key {key!r} repeats line {entries[key].line} in block [{block}]",
+            file=source,
+            key=key,
+        )
+    entries[key] = _Entry(_parse_value(value_text), value_text, number)
+    return None
+
+
+def _parse_value(text: str) -> float | str:
+    """Number, quoted string (quotes removed) or bare word."""
+    if len(text) >= 2 and text[0] in _QUOTE_CHARS and text[-1] == text[0]:
+        return text[1:-1].strip()
+    if _NUMBER_RE.fullmatch(text):
+        return float(text)
+    return text
+
+
+def _read_table_line(
+    code: str, number: int, block: str, tables: dict[str, _RawTable], source: str
+) -> DataError | None:
+    """Store a ``{column header}`` or a row of numbers of a table block."""
+    table = tables.setdefault(block, _RawTable())
+    if match := _TABLE_HEADER_RE.fullmatch(code):
+        table.columns = tuple(match[1].split())
+        return None
+    cells = code.replace(",", " ").split()
+    if not all(_NUMBER_RE.fullmatch(cell) for cell in cells):
+        return DataError(
+            f"line {number}: cannot read {code!r} in block [{block}]: "
+            "expected KEY = value, a {column header} or a row of numbers",
+            file=source,
+        )
+    width = len(table.columns) if table.columns else len(table.rows[0]) if table.rows else len(cells)
+    if len(cells) != width:
+        return DataError(
+            f"line {number}: table row in block [{block}] has {len(cells)} values, expected {width}",
+            file=source,
+        )
+    table.rows.append(tuple(float(cell) for cell in cells))
+    return None
+
+
+def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) -> list[DataError]:
+    """Missing blocks or keys and non-numbers where numbers are needed."""
+    errors = [DataError(f"missing block [{name}]", file=source) for name in REQUIRED_BLOCKS if name not in blocks]
+    for block, keys in REQUIRED_KEYS.items():
+        if block in blocks:
+            errors.extend(
+                DataError(_missing_key_message(key, block), file=source, key=key)
+                for key in keys
+                if key not in blocks[block]
+            )
+    for block, entries in blocks.items():
+        numeric_block = block in _NUMERIC_BLOCKS or block.endswith(_NUMERIC_BLOCK_SUFFIXES)
+        for key, entry in entries.items():
+            needs_number = numeric_block or (key in DIMENSIONAL_KEYS and block != "UNITS")
+            if needs_number and isinstance(entry.value, str):
+                errors.append(
+                    DataError(
+                        f"line {entry.line}: key {key!r} in block [{block}] is not a number: {entry.text}",
+                        file=source,
+                        key=key,
+                    )
+                )
+    return errors
+
+
+def _missing_key_message(key: str, block: str) -> str:
+    return f"key {key!r} missing in block [{block}]"
+
+
+def _file_format(model: Mapping[str, _Entry], source: str) -> str:
+    """Version from PROPERTY_FILE_FORMAT, or from FITTYP where that is absent or generic."""
+    declared = model.get("PROPERTY_FILE_FORMAT")
+    if declared is not None:
+        name = str(declared.value).upper()
+        if name in _FORMAT_NAMES:
+            return _FORMAT_NAMES[name]
+        if name not in _GENERIC_FORMAT_NAMES:
+            known = ", ".join(repr(n) for n in sorted({*_FORMAT_NAMES, *_GENERIC_FORMAT_NAMES}))
+            raise DataError(
+                f"line {declared.line}: unknown PROPERTY_FILE_FORMAT {declared.value!r} (known: {known})",
+                file=source,
+                key="PROPERTY_FILE_FORMAT",
+            )
+    fittyp = model.get("FITTYP")
+    if fittyp is None:
+        if declared is None:
+            raise DataError("block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP", file=source)
+        raise DataError(
+            f"line {declared.line}: PROPERTY_FILE_FORMAT {declared.value!r} needs FITTYP in block [MODEL]",
+            file=source,
+            key="FITTYP",
+        )
+    value = fittyp.value
+    if isinstance(value, float) and value.is_integer() and int(value) in _FITTYP_FORMATS:
+        return _FITTYP_FORMATS[int(value)]
+    known = ", ".join(str(n) for n in _FITTYP_FORMATS)
+    raise DataError(f"line {fittyp.line}: unknown FITTYP {fittyp.text} (known: {known})", file=source, key="FITTYP")
+
+
+def _unit_factors(units: Mapping[str, _Entry], source: str) -> dict[str, float]:
+    """SI factor of each [UNITS] quantity; an absent entry means the SI unit."""
+    factors: dict[str, float] = {}
+    errors: list[DataError] = []
+    for quantity, si_unit in _SI_UNITS.items():
+        entry = units.get(quantity)
+        if entry is None:
+            factors[quantity] = 1.0
+            continue
+        factor = _unit_factor(quantity, str(entry.value), si_unit)
+        if factor is None:
+            errors.append(
+                DataError(
+                    f"line {entry.line}: {entry.text} is not a known unit of {_QUANTITY_WORDS[quantity]}",
+                    file=source,
+                    key=quantity,
+                )
+            )
+        else:
+            factors[quantity] = factor
+    _raise_if_any(errors)
+    return factors
+
+
+def _unit_factor(quantity: str, name: str, si_unit: str) -> float | None:
+    """Factor from unit ``name`` to ``si_unit``, None if ``name`` is no unit of that kind."""
+    if not _UNIT_NAME_RE.fullmatch(name):
+        return None
+    # Exact spelling first: 'N' is newton, while 'n' is not a unit.
+    for candidate in dict.fromkeys((name, name.lower())):
+        try:
+            unit = _UREG.Unit(candidate)
+        except pint.errors.UndefinedUnitError:
+            continue
+        if quantity == "ANGLE" and str(unit) not in _ANGLE_UNITS:
+            continue
+        if unit.is_compatible_with(si_unit):
+            return float(_UREG.Quantity(1.0, unit).to(si_unit).magnitude)
+    return None
+
+
+def _to_si(block: str, key: str, value: float | str, factors: Mapping[str, float]) -> float | str:
+    """``value`` in SI if ``key`` carries a unit (structure checks made it a number)."""
+    if block == "UNITS" or key not in DIMENSIONAL_KEYS or isinstance(value, str):
+        return value
+    factor = 1.0
+    for quantity, exponent in DIMENSIONAL_KEYS[key]:
+        factor *= factors[quantity] ** exponent
+    return value * factor
+
+
+def _check_physical(
+    blocks: Mapping[str, Mapping[str, _Entry]], sections: Mapping[str, Mapping[str, float | str]], source: str
+) -> list[DataError]:
+    """Values no tire can have: a non-positive nominal load or free radius."""
+    errors = []
+    for block, key in (("VERTICAL", "FNOMIN"), ("DIMENSION", "UNLOADED_RADIUS")):
+        value = sections[block][key]
+        if isinstance(value, float) and value <= 0.0:
+            entry = blocks[block][key]
+            errors.append(
+                DataError(
+                    f"line {entry.line}: key {key!r} in block [{block}] must be > 0, found {entry.text}",
+                    file=source,
+                    key=key,
+                )
+            )
+    return errors
+
+
+def _raise_if_any(errors: list[DataError]) -> None:
+    """Raise the one problem found, or all of them together."""
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise DataErrors(errors)

@@ -1,0 +1,187 @@
+"""Units at the file boundary: every value is converted to SI once, at load.
+
+A data file declares the units it is written in with a ``units:`` block, like the
+``[UNITS]`` block of Adams/TeimOrbit property files. The block names *base*
+quantities (length, force, angle, mass, time); derived quantities (stiffness,
+damping, inertia, ...) follow from them unless the block names them too, as
+Adams does. A single value may also carry its own unit as a string
+(``"36.9 N/mm"``); master-file overrides always do.
+
+Conversion and dimension checks use the ``pint`` library.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from functools import lru_cache
+
+import pint
+
+from .errors import DataError
+
+UREG = pint.UnitRegistry()
+
+#: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
+SI_UNITS: Mapping[str, str] = {
+    "length": "m",
+    "angle": "rad",
+    "force": "N",
+    "mass": "kg",
+    "time": "s",
+    "velocity": "m/s",
+    "stiffness": "N/m",
+    "damping": "N*s/m",
+    "torsional_stiffness": "N*m/rad",
+    "torsional_damping": "N*m*s/rad",
+    "torque": "N*m",
+    "inertia": "kg*m^2",
+    "pressure": "Pa",
+    "rack_ratio": "m/rad",
+    "dimensionless": "",
+}
+
+BASE_QUANTITIES = ("length", "force", "angle", "mass", "time")
+
+#: how derived quantities follow from the base units of a ``units:`` block
+_DERIVED: Mapping[str, str] = {
+    "velocity": "{length}/{time}",
+    "stiffness": "{force}/{length}",
+    "damping": "{force}*{time}/{length}",
+    "torsional_stiffness": "{force}*{length}/{angle}",
+    "torsional_damping": "{force}*{length}*{time}/{angle}",
+    "torque": "{force}*{length}",
+    "inertia": "{mass}*{length}^2",
+    "pressure": "{force}/{length}^2",
+    "rack_ratio": "{length}/revolution",
+}
+
+#: the abbreviations printed to users for SI units
+SI_SYMBOLS: Mapping[str, str] = {
+    "m": "m", "rad": "rad", "N": "N", "kg": "kg", "s": "s", "m/s": "m/s", "N/m": "N/m",
+    "N*s/m": "N·s/m", "N*m/rad": "N·m/rad", "N*m*s/rad": "N·m·s/rad", "N*m": "N·m",
+    "kg*m^2": "kg·m²", "Pa": "Pa", "m/rad": "m/rad", "": "-",
+}
+
+
+@lru_cache(maxsize=512)
+def parse_unit(text: str) -> pint.Unit:
+    """Parse a unit string; raise ``ValueError`` with a readable message."""
+    try:
+        return UREG.parse_units(text)
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError,
+            TypeError, ValueError, AssertionError) as err:
+        raise ValueError(f"unknown unit '{text}'") from err
+
+
+@lru_cache(maxsize=512)
+def si_factor(unit: str, quantity: str) -> float:
+    """Factor that converts a number in ``unit`` to the SI unit of ``quantity``.
+
+    Raises ``ValueError`` for an unknown unit or one of the wrong dimension.
+    """
+    target = SI_UNITS[quantity]
+    src = parse_unit(unit) if unit else UREG.dimensionless
+    dst = parse_unit(target) if target else UREG.dimensionless
+    try:
+        return float(UREG.Quantity(1.0, src).to(dst).magnitude)
+    except pint.errors.DimensionalityError as err:
+        raise ValueError(
+            f"unit '{unit}' is not a {quantity.replace('_', ' ')} unit (expected e.g. '{target or '-'}')"
+        ) from err
+
+
+class UnitSystem:
+    """The units of one data file: quantity -> unit string."""
+
+    def __init__(self, block: Mapping[str, str] | None, *, file: str) -> None:
+        self.file = file
+        declared = dict(block or {})
+        units: dict[str, str] = {}
+        for quantity, unit in declared.items():
+            if quantity not in SI_UNITS:
+                raise DataError(
+                    f"unknown quantity '{quantity}' (known: {', '.join(sorted(SI_UNITS))})",
+                    file=file, key=f"units.{quantity}")
+            if not isinstance(unit, str):
+                raise DataError(f"unit must be a string, found {unit!r}", file=file,
+                                key=f"units.{quantity}")
+            try:
+                si_factor(unit, quantity)
+            except ValueError as err:
+                raise DataError(str(err), file=file, key=f"units.{quantity}") from None
+            units[quantity] = unit
+        for quantity in BASE_QUANTITIES:
+            units.setdefault(quantity, SI_UNITS[quantity])
+        for quantity, pattern in _DERIVED.items():
+            if quantity not in units:
+                units[quantity] = pattern.format(**{q: f"({units[q]})" for q in BASE_QUANTITIES})
+        units.setdefault("dimensionless", "")
+        self.units = units
+
+    def unit(self, quantity: str) -> str:
+        return self.units[quantity]
+
+    def display(self, quantity: str) -> str:
+        """Short, readable unit for reports (``N/mm`` rather than ``(N)/(mm)``)."""
+        unit = self.units[quantity]
+        return format(parse_unit(unit), "~") if unit else "-"
+
+
+def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float:
+    """Convert one scalar (number, or ``"number unit"`` string) to SI.
+
+    Raises ``DataError`` naming file and key for non-numbers, unknown units,
+    units of the wrong dimension and NaN/inf.
+    """
+    if isinstance(value, bool):
+        raise DataError(f"expected a number, found {value!r}", file=units.file, key=key)
+    if isinstance(value, (int, float)):
+        number, unit = float(value), units.unit(quantity)
+    elif isinstance(value, str) and _is_number(value):
+        # PyYAML reads YAML 1.1, where '7.0e7' (no exponent sign) is a string.
+        number, unit = float(value), units.unit(quantity)
+    elif isinstance(value, str):
+        number, unit = parse_quantity(value, quantity, file=units.file, key=key)
+    else:
+        raise DataError(f"expected a number, found {type(value).__name__} {value!r}",
+                        file=units.file, key=key)
+    try:
+        result = number * si_factor(unit, quantity)
+    except ValueError as err:
+        raise DataError(str(err), file=units.file, key=key) from None
+    if not math.isfinite(result):
+        raise DataError(f"value must be finite, found {value!r}", file=units.file, key=key)
+    return result
+
+
+def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> tuple[float, str]:
+    """Split ``"-1.5 deg"`` into (number, unit); a bare number only for dimensionless."""
+    parts = text.strip().split(None, 1)
+    try:
+        number = float(parts[0]) if parts else float("nan")
+    except ValueError:
+        raise DataError(f"expected a number with a unit, found {text!r}", file=file, key=key) from None
+    if len(parts) == 1:
+        if quantity != "dimensionless":
+            raise DataError(
+                f"value {text!r} needs a unit (a {quantity.replace('_', ' ')}, e.g. '{parts[0]} "
+                f"{SI_UNITS[quantity]}')", file=file, key=key)
+        return number, ""
+    unit = parts[1].strip()
+    try:
+        si_factor(unit, quantity)
+    except ValueError as err:
+        raise DataError(str(err), file=file, key=key) from None
+    return number, unit
+
+
+def display_si(quantity: str) -> str:
+    return SI_SYMBOLS[SI_UNITS[quantity]]
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True

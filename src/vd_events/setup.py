@@ -1,0 +1,26 @@
+from setuptools import find_packages, setup
+
+package_name = 'vd_events'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='vd maintainers',
+    maintainer_email='maintainers@vd-sim.org',
+    description='vd events: event runner, recorder, reports, vd CLI',
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'event_runner = vd_events.event_runner_node:main',
+            'recorder = vd_events.recorder_node:main',
+            'vd = vd_events.cli:main',
+        ],
+    },
+)

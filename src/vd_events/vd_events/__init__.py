@@ -1,0 +1,1 @@
+"""vd events: event runner, recorder, post-processing and the vd command-line tool."""

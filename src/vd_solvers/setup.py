@@ -1,0 +1,25 @@
+from setuptools import find_packages, setup
+
+package_name = 'vd_solvers'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='vd maintainers',
+    maintainer_email='maintainers@vd-sim.org',
+    description='vd solvers: analytical and K&C models and their nodes',
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'analytical_solver = vd_solvers.analytical_node:main',
+            'kc_solver = vd_solvers.kc_node:main',
+        ],
+    },
+)

@@ -1,0 +1,1 @@
+"""vd solvers: analytical, K&C and full-vehicle models (ROS-free cores + node shells)."""

@@ -1,0 +1,178 @@
+"""Vehicle parameter set of the bicycle and two-track models (thesis 3.1).
+
+One frozen :class:`VehicleParams` carries everything both analytical models
+need: mass and its position, tracks, roll centres and roll stiffnesses
+(thesis Table 3.1.2), unsprung masses for the unsprung part of the lateral
+load transfer (Milliken & Milliken, "Race Car Vehicle Dynamics", ch. 18),
+the yaw inertia of the transient single-track model and one
+:class:`~vd_solvers.tire.simple.SimpleTire` per axle (thesis eqs. 6-9).
+
+Units are SI throughout (m, kg, N, rad); axes follow ISO 8855 (x forward,
+y left, z up).  Distances along x are measured rearward from the front axle.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
+from types import MappingProxyType
+
+from vd_solvers.tire.simple import SimpleTire
+
+STANDARD_GRAVITY = 9.80665  # m/s^2, ISO 80000-3 standard acceleration of gravity
+
+# The axle force peak search (two_track.py) needs a Magic Formula with a
+# genuine maximum: 1 < C < 2 makes sin(C * arctan(.)) rise to 1 and fall
+# back without changing sign, and E < 1 keeps the arctan argument monotonic.
+_SHAPE_MIN = 1.0  # exclusive
+_SHAPE_MAX = 2.0  # exclusive
+_CURVATURE_MAX = 1.0  # exclusive
+
+
+@dataclass(frozen=True)
+class VehicleParams:
+    """Parameters of the analytical vehicle models.
+
+    Attributes:
+        mass: total vehicle mass m, kg (sprung + unsprung).
+        wheelbase: wheelbase L, m.
+        cog_to_front_axle: distance a from the front axle back to the COG, m.
+        track_front: front track width t_f, m.
+        track_rear: rear track width t_r, m.
+        cog_height: COG height h above ground of the whole vehicle, m.
+        roll_centre_height_front: front roll-centre height h_f, m.
+        roll_centre_height_rear: rear roll-centre height h_r, m.
+        roll_stiffness_front: front suspension roll stiffness K_phi_f incl.
+            anti-roll bar, N*m/rad (tires taken as rigid, thesis 3.1.2).
+        roll_stiffness_rear: rear suspension roll stiffness K_phi_r, N*m/rad.
+        yaw_inertia: yaw moment of inertia I_zz about the COG, kg*m^2.
+        tire_front: simple tire of one front wheel (eqs. 6-9).
+        tire_rear: simple tire of one rear wheel (eqs. 6-9).
+        unsprung_mass_front: unsprung mass of the front axle (both
+            wheels), kg.  Zero reproduces the thesis' eqs. 3-4 exactly.
+        unsprung_mass_rear: unsprung mass of the rear axle (both wheels), kg.
+        unsprung_cog_height_front: COG height of the front unsprung mass,
+            m (typically the wheel-centre height).
+        unsprung_cog_height_rear: COG height of the rear unsprung mass, m.
+        g: acceleration of gravity, m/s^2.
+        sources: provenance per field name, e.g. ``{"mass": "vehicle.xlsx
+            Overview!C4"}``; filled by the vehicle-data adapter.
+    """
+
+    mass: float
+    wheelbase: float
+    cog_to_front_axle: float
+    track_front: float
+    track_rear: float
+    cog_height: float
+    roll_centre_height_front: float
+    roll_centre_height_rear: float
+    roll_stiffness_front: float
+    roll_stiffness_rear: float
+    yaw_inertia: float
+    tire_front: SimpleTire
+    tire_rear: SimpleTire
+    unsprung_mass_front: float = 0.0
+    unsprung_mass_rear: float = 0.0
+    unsprung_cog_height_front: float = 0.0
+    unsprung_cog_height_rear: float = 0.0
+    g: float = STANDARD_GRAVITY
+    # Provenance is not physics: two parameter sets with the same numbers
+    # compare equal whatever their sources say.
+    sources: Mapping[str, str] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, (int, float)) and not math.isfinite(value):
+                raise ValueError(f"{f.name} must be finite, got {value!r}")
+        _require(self.mass > 0.0, "mass", "must be positive", self.mass)
+        _require(self.wheelbase > 0.0, "wheelbase", "must be positive", self.wheelbase)
+        _require(
+            0.0 < self.cog_to_front_axle < self.wheelbase,
+            "cog_to_front_axle",
+            f"must lie strictly between 0 and the wheelbase {self.wheelbase}",
+            self.cog_to_front_axle,
+        )
+        for name in ("track_front", "track_rear", "cog_height", "yaw_inertia", "g"):
+            _require(getattr(self, name) > 0.0, name, "must be positive", getattr(self, name))
+        for name in (
+            "roll_stiffness_front",
+            "roll_stiffness_rear",
+            "unsprung_mass_front",
+            "unsprung_mass_rear",
+            "unsprung_cog_height_front",
+            "unsprung_cog_height_rear",
+        ):
+            _require(getattr(self, name) >= 0.0, name, "must not be negative", getattr(self, name))
+        # The sprung body must keep mass and lie between the axles, otherwise
+        # the sprung axle split of eq. 4 is meaningless.
+        sprung = self.mass - self.unsprung_mass_front - self.unsprung_mass_rear
+        _require(sprung > 0.0, "unsprung_mass_front + unsprung_mass_rear", "leaves no sprung mass", sprung)
+        sprung_x = (self.mass * self.cog_to_front_axle - self.unsprung_mass_rear * self.wheelbase) / sprung
+        _require(
+            0.0 < sprung_x < self.wheelbase,
+            "unsprung_mass_front/unsprung_mass_rear",
+            "put the sprung COG outside the wheelbase",
+            sprung_x,
+        )
+        _check_tire("tire_front", self.tire_front, self.axle_load_front / 2.0)
+        _check_tire("tire_rear", self.tire_rear, self.axle_load_rear / 2.0)
+        known = {f.name for f in fields(self)} - {"sources"}
+        for key in self.sources:
+            _require(key in known, "sources", f"names unknown field {key!r}", key)
+        # Freeze the provenance too, so the whole parameter set is immutable.
+        object.__setattr__(self, "sources", MappingProxyType(dict(self.sources)))
+
+    @property
+    def cog_to_rear_axle(self) -> float:
+        """Distance b from the COG back to the rear axle, m."""
+        return self.wheelbase - self.cog_to_front_axle
+
+    @property
+    def weight(self) -> float:
+        """Vehicle weight m*g, N."""
+        return self.mass * self.g
+
+    @property
+    def axle_load_front(self) -> float:
+        """Static front axle load N_f = m*g*b/L, N (both wheels)."""
+        return self.weight * self.cog_to_rear_axle / self.wheelbase
+
+    @property
+    def axle_load_rear(self) -> float:
+        """Static rear axle load N_r = m*g*a/L, N (both wheels)."""
+        return self.weight * self.cog_to_front_axle / self.wheelbase
+
+    @property
+    def roll_stiffness(self) -> float:
+        """Total suspension roll stiffness K_phi = K_phi_f + K_phi_r, N*m/rad."""
+        return self.roll_stiffness_front + self.roll_stiffness_rear
+
+
+def _require(ok: bool, name: str, message: str, value: object) -> None:
+    if not ok:
+        raise ValueError(f"{name} {message}, got {value!r}")
+
+
+def _check_tire(name: str, tire: object, static_load: float) -> None:
+    """Reject tires the analytical models cannot use, naming the field."""
+    if not isinstance(tire, SimpleTire):
+        raise ValueError(f"{name} must be a SimpleTire, got {type(tire).__name__}")
+    _require(tire.fz0 > 0.0, f"{name}.fz0", "must be positive", tire.fz0)
+    _require(
+        _SHAPE_MIN < tire.shape < _SHAPE_MAX,
+        f"{name}.shape",
+        f"must lie strictly between {_SHAPE_MIN} and {_SHAPE_MAX} for a force peak",
+        tire.shape,
+    )
+    _require(tire.curvature < _CURVATURE_MAX, f"{name}.curvature", f"must be below {_CURVATURE_MAX}", tire.curvature)
+    mu = float(tire.friction(static_load))
+    _require(mu > 0.0, name, f"gives no friction (mu0, mu1) at the static load {static_load:.1f} N", mu)
+    stiffness = float(tire.cornering_stiffness(static_load))
+    _require(
+        stiffness > 0.0,
+        name,
+        f"gives no cornering stiffness (c0, c1) at the static load {static_load:.1f} N",
+        stiffness,
+    )

@@ -1,0 +1,1 @@
+"""Quasi-static kinematics & compliance suspension model (thesis 3.2)."""

@@ -1,0 +1,1 @@
+"""Tire models: Magic Formula from .tir files and the thesis simple tire."""

