@@ -24,6 +24,7 @@ Only files under the data root are ever read.
 from __future__ import annotations
 
 import hashlib
+import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -69,12 +70,14 @@ class MasterFile:
 
 
 def inside(root: Path, path: Path) -> bool:
-    """True if ``path`` (resolved, links followed) lies under ``root``."""
-    try:
-        path.resolve().relative_to(root.resolve())
-    except ValueError:
-        return False
-    return True
+    """True if ``path`` lies under ``root`` once '..' and '.' are resolved.
+
+    The check is lexical: names such as ``../../etc/passwd`` are refused, while links
+    placed inside the data root by its owner (a symlink install) are trusted.
+    """
+    root_abs = os.path.normpath(os.path.abspath(root))
+    path_abs = os.path.normpath(os.path.abspath(path))
+    return os.path.commonpath([root_abs, path_abs]) == root_abs
 
 
 def load_master(path: str | Path, *, data_root: str | Path | None = None) -> MasterFile:
@@ -109,9 +112,10 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     if vehicle and not _NAME.match(vehicle):
         err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
     if data_root is None:
-        root = (path.parent / str(study.get("data_root", ".."))).resolve()
+        root = Path(os.path.normpath(os.path.abspath(path.parent / str(study.get("data_root",
+                                                                                "..")))))
     else:
-        root = Path(data_root).resolve()
+        root = Path(os.path.normpath(os.path.abspath(data_root)))
     defaults = raw.get("defaults") or {}
     if not isinstance(defaults, Mapping):
         err("defaults", "expected a mapping of group: variant", raw, "defaults")

@@ -1,0 +1,146 @@
+"""``ros2 run vd_data_server data_server``: publishes the master file's data.
+
+Topics (reliable + transient_local, so late subscribers get everything):
+  /vd/configuration  vd_interfaces/Configuration, one message per configuration
+  /vd/data_status    vd_interfaces/DataStatus, the modified/unchanged feedback
+Services: /vd/get_configuration, /vd/set_override (only with allow_edits), /vd/reload.
+Parameters: master_file, allow_edits, watch_period (s; 0 disables watching).
+"""
+from __future__ import annotations
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus
+from vd_interfaces.srv import GetConfiguration, Reload, SetOverride
+
+from .conversions import configuration_to_msg, study_to_status_msg
+from .errors import DataError
+from .paths import default_master
+from .service import DataService
+
+#: deep enough to latch every configuration of a large study
+CONFIGURATION_DEPTH = 1000
+
+
+def latched(depth: int) -> QoSProfile:
+    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=depth,
+                      reliability=ReliabilityPolicy.RELIABLE,
+                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+class DataServer(Node):
+    def __init__(self, **kwargs) -> None:
+        super().__init__("data_server", **kwargs)
+        self.declare_parameter("master_file", str(default_master()), ParameterDescriptor(
+            description="master file (study) to serve", read_only=True))
+        self.declare_parameter("allow_edits", False, ParameterDescriptor(
+            description="accept /vd/set_override requests"))
+        self.declare_parameter("watch_period", 0.5, ParameterDescriptor(
+            description="seconds between checks of the data files (0: do not watch)"))
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.service = DataService(self.get_parameter("master_file").value)
+        self.config_pub = self.create_publisher(ConfigurationMsg, "/vd/configuration",
+                                                latched(CONFIGURATION_DEPTH))
+        self.status_pub = self.create_publisher(DataStatus, "/vd/data_status", latched(1))
+        self.create_service(GetConfiguration, "/vd/get_configuration", self._get_configuration)
+        self.create_service(SetOverride, "/vd/set_override", self._set_override)
+        self.create_service(Reload, "/vd/reload", self._reload)
+        self._publish_outcome(self.service.load())
+        period = float(self.get_parameter("watch_period").value)
+        if period > 0.0:
+            self.create_timer(period, self._poll)
+
+    def _on_set_parameters(self, params) -> SetParametersResult:
+        for p in params:
+            if p.name == "watch_period" and not float(p.value) >= 0.0:
+                return SetParametersResult(successful=False, reason="watch_period must be >= 0")
+        return SetParametersResult(successful=True)
+
+    def _poll(self) -> None:
+        outcome = self.service.poll()
+        if outcome is not None:
+            self._publish_outcome(outcome)
+
+    def _publish_outcome(self, outcome) -> None:
+        for line in outcome.errors:
+            self.get_logger().error(line)
+        if outcome.changed:
+            self.publish_all()
+        elif self.service.study is not None:
+            self._publish_status()
+        else:
+            self.status_pub.publish(DataStatus(master_file=str(self.service.master_file),
+                                               errors=list(outcome.errors),
+                                               stamp=self.get_clock().now().to_msg()))
+
+    def publish_all(self) -> None:
+        stamp = self.get_clock().now().to_msg()
+        study = self.service.study
+        assert study is not None
+        for config in study.configurations.values():
+            self.config_pub.publish(configuration_to_msg(config, stamp))
+        self._publish_status()
+        self.get_logger().info(f"published {len(study.configurations)} configurations of "
+                               f"{study.master.path}")
+
+    def _publish_status(self) -> None:
+        study = self.service.study
+        assert study is not None
+        self.status_pub.publish(study_to_status_msg(study, self.service.errors,
+                                                    self.get_clock().now().to_msg()))
+
+    def _get_configuration(self, request, response):
+        configs = self.service.configurations()
+        if request.name not in configs:
+            response.success = False
+            response.message = (f"configuration '{request.name}' does not exist (available: "
+                                f"{', '.join(configs)})")
+            return response
+        response.success = True
+        response.configuration = configuration_to_msg(configs[request.name],
+                                                      self.get_clock().now().to_msg())
+        return response
+
+    def _set_override(self, request, response):
+        if not self.get_parameter("allow_edits").value:
+            response.success = False
+            response.message = "edits are disabled (set parameter allow_edits to true)"
+            return response
+        try:
+            self.service.set_override(request.configuration, request.key, request.value)
+        except DataError as err:
+            response.success = False
+            response.message = str(err)
+            return response
+        self.publish_all()
+        response.success = True
+        response.message = f"{request.configuration}: {request.key} = {request.value}"
+        return response
+
+    def _reload(self, request, response):
+        outcome = self.service.load()
+        self._publish_outcome(outcome)
+        response.success = not outcome.errors
+        response.message = "\n".join(outcome.errors) or "reloaded"
+        return response
+
+
+def main(args=None) -> None:
+    rclpy.init(args=args)
+    node = None
+    try:
+        node = DataServer()
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,98 @@
+"""The data server's ROS-free core: load, watch, edit, reload.
+
+The node (``data_server_node.py``) only turns this into topics and services.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .errors import DataError
+from .master import load_master
+from .study import Study, load_study
+
+
+@dataclass(frozen=True)
+class ReloadOutcome:
+    changed: bool  # new data to publish
+    errors: tuple[str, ...]  # non-empty: the reload failed, the previous data stays
+
+
+class DataService:
+    """Holds the current study; reloads when a file under the data root or the
+    master file changes; applies validated temporary overrides."""
+
+    def __init__(self, master_file: str | Path) -> None:
+        self.master_file = Path(master_file)
+        self.edits: dict[str, dict[str, Any]] = {}
+        self.study: Study | None = None
+        self.errors: tuple[str, ...] = ()
+        self._signature: tuple | None = None
+
+    @property
+    def data_root(self) -> Path | None:
+        return self.study.master.data_root if self.study else None
+
+    def load(self) -> ReloadOutcome:
+        """(Re)load everything now. On failure the previous study is kept."""
+        signature = self._files_signature()
+        try:
+            study = load_study(self.master_file, extra_overrides=self.edits)
+        except DataError as err:
+            self._signature = signature
+            self.errors = tuple(str(err).splitlines())
+            return ReloadOutcome(False, self.errors)
+        self._signature = self._files_signature(study.master.data_root)
+        self.study = study
+        self.errors = ()
+        return ReloadOutcome(True, ())
+
+    def poll(self) -> ReloadOutcome | None:
+        """Reload if any watched file changed since the last load; None if nothing did."""
+        if self._files_signature(self.data_root) == self._signature:
+            return None
+        return self.load()
+
+    def set_override(self, configuration: str, key: str, value: str) -> None:
+        """Apply a temporary override; raises DataError (and changes nothing) if invalid."""
+        if self.study is None:
+            raise DataError("no valid data loaded", file=str(self.master_file))
+        if configuration not in self.study.configurations:
+            raise DataError(f"configuration '{configuration}' does not exist (available: "
+                            f"{', '.join(self.study.configuration_names)})",
+                            file=str(self.master_file))
+        edits = {name: dict(values) for name, values in self.edits.items()}
+        edits.setdefault(configuration, {})[key] = value
+        study = load_study(self.master_file, extra_overrides=edits)
+        self.edits = edits
+        self.study = study
+
+    def _files_signature(self, root: Path | None = None) -> tuple:
+        entries: list[tuple[str, int, int]] = []
+        paths = [self.master_file]
+        if root is None:
+            try:
+                root = load_master(self.master_file).data_root
+            except DataError:
+                root = None
+        for path in paths:
+            entries.append(_stat(path))
+        if root is not None and root.is_dir():
+            for folder, _, files in os.walk(root, followlinks=True):
+                for name in files:
+                    entries.append(_stat(Path(folder) / name))
+        return tuple(sorted(entries))
+
+    def configurations(self) -> Mapping[str, Any]:
+        return self.study.configurations if self.study else {}
+
+
+def _stat(path: Path) -> tuple[str, int, int]:
+    try:
+        st = path.stat()
+    except OSError:
+        return (str(path), -1, -1)
+    return (str(path), st.st_mtime_ns, st.st_size)

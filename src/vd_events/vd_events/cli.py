@@ -1,0 +1,117 @@
+"""The ``vd`` command-line tool (ARCHITECTURE §5).
+
+Bad input never ends in a traceback: every expected error is printed as
+``file: key: message`` lines (or ``{"error": ...}`` with ``--json``) and the
+exit code is 2. Nothing is written before the inputs are validated.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable, Sequence
+
+from vd_data_server.errors import DataError
+
+EXIT_OK = 0
+EXIT_USAGE = 2
+
+
+class UsageError(Exception):
+    """Bad command-line input (unknown event, model, configuration, bag path...)."""
+
+
+def _master_arg(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--master", help="master file (default: the bundled sample study)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="vd", description="vd: vehicle-dynamics simulation "
+                                     "on one shared vehicle data set")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    data = sub.add_parser("data", help="vehicle data and master files").add_subparsers(
+        dest="data_command", required=True)
+    status = data.add_parser("status", help="overview: variant, UNCHANGED/MODIFIED, SAME/DIFFERS")
+    _master_arg(status)
+    status.add_argument("--json", action="store_true")
+    show = data.add_parser("show", help="the resolved configuration in SI")
+    show.add_argument("config")
+    _master_arg(show)
+    show.add_argument("--json", action="store_true")
+    check = data.add_parser("check", help="validate the master file and every data file")
+    _master_arg(check)
+    check.add_argument("--json", action="store_true")
+
+    from . import commands
+
+    commands.add_subcommands(sub)
+    return parser
+
+
+def _load(master: str | None):
+    from vd_data_server.paths import default_master
+    from vd_data_server.study import load_study
+
+    return load_study(master or default_master())
+
+
+def cmd_data(args: argparse.Namespace) -> int:
+    from rich.console import Console
+
+    from vd_data_server.overview import configuration_json, print_configuration, print_status
+
+    study = _load(args.master)
+    console = Console(highlight=False)
+    if args.data_command == "status":
+        if args.json:
+            print(json.dumps(study.to_json(), indent=2))
+        else:
+            print_status(study, console)
+    elif args.data_command == "show":
+        if args.config not in study.configurations:
+            raise UsageError(f"{study.master.path}: configuration '{args.config}' does not exist "
+                             f"(available: {', '.join(study.configuration_names)})")
+        config = study.configurations[args.config]
+        if args.json:
+            print(json.dumps(configuration_json(config), indent=2))
+        else:
+            print_configuration(config, console)
+    else:
+        n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
+        message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "
+                   f"{n_files} data files)")
+        if args.json:
+            print(json.dumps({"ok": True, "message": message}))
+        else:
+            print(message)
+    return EXIT_OK
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    handlers: dict[str, Callable[[argparse.Namespace], int]] = {"data": cmd_data}
+    from . import commands
+
+    handlers.update(commands.HANDLERS)
+    want_json = bool(getattr(args, "json", False))
+    try:
+        return handlers[args.command](args)
+    except (DataError, UsageError) as err:
+        _report_error(str(err), want_json)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        _report_error("interrupted", want_json)
+        return 130
+
+
+def _report_error(message: str, want_json: bool) -> None:
+    if want_json:
+        print(json.dumps({"error": message}))
+    else:
+        print(message, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

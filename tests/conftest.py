@@ -1,0 +1,39 @@
+"""Shared fixtures: sample data copies and a private ROS graph for node tests."""
+from __future__ import annotations
+
+import os
+import random
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+SAMPLE_DATA = REPO / "src" / "vd_data_server" / "data"
+
+
+@pytest.fixture
+def sample_root(tmp_path: Path) -> Path:
+    """A writable copy of the bundled data root (tests edit it)."""
+    root = tmp_path / "data"
+    shutil.copytree(SAMPLE_DATA, root)
+    return root
+
+
+@pytest.fixture
+def sedan_master(sample_root: Path) -> Path:
+    return sample_root / "studies" / "sedan.yaml"
+
+
+@pytest.fixture(scope="session")
+def ros_domain() -> Iterator[int]:
+    """rclpy initialised once, in a private domain on loopback."""
+    import rclpy
+
+    os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    domain = int(os.environ.get("VD_TEST_DOMAIN", random.randint(100, 200)))
+    os.environ["ROS_DOMAIN_ID"] = str(domain)
+    rclpy.init(domain_id=domain)
+    yield domain
+    rclpy.try_shutdown()
