@@ -3,6 +3,7 @@
 Expected values are read off the file text; unit factors come from their
 definitions (1 inch = 0.0254 m, 1 lbf = 4.4482216152605 N, 1 bar = 1e5 Pa).
 """
+
 from __future__ import annotations
 
 import math
@@ -263,7 +264,10 @@ def test_get_without_default_names_missing_key() -> None:
 def test_number_rejects_a_string() -> None:
     with pytest.raises(DataError) as info:
         read_tir(SEDAN).number("MODEL", "TYRESIDE")
-    assert (info.value.detail, info.value.key) == ("key 'TYRESIDE' in block [MODEL] is not a number: 'LEFT'", "TYRESIDE")
+    assert (info.value.detail, info.value.key) == (
+        "key 'TYRESIDE' in block [MODEL] is not a number: 'LEFT'",
+        "TYRESIDE",
+    )
 
 
 def test_properties_are_read_only() -> None:
@@ -306,6 +310,7 @@ def test_missing_required_key(tmp_path: Path, block: str, key: str) -> None:
 def test_several_problems_are_reported_together(tmp_path: Path) -> None:
     text = drop_line(drop_block(sedan_text(), "SCALING_COEFFICIENTS"), "PCX1")
     error = expect_read_error(tmp_path, text, DataErrors)
+    assert isinstance(error, DataErrors)
     assert [e.detail for e in error.errors] == [
         "missing block [SCALING_COEFFICIENTS]",
         "key 'PCX1' missing in block [LONGITUDINAL_COEFFICIENTS]",
@@ -409,7 +414,10 @@ def test_missing_file(tmp_path: Path) -> None:
     path = tmp_path / "absent.tir"
     with pytest.raises(DataError) as info:
         read_tir(path)
-    assert (info.value.detail, info.value.file) == ("cannot read tire property file: No such file or directory", str(path))
+    assert (info.value.detail, info.value.file) == (
+        "cannot read tire property file: No such file or directory",
+        str(path),
+    )
     assert list(tmp_path.iterdir()) == []
 
 
@@ -435,12 +443,14 @@ def with_messages(line: str) -> Callable[[str], str]:
     [
         (
             with_messages("GARBAGE LINE"),
-            lambda t: f"line {line_of(t, 'GARBAGE')}: cannot read 'GARBAGE LINE' in block [MODEL]: "
-            "expected KEY = value, a {column header} or a row of numbers",
+            lambda t: (
+                f"line {line_of(t, 'GARBAGE')}: cannot read 'GARBAGE LINE' in block [MODEL]: "
+                "expected KEY = value, a {column header} or a row of numbers"
+            ),
         ),
         (
             with_messages("MESSAGES = 'YES"),
-            lambda t: f"line {line_of(t, 'MESSAGES')}: unterminated quoted string in \"MESSAGES = 'YES\"",
+            lambda t: f'line {line_of(t, "MESSAGES")}: unterminated quoted string in "MESSAGES = \'YES"',
         ),
         (
             with_messages("MESSAGES ="),
@@ -451,7 +461,10 @@ def with_messages(line: str) -> Callable[[str], str]:
             with_messages("TYRESIDE = 'RIGHT'"),
             lambda t: "line {1}: key 'TYRESIDE' repeats line {0} in block [MODEL]".format(*lines_of(t, "TYRESIDE")),
         ),
-        (with_messages("[UNITS]"), lambda t: "line {1}: block [UNITS] repeats line {0}".format(*lines_of(t, "[UNITS]"))),
+        (
+            with_messages("[UNITS]"),
+            lambda t: "line {1}: block [UNITS] repeats line {0}".format(*lines_of(t, "[UNITS]")),
+        ),
         (
             lambda t: t.replace(" 0.9    1.0", " 0.9    1.0    2.0"),
             lambda t: f"line {line_of(t, ' 0.9    1.0    2.0')}: table row in block [SHAPE] has 3 values, expected 2",

@@ -70,12 +70,9 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
     if "data" not in raw:
         col.add("data", "missing required key")
     col.raise_if_any()
-    try:
-        units = UnitSystem(raw.get("units"), file=display)
-    except DataError:
-        raise
     if raw.get("units") is not None and not isinstance(raw.get("units"), Mapping):
         raise DataError("expected a mapping of quantity: unit", file=display, key="units")
+    units = UnitSystem(raw.get("units"), file=display)
     mirror = raw.get("mirror", True)
     if "mirror" in raw and kind != "hardpoints":
         col.add("mirror", "only hardpoints files may set 'mirror'", raw, "mirror")
@@ -94,7 +91,7 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
 
 def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Collector,
           out: dict[str, Value], parent: Any, name: str) -> None:
-    key = path
+    key = path or name  # the top-level section is named by its file key, 'data'
     if isinstance(spec, schema.Section):
         if not isinstance(node, Mapping):
             col.add(key, f"expected a mapping, found {_kind_of(node)}", parent, name)
@@ -106,7 +103,7 @@ def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Coll
         for group in spec.one_of:
             given = [g for g in group if g in node]
             if len(given) != 1:
-                col.add(path, f"give exactly one of: {', '.join(group)} (found "
+                col.add(key, f"give exactly one of: {', '.join(group)} (found "
                         f"{', '.join(given) if given else 'none'})", parent, name)
         for sub, sub_spec in spec.fields.items():
             if sub in node:
@@ -251,7 +248,9 @@ def _kind_of(node: Any) -> str:
 def parse_override(value: Any, template: Value, *, file: str, key: str) -> Value:
     """Convert a master-file override of an existing value, keeping its display unit."""
     if template.type == "scalar":
-        quantity = next(q for q, u in SI_UNITS.items() if u == template.unit)
+        quantity = next((q for q, u in SI_UNITS.items() if u == template.unit), None)
+        if quantity is None:
+            raise DataError(f"values in {template.unit} cannot be overridden", file=file, key=key)
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             if quantity != "dimensionless":
                 raise DataError(f"override {value!r} needs a unit (e.g. '{value} "

@@ -26,7 +26,7 @@ from __future__ import annotations
 import hashlib
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -35,6 +35,8 @@ from . import schema
 from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
 from .model import Configuration, GroupData, Value
+from .tir import read_tir
+from .tire_group import with_tire
 from .yamlio import line_of, load_file
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
@@ -211,7 +213,7 @@ class GroupCache:
                     f"available: {', '.join(available) or 'none'})", file=self.master.display)
             data = load_group_file(path, display=rel, group=group, variant=variant)
             if data.kind == "tire":
-                self._check_tire(data)
+                data = self._with_tire(data)
             self._cache[key] = data
         return self._cache[key]
 
@@ -219,16 +221,15 @@ class GroupCache:
         folder = self.master.data_root / self.master.vehicle / group
         return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
 
-    def _check_tire(self, data: GroupData) -> None:
-        from .tir import read_tir
-
+    def _with_tire(self, data: GroupData) -> GroupData:
         rel = data.text("file")
         path = self.master.data_root / rel
         if not inside(self.master.data_root, path):
             raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
                             file=data.file, key="file")
-        read_tir(path)
+        props = read_tir(path)
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
+        return with_tire(data, props, rel)
 
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
@@ -240,7 +241,17 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
                         f"{', '.join(master.configurations)})", file=master.display)
     spec = master.configurations[name]
     cache = cache or GroupCache(master)
-    groups = {group: cache.get(group, variant) for group, variant in spec.variants.items()}
+    groups: dict[str, GroupData] = {}
+    errors: list[DataError] = []
+    for group, variant in spec.variants.items():
+        try:
+            groups[group] = cache.get(group, variant)
+        except DataErrors as err:
+            errors += err.errors
+        except DataError as err:
+            errors.append(err)
+    if errors:  # every broken file of the configuration, not only the first
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
     groups = apply_overrides(groups, spec.overrides, file=master.display,
                              where=f"configurations.{name}.overrides")
     if extra_overrides:
@@ -303,3 +314,25 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
     groups[group_name] = GroupData(group.group, group.kind, group.variant, group.file, values,
                                    group.description)
     return groups
+
+
+def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Configuration:
+    """``config`` with temporary overrides (``vd run --set``, action goals) applied."""
+    if not overrides:
+        return config
+    groups = apply_overrides(config.groups, overrides, file="--set", where="")
+    return Configuration(name=config.name, master_file=config.master_file,
+                         description=config.description, groups=groups,
+                         flexible=config.flexible, flexible_components=config.flexible_components,
+                         extra_hashes=config.extra_hashes)
+
+
+def parse_set(items: Sequence[str]) -> dict[str, str]:
+    """``["front_alignment.camber=-1 deg"]`` -> ``{"front_alignment.camber": "-1 deg"}``."""
+    out: dict[str, str] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip() or not value.strip():
+            raise DataError(f"expected GROUP.KEY=VALUE, found {item!r}", file="--set")
+        out[key.strip()] = value.strip()
+    return out

@@ -90,10 +90,11 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
         try:
             configs[name] = resolve(master, name, cache, (extra_overrides or {}).get(name))
         except DataErrors as err:
-            errors += [e for e in err.errors if str(e) not in {str(x) for x in errors}]
+            errors += err.errors
         except DataError as err:
-            if str(err) not in {str(x) for x in errors}:
-                errors.append(err)
+            errors.append(err)
+    # a broken file shared by several groups or configurations is reported once
+    errors = list({str(e): e for e in errors}.values())
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
     groups = _ordered_groups(configs.values())
@@ -121,7 +122,7 @@ def feedback(master: MasterFile, configs: Mapping[str, Configuration], cache: Gr
                 continue
             data = config.groups[group]
             shared = cache.get(group, data.variant)
-            modified = tuple(_modified(shared.values, data.values))
+            modified = tuple(modified_keys(shared.values, data.values))
             rows.append(GroupStatus(config.name, group, data.variant,
                                     "MODIFIED" if modified else "UNCHANGED",
                                     "SAME" if same else "DIFFERS", modified))
@@ -132,7 +133,7 @@ def _same_group(a: Mapping[str, Value], b: Mapping[str, Value]) -> bool:
     return a.keys() == b.keys() and all(a[k].same_data(b[k]) for k in a)
 
 
-def _modified(shared: Mapping[str, Value], fed: Mapping[str, Value]) -> list[ModifiedKey]:
+def modified_keys(shared: Mapping[str, Value], fed: Mapping[str, Value]) -> list[ModifiedKey]:
     out = []
     for key, value in fed.items():
         ref = shared.get(key)

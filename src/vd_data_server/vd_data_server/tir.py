@@ -33,6 +33,7 @@ scaling factors of PAC2002 / MF 6.x are dimensionless by the format's
 definition (loads normalised by FNOMIN, lengths by UNLOADED_RADIUS, slip and
 camber in radians), so [UNITS] does not apply to them.
 """
+
 from __future__ import annotations
 
 import enum
@@ -183,7 +184,7 @@ _TABLE_HEADER_RE: Final = re.compile(r"\{([^{}]*)\}")
 # A unit is one name; pint's expression parser would accept 'm,' or 'm=1'.
 _UNIT_NAME_RE: Final = re.compile(r"[A-Za-z][A-Za-z_]*")
 
-_UREG: Final = pint.UnitRegistry()
+_UREG: Final[pint.UnitRegistry[float]] = pint.UnitRegistry()
 
 
 class _Required(enum.Enum):
@@ -379,9 +380,7 @@ def _strip_comment(line: str) -> tuple[str, bool]:
     return line, quote is None
 
 
-def _read_key_line(
-    code: str, number: int, block: str, entries: dict[str, _Entry], source: str
-) -> DataError | None:
+def _read_key_line(code: str, number: int, block: str, entries: dict[str, _Entry], source: str) -> DataError | None:
     """Store one ``KEY = value`` line in ``entries``; return the problem if any."""
     key_text, _, value_text = code.partition("=")
     key, value_text = key_text.strip().upper(), value_text.strip()
@@ -408,9 +407,7 @@ def _parse_value(text: str) -> float | str:
     return text
 
 
-def _read_table_line(
-    code: str, number: int, block: str, tables: dict[str, _RawTable], source: str
-) -> DataError | None:
+def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawTable], source: str) -> DataError | None:
     """Store a ``{column header}`` or a row of numbers of a table block."""
     table = tables.setdefault(block, _RawTable())
     if match := _TABLE_HEADER_RE.fullmatch(code):

@@ -37,6 +37,8 @@ SI_UNITS: Mapping[str, str] = {
     "inertia": "kg*m^2",
     "pressure": "Pa",
     "rack_ratio": "m/rad",
+    "acceleration": "m/s^2",
+    "frequency": "1/s",
     "dimensionless": "",
 }
 
@@ -59,7 +61,7 @@ _DERIVED: Mapping[str, str] = {
 SI_SYMBOLS: Mapping[str, str] = {
     "m": "m", "rad": "rad", "N": "N", "kg": "kg", "s": "s", "m/s": "m/s", "N/m": "N/m",
     "N*s/m": "N·s/m", "N*m/rad": "N·m/rad", "N*m*s/rad": "N·m·s/rad", "N*m": "N·m",
-    "kg*m^2": "kg·m²", "Pa": "Pa", "m/rad": "m/rad", "": "-",
+    "kg*m^2": "kg·m²", "Pa": "Pa", "m/rad": "m/rad", "m/s^2": "m/s²", "1/s": "1/s", "": "-",
 }
 
 
@@ -82,12 +84,25 @@ def si_factor(unit: str, quantity: str) -> float:
     target = SI_UNITS[quantity]
     src = parse_unit(unit) if unit else UREG.dimensionless
     dst = parse_unit(target) if target else UREG.dimensionless
+    wrong = ValueError(f"unit '{unit}' is not {_a(quantity)} unit (expected e.g. "
+                       f"'{target or '-'}')")
+    # pint counts angles as dimensionless, so only the radian power tells '%' from 'deg'
+    if _radian_power(src) != _radian_power(dst):
+        raise wrong
     try:
         return float(UREG.Quantity(1.0, src).to(dst).magnitude)
     except pint.errors.DimensionalityError as err:
-        raise ValueError(
-            f"unit '{unit}' is not a {quantity.replace('_', ' ')} unit (expected e.g. '{target or '-'}')"
-        ) from err
+        raise wrong from err
+
+
+def _radian_power(unit: pint.Unit) -> int:
+    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get("radian", 0)
+
+
+def _a(quantity: str) -> str:
+    """'a length', 'an angle': the quantity's name with its article, for messages."""
+    name = quantity.replace("_", " ")
+    return f"{'an' if name[0] in 'aeiou' else 'a'} {name}"
 
 
 class UnitSystem:
@@ -164,7 +179,7 @@ def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> t
     if len(parts) == 1:
         if quantity != "dimensionless":
             raise DataError(
-                f"value {text!r} needs a unit (a {quantity.replace('_', ' ')}, e.g. '{parts[0]} "
+                f"value {text!r} needs a unit ({_a(quantity)}, e.g. '{parts[0]} "
                 f"{SI_UNITS[quantity]}')", file=file, key=key)
         return number, ""
     unit = parts[1].strip()

@@ -13,6 +13,9 @@ from collections.abc import Callable, Sequence
 
 from vd_data_server.errors import DataError
 
+from .bag import BagError
+from .runner import RunError
+
 EXIT_OK = 0
 EXIT_USAGE = 2
 
@@ -98,7 +101,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     want_json = bool(getattr(args, "json", False))
     try:
         return handlers[args.command](args)
-    except (DataError, UsageError) as err:
+    except (DataError, UsageError, RunError, BagError) as err:
         _report_error(str(err), want_json)
         return EXIT_USAGE
     except KeyboardInterrupt:

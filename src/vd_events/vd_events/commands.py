@@ -2,10 +2,164 @@
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
+import json
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from vd_data_server.errors import DataError
+
+from .bag import BagError
+from .runner import RunError, RunOutcome, RunRequest
 
 HANDLERS: dict[str, Callable[[argparse.Namespace], int]] = {}
 
+#: metrics printed first, when a run has them
+HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh", "critical_speed_kmh",
+            "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
+            "roll_gradient", "natural_frequency", "damping_ratio")
+
 
 def add_subcommands(sub: argparse._SubParsersAction) -> None:
-    """Register the subcommands on the ``vd`` parser."""
+    run = sub.add_parser("run", help="run one event on one configuration")
+    run.add_argument("event")
+    run.add_argument("--config", default=None, help="configuration (default: the first)")
+    run.add_argument("--model", default=None, help="bicycle | two_track | kc | vehicle")
+    run.add_argument("--fidelity", default="rigid", choices=None)
+    run.add_argument("--axle", default="", help="front | rear (K&C events)")
+    run.add_argument("--set", dest="overrides", action="append", default=[],
+                     metavar="KEY=VALUE", help="temporary override, e.g. "
+                     "front_alignment.camber='-1 deg'")
+    run.add_argument("--param", dest="parameters", action="append", default=[],
+                     metavar="NAME=VALUE", help="event parameter, e.g. radius='40 m'")
+    run.add_argument("--master", help="master file (default: the bundled sample study)")
+    run.add_argument("--bag", help="bag directory to write (must not exist)")
+    run.add_argument("--distributed", action="store_true",
+                     help="one process per node (DDS on loopback) instead of one process")
+    run.add_argument("--json", action="store_true")
+    HANDLERS["run"] = cmd_run
+
+    study = sub.add_parser("study", help="many events x configurations x models")
+    study.add_argument("plan", help="study plan YAML")
+    study.add_argument("--bag", help="folder for the bags (default: out/<plan name>/bags)")
+    study.add_argument("--report", help="folder for the report (default: out/<plan name>)")
+    study.add_argument("--distributed", action="store_true")
+    study.add_argument("--json", action="store_true")
+    HANDLERS["study"] = cmd_study
+
+    report = sub.add_parser("report", help="HTML report + PNG plots from bags")
+    report.add_argument("bags", nargs="+")
+    report.add_argument("--out", default="out/report", help="report folder")
+    HANDLERS["report"] = cmd_report
+
+    launch = sub.add_parser("launch", help="start the nodes and keep them running")
+    launch.add_argument("--distributed", action="store_true")
+    launch.add_argument("--master", help="master file")
+    HANDLERS["launch"] = cmd_launch
+
+
+def _study(master: str | None):
+    from vd_data_server.paths import default_master
+    from vd_data_server.study import load_study
+
+    path = Path(master) if master else default_master()
+    return path, load_study(path)
+
+
+def _progress_printer(enabled: bool):
+    if not enabled:
+        return None
+
+    def show(request: RunRequest, fraction: float, stage: str) -> None:
+        print(f"\r  {request.configuration} / {request.event} / {request.model}: "
+              f"{stage} {100 * fraction:3.0f}%", end="", file=sys.stderr, flush=True)
+    return show
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .runner import run_distributed, run_embedded, validate
+
+    master, study = _study(args.master)
+    model = args.model or "two_track"
+    request = RunRequest(event=args.event, configuration=args.config or
+                         study.configuration_names[0], model=model,
+                         fidelity=args.fidelity or "rigid", axle=args.axle or "",
+                         overrides=tuple(args.overrides), parameters=tuple(args.parameters),
+                         bag=Path(args.bag) if args.bag else None)
+    try:
+        validate(study, request)
+    except (RunError, BagError) as err:
+        raise DataError(str(err)) from None
+    runner = run_distributed if args.distributed else run_embedded
+    progress = _progress_printer(sys.stderr.isatty() and not args.json)
+    (result,) = runner(master, [request], progress)
+    if progress:
+        print(file=sys.stderr)
+    if result.error:
+        raise DataError(result.error)
+    assert result.outcome is not None
+    if args.json:
+        print(json.dumps(result.outcome.to_json(str(result.bag) if result.bag else None)))
+    else:
+        _print_outcome(result)
+    return 0
+
+
+def _print_outcome(result: RunOutcome) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    outcome = result.outcome
+    assert outcome is not None
+    table = Table(title=f"{outcome.event} - {outcome.configuration} - {outcome.model}",
+                  title_justify="left")
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    table.add_column("unit")
+    names = [m for m in HEADLINE if m in outcome.metrics]
+    names += [m for m in outcome.metrics if m not in names]
+    for name in names:
+        metric = outcome.metrics[name]
+        table.add_row(name, f"{metric.value:.5g}", metric.unit)
+    console = Console(highlight=False, width=max(100, Console().width))
+    console.print(table)
+    for note in outcome.notes[:1]:
+        console.print(note)
+    if result.bag:
+        console.print(f"bag: {result.bag}")
+
+
+def cmd_study(args: argparse.Namespace) -> int:
+    from .study_plan import load_plan, run_plan
+
+    plan = load_plan(Path(args.plan))
+    out = Path(args.report) if args.report else Path("out") / plan.name
+    bags = Path(args.bag) if args.bag else out / "bags"
+    summary = run_plan(plan, bags, out, distributed=args.distributed,
+                       progress=_progress_printer(sys.stderr.isatty() and not args.json))
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(f"report: {summary['report']}")
+        print(f"bags:   {summary['bags']}")
+    return 0 if not summary["errors"] else 1
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    from .report import build_report
+
+    path = build_report([Path(b) for b in args.bags], Path(args.out))
+    print(f"report: {path}")
+    return 0
+
+
+def cmd_launch(args: argparse.Namespace) -> int:
+    from .launch import launch
+
+    return launch(Path(args.master) if args.master else None, distributed=args.distributed)
+
+
+def main(argv: Sequence[str] | None = None) -> int:  # pragma: no cover - see cli.main
+    from .cli import main as cli_main
+
+    return cli_main(argv)

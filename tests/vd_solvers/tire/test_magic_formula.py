@@ -4,9 +4,11 @@ References are independent of the implementation: the PAC2002 equations
 written out step by step with ``math`` from the coefficients in the file,
 finite differences, numerical maxima and symmetry properties.
 """
+
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -70,6 +72,27 @@ FNOMIN = {SYMMETRIC_FNOMIN!r}
 """
 
 
+# Scaling factors != 1 so that a factor in the wrong place shows.
+SCALED = {
+    "LCY": 1.1, "LMUY": 0.9, "LEY": 1.2, "LKY": 0.85, "LHY": 1.3, "LVY": 0.7, "LGAY": 1.15,
+    "LCX": 0.95, "LMUX": 1.05, "LEX": 0.8, "LKX": 1.1, "LHX": 1.2, "LVX": 0.9, "LGAX": 0.85,
+}  # fmt: skip
+
+
+def sedan_scaled() -> TireProperties:
+    """The sedan tire with the scaling factors of SCALED, and PDX3 (absent in the file) for camber in Fx."""
+    text = SEDAN.read_text(encoding="ascii").replace(
+        "[LONGITUDINAL_COEFFICIENTS]", "[LONGITUDINAL_COEFFICIENTS]\nPDX3 = 5.0"
+    )
+    for key, value in SCALED.items():
+        text, count = re.subn(rf"(?m)^{key}\s*=.*$", f"{key} = {value!r}", text)
+        assert count == 1
+    return parse_tir_text(text, "sedan_scaled")
+
+
+TIRES = {"sedan": lambda: read_tir(SEDAN), "hmmwv": lambda: read_tir(HMMWV), "sedan_scaled": sedan_scaled}
+
+
 @pytest.fixture(scope="module")
 def sedan() -> TireProperties:
     return read_tir(SEDAN)
@@ -83,16 +106,18 @@ def symmetric() -> MagicFormula:
 # --- the PAC2002 equations, evaluated by hand -------------------------------------
 
 
+@pytest.mark.parametrize(("tire", "fz"), [("sedan", 5500.0), ("hmmwv", 25000.0), ("sedan_scaled", 2500.0)])
 @pytest.mark.parametrize(("alpha", "gamma"), [(0.07, 0.03), (-0.07, 0.03), (0.2, -0.02), (-0.004, 0.0)])
-def test_fy_matches_hand_evaluated_pac2002(sedan: TireProperties, alpha: float, gamma: float) -> None:
+def test_fy_matches_hand_evaluated_pac2002(tire: str, fz: float, alpha: float, gamma: float) -> None:
+    props = TIRES[tire]()
+
     def p(key: str) -> float:
-        return sedan.number("LATERAL_COEFFICIENTS", key, 0.0)
+        return props.number("LATERAL_COEFFICIENTS", key, 0.0)
 
     def scale(key: str) -> float:
-        return sedan.number("SCALING_COEFFICIENTS", key, 1.0)
+        return props.number("SCALING_COEFFICIENTS", key, 1.0)
 
-    fz = 5500.0
-    fnomin = sedan.number("VERTICAL", "FNOMIN")
+    fnomin = props.number("VERTICAL", "FNOMIN")
     fz0_scaled = fnomin * scale("LFZO")
     dfz = (fz - fz0_scaled) / fz0_scaled
     gamma_y = gamma * scale("LGAY")
@@ -111,19 +136,21 @@ def test_fy_matches_hand_evaluated_pac2002(sedan: TireProperties, alpha: float, 
     sv = fz * ((p("PVY1") + p("PVY2") * dfz) * scale("LVY") + (p("PVY3") + p("PVY4") * dfz) * gamma_y) * scale("LMUY")
     expected = d * math.sin(c * math.atan(b * alpha_y - e * (b * alpha_y - math.atan(b * alpha_y)))) + sv
 
-    npt.assert_allclose(MagicFormula(sedan).fy(fz, alpha, gamma), expected, rtol=RTOL)
+    npt.assert_allclose(MagicFormula(props).fy(fz, alpha, gamma), expected, rtol=RTOL)
 
 
+@pytest.mark.parametrize(("tire", "fz"), [("sedan", 3000.0), ("hmmwv", 15000.0), ("sedan_scaled", 7000.0)])
 @pytest.mark.parametrize(("kappa", "gamma"), [(0.08, 0.03), (-0.08, 0.03), (0.3, -0.05)])
-def test_fx_matches_hand_evaluated_pac2002(sedan: TireProperties, kappa: float, gamma: float) -> None:
+def test_fx_matches_hand_evaluated_pac2002(tire: str, fz: float, kappa: float, gamma: float) -> None:
+    props = TIRES[tire]()
+
     def p(key: str) -> float:
-        return sedan.number("LONGITUDINAL_COEFFICIENTS", key, 0.0)
+        return props.number("LONGITUDINAL_COEFFICIENTS", key, 0.0)
 
     def scale(key: str) -> float:
-        return sedan.number("SCALING_COEFFICIENTS", key, 1.0)
+        return props.number("SCALING_COEFFICIENTS", key, 1.0)
 
-    fz = 3000.0
-    fz0_scaled = sedan.number("VERTICAL", "FNOMIN") * scale("LFZO")
+    fz0_scaled = props.number("VERTICAL", "FNOMIN") * scale("LFZO")
     dfz = (fz - fz0_scaled) / fz0_scaled
     gamma_x = gamma * scale("LGAX")
     sh = (p("PHX1") + p("PHX2") * dfz) * scale("LHX")
@@ -137,7 +164,7 @@ def test_fx_matches_hand_evaluated_pac2002(sedan: TireProperties, kappa: float, 
     sv = fz * (p("PVX1") + p("PVX2") * dfz) * scale("LVX") * scale("LMUX")
     expected = d * math.sin(c * math.atan(b * kappa_x - e * (b * kappa_x - math.atan(b * kappa_x)))) + sv
 
-    npt.assert_allclose(MagicFormula(sedan).fx(fz, kappa, gamma), expected, rtol=RTOL)
+    npt.assert_allclose(MagicFormula(props).fx(fz, kappa, gamma), expected, rtol=RTOL)
 
 
 def test_peak_lateral_friction_matches_hand_formula(sedan: TireProperties) -> None:
@@ -171,9 +198,7 @@ def test_lateral_curvature_branches(sedan: TireProperties, slip_sign: float, fac
 # --- closed-form properties -----------------------------------------------------------
 
 
-@pytest.mark.parametrize(
-    ("path", "loads"), [(SEDAN, (2000.0, 4850.0, 8000.0)), (HMMWV, (10000.0, 35000.0, 60000.0))]
-)
+@pytest.mark.parametrize(("path", "loads"), [(SEDAN, (2000.0, 4850.0, 8000.0)), (HMMWV, (10000.0, 35000.0, 60000.0))])
 @pytest.mark.parametrize("gamma", [0.0, 0.03])
 def test_cornering_stiffness_is_slope_of_fy_at_zero_slip(path: Path, loads: tuple[float, ...], gamma: float) -> None:
     mf = MagicFormula(read_tir(path))
@@ -282,12 +307,16 @@ def test_mirrored_cornering_stiffness_is_taken_at_opposite_camber(sedan: TirePro
 
 def test_tire_on_the_measured_side_is_not_mirrored(sedan: TireProperties) -> None:
     alpha = np.linspace(-0.2, 0.2, 9)
-    npt.assert_array_equal(MagicFormula(sedan, side="LEFT").fy(4000.0, alpha, 0.03), MagicFormula(sedan).fy(4000.0, alpha, 0.03))
+    npt.assert_array_equal(
+        MagicFormula(sedan, side="LEFT").fy(4000.0, alpha, 0.03), MagicFormula(sedan).fy(4000.0, alpha, 0.03)
+    )
 
 
 def test_mirroring_leaves_fx_unchanged(sedan: TireProperties) -> None:
     kappa = np.linspace(-0.2, 0.2, 9)
-    npt.assert_array_equal(MagicFormula(sedan, side="RIGHT").fx(4000.0, kappa, 0.03), MagicFormula(sedan).fx(4000.0, kappa, 0.03))
+    npt.assert_array_equal(
+        MagicFormula(sedan, side="RIGHT").fx(4000.0, kappa, 0.03), MagicFormula(sedan).fx(4000.0, kappa, 0.03)
+    )
 
 
 def test_mirroring_a_symmetric_tire_changes_nothing() -> None:

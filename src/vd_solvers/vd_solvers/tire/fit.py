@@ -20,6 +20,7 @@ fit is used, not at FNOMIN LFZO, which may lie outside it):
 The simple tire has no shifts: PHY*, PVY* and the PEY3/PEY4 asymmetry are
 dropped by construction.
 """
+
 from __future__ import annotations
 
 from pathlib import Path

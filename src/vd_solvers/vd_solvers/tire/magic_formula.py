@@ -54,6 +54,7 @@ evaluated as measured. For a tire without shifts and without the sgn terms
 (PHY*, PVY*, PEY3, PEY4 = 0), Fy is odd in alpha at zero camber and mirroring
 changes nothing.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -90,7 +91,8 @@ _SCALING_FACTORS: Final[tuple[str, ...]] = (
     "LFZO", "LCX", "LMUX", "LEX", "LKX", "LHX", "LVX", "LGAX",
     "LCY", "LMUY", "LEY", "LKY", "LHY", "LVY", "LGAY",
 )  # fmt: skip
-# E <= 1 (Pacejka 4.E14, 4.E24): beyond it the curve bends back on itself.
+# E <= 1 (Pacejka 4.E14, 4.E24): beyond it B x - E (B x - atan B x) falls again
+# at large x and the curve loses its single peak.
 _MAX_CURVATURE: Final[float] = 1.0
 _SIDES: Final[tuple[str, ...]] = ("LEFT", "RIGHT")
 
@@ -115,6 +117,7 @@ class _Curve:
         return _curvature(self.e_even, self.e_odd, x)
 
     def force(self, slip: np.ndarray) -> np.ndarray:
+        """F at the given slip."""
         x = slip + self.sh
         bx = self.b * x
         e = self.curvature(x)
@@ -224,7 +227,7 @@ class MagicFormula:
         return np.where(loaded, slope, 0.0)
 
     def peak_lateral_friction(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
-        """mu_y = D_y / Fz, -: peak of |Fy - SV_y| over alpha divided by the load."""
+        """mu_y = D_y / Fz, -: the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1) per load."""
         fz_, gamma_ = _arrays(fz, gamma)
         c = self._c
         dfz = (fz_ - c["FZ0_PRIME"]) / c["FZ0_PRIME"]

@@ -1,0 +1,150 @@
+"""rosbag2 MCAP bags written and read with rosbags (pure Python).
+
+Messages are typed vd_interfaces messages with their definitions embedded, so
+Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. A bag
+is written under ``<name>.partial`` and renamed to ``<name>`` when closed: an
+interrupted run never leaves a bag that looks finished (and ``abort()`` removes
+the partial one).
+"""
+from __future__ import annotations
+
+import shutil
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from rosbags.rosbag2 import Reader, StoragePlugin, Writer
+from rosbags.typesys import Stores, get_typestore, get_types_from_msg
+from rosbags.typesys.store import Typestore
+
+PARTIAL_SUFFIX = ".partial"
+BAG_VERSION = 9
+INTERFACES = "vd_interfaces"
+
+
+class BagError(Exception):
+    """The bag path cannot be used (exists, unwritable, not a bag)."""
+
+
+@lru_cache(maxsize=1)
+def typestore() -> Typestore:
+    """Jazzy's types plus every vd_interfaces message, from the installed .msg files."""
+    from ament_index_python.packages import get_package_share_directory
+
+    store = get_typestore(Stores.ROS2_JAZZY)
+    msg_dir = Path(get_package_share_directory(INTERFACES)) / "msg"
+    types: dict[str, Any] = {}
+    for path in sorted(msg_dir.glob("*.msg")):
+        types.update(get_types_from_msg(path.read_text(), f"{INTERFACES}/msg/{path.stem}"))
+    store.register(types)
+    return store
+
+
+def check_bag_path(path: Path) -> None:
+    """Refuse an existing bag (or partial one) and an unwritable parent, before any work."""
+    if path.exists():
+        raise BagError(f"{path}: bag path already exists (choose another --bag)")
+    partial = path.with_name(path.name + PARTIAL_SUFFIX)
+    if partial.exists():
+        raise BagError(f"{partial}: an interrupted bag is in the way (remove it)")
+    parent = path.parent
+    probe = parent
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir() or not _writable(probe):
+        raise BagError(f"{path}: cannot write under {probe}")
+
+
+def _writable(folder: Path) -> bool:
+    import os
+
+    return os.access(folder, os.W_OK | os.X_OK)
+
+
+class BagWriter:
+    """Writes rclpy messages (serialised CDR) to an MCAP rosbag2 bag, atomically."""
+
+    def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
+        self.path = Path(path)
+        check_bag_path(self.path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        # rosbags names the storage file after the bag folder, so the bag is built
+        # with its final name inside a '<name>.partial' folder and moved out when done.
+        self.partial = self.path.with_name(self.path.name + PARTIAL_SUFFIX)
+        self.partial.mkdir()
+        self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
+                              storage_plugin=StoragePlugin.MCAP)
+        for key, value in (custom_data or {}).items():
+            self._writer.set_custom_data(key, value)
+        self._writer.open()
+        self._connections: dict[str, Any] = {}
+        self.count = 0
+        self.closed = False
+
+    def set_custom_data(self, key: str, value: str) -> None:
+        self._writer.set_custom_data(key, value)
+
+    def write(self, topic: str, msg: Any, timestamp_ns: int) -> None:
+        from rclpy.serialization import serialize_message
+
+        msgtype = _type_name(msg)
+        conn = self._connections.get(topic)
+        if conn is None:
+            conn = self._writer.add_connection(topic, msgtype, typestore=typestore())
+            self._connections[topic] = conn
+        self._writer.write(conn, int(timestamp_ns), serialize_message(msg))
+        self.count += 1
+
+    def close(self) -> Path:
+        """Finish the bag and give it its final name."""
+        if not self.closed:
+            self._writer.close()
+            (self.partial / self.path.name).rename(self.path)
+            self.partial.rmdir()
+            self.closed = True
+        return self.path
+
+    def abort(self) -> None:
+        """Drop an unfinished bag: nothing that looks like a result is left."""
+        if not self.closed:
+            try:
+                self._writer.close()
+            finally:
+                shutil.rmtree(self.partial, ignore_errors=True)
+                self.closed = True
+
+
+def _type_name(msg: Any) -> str:
+    """``vd_interfaces/msg/EventResult`` from an rclpy message instance."""
+    module = type(msg).__module__.split(".")  # e.g. vd_interfaces.msg._event_result
+    return f"{module[0]}/{module[1]}/{type(msg).__name__}"
+
+
+@dataclass(frozen=True)
+class BagMessage:
+    topic: str
+    msgtype: str
+    timestamp: int
+    msg: Any  # rosbags dataclass instance
+
+
+def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMessage]:
+    """Every message (deserialised with rosbags) of a finished bag."""
+    path = Path(path)
+    if not (path / "metadata.yaml").is_file():
+        raise BagError(f"{path}: not a finished rosbag2 bag (no metadata.yaml)")
+    store = typestore()
+    with Reader(path) as reader:
+        conns = [c for c in reader.connections if topics is None or c.topic in topics]
+        for conn, timestamp, raw in reader.messages(connections=conns):
+            yield BagMessage(conn.topic, conn.msgtype, timestamp,
+                             store.deserialize_cdr(raw, conn.msgtype))
+
+
+def custom_data(path: str | Path) -> dict[str, str]:
+    import yaml
+
+    meta = yaml.safe_load((Path(path) / "metadata.yaml").read_text())
+    return dict(meta.get("rosbag2_bagfile_information", {}).get("custom_data") or {})

@@ -1,0 +1,105 @@
+"""``ros2 run vd_events recorder``: records vd topics to an MCAP bag.
+
+The role ``ros2 bag record`` plays (which pip-installed ROS lacks). Parameter
+``bag``: the bag directory to create (refused if it exists). The bag is
+written under ``<bag>.partial`` and renamed when the node stops (Ctrl-C,
+SIGTERM or ``stop()``); the run's provenance goes into the bag's metadata.
+"""
+from __future__ import annotations
+
+import time
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
+
+from vd_events.bag import BagWriter
+
+_LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
+                      reliability=ReliabilityPolicy.RELIABLE,
+                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
+_STREAM = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=5000,
+                     reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.VOLATILE)
+
+#: topic -> (type, QoS) recorded by default
+TOPICS = {
+    "/vd/configuration": (Configuration, _LATCHED),
+    "/vd/data_status": (DataStatus, _LATCHED),
+    "/vd/provenance": (Provenance, _STREAM),
+    "/vd/steady_state/result": (EventResult, _STREAM),
+    "/vd/steady_state/state": (Sample, _STREAM),
+    "/vd/kc/result": (EventResult, _STREAM),
+    "/vd/kc/state": (Sample, _STREAM),
+}
+
+
+class Recorder(Node):
+    def __init__(self, bag: str | None = None, **kwargs) -> None:
+        super().__init__("recorder", **kwargs)
+        self.declare_parameter("bag", bag or "", ParameterDescriptor(
+            description="bag directory to create", read_only=True))
+        self.declare_parameter("configurations", [""], ParameterDescriptor(
+            description="record only these configurations ('' = all)", read_only=True))
+        path = self.get_parameter("bag").value
+        if not path:
+            raise ValueError("parameter 'bag' is required (the bag directory to create)")
+        wanted = [c for c in self.get_parameter("configurations").value if c]
+        self.only = set(wanted)
+        self.writer = BagWriter(path, {"vd.recorder": "vd_events recorder"})
+        self.counts: dict[str, int] = {topic: 0 for topic in TOPICS}
+        for topic, (msg_type, qos) in TOPICS.items():
+            self.create_subscription(msg_type, topic, self._callback(topic), qos)
+        self.get_logger().info(f"recording to {path}")
+
+    def _callback(self, topic: str):
+        def record(msg) -> None:
+            if self.writer.closed:
+                return
+            name = getattr(msg, "configuration", None)
+            if topic == "/vd/configuration":
+                name = msg.name
+            if self.only and name is not None and name not in self.only:
+                return
+            if topic == "/vd/provenance":
+                for key in ("configuration", "data_hash", "model", "fidelity", "event",
+                            "master_file", "software_version"):
+                    self.writer.set_custom_data(f"vd.{key}", str(getattr(msg, key)))
+                self.writer.set_custom_data("vd.modified", "; ".join(
+                    f"{g.group}.{k.key}={k.master_value} {k.unit}".strip()
+                    for g in msg.groups for k in g.modified_keys) or "none")
+            self.writer.write(topic, msg, time.time_ns())
+            self.counts[topic] += 1
+        return record
+
+    def stop(self):
+        """Close the bag (renaming it to its final name) and return its path."""
+        return self.writer.close()
+
+    def abort(self) -> None:
+        self.writer.abort()
+
+
+def main(args=None) -> None:
+    rclpy.init(args=args)
+    node = None
+    try:
+        node = Recorder()
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    except Exception as err:  # noqa: BLE001 - report a bad parameter without a traceback
+        print(f"recorder: {err}")
+        raise SystemExit(2) from None
+    finally:
+        if node is not None:
+            node.stop()
+            node.destroy_node()
+        rclpy.try_shutdown()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,99 @@
+"""Build the analytical models' parameters from a resolved configuration.
+
+What the data describes in more detail than the simple models need is
+derived here, and every value says where it came from (``VehicleParams.sources``):
+
+* mass, COG and yaw inertia: the sprung mass (mass group) plus four unsprung
+  masses at the wheel centres (hard points), combined with the parallel-axis
+  theorem;
+* tracks and wheelbase: geometry group; unsprung COG height: wheel-centre height;
+* per-axle tire (thesis eqs. 6-9): fitted to the .tir Magic Formula over
+  FIT_RANGE times the static wheel load of that axle (``tire/fit.py``);
+* roll stiffness and roll-centre heights: the design targets of the targets
+  group, unless K&C results of the same configuration are passed in
+  (``suspension``), which then win and are labelled as such.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from vd_data_server.model import Configuration
+from vd_data_server.tire_group import tire_properties
+from vd_solvers.analytical.params import STANDARD_GRAVITY, VehicleParams
+from vd_solvers.tire.fit import fit_simple_tire
+from vd_solvers.tire.magic_formula import MagicFormula
+
+#: load range of the simple-tire fit, as fractions of the static wheel load
+FIT_RANGE = (0.2, 1.8)
+
+
+@dataclass(frozen=True)
+class AxleSuspension:
+    """Roll properties of one axle from the K&C model."""
+
+    roll_stiffness: float  # N*m/rad, incl. anti-roll bar
+    roll_centre_height: float  # m
+    source: str
+
+
+def vehicle_params(config: Configuration,
+                   suspension: Mapping[str, AxleSuspension] | None = None) -> VehicleParams:
+    mass = config.group("mass")
+    geo = config.group("geometry")
+    targets = config.group("targets")
+    wheelbase = geo.scalar("wheelbase")
+    m_s = mass.scalar("sprung_mass")
+    x_s, y_s, z_s = mass.point("sprung_cog")
+    m_uf = 2.0 * mass.scalar("unsprung_mass_front")
+    m_ur = 2.0 * mass.scalar("unsprung_mass_rear")
+    z_uf = config.group("front_hardpoints").point("points.wheel_centre")[2]
+    z_ur = config.group("rear_hardpoints").point("points.wheel_centre")[2]
+    m = m_s + m_uf + m_ur
+    x_g = (m_s * x_s + m_uf * 0.0 + m_ur * -wheelbase) / m
+    z_g = (m_s * z_s + m_uf * z_uf + m_ur * z_ur) / m
+    t_f, t_r = geo.scalar("track_front"), geo.scalar("track_rear")
+    izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + y_s ** 2)
+           + m_uf * ((0.0 - x_g) ** 2 + (t_f / 2.0) ** 2)
+           + m_ur * ((-wheelbase - x_g) ** 2 + (t_r / 2.0) ** 2))
+    a = -x_g
+    fz_front = m * STANDARD_GRAVITY * (wheelbase - a) / wheelbase / 2.0
+    fz_rear = m * STANDARD_GRAVITY * a / wheelbase / 2.0
+    tire_front, src_tf = _fit(config, "front_tire", fz_front)
+    tire_rear, src_tr = _fit(config, "rear_tire", fz_rear)
+    mass_src = f"{mass.file} (sprung) + unsprung masses at the wheel centres"
+    sources = {
+        "mass": mass_src, "cog_to_front_axle": mass_src, "cog_height": mass_src,
+        "yaw_inertia": f"{mass.file} sprung_inertia.izz + parallel-axis unsprung terms",
+        "wheelbase": geo.file, "track_front": geo.file, "track_rear": geo.file,
+        "tire_front": src_tf, "tire_rear": src_tr,
+        "unsprung_mass_front": mass.file, "unsprung_mass_rear": mass.file,
+        "unsprung_cog_height_front": "front_hardpoints wheel_centre z",
+        "unsprung_cog_height_rear": "rear_hardpoints wheel_centre z",
+    }
+    roll = {}
+    for axle in ("front", "rear"):
+        kc = (suspension or {}).get(axle)
+        if kc is not None:
+            roll[f"roll_stiffness_{axle}"] = kc.roll_stiffness
+            roll[f"roll_centre_height_{axle}"] = kc.roll_centre_height
+            sources[f"roll_stiffness_{axle}"] = kc.source
+            sources[f"roll_centre_height_{axle}"] = kc.source
+        else:
+            for key in (f"roll_stiffness_{axle}", f"roll_centre_height_{axle}"):
+                roll[key] = targets.scalar(key)
+                sources[key] = f"design target {targets.values[key].source}"
+    return VehicleParams(
+        mass=m, wheelbase=wheelbase, cog_to_front_axle=a, track_front=t_f, track_rear=t_r,
+        cog_height=z_g, yaw_inertia=izz, tire_front=tire_front, tire_rear=tire_rear,
+        unsprung_mass_front=m_uf, unsprung_mass_rear=m_ur,
+        unsprung_cog_height_front=z_uf, unsprung_cog_height_rear=z_ur, sources=sources,
+        **roll)
+
+
+def _fit(config: Configuration, group: str, fz_static: float):
+    props = tire_properties(config.group(group))
+    low, high = FIT_RANGE[0] * fz_static, FIT_RANGE[1] * fz_static
+    tire = fit_simple_tire(MagicFormula(props), (low, high))
+    return tire, (f"{config.group(group).text('file')} Magic Formula fitted over "
+                  f"{low:.0f}..{high:.0f} N")

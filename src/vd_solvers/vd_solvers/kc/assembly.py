@@ -1,0 +1,787 @@
+"""The numerical model of one axle on the K&C rig.
+
+:func:`assemble` turns a :class:`~.model.SuspensionInput` and its template
+into a :class:`System`: parts with poses (p, R), markers, primitives
+(:mod:`.joints`), constraint rows g(q) = g_design + load offsets, and
+potentials V(q) = sum_e V_e(y_e) on measures y = C x(q) - reference.
+
+Both sides of the axle are modelled: the template's left corner and its
+mirror image, the anti-roll bar and the rack coupling them. The body is the
+ground (fixed, as on a K&C rig). Per side the rig adds
+
+* a wheel pad: the contact-point height is a constraint driven by the event
+  (its multiplier is the vertical pad force at the contact point);
+* applied loads: a force at the contact point (lateral, braking: the wheel is
+  locked to the upright, so the brake reaction stays in it) and a force at
+  the wheel centre (traction).
+
+:meth:`System.evaluate` gives the residuals and the exact tangent of the
+equilibrium ``grad V - Q + J^T lambda = 0, g = 0`` for a Newton step in
+local pose coordinates (dp, dtheta) per part.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import Union
+
+import numpy as np
+
+from vd_solvers.errors import SolverError
+
+from .bushing import Measure, bushing_frame, bushing_measures, side_frame
+from .forces import EnergyLaw, LinearLaw, StopLaw, TorsionLaw, spring_law, stiffness_law
+from .joints import (
+    GROUND,
+    PAIRS,
+    SLOTS,
+    PointRef,
+    Primitive,
+    PrimKind,
+    VectorRef,
+    joint_constraints,
+    kernel,
+    perpendicular_basis,
+    point,
+    unit,
+    vector,
+)
+from .model import SIDES, Side, SuspensionInput, mirror, validate
+from .templates import ARB_POINTS, STEERING, TEMPLATES, LinkDef, SuspensionTemplate, Topology
+
+GRAVITY = 9.80665  # m/s^2, standard gravity
+RACK = "rack"
+_EYE = np.eye(3)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """Rig inputs of one step; index 0 = left, 1 = right wheel.
+
+    ``pad``: contact-point height change from design (m); ``contact_force``:
+    force on the tire at the contact point (N, vehicle axes); ``centre_force``:
+    force at the wheel centre (N); ``rack``: commanded rack travel (m, +y).
+    """
+
+    pad: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    contact_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
+    centre_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
+    rack: float = 0.0
+
+    def blend(self, other: LoadCase, t: float) -> LoadCase:
+        """The load case a fraction ``t`` of the way from self to ``other``."""
+        return LoadCase(
+            pad=(1 - t) * self.pad + t * other.pad,
+            contact_force=(1 - t) * self.contact_force + t * other.contact_force,
+            centre_force=(1 - t) * self.centre_force + t * other.centre_force,
+            rack=(1 - t) * self.rack + t * other.rack,
+        )
+
+
+@dataclass
+class State:
+    """Poses of the moving parts, p (P, 3) and R (P, 3, 3), and multipliers (m,)."""
+
+    p: np.ndarray
+    R: np.ndarray
+    lam: np.ndarray
+
+    def copy(self) -> State:
+        return State(self.p.copy(), self.R.copy(), self.lam.copy())
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """Per-side indices of the wheel: upright part, centre point, spin axis."""
+
+    part: int
+    centre: int  # point marker
+    axis: int  # vector marker (outward spin axis)
+    radius: float  # loaded radius, m
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """Where the reported quantities live (indices per side where shaped (2,))."""
+
+    wheels: tuple[Wheel, Wheel]
+    pad_rows: np.ndarray  # constraint rows (2,)
+    tracked: tuple[dict[str, int], dict[str, int]]  # hard point -> point marker
+    spring: np.ndarray  # energy measure (2,)
+    damper_length: np.ndarray  # primitive (2,)
+    bump_stop: np.ndarray | None  # energy measure (2,)
+    rebound_stop: np.ndarray | None
+    bushings: dict[str, np.ndarray]  # name -> energy measures (2, 6)
+    arb_twist: int | None  # energy measure
+    arb_arms: np.ndarray | None  # parts (2,)
+    droplink_rows: np.ndarray | None  # constraint rows (2,)
+    rack_part: int | None
+    rack_measure: int | None  # energy measure (compliant rack)
+    rack_row: int | None  # constraint row (rigid rack)
+    elastic: np.ndarray  # energy measures that store elastic energy
+    steer_sign: float  # +1 if +y rack travel steers left
+
+
+@dataclass(frozen=True)
+class _Batch:
+    """All primitives of one kind, with their static scatter indices."""
+
+    kind: PrimKind
+    offset: int
+    slot_idx: tuple[np.ndarray, ...]
+    param: np.ndarray
+
+
+class System:
+    """Numerical axle model; see the module docstring for the equations."""
+
+    def __init__(
+        self,
+        part_names: list[str],
+        origins: np.ndarray,
+        pt_part: np.ndarray,
+        pt_local: np.ndarray,
+        vec_part: np.ndarray,
+        vec_local: np.ndarray,
+        batches: list[_Batch],
+        c_g: np.ndarray,
+        c_e: np.ndarray,
+        laws: list[tuple[EnergyLaw, np.ndarray]],
+        outputs: Outputs,
+    ) -> None:
+        self.part_names = part_names
+        self.origins = origins
+        self.n_parts = len(part_names)
+        self.n_dof = 6 * self.n_parts
+        self._pt_part, self._pt_local = pt_part, pt_local
+        self._vec_part, self._vec_local = vec_part, vec_local
+        self._batches = batches
+        self.c_g, self.c_e = c_g, c_e
+        self.laws = laws
+        self.outputs = outputs
+        self.n_prim = c_g.shape[1]
+        self.n_con = c_g.shape[0]
+        self._build_scatter()
+        x0 = self.primitive_values(self.design_state())
+        self.g_design = c_g @ x0
+        self.e_design = c_e @ x0
+
+    # -- poses -------------------------------------------------------------
+    def design_state(self) -> State:
+        """All parts in the design pose, zero multipliers."""
+        return State(
+            self.origins.copy(), np.repeat(_EYE[None], self.n_parts, axis=0), np.zeros(self.n_con)
+        )
+
+    def _markers(self, state: State) -> tuple[np.ndarray, ...]:
+        # The ground is an extra part n_parts in the identity pose; its
+        # columns are dropped after assembly.
+        p = np.vstack((state.p, np.zeros((1, 3))))
+        R = np.concatenate((state.R, _EYE[None]))
+        arm = np.einsum("nij,nj->ni", R[self._pt_part], self._pt_local)
+        world = p[self._pt_part] + arm
+        vec = np.einsum("nij,nj->ni", R[self._vec_part], self._vec_local)
+        jp = np.zeros((arm.shape[0], 3, 6))
+        jp[:, :, :3] = _EYE
+        jp[:, :, 3:] = -_skew(arm)
+        jv = np.zeros((vec.shape[0], 3, 6))
+        jv[:, :, 3:] = -_skew(vec)
+        return world, arm, vec, jp, jv
+
+    def primitive_values(self, state: State) -> np.ndarray:
+        """All primitive values x (n_prim,) in ``state``."""
+        world, _, vec, _, _ = self._markers(state)
+        x = np.empty(self.n_prim)
+        for b in self._batches:
+            q = [world[i] if t == "p" else vec[i] for t, i in zip(SLOTS[b.kind], b.slot_idx)]
+            x[b.offset : b.offset + b.param.shape[0]] = kernel(b.kind, q, b.param)[0]
+        return x
+
+    # -- static scatter indices ------------------------------------------------
+    def _build_scatter(self) -> None:
+        nc = 6 * (self.n_parts + 1)
+        self._nc = nc
+        d_idx, so_idx, so_prim = [], [], []
+        six = np.arange(6)
+        three = np.arange(3)
+        for b in self._batches:
+            n = b.param.shape[0]
+            rows = b.offset + np.arange(n)
+            parts = [
+                (self._pt_part if t == "p" else self._vec_part)[i]
+                for t, i in zip(SLOTS[b.kind], b.slot_idx)
+            ]
+            for part in parts:
+                d_idx.append((rows[:, None] * nc + 6 * part[:, None] + six).ravel())
+            for i, j in PAIRS[b.kind]:
+                r = 6 * parts[i][:, None, None] + six[None, :, None]
+                c = 6 * parts[j][:, None, None] + six[None, None, :]
+                so_idx.append((r * nc + c).ravel())
+                so_prim.append(np.repeat(rows, 36))
+            for part in parts:
+                r = 6 * part[:, None, None] + 3 + three[None, :, None]
+                c = 6 * part[:, None, None] + 3 + three[None, None, :]
+                so_idx.append((r * nc + c).ravel())
+                so_prim.append(np.repeat(rows, 9))
+        self._d_idx = np.concatenate(d_idx)
+        self._so_idx = np.concatenate(so_idx)
+        self._so_prim = np.concatenate(so_prim)
+
+    # -- evaluation -------------------------------------------------------------
+    def evaluate(self, state: State, load: LoadCase) -> Evaluation:
+        """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
+        world, arm, vec, jp, jv = self._markers(state)
+        x = np.empty(self.n_prim)
+        d_vals, so_pair, so_chart = [], [], []
+        for b in self._batches:
+            types = SLOTS[b.kind]
+            q = [world[i] if t == "p" else vec[i] for t, i in zip(types, b.slot_idx)]
+            value, grads, hess = kernel(b.kind, q, b.param)
+            x[b.offset : b.offset + value.shape[0]] = value
+            jac = [jp[i] if t == "p" else jv[i] for t, i in zip(types, b.slot_idx)]
+            lever = [arm[i] if t == "p" else vec[i] for t, i in zip(types, b.slot_idx)]
+            for g, jm in zip(grads, jac):
+                d_vals.append(np.einsum("ni,nij->nj", g, jm).ravel())
+            for (i, j), h in zip(PAIRS[b.kind], hess):
+                so_pair.append(np.einsum("nki,nkl,nlj->nij", jac[i], h, jac[j]).ravel())
+            for g, w in zip(grads, lever):
+                so_chart.append(_chart(g, w).ravel())
+        nc = self._nc
+        d = np.bincount(self._d_idx, np.concatenate(d_vals), minlength=self.n_prim * nc)
+        d = d.reshape(self.n_prim, nc)[:, : self.n_dof]
+        g = self.c_g @ x - self.g_design - self._constraint_offset(load)
+        y = self.c_e @ x - self.e_design - self._energy_offset(load)
+        energy, d1, d2 = (np.empty_like(y) for _ in range(3))
+        for law, idx in self.laws:
+            energy[idx], d1[idx], d2[idx] = law.evaluate(y[idx])
+        q_ext, k_ext = self._applied(state, world, vec, load)
+        return Evaluation(
+            self, x, d, g, y, energy, d1, d2, q_ext, k_ext, np.concatenate(so_pair + so_chart)
+        )
+
+    def _constraint_offset(self, load: LoadCase) -> np.ndarray:
+        off = np.zeros(self.n_con)
+        off[self.outputs.pad_rows] = load.pad
+        if self.outputs.rack_row is not None:
+            off[self.outputs.rack_row] = load.rack
+        return off
+
+    def _energy_offset(self, load: LoadCase) -> np.ndarray:
+        off = np.zeros(self.c_e.shape[0])
+        if self.outputs.rack_measure is not None:
+            off[self.outputs.rack_measure] = load.rack
+        return off
+
+    def contact_points(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Wheel centres, outward spin axes and contact points, each (2, 3)."""
+        world, _, vec, _, _ = self._markers(state)
+        return self._contact(world, vec)
+
+    def _contact(self, world: np.ndarray, vec: np.ndarray) -> tuple[np.ndarray, ...]:
+        wheels = self.outputs.wheels
+        centre = np.array([world[w.centre] for w in wheels])
+        axis = np.array([vec[w.axis] for w in wheels])
+        radius = np.array([w.radius for w in wheels])
+        return centre, axis, centre + radius[:, None] * contact_direction(axis)
+
+    def _applied(
+        self, state: State, world: np.ndarray, vec: np.ndarray, load: LoadCase
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Generalised applied force Q (n_dof,) and the tangent of -Q.
+
+        Forces act on the upright at the current contact point and wheel
+        centre. The tangent treats both as material points (exact for the
+        wheel centre; the contact point's rolling along the tread is a small
+        second-order term that only slows convergence).
+        """
+        q = np.zeros(self.n_dof)
+        k = np.zeros((self.n_dof, self.n_dof))
+        if not (np.any(load.contact_force) or np.any(load.centre_force)):
+            return q, k
+        centre, _, contact = self._contact(world, vec)
+        for s, wheel in enumerate(self.outputs.wheels):
+            u = wheel.part
+            for at, force in ((contact[s], load.contact_force[s]), (centre[s], load.centre_force[s])):
+                lever = at - state.p[u]
+                q[6 * u : 6 * u + 3] += force
+                q[6 * u + 3 : 6 * u + 6] += np.cross(lever, force)
+                k[6 * u + 3 : 6 * u + 6, 6 * u + 3 : 6 * u + 6] += _chart(-force[None], lever[None])[0]
+        return q, k
+
+
+def contact_direction(axis: np.ndarray) -> np.ndarray:
+    """Unit vector (n, 3) from wheel centre to contact point: the road normal
+    (+z) projected into the wheel plane of spin axis ``axis`` (n, 3), negated."""
+    up = np.array([0.0, 0.0, 1.0]) - axis[:, 2:3] * axis
+    return -up / np.linalg.norm(up, axis=1, keepdims=True)
+
+
+@dataclass
+class Evaluation:
+    """Everything one Newton iteration needs, in state q for loads."""
+
+    system: System
+    x: np.ndarray
+    d: np.ndarray  # dx/dq (n_prim, n_dof)
+    g: np.ndarray  # constraint residuals (m,)
+    y: np.ndarray  # energy deflections
+    energy: np.ndarray
+    d1: np.ndarray
+    d2: np.ndarray
+    q_ext: np.ndarray
+    k_ext: np.ndarray
+    so_vals: np.ndarray  # unweighted second-order blocks
+
+    @property
+    def jacobian(self) -> np.ndarray:
+        """Constraint Jacobian J (m, n_dof)."""
+        return self.system.c_g @ self.d
+
+    def force_residual(self, lam: np.ndarray) -> np.ndarray:
+        """grad V - Q + J^T lambda (n_dof,), N and N*m."""
+        e = self.system.c_e @ self.d
+        return e.T @ self.d1 - self.q_ext + self.jacobian.T @ lam
+
+    def tangent(self, lam: np.ndarray) -> np.ndarray:
+        """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
+        s = self.system
+        e = s.c_e @ self.d
+        weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
+        so = np.bincount(s._so_idx, self.so_vals * weights[s._so_prim], minlength=s._nc * s._nc)
+        so = so.reshape(s._nc, s._nc)[: s.n_dof, : s.n_dof]
+        return e.T @ (self.d2[:, None] * e) + so + self.k_ext
+
+
+def _skew(w: np.ndarray) -> np.ndarray:
+    out = np.zeros(w.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -w[..., 2], w[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = w[..., 2], -w[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -w[..., 1], w[..., 0]
+    return out
+
+
+def _chart(g: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Second-order rotation term of G.(R s) in exponential coordinates:
+    sym(G w^T) - (G.w) I, for G (n, 3) and w = R s (n, 3)."""
+    outer = g[:, :, None] * w[:, None, :]
+    return 0.5 * (outer + outer.transpose(0, 2, 1)) - np.einsum("ni,ni->n", g, w)[:, None, None] * _EYE
+
+
+# --- building ---------------------------------------------------------------
+
+MeasureLike = Union[Measure, Primitive]
+
+
+class _Builder:
+    """Collects parts, markers, primitives, constraints and potentials."""
+
+    def __init__(self) -> None:
+        self.parts: dict[str, np.ndarray] = {}
+        self._prims: dict[Primitive, int] = {}
+        self.constraints: list[Measure] = []
+        self.measures: list[Measure] = []
+        self.laws: list[tuple[EnergyLaw, np.ndarray]] = []
+        self.extra_points: list[PointRef] = []  # reported only
+
+    def part(self, name: str, origin: np.ndarray) -> str:
+        self.parts[name] = np.asarray(origin, dtype=float)
+        return name
+
+    def prim(self, p: Primitive) -> int:
+        return self._prims.setdefault(p, len(self._prims))
+
+    @staticmethod
+    def _measure(m: MeasureLike) -> Measure:
+        return [(m, 1.0)] if isinstance(m, Primitive) else m
+
+    def constrain(self, m: MeasureLike) -> int:
+        measure = self._measure(m)
+        for p, _ in measure:
+            self.prim(p)
+        self.constraints.append(measure)
+        return len(self.constraints) - 1
+
+    def energy(self, ms: list[MeasureLike], law: EnergyLaw) -> np.ndarray:
+        if len(ms) != law.size:
+            raise SolverError("internal: law size does not match its measures")
+        first = len(self.measures)
+        for m in ms:
+            measure = self._measure(m)
+            for p, _ in measure:
+                self.prim(p)
+            self.measures.append(measure)
+        idx = np.arange(first, first + len(ms))
+        self.laws.append((law, idx))
+        return idx
+
+    def build(self, outputs_factory: _OutputsFactory) -> System:
+        names = list(self.parts)
+        index = {n: i for i, n in enumerate(names)}
+        ground = len(names)
+        origins = np.array([self.parts[n] for n in names]).reshape(-1, 3)
+        prims = list(self._prims)
+        points: dict[PointRef, int] = {}
+        vectors: dict[VectorRef, int] = {}
+        for p in prims:
+            for m in p.markers:
+                table = points if isinstance(m, PointRef) else vectors
+                table.setdefault(m, len(table))  # type: ignore[arg-type]
+        for m in self.extra_points:
+            points.setdefault(m, len(points))
+
+        def part_of(name: str) -> int:
+            if name == GROUND:
+                return ground
+            if name not in index:
+                raise SolverError(f"internal: unknown part {name!r}")
+            return index[name]
+
+        pt_part = np.array([part_of(m.part) for m in points], dtype=int)
+        pt_local = np.array(
+            [np.array(m.at) - (origins[pt_part[i]] if pt_part[i] < ground else 0.0)
+             for i, m in enumerate(points)]
+        ).reshape(-1, 3)
+        vec_part = np.array([part_of(m.part) for m in vectors], dtype=int)
+        vec_local = np.array([m.direction for m in vectors], dtype=float).reshape(-1, 3)
+        # Group primitives by kind: the state vector x is kind-major.
+        order: list[int] = []
+        batches: list[_Batch] = []
+        for kind in PrimKind:
+            members = [i for i, p in enumerate(prims) if p.kind is kind]
+            if not members:
+                continue
+            slot_idx = tuple(
+                np.array(
+                    [(points if t == "p" else vectors)[prims[i].markers[s]] for i in members],  # type: ignore[index]
+                    dtype=int,
+                )
+                for s, t in enumerate(SLOTS[kind])
+            )
+            width = max(len(prims[i].param) for i in members)
+            param = np.array([prims[i].param or (0.0,) * width for i in members]).reshape(len(members), -1)
+            batches.append(_Batch(kind, len(order), slot_idx, param))
+            order.extend(members)
+        position = np.empty(len(prims), dtype=int)
+        position[np.array(order, dtype=int)] = np.arange(len(order))
+
+        def matrix(rows: list[Measure]) -> np.ndarray:
+            out = np.zeros((len(rows), len(prims)))
+            for r, measure in enumerate(rows):
+                for p, coef in measure:
+                    out[r, position[self._prims[p]]] += coef
+            return out
+
+        prim_position = {p: int(position[i]) for i, p in enumerate(prims)}
+        outputs = outputs_factory(index, points, vectors, prim_position)
+        return System(
+            names, origins, pt_part, pt_local, vec_part, vec_local, batches,
+            matrix(self.constraints), matrix(self.measures), self.laws, outputs,
+        )
+
+
+class _OutputsFactory:
+    """Deferred :class:`Outputs`: marker and part indices exist only after build."""
+
+    def __init__(self) -> None:
+        self.wheels: dict[Side, tuple[str, PointRef, VectorRef, float]] = {}
+        self.pad_rows: dict[Side, int] = {}
+        self.tracked: dict[Side, dict[str, PointRef]] = {"left": {}, "right": {}}
+        self.spring: dict[Side, int] = {}
+        self.damper: dict[Side, Primitive] = {}
+        self.bump: dict[Side, int] = {}
+        self.rebound: dict[Side, int] = {}
+        self.bushings: dict[str, dict[Side, np.ndarray]] = {}
+        self.arb_twist: int | None = None
+        self.arb_arms: dict[Side, str] = {}
+        self.droplink_rows: dict[Side, int] = {}
+        self.rack_measure: int | None = None
+        self.rack_row: int | None = None
+        self.elastic: list[int] = []
+        self.steer_sign = 1.0
+
+    def __call__(
+        self,
+        parts: Mapping[str, int],
+        points: Mapping[PointRef, int],
+        vectors: Mapping[VectorRef, int],
+        prim_pos: Mapping[Primitive, int],
+    ) -> Outputs:
+
+        def pair(d: Mapping[Side, int]) -> np.ndarray:
+            return np.array([d[s] for s in SIDES], dtype=int)
+
+        wheels = tuple(
+            Wheel(parts[part], points[c], vectors[a], r)
+            for part, c, a, r in (self.wheels[s] for s in SIDES)
+        )
+        return Outputs(
+            wheels=wheels,  # type: ignore[arg-type]
+            pad_rows=pair(self.pad_rows),
+            tracked=tuple({k: points[v] for k, v in self.tracked[s].items()} for s in SIDES),  # type: ignore[arg-type]
+            spring=pair(self.spring),
+            damper_length=np.array([prim_pos[self.damper[s]] for s in SIDES], dtype=int),
+            bump_stop=pair(self.bump) if self.bump else None,
+            rebound_stop=pair(self.rebound) if self.rebound else None,
+            bushings={n: np.array([d[s] for s in SIDES]) for n, d in self.bushings.items()},
+            arb_twist=self.arb_twist,
+            arb_arms=np.array([parts[self.arb_arms[s]] for s in SIDES]) if self.arb_arms else None,
+            droplink_rows=pair(self.droplink_rows) if self.droplink_rows else None,
+            rack_part=parts.get(RACK),
+            rack_measure=self.rack_measure,
+            rack_row=self.rack_row,
+            elastic=np.array(self.elastic, dtype=int),
+            steer_sign=self.steer_sign,
+        )
+
+
+def assemble(inp: SuspensionInput) -> System:
+    """The axle model of ``inp``; SolverError on any unusable input."""
+    validate(inp)
+    template = TEMPLATES.get(inp.template)
+    if template is None:
+        raise SolverError(
+            f"unknown suspension template {inp.template!r}; known: {sorted(TEMPLATES)}"
+        )
+    required = template.required_points + (ARB_POINTS if inp.stabilizer is not None else ())
+    for name in required:
+        if name not in inp.hardpoints:
+            raise SolverError(f"template {template.name!r}: hard point {name!r} is missing")
+        value = np.asarray(inp.hardpoints[name], dtype=float)
+        if value.shape != (3,) or not np.all(np.isfinite(value)):
+            raise SolverError(f"hard point {name!r} must be 3 finite coordinates (m)")
+    topo = template.topology()
+    _check_keys(inp, topo)
+    return _Assembly(inp, template, topo).run()
+
+
+def _check_keys(inp: SuspensionInput, topo: Topology) -> None:
+    """Bushings, masses and joint axes must name something the template has."""
+    connections = {j.point for j in topo.joints} | {
+        p for link in topo.links for p in (link.inboard_point, link.outboard_point)
+    }
+    for name in inp.bushings:
+        if name not in connections:
+            raise SolverError(
+                f"bushing {name!r} does not name a connection; known: {sorted(connections)}"
+            )
+    masses = {p.name for p in topo.parts} | {link.name for link in topo.links} | {"wheel"}
+    for name in inp.masses:
+        if name not in masses:
+            raise SolverError(f"mass {name!r} names no part; known: {sorted(masses)}")
+    universals = {j.point for j in topo.joints if j.kind == "universal"}
+    for name in inp.joint_axes:
+        if name not in universals:
+            raise SolverError(f"joint_axes {name!r} is not a universal joint; known: {sorted(universals)}")
+
+
+class _Assembly:
+    """One pass over the template for both sides."""
+
+    def __init__(self, inp: SuspensionInput, template: SuspensionTemplate, topo: Topology) -> None:
+        self.inp, self.template, self.topo = inp, template, topo
+        self.b = _Builder()
+        self.out = _OutputsFactory()
+        self.steered = inp.steering is not None
+
+    def run(self) -> System:
+        inp = self.inp
+        if self.steered:
+            self._rack()
+        for side in SIDES:
+            self._corner(side)
+        if inp.stabilizer is not None:
+            self._bar_torsion()
+        return self.b.build(self.out)
+
+    # -- helpers ---------------------------------------------------------------
+    def hp(self, name: str, side: Side) -> np.ndarray:
+        return mirror(self.inp.hardpoints[name], side)
+
+    def resolve(self, part: str, side: Side) -> str:
+        if part == GROUND:
+            return GROUND
+        if part == STEERING:
+            return RACK if self.steered else GROUND
+        return f"{part}.{side}"
+
+    def _gravity(self, part: str, at: np.ndarray, mass: float) -> None:
+        if part == GROUND or mass == 0.0:
+            return
+        prim = Primitive(PrimKind.COMP, (point(part, at), point(GROUND, np.zeros(3))), (0.0, 0.0, 1.0))
+        self.b.energy([prim], LinearLaw(np.zeros(1), np.array([mass * GRAVITY])))
+
+    def _connection(
+        self, kind: str, name: str, a: str, b: str, at: np.ndarray, side: Side,
+        axis: np.ndarray | None = None, cross: tuple[np.ndarray, np.ndarray] | None = None,
+    ) -> None:
+        """Ideal joint, or the input's bushing keyed by ``name``."""
+        bushing = self.inp.bushings.get(name)
+        if bushing is None:
+            for prim in joint_constraints(kind, a, b, at, axis, cross):  # type: ignore[arg-type]
+                self.b.constrain(prim)
+            return
+        frame, signs = side_frame(bushing_frame(bushing.axial), side)
+        measures = bushing_measures(a, b, at, frame, signs)
+        idx = [
+            self.b.energy([m], stiffness_law(k))[0] for m, k in zip(measures, bushing.stiffness)
+        ]
+        self.out.bushings.setdefault(name, {})[side] = np.array(idx)
+        self.out.elastic.extend(idx)
+
+    # -- pieces ---------------------------------------------------------------
+    def _rack(self) -> None:
+        inp = self.inp
+        steering = inp.steering
+        assert steering is not None
+        inner = self.hp("tierod_inner", "left")
+        centre = np.array([inner[0], 0.0, inner[2]])
+        self.b.part(RACK, centre)
+        y = np.array([0.0, 1.0, 0.0])
+        for prim in joint_constraints("translational", GROUND, RACK, centre, y):
+            self.b.constrain(prim)
+        travel = Primitive(PrimKind.COMP, (point(RACK, centre), point(GROUND, centre)), (0.0, 1.0, 0.0))
+        if steering.rack_stiffness is None:
+            self.out.rack_row = self.b.constrain(travel)
+        else:
+            law = LinearLaw(np.array([steering.rack_stiffness]), np.zeros(1))
+            self.out.rack_measure = int(self.b.energy([travel], law)[0])
+            self.out.elastic.append(self.out.rack_measure)
+        # A rack ahead of the wheel centre steers left when moving left.
+        ahead = inp.hardpoints["tierod_outer"][0] > inp.hardpoints["wheel_centre"][0]
+        self.out.steer_sign = 1.0 if ahead else -1.0
+
+    def _corner(self, side: Side) -> None:
+        inp, topo, b = self.inp, self.topo, self.b
+        masses = inp.masses
+        for part in topo.parts:
+            at = np.mean([self.hp(n, side) for n in part.points], axis=0)
+            name = b.part(self.resolve(part.name, side), at)
+            self._gravity(name, at, masses.get(part.name, 0.0))
+        for j in topo.joints:
+            a, c = self.resolve(j.inboard, side), self.resolve(j.outboard, side)
+            at = self.hp(j.point, side)
+            axis = cross = None
+            if j.axis is not None:
+                axis = self.hp(j.axis[1], side) - self.hp(j.axis[0], side)
+            if j.kind == "universal":
+                given = inp.joint_axes.get(j.point)
+                if given is not None:
+                    cross = (mirror(given[0], side), mirror(given[1], side))
+                else:
+                    # Both cross axes perpendicular to the link: the joint then
+                    # only stops the link's spin about its own axis.
+                    cross = perpendicular_basis(axis)  # type: ignore[arg-type]
+            self._connection(j.kind, j.point, a, c, at, side, axis, cross)
+        for link in topo.links:
+            self._link(link, side)
+        self._wheel(side)
+        self._force_lines(side)
+        if inp.stabilizer is not None:
+            self._bar_arm(side)
+        self._tracking(side)
+
+    def _link(self, link: LinkDef, side: Side) -> None:
+        """Distance constraint, or a rigid link part when an end has a bushing
+        (its spin about its own axis is then held by the bushing)."""
+        inp, b = self.inp, self.b
+        a, c = self.resolve(link.inboard, side), self.resolve(link.outboard, side)
+        pa, pc = self.hp(link.inboard_point, side), self.hp(link.outboard_point, side)
+        mass = inp.masses.get(link.name, 0.0)
+        # A link's mass is split between its two ends (two-force member).
+        self._gravity(a, pa, 0.5 * mass)
+        self._gravity(c, pc, 0.5 * mass)
+        ends = ((link.inboard_point, a, pa), (link.outboard_point, c, pc))
+        if not any(name in inp.bushings for name, _, _ in ends):
+            b.constrain(Primitive(PrimKind.DIST, (point(a, pa), point(c, pc))))
+            return
+        body = b.part(f"{link.name}.{side}", 0.5 * (pa + pc))
+        for name, part, at in ends:
+            self._connection("spherical", name, part, body, at, side)
+
+    def _wheel(self, side: Side) -> None:
+        inp, b = self.inp, self.b
+        upright = self.resolve(self.topo.wheel_part, side)
+        centre = self.hp("wheel_centre", side)
+        s = 1.0 if side == "left" else -1.0
+        toe, camber = inp.toe, inp.camber
+        # Outward spin axis from ISO toe (+ = toe-in) and camber (+ = top out).
+        axis = np.array([np.sin(toe) * np.cos(camber), s * np.cos(toe) * np.cos(camber), -np.sin(camber)])
+        pc, va = point(upright, centre), vector(upright, axis)
+        row = b.constrain(Primitive(PrimKind.CPZ, (pc, va), (inp.tire_radius,)))
+        self.out.pad_rows[side] = row
+        self.out.wheels[side] = (upright, pc, va, inp.tire_radius)
+        self._gravity(upright, centre, inp.masses.get("wheel", 0.0))
+
+    def _force_lines(self, side: Side) -> None:
+        inp, topo, b = self.inp, self.topo, self.b
+        sp = topo.spring
+        upper, lower = self.hp(sp.upper, side), self.hp(sp.lower, side)
+        length = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.resolve(sp.part, side), lower)))
+        design = float(np.linalg.norm(upper - lower))
+        self.out.spring[side] = int(b.energy([length], spring_law(inp.spring, design))[0])
+        self.out.elastic.append(self.out.spring[side])
+        dp = topo.damper
+        upper, lower = self.hp(dp.upper, side), self.hp(dp.lower, side)
+        damper = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.resolve(dp.part, side), lower)))
+        b.prim(damper)
+        self.out.damper[side] = damper
+        for stop, direction, store in (
+            (inp.bump_stop, -1.0, self.out.bump),
+            (inp.rebound_stop, 1.0, self.out.rebound),
+        ):
+            if stop is not None:
+                law = StopLaw(stop.curve, stop.clearance, direction)
+                store[side] = int(b.energy([damper], law)[0])
+                self.out.elastic.append(store[side])
+
+    def _bar_arm(self, side: Side) -> None:
+        b = self.b
+        pivot = self.hp("arb_pivot", side)
+        upper = self.hp("arb_link_upper", side)
+        arm = b.part(f"arb_arm.{side}", pivot)
+        for prim in joint_constraints("revolute", GROUND, arm, pivot, np.array([0.0, 1.0, 0.0])):
+            b.constrain(prim)
+        lower_part = self.resolve(self.topo.arb_part, side)
+        lower = self.hp("arb_link_lower", side)
+        row = b.constrain(Primitive(PrimKind.DIST, (point(lower_part, lower), point(arm, upper))))
+        self.out.droplink_rows[side] = row
+        self.out.arb_arms[side] = arm
+
+    def _bar_torsion(self) -> None:
+        stab = self.inp.stabilizer
+        assert stab is not None
+        # sin(psi_left - psi_right) for rotations psi about y of the two arms.
+        twist = Primitive(
+            PrimKind.DOT,
+            (vector("arb_arm.left", np.array([0.0, 0.0, 1.0])), vector("arb_arm.right", np.array([1.0, 0.0, 0.0]))),
+        )
+        self.out.arb_twist = int(self.b.energy([twist], TorsionLaw(stab.torsional_stiffness))[0])
+        self.out.elastic.append(self.out.arb_twist)
+
+    def _tracking(self, side: Side) -> None:
+        """A point marker per hard point on the part whose motion it follows."""
+        topo, inp = self.topo, self.inp
+        owner: dict[str, str] = {}
+        for part in topo.parts:
+            for n in part.points:
+                owner.setdefault(n, part.name)
+        for j in topo.joints:
+            owner.setdefault(j.point, j.inboard)
+        for link in topo.links:
+            owner.setdefault(link.inboard_point, link.inboard)
+            owner.setdefault(link.outboard_point, link.outboard)
+        owner.setdefault(topo.spring.lower, topo.spring.part)
+        owner.setdefault(topo.damper.lower, topo.damper.part)
+        owner.update(topo.tracked)
+        if inp.stabilizer is not None:
+            owner["arb_link_lower"] = topo.arb_part
+        tracked = self.out.tracked[side]
+        for name in inp.hardpoints:
+            part = owner.get(name, GROUND)
+            if name == "arb_link_upper" and inp.stabilizer is not None:
+                resolved = f"arb_arm.{side}"
+            else:
+                resolved = self.resolve(part, side)
+            ref = point(resolved, self.hp(name, side))
+            self.b.extra_points.append(ref)
+            tracked[name] = ref

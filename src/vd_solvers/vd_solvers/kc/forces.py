@@ -1,0 +1,173 @@
+"""Elastic force elements as potentials of one scalar deflection.
+
+Each element contributes V(delta) with delta = measure - reference, where
+the measure is a length (springs, stops), a coordinate (gravity, rack), a
+bushing deflection or the sine of the bar twist. The solver needs V, V' (the
+element's generalised force) and V'' (its tangent stiffness); all are exact,
+so the quasi-static equilibrium is a true stationary point and the elastic
+energy can be checked against the work of the applied loads.
+
+Conventions: a spring's or bump stop's *compression* force is positive;
+``V' = dV/dL`` is then minus that force. Curves are piecewise linear
+(:class:`~.model.Curve`), so V is exactly their integral.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from vd_solvers.errors import SolverError
+
+from .model import Curve, SpringSpec, Stiffness
+
+Triple = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+# The sine of the bar twist is kept below this, i.e. twist below ~84 deg; a
+# bar twisted further is far outside any suspension's travel.
+_MAX_TWIST_SINE = 0.995
+
+
+class EnergyLaw(Protocol):
+    """Potential of ``size`` independent scalar deflections."""
+
+    size: int
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        """V, dV/d(delta), d2V/d(delta)^2, each shaped like ``delta`` (size,)."""
+        ...
+
+
+@dataclass(frozen=True)
+class LinearLaw:
+    """V = f*delta + k*delta^2/2 for arrays ``stiffness`` k and ``force`` f.
+
+    Gravity is k = 0, f = m*g on the height of a centre of mass; a preloaded
+    linear element has f = its force at the reference.
+    """
+
+    stiffness: np.ndarray
+    force: np.ndarray
+
+    @property
+    def size(self) -> int:
+        return int(np.asarray(self.stiffness).size)
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        k, f = self.stiffness, self.force
+        return f * delta + 0.5 * k * delta * delta, f + k * delta, np.broadcast_to(k, delta.shape)
+
+
+@dataclass(frozen=True)
+class CurveLaw:
+    """V = integral of ``curve`` from 0 to delta (non-linear bushing direction)."""
+
+    curve: Curve
+    size: int = 1
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        c = self.curve
+        return c.integral(delta), c.value(delta), c.slope(delta)
+
+
+@dataclass(frozen=True)
+class SpringLaw:
+    """Coil spring on its length L; delta = L - L_design.
+
+    The compression from the free length is c = c_design - delta and the
+    compression force F(c) = rate*c or ``curve``(c).
+    """
+
+    design_compression: float
+    rate: float | None = None
+    curve: Curve | None = None
+    size: int = 1
+
+    def force(self, compression: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Compression force (N) and its slope dF/dc (N/m)."""
+        if self.curve is not None:
+            return self.curve.value(compression), self.curve.slope(compression)
+        rate = float(self.rate)  # type: ignore[arg-type]
+        return rate * compression, np.full_like(compression, rate)
+
+    def _work(self, compression: np.ndarray) -> np.ndarray:
+        if self.curve is not None:
+            return self.curve.integral(compression)
+        return 0.5 * float(self.rate) * compression * compression  # type: ignore[arg-type]
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        c = self.design_compression - delta
+        force, slope = self.force(c)
+        work = self._work(c) - self._work(np.array(self.design_compression))
+        return work, -force, slope
+
+
+def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:
+    """The spring's law, its design compression found from free length or preload.
+
+    Raises SolverError when a curve cannot deliver the requested preload.
+    """
+    if spec.free_length is not None:
+        c_design = spec.free_length - design_length
+    elif spec.rate is not None:
+        c_design = (spec.preload or 0.0) / spec.rate
+    else:
+        curve = spec.curve
+        assert curve is not None  # validated: exactly one of rate and curve
+        preload = spec.preload or 0.0
+        if np.any(np.diff(curve.y) <= 0.0):
+            raise SolverError("spring curve must be strictly increasing to place a preload")
+        # Invert the polyline (linear extrapolation beyond the ends, as value()).
+        y, x = curve.y, curve.x
+        i = int(np.clip(np.searchsorted(y, preload) - 1, 0, y.size - 2))
+        c_design = float(x[i] + (preload - y[i]) * (x[i + 1] - x[i]) / (y[i + 1] - y[i]))
+    return SpringLaw(c_design, spec.rate, spec.curve)
+
+
+@dataclass(frozen=True)
+class StopLaw:
+    """Bump (``direction`` = -1) or rebound (+1) stop on a length, delta = L - L_design.
+
+    The stop engages when direction*delta exceeds ``clearance``; its own
+    compression s = direction*delta - clearance carries the force curve(s).
+    """
+
+    curve: Curve
+    clearance: float
+    direction: float
+    size: int = 1
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        s = self.direction * delta - self.clearance
+        engaged = s > 0.0
+        s = np.where(engaged, s, 0.0)
+        work = np.where(engaged, self.curve.integral(s), 0.0)
+        force = np.where(engaged, self.curve.value(s), 0.0)
+        slope = np.where(engaged, self.curve.slope(s), 0.0)
+        return work, self.direction * force, slope
+
+
+@dataclass(frozen=True)
+class TorsionLaw:
+    """Torsion bar: delta = sin(twist), V = k*twist^2/2 with k in N*m/rad."""
+
+    stiffness: float
+    size: int = 1
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        if np.any(np.abs(delta) > _MAX_TWIST_SINE):
+            raise SolverError("anti-roll bar twisted beyond its range")
+        k = self.stiffness
+        twist = np.arcsin(delta)
+        c2 = 1.0 - delta * delta
+        d1 = k * twist / np.sqrt(c2)
+        d2 = k * (1.0 / c2 + twist * delta / c2**1.5)
+        return 0.5 * k * twist * twist, d1, d2
+
+
+def stiffness_law(stiffness: Stiffness) -> EnergyLaw:
+    """Law of one bushing direction: linear rate or force-deflection curve."""
+    if isinstance(stiffness, Curve):
+        return CurveLaw(stiffness)
+    return LinearLaw(np.array([float(stiffness)]), np.zeros(1))

@@ -1,0 +1,252 @@
+"""Kinematic primitives and the ideal joints built from them.
+
+Every joint constraint and every elastic measure of the model is a linear
+combination of five scalar *primitives* of markers -- points and unit vectors
+fixed to parts (or to the ground, i.e. the vehicle body held by the rig):
+
+======  =====================================  ===============================
+kind    value                                  used for
+======  =====================================  ===============================
+COMP    c . (r_a - r_b), c a constant vector   spherical joints, gravity, rack
+DOT     v_a . v_b                              axis alignment, bushing angles
+DDOT    (r_b - r_a) . v_c                      in-line / sliding, bushing x y z
+DIST    |r_a - r_b|                            links, springs, dampers
+CPZ     r_z - rho * sqrt(1 - v_z^2)            contact-point height (pad)
+======  =====================================  ===============================
+
+For each primitive this module gives the value, the gradient with respect to
+each marker's world quantity (3,) and the marker-level second derivatives.
+The chain rule to part coordinates lives in :mod:`.assembly`.
+
+Pose increments (Newton update): p <- p + dp, R <- exp([dth]x) R with a
+world-frame rotation vector dth. A world point r = p + R s then moves as
+dr = dp - [R s]x dth and a world vector v = R u as dv = -[v]x dth.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+from typing import Literal, Union
+
+import numpy as np
+
+from vd_solvers.errors import SolverError
+
+GROUND = "body"  # the vehicle body: held by the rig, no degrees of freedom
+
+JointKind = Literal[
+    "spherical", "inline", "revolute", "universal", "cylindrical", "translational", "fixed"
+]
+
+# Two unit axes closer to parallel than this are treated as parallel when a
+# perpendicular basis is built (|cos| of 0.81 deg).
+_PARALLEL_COS = 0.9999
+
+
+class PrimKind(Enum):
+    """The scalar primitives; the order fixes their place in the state vector."""
+
+    COMP = 0
+    DOT = 1
+    DDOT = 2
+    DIST = 3
+    CPZ = 4
+
+
+MarkerType = Literal["p", "v"]
+
+# Marker slots per primitive ("p" point, "v" unit vector) and the slot pairs
+# with non-zero marker-level second derivatives.
+SLOTS: dict[PrimKind, tuple[MarkerType, ...]] = {
+    PrimKind.COMP: ("p", "p"),
+    PrimKind.DOT: ("v", "v"),
+    PrimKind.DDOT: ("p", "p", "v"),
+    PrimKind.DIST: ("p", "p"),
+    PrimKind.CPZ: ("p", "v"),
+}
+PAIRS: dict[PrimKind, tuple[tuple[int, int], ...]] = {
+    PrimKind.COMP: (),
+    PrimKind.DOT: ((0, 1), (1, 0)),
+    PrimKind.DDOT: ((0, 2), (2, 0), (1, 2), (2, 1)),
+    PrimKind.DIST: ((0, 0), (1, 1), (0, 1), (1, 0)),
+    PrimKind.CPZ: ((1, 1),),
+}
+
+
+@dataclass(frozen=True)
+class PointRef:
+    """A point fixed to ``part``, at world position ``at`` (m) in the design pose."""
+
+    part: str
+    at: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class VectorRef:
+    """A unit vector fixed to ``part``, world ``direction`` in the design pose."""
+
+    part: str
+    direction: tuple[float, float, float]
+
+
+Marker = Union[PointRef, VectorRef]
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """One scalar primitive: ``markers`` in the order of ``SLOTS[kind]``;
+    ``param`` is c (3,) for COMP and (rho,) for CPZ, else empty."""
+
+    kind: PrimKind
+    markers: tuple[Marker, ...]
+    param: tuple[float, ...] = ()
+
+
+def point(part: str, at: np.ndarray) -> PointRef:
+    """Marker helper: point ``at`` (3,) on ``part``."""
+    return PointRef(part, tuple(float(v) for v in at))  # type: ignore[arg-type]
+
+
+def vector(part: str, direction: np.ndarray) -> VectorRef:
+    """Marker helper: unit vector along ``direction`` (3,) on ``part``."""
+    n = float(np.linalg.norm(direction))
+    if n == 0.0:
+        raise SolverError(f"zero-length axis on part {part!r}")
+    return VectorRef(part, tuple(float(v) / n for v in direction))  # type: ignore[arg-type]
+
+
+def unit(v: np.ndarray, what: str) -> np.ndarray:
+    """``v`` normalised; SolverError naming ``what`` if it has no length."""
+    n = float(np.linalg.norm(v))
+    if not n > 1e-12:
+        raise SolverError(f"{what}: zero-length direction")
+    return np.asarray(v, dtype=float) / n
+
+
+def perpendicular_basis(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two unit vectors n1, n2 with (n1, n2, axis) right-handed orthonormal.
+
+    n1 is the vehicle axis least aligned with ``axis``, orthogonalised, so the
+    basis is deterministic and well conditioned for any direction.
+    """
+    a = unit(axis, "joint axis")
+    ref = np.eye(3)[int(np.argmin(np.abs(a)))]
+    n1 = unit(ref - (ref @ a) * a, "joint axis basis")
+    return n1, np.cross(a, n1)
+
+
+def _comp(a: str, b: str, at: np.ndarray) -> list[Primitive]:
+    pa, pb = point(a, at), point(b, at)
+    return [Primitive(PrimKind.COMP, (pa, pb), tuple(np.eye(3)[k])) for k in range(3)]
+
+
+def _perpendicular_dots(owner: str, other: str, axis: np.ndarray) -> list[Primitive]:
+    """``axis`` fixed to ``other`` stays perpendicular to owner's normals (2 rows)."""
+    n1, n2 = perpendicular_basis(axis)
+    va = vector(other, axis)
+    return [Primitive(PrimKind.DOT, (va, vector(owner, n))) for n in (n1, n2)]
+
+
+def _inline(owner: str, other: str, at: np.ndarray, axis: np.ndarray) -> list[Primitive]:
+    """Point ``at`` of ``other`` stays on owner's line through ``at`` along axis (2 rows)."""
+    n1, n2 = perpendicular_basis(axis)
+    pa, pb = point(owner, at), point(other, at)
+    return [Primitive(PrimKind.DDOT, (pa, pb, vector(owner, n))) for n in (n1, n2)]
+
+
+def joint_constraints(
+    kind: JointKind,
+    part_a: str,
+    part_b: str,
+    at: np.ndarray,
+    axis: np.ndarray | None = None,
+    cross: tuple[np.ndarray, np.ndarray] | None = None,
+) -> list[Primitive]:
+    """Constraint rows of an ideal joint between ``part_a`` and ``part_b``.
+
+    Each returned primitive must keep its design value. ``axis`` (3,) is the
+    joint axis (in-line, revolute, cylindrical, translational); ``cross`` the
+    universal joint's cross axes (on a, on b), perpendicular at design.
+    Row counts: spherical 3, inline 2, revolute 5, universal 4,
+    cylindrical 4, translational 5, fixed 6.
+    """
+    if kind == "spherical":
+        return _comp(part_a, part_b, at)
+    if kind == "fixed":
+        e = np.eye(3)
+        rot = [
+            Primitive(PrimKind.DOT, (vector(part_a, e[i]), vector(part_b, e[(i + 1) % 3])))
+            for i in range(3)
+        ]
+        return _comp(part_a, part_b, at) + rot
+    if kind == "universal":
+        if cross is None:
+            raise SolverError("universal joint needs its cross axes")
+        ca, cb = unit(cross[0], "universal axis"), unit(cross[1], "universal axis")
+        if abs(ca @ cb) > 1e-6:
+            raise SolverError("universal joint cross axes must be perpendicular")
+        return _comp(part_a, part_b, at) + [
+            Primitive(PrimKind.DOT, (vector(part_a, ca), vector(part_b, cb)))
+        ]
+    if axis is None:
+        raise SolverError(f"{kind} joint needs an axis")
+    if kind == "inline":
+        return _inline(part_a, part_b, at, axis)
+    if kind == "revolute":
+        return _comp(part_a, part_b, at) + _perpendicular_dots(part_a, part_b, axis)
+    cylinder = _perpendicular_dots(part_a, part_b, axis) + _inline(part_a, part_b, at, axis)
+    if kind == "cylindrical":
+        return cylinder
+    if kind == "translational":
+        n1, n2 = perpendicular_basis(axis)
+        return cylinder + [Primitive(PrimKind.DOT, (vector(part_a, n1), vector(part_b, n2)))]
+    raise SolverError(f"unknown joint kind {kind!r}")
+
+
+# --- primitive kernels ------------------------------------------------------
+# Each takes the world quantities of its slots, stacked (n, 3), and returns
+# the values (n,), the slot gradients [(n, 3)] and the second-derivative
+# blocks [(n, 3, 3)] in the order of PAIRS[kind].
+
+_EYE = np.eye(3)
+
+
+def _eye(n: int, scale: float = 1.0) -> np.ndarray:
+    return np.broadcast_to(scale * _EYE, (n, 3, 3))
+
+
+def kernel(
+    kind: PrimKind, q: list[np.ndarray], param: np.ndarray
+) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
+    """Value, slot gradients and pair Hessians of ``kind`` for slot data ``q``."""
+    if kind is PrimKind.COMP:
+        d = q[0] - q[1]
+        return np.einsum("ni,ni->n", param, d), [param, -param], []
+    if kind is PrimKind.DOT:
+        n = q[0].shape[0]
+        return np.einsum("ni,ni->n", q[0], q[1]), [q[1], q[0]], [_eye(n), _eye(n)]
+    if kind is PrimKind.DDOT:
+        n = q[0].shape[0]
+        d = q[1] - q[0]
+        value = np.einsum("ni,ni->n", d, q[2])
+        return value, [-q[2], q[2], d], [_eye(n, -1.0), _eye(n, -1.0), _eye(n), _eye(n)]
+    if kind is PrimKind.DIST:
+        d = q[0] - q[1]
+        length = np.linalg.norm(d, axis=1)
+        if np.any(length < 1e-9):
+            raise SolverError("a link or spring collapsed to zero length")
+        u = d / length[:, None]
+        proj = (_EYE - u[:, :, None] * u[:, None, :]) / length[:, None, None]
+        return length, [u, -u], [proj, proj, -proj, -proj]
+    if kind is PrimKind.CPZ:
+        rho = param[:, 0]
+        vz = q[1][:, 2]
+        s = np.sqrt(np.maximum(1.0 - vz * vz, 1e-12))
+        grad_v = np.zeros_like(q[1])
+        grad_v[:, 2] = rho * vz / s
+        hess = np.zeros((q[1].shape[0], 3, 3))
+        hess[:, 2, 2] = rho / s**3
+        grad_r = np.zeros_like(q[0])
+        grad_r[:, 2] = 1.0
+        return q[0][:, 2] - rho * s, [grad_r, grad_v], [hess]
+    raise SolverError(f"unknown primitive {kind!r}")

@@ -1,0 +1,247 @@
+"""Plain input data of the K&C suspension model (thesis 3.2: hard points,
+parts and masses, spring, damper, bump and rebound stops, anti-roll bar,
+bushings and joints, rack and pinion).
+
+Everything is SI: m, N, N/m, N*m/rad, rad, kg. Positions are in the vehicle
+frame of ISO 8855 (x forward, y left, z up), origin on the ground under the
+front axle centre at design ride height. Hard points are given for the LEFT
+side only; the right side is their mirror image (y -> -y).
+
+An adapter fills these classes from the project's data files; they carry no
+behaviour beyond the small curve evaluation and checks of their own shape.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Literal, Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from vd_solvers.errors import SolverError
+
+Axle = Literal["front", "rear"]
+Side = Literal["left", "right"]
+SIDES: tuple[Side, Side] = ("left", "right")
+
+# Mirror factors per side: the left side is given, the right is y -> -y.
+SIDE_SIGN: dict[Side, float] = {"left": 1.0, "right": -1.0}
+
+
+def mirror(vector: ArrayLike, side: Side) -> np.ndarray:
+    """The left-side point or direction ``vector`` (3,) as seen on ``side``."""
+    out = np.array(vector, dtype=float)
+    out[1] *= SIDE_SIGN[side]
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Curve:
+    """Piecewise-linear characteristic y(x) with linear extrapolation.
+
+    ``x`` (n,) strictly increasing, ``y`` (n,), n >= 2. Used for force vs
+    deflection (N vs m or N*m vs rad) and force vs velocity (dampers).
+    ``integral(u)`` is the work from 0 to ``u`` (J for force curves), so a
+    force curve is also an exact potential for the quasi-static solver.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+
+    def __post_init__(self) -> None:
+        x = np.asarray(self.x, dtype=float).reshape(-1)
+        y = np.asarray(self.y, dtype=float).reshape(-1)
+        if x.size < 2 or x.size != y.size:
+            raise SolverError("a curve needs at least two (x, y) points of equal count")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+            raise SolverError("a curve holds non-finite values")
+        if np.any(np.diff(x) <= 0.0):
+            raise SolverError("curve abscissae must be strictly increasing")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "y", y)
+        slope = np.diff(y) / np.diff(x)
+        # Work from x[0] to each knot, for the exact integral of the polyline.
+        cumulative = np.concatenate(([0.0], np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(x))))
+        object.__setattr__(self, "_slope", slope)
+        object.__setattr__(self, "_cumulative", cumulative)
+        object.__setattr__(self, "_origin", float(self._raw_integral(np.array(0.0))))
+
+    def _segment(self, u: np.ndarray) -> np.ndarray:
+        return np.clip(np.searchsorted(self.x, u, side="right") - 1, 0, self.x.size - 2)
+
+    def value(self, u: ArrayLike) -> np.ndarray:
+        """y at ``u``."""
+        u = np.asarray(u, dtype=float)
+        i = self._segment(u)
+        return self.y[i] + self._slope[i] * (u - self.x[i])
+
+    def slope(self, u: ArrayLike) -> np.ndarray:
+        """dy/dx at ``u`` (right-continuous at the knots)."""
+        return self._slope[self._segment(np.asarray(u, dtype=float))]
+
+    def _raw_integral(self, u: np.ndarray) -> np.ndarray:
+        i = self._segment(u)
+        du = u - self.x[i]
+        return self._cumulative[i] + self.y[i] * du + 0.5 * self._slope[i] * du * du
+
+    def integral(self, u: ArrayLike) -> np.ndarray:
+        """Integral of y from 0 to ``u``."""
+        return self._raw_integral(np.asarray(u, dtype=float)) - self._origin
+
+
+Stiffness = Union[float, Curve]
+
+
+@dataclass(frozen=True)
+class SpringSpec:
+    """Coil spring acting between the template's spring seats.
+
+    Give exactly one of ``rate`` (N/m) and ``curve`` (compression force N,
+    positive pushing the seats apart, vs compression from the free length m),
+    and exactly one of ``free_length`` (m) and ``preload`` (N, compression
+    force at the design length). With neither, the preload is trimmed so the
+    design wheel-pad load equals ``SuspensionInput.corner_load``.
+    """
+
+    rate: float | None = None
+    curve: Curve | None = None
+    free_length: float | None = None
+    preload: float | None = None
+
+
+@dataclass(frozen=True)
+class DamperSpec:
+    """Damper force (N, positive resisting compression) vs compression
+    velocity (m/s). Carried for the dynamic models; zero force quasi-statically."""
+
+    curve: Curve
+
+
+@dataclass(frozen=True)
+class StopSpec:
+    """Bump or rebound stop on the damper line.
+
+    ``clearance`` (m): free travel of the damper length from design before
+    contact (compression for the bump stop, extension for the rebound stop).
+    ``curve``: stop force (N, >= 0) vs compression of the stop itself (m).
+    """
+
+    clearance: float
+    curve: Curve
+
+
+@dataclass(frozen=True)
+class Bushing:
+    """Six-direction elastic connection replacing an ideal joint.
+
+    ``stiffness``: (x, y, z, rx, ry, rz) in the bushing frame, N/m and
+    N*m/rad, each a rate or a force-deflection :class:`Curve`.
+    ``damping``: same order, N*s/m and N*m*s/rad (carried, unused here).
+    ``axial``: optional direction (3,) of the bushing's local z axis in the
+    vehicle frame (left side); default: the bushing frame is the vehicle frame.
+    """
+
+    stiffness: tuple[Stiffness, Stiffness, Stiffness, Stiffness, Stiffness, Stiffness]
+    damping: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    axial: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class StabilizerSpec:
+    """Torsion anti-roll bar: bar axis through hard point ``arb_pivot``
+    parallel to y; drop link from ``arb_link_lower`` (on the part the template
+    names) to ``arb_link_upper`` (end of the bar arm)."""
+
+    torsional_stiffness: float  # N*m/rad, twist between the two bar ends
+
+
+@dataclass(frozen=True)
+class SteeringSpec:
+    """Rack and pinion; the tie-rod inner points sit on the rack."""
+
+    rack_ratio: float  # m of rack travel per rad of steering-wheel angle
+    rack_travel_limit: float  # m, each way from centre
+    rack_stiffness: float | None = None  # N/m rack to housing; None = rigid
+
+
+@dataclass(frozen=True)
+class SuspensionInput:
+    """One axle's suspension as a K&C rig sees it.
+
+    ``hardpoints``: left-side points (3,) in m by template name (see
+    ``templates.TEMPLATES[...].required_points``). ``bushings`` are keyed by the
+    hard point of the connection they replace. ``masses`` (kg) are keyed by the
+    template's part names plus ``"wheel"`` (at the wheel centre); a part's
+    centre of mass is the centroid of its hard points (thesis 5.1).
+    ``joint_axes``: optional universal-joint cross axes (body-side, part-side),
+    keyed by the joint's hard point. ``camber``/``toe``: static design
+    alignment (rad; ISO: positive toe = toe-in, negative camber = top inward).
+    ``tire_radius``: loaded radius (m) at ``corner_load`` (N, the static design
+    wheel load).
+    """
+
+    template: str
+    axle: Axle
+    hardpoints: Mapping[str, np.ndarray]
+    spring: SpringSpec
+    tire_radius: float
+    tire_vertical_stiffness: float
+    corner_load: float
+    damper: DamperSpec | None = None
+    bump_stop: StopSpec | None = None
+    rebound_stop: StopSpec | None = None
+    bushings: Mapping[str, Bushing] = field(default_factory=dict)
+    stabilizer: StabilizerSpec | None = None
+    steering: SteeringSpec | None = None
+    camber: float = 0.0
+    toe: float = 0.0
+    masses: Mapping[str, float] = field(default_factory=dict)
+    joint_axes: Mapping[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+
+
+def _positive(value: float | None, what: str) -> None:
+    if value is not None and not (np.isfinite(value) and value > 0.0):
+        raise SolverError(f"{what} must be a positive finite number, got {value!r}")
+
+
+def validate(inp: SuspensionInput) -> None:
+    """Check the scalar data of ``inp``; hard points are checked by the template.
+
+    Raises :class:`SolverError` naming the offending field.
+    """
+    if inp.axle not in ("front", "rear"):
+        raise SolverError(f"axle must be 'front' or 'rear', got {inp.axle!r}")
+    s = inp.spring
+    if (s.rate is None) == (s.curve is None):
+        raise SolverError("spring: give exactly one of rate and curve")
+    if s.free_length is not None and s.preload is not None:
+        raise SolverError("spring: give at most one of free_length and preload")
+    _positive(s.rate, "spring rate")
+    _positive(s.free_length, "spring free_length")
+    _positive(inp.tire_radius, "tire_radius")
+    _positive(inp.tire_vertical_stiffness, "tire_vertical_stiffness")
+    _positive(inp.corner_load, "corner_load")
+    for name, stop in (("bump_stop", inp.bump_stop), ("rebound_stop", inp.rebound_stop)):
+        if stop is not None and not (np.isfinite(stop.clearance) and stop.clearance >= 0.0):
+            raise SolverError(f"{name}: clearance must be >= 0 m, got {stop.clearance!r}")
+    if inp.stabilizer is not None:
+        _positive(inp.stabilizer.torsional_stiffness, "stabilizer torsional_stiffness")
+    if inp.steering is not None:
+        if inp.axle != "front":
+            raise SolverError("steering is modelled on the front axle only")
+        _positive(inp.steering.rack_ratio, "steering rack_ratio")
+        _positive(inp.steering.rack_travel_limit, "steering rack_travel_limit")
+        _positive(inp.steering.rack_stiffness, "steering rack_stiffness")
+    for name, bushing in inp.bushings.items():
+        if len(bushing.stiffness) != 6:
+            raise SolverError(f"bushing {name!r}: six stiffnesses (x, y, z, rx, ry, rz) needed")
+        for k in bushing.stiffness:
+            if not isinstance(k, Curve):
+                _positive(float(k), f"bushing {name!r} stiffness")
+    for name, mass in inp.masses.items():
+        if not (np.isfinite(mass) and mass >= 0.0):
+            raise SolverError(f"mass {name!r} must be >= 0 kg, got {mass!r}")
+    for name, value in (("camber", inp.camber), ("toe", inp.toe)):
+        if not (np.isfinite(value) and abs(value) < 0.5):
+            raise SolverError(f"{name} must be a finite angle in rad below 0.5, got {value!r}")

@@ -1,0 +1,199 @@
+"""Static equilibrium of the axle on the K&C rig: Newton on the KKT system.
+
+For a load case the rig imposes (pad heights, applied forces, rack travel)
+find poses q and multipliers lambda with
+
+    grad V(q) - Q(q) + J(q)^T lambda = 0        (force balance, N and N*m)
+    g(q) = 0                                    (joints, pads, rack; m)
+
+Each Newton step solves
+
+    [ K   s J^T ] [ dq ]   [ -(grad V - Q) ]
+    [ s J   0   ] [ mu ] = [ -s g          ],   lambda_new = s mu,
+
+with K the exact tangent (potentials, constraint curvature weighted by
+lambda, applied-load stiffness) and s the largest entry of K, which puts both
+blocks on one scale so that the LU pivots reveal a singular (locked or
+unrestrained) mechanism. Poses update as p += dp, R <- exp([dtheta]x) R.
+
+Along an event the previous solution is the initial guess (continuation); a
+step that fails is halved up to ``MAX_SUBDIVISIONS`` times before the event
+fails with a :class:`~vd_solvers.errors.SolverError` naming event and step.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from vd_solvers.errors import SolverError
+
+from .assembly import Evaluation, LoadCase, State, System
+
+CONSTRAINT_TOL = 1e-9  # m; angular rows (dot products) in rad, i.e. m at 1 m lever
+FORCE_TOL = 1e-6  # N and N*m, absolute ...
+FORCE_TOL_RELATIVE = 1e-13  # ... or this fraction of the largest force term if larger
+MAX_NEWTON_ITERATIONS = 30
+MAX_SUBDIVISIONS = 8  # halvings of one event step (1/256 of the step)
+MAX_TRANSLATION_STEP = 0.05  # m per Newton iteration and part
+MAX_ROTATION_STEP = 0.2  # rad per Newton iteration and part
+MAX_STEP_ROTATION = 0.15  # rad of any part between converged neighbours: guards branch jumps
+SINGULAR_PIVOT_RATIO = 1e-13  # smallest/largest LU pivot of the scaled KKT matrix
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """How one load case converged: Newton iterations, max |g| (m) and max
+    force-balance residual (N or N*m)."""
+
+    iterations: int
+    constraint_residual: float
+    force_residual: float
+
+
+class _StepFailure(Exception):
+    """A load case did not converge from the given start (may be retried)."""
+
+
+def rotation_vectors_to_matrices(theta: np.ndarray) -> np.ndarray:
+    """exp([theta]x) for rotation vectors ``theta`` (n, 3) -> (n, 3, 3)."""
+    angle = np.linalg.norm(theta, axis=1)
+    small = angle < 1e-8
+    safe = np.where(small, 1.0, angle)
+    # sin(a)/a and (1 - cos a)/a^2 with their series near zero.
+    a = np.where(small, 1.0 - angle**2 / 6.0, np.sin(safe) / safe)
+    b = np.where(small, 0.5 - angle**2 / 24.0, (1.0 - np.cos(safe)) / safe**2)
+    k = np.zeros((theta.shape[0], 3, 3))
+    k[:, 0, 1], k[:, 0, 2] = -theta[:, 2], theta[:, 1]
+    k[:, 1, 0], k[:, 1, 2] = theta[:, 2], -theta[:, 0]
+    k[:, 2, 0], k[:, 2, 1] = -theta[:, 1], theta[:, 0]
+    return np.eye(3) + a[:, None, None] * k + b[:, None, None] * (k @ k)
+
+
+def _rotation_angle(r_new: np.ndarray, r_old: np.ndarray) -> float:
+    """Largest rotation angle (rad) between two pose sets (n, 3, 3)."""
+    if r_new.shape[0] == 0:
+        return 0.0
+    rel = np.einsum("nij,nkj->nik", r_new, r_old)
+    cos = np.clip((np.trace(rel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+    return float(np.max(np.arccos(cos)))
+
+
+def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluation, Convergence]:
+    """Equilibrium for ``load`` from the initial guess ``state`` (not modified).
+
+    Raises _StepFailure with the reason when it does not converge.
+    """
+    state = state.copy()
+    for iteration in range(MAX_NEWTON_ITERATIONS + 1):
+        try:
+            ev = system.evaluate(state, load)
+        except SolverError as err:  # e.g. a link collapsed on a wild iterate
+            raise _StepFailure(str(err)) from err
+        residual = ev.force_residual(state.lam)
+        c_res = float(np.max(np.abs(ev.g), initial=0.0))
+        f_res = float(np.max(np.abs(residual), initial=0.0))
+        scale = max(
+            float(np.max(np.abs(ev.q_ext), initial=0.0)),
+            float(np.max(np.abs(residual - ev.q_ext), initial=0.0)),
+            float(np.max(np.abs(state.lam), initial=0.0)),
+        )
+        if c_res <= CONSTRAINT_TOL and f_res <= max(FORCE_TOL, FORCE_TOL_RELATIVE * scale):
+            return state, ev, Convergence(iteration, c_res, f_res)
+        if iteration == MAX_NEWTON_ITERATIONS:
+            break
+        k = ev.tangent(state.lam)
+        j = ev.jacobian
+        s = max(float(np.max(np.abs(k))), 1.0)
+        n, m = k.shape[0], j.shape[0]
+        kkt = np.zeros((n + m, n + m))
+        kkt[:n, :n] = k
+        kkt[:n, n:] = s * j.T
+        kkt[n:, :n] = s * j
+        rhs = np.concatenate((-(residual - j.T @ state.lam), -s * ev.g))
+        lu, piv = scipy.linalg.lu_factor(kkt, check_finite=False)
+        pivots = np.abs(np.diag(lu))
+        if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
+            raise _StepFailure(
+                "singular equilibrium equations: the mechanism is locked (at a "
+                "singular position) or a part is unrestrained"
+            )
+        sol = scipy.linalg.lu_solve((lu, piv), rhs, check_finite=False)
+        dq = sol[:n].reshape(-1, 6)
+        longest = max(
+            float(np.max(np.linalg.norm(dq[:, :3], axis=1), initial=0.0)) / MAX_TRANSLATION_STEP,
+            float(np.max(np.linalg.norm(dq[:, 3:], axis=1), initial=0.0)) / MAX_ROTATION_STEP,
+            1.0,
+        )
+        dq = dq / longest
+        state.p = state.p + dq[:, :3]
+        state.R = np.einsum("nij,njk->nik", rotation_vectors_to_matrices(dq[:, 3:]), state.R)
+        state.lam = s * sol[n:]
+    raise _StepFailure(
+        f"no equilibrium after {MAX_NEWTON_ITERATIONS} Newton iterations (max |g| = "
+        f"{c_res:.3g} m, force residual {f_res:.3g} N); the step may be outside the "
+        "mechanism's range"
+    )
+
+
+@dataclass(frozen=True)
+class Solution:
+    """Converged states of an event, in step order, with their evaluations."""
+
+    states: tuple[State, ...]
+    evaluations: tuple[Evaluation, ...]
+    convergence: tuple[Convergence, ...]
+
+
+def solve_path(
+    system: System,
+    cases: Sequence[LoadCase],
+    start: int,
+    describe: Callable[[int], str],
+) -> Solution:
+    """Equilibria of ``cases`` by continuation from the design state.
+
+    The walk starts at ``cases[start]`` (the one nearest the design load) and
+    runs outward in both directions. ``describe(i)`` names step i in errors.
+    """
+    n = len(cases)
+    states: list[State | None] = [None] * n
+    evals: list[Evaluation | None] = [None] * n
+    conv: list[Convergence | None] = [None] * n
+    design = LoadCase()
+    state, _, _ = _advance(system, system.design_state(), design, design, 0, start, describe)
+    previous = design
+    for i in range(start, n):
+        state, evals[i], conv[i] = _advance(system, state, previous, cases[i], 0, i, describe)
+        states[i], previous = state, cases[i]
+    state, previous = states[start], cases[start]  # type: ignore[assignment]
+    for i in range(start - 1, -1, -1):
+        state, evals[i], conv[i] = _advance(system, state, previous, cases[i], 0, i, describe)
+        states[i], previous = state, cases[i]
+    return Solution(tuple(states), tuple(evals), tuple(conv))  # type: ignore[arg-type]
+
+
+def _advance(
+    system: System,
+    state: State,
+    previous: LoadCase,
+    target: LoadCase,
+    depth: int,
+    step: int,
+    describe: Callable[[int], str],
+) -> tuple[State, Evaluation, Convergence]:
+    """Solve ``target`` from the solution ``state`` of ``previous``, halving
+    the load step on failure."""
+    try:
+        new, ev, c = newton(system, state, target)
+        if _rotation_angle(new.R, state.R) > MAX_STEP_ROTATION:
+            raise _StepFailure("a part rotated too far in one step (possible branch jump)")
+        return new, ev, c
+    except _StepFailure as failure:
+        if depth >= MAX_SUBDIVISIONS:
+            raise SolverError(f"{describe(step)}: {failure}") from None
+        middle = previous.blend(target, 0.5)
+        half, _, _ = _advance(system, state, previous, middle, depth + 1, step, describe)
+        return _advance(system, half, middle, target, depth + 1, step, describe)

@@ -1,0 +1,61 @@
+"""The result of one event on one configuration, whatever the model.
+
+Every solver returns an :class:`EventOutcome`; the nodes turn it into a
+``vd_interfaces/EventResult``, the recorder into a bag, ``vd run --json`` into
+the JSON contract of ARCHITECTURE §5.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Metric:
+    value: float
+    unit: str  # SI (or deg, deg/g, km/h where the metric is conventionally quoted so)
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Channel:
+    unit: str
+    values: np.ndarray  # shape (n_steps,)
+
+
+@dataclass(frozen=True)
+class EventOutcome:
+    event: str
+    configuration: str
+    model: str
+    fidelity: str
+    axle: str
+    data_hash: str
+    metrics: Mapping[str, Metric]
+    channels: Mapping[str, Channel]
+    notes: Sequence[str] = field(default_factory=tuple)
+
+    @property
+    def n_steps(self) -> int:
+        return max((len(c.values) for c in self.channels.values()), default=0)
+
+    def to_json(self, bag: str | None = None) -> dict[str, Any]:
+        """The ``vd run --json`` contract."""
+        return {
+            "event": self.event, "configuration": self.configuration, "model": self.model,
+            "fidelity": self.fidelity, "axle": self.axle, "data_hash": self.data_hash,
+            "metrics": {k: {"value": _num(m.value), "unit": m.unit, "source": m.source}
+                        for k, m in self.metrics.items()},
+            "channels": {k: {"unit": c.unit, "values": [_num(v) for v in c.values]}
+                         for k, c in self.channels.items()},
+            "notes": list(self.notes),
+            "bag": bag,
+        }
+
+
+def _num(value: float) -> float | None:
+    value = float(value)
+    return value if np.isfinite(value) else None

@@ -1,0 +1,181 @@
+"""The shell every solver node shares: configurations in, RunEvent action, results out.
+
+A solver node subscribes to the latched ``/vd/configuration`` and
+``/vd/data_status`` topics, serves ``/vd/<family>/run_event``
+(vd_interfaces/RunEvent, with progress feedback, cancellable between stages),
+and publishes each result on ``/vd/<family>/result`` (EventResult), one
+``Sample`` per step on ``/vd/<family>/state`` and the run's provenance on
+``/vd/provenance``. A failure answers the goal with an error naming the
+configuration and event; the node keeps serving.
+"""
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import rclpy
+from rclpy.action import ActionServer, CancelResponse, GoalResponse
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from vd_interfaces.action import RunEvent
+from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus, EventResult
+from vd_interfaces.msg import Provenance, Sample
+
+from vd_data_server.conversions import configuration_from_msg
+from vd_data_server.errors import DataError
+from vd_data_server.master import parse_set, with_overrides
+from vd_data_server.model import Configuration
+from vd_data_server.study import modified_keys
+from vd_solvers import __version__
+from vd_solvers.conversions import outcome_samples, outcome_to_msg
+from vd_solvers.errors import SolverError
+from vd_solvers.results import EventOutcome
+
+#: seconds a goal waits for its configuration to arrive on /vd/configuration
+CONFIGURATION_WAIT = 5.0
+
+RunFn = Callable[[Configuration, RunEvent.Goal], EventOutcome]
+
+LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
+                     reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+RESULTS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=100,
+                     reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.VOLATILE)
+SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=5000,
+                     reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.VOLATILE)
+
+
+class SolverNode(Node):
+    def __init__(self, name: str, family: str, run: RunFn, **kwargs) -> None:
+        super().__init__(name, **kwargs)
+        self.family = family
+        self._run = run
+        self.configurations: dict[str, Configuration] = {}
+        self._set_changes: list = []
+        self.status: DataStatus | None = None
+        group = ReentrantCallbackGroup()
+        self.create_subscription(ConfigurationMsg, "/vd/configuration", self._on_configuration,
+                                 LATCHED, callback_group=group)
+        self.create_subscription(DataStatus, "/vd/data_status", self._on_status,
+                                 QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                                            durability=DurabilityPolicy.TRANSIENT_LOCAL),
+                                 callback_group=group)
+        self.result_pub = self.create_publisher(EventResult, f"/vd/{family}/result", RESULTS)
+        self.sample_pub = self.create_publisher(Sample, f"/vd/{family}/state", SAMPLES)
+        self.provenance_pub = self.create_publisher(Provenance, "/vd/provenance", RESULTS)
+        self.action = ActionServer(self, RunEvent, f"/vd/{family}/run_event", self._execute,
+                                   goal_callback=lambda _: GoalResponse.ACCEPT,
+                                   cancel_callback=lambda _: CancelResponse.ACCEPT,
+                                   callback_group=group)
+
+    def _wait_for_configuration(self, name: str) -> Configuration | None:
+        """A solver started together with the data server may get a goal before the
+        latched configurations have arrived: wait a little for them."""
+        deadline = time.monotonic() + CONFIGURATION_WAIT
+        while name not in self.configurations and time.monotonic() < deadline:
+            time.sleep(0.05)
+        return self.configurations.get(name)
+
+    def _on_configuration(self, msg: ConfigurationMsg) -> None:
+        self.configurations[msg.name] = configuration_from_msg(msg)
+
+    def _on_status(self, msg: DataStatus) -> None:
+        self.status = msg
+
+    def _execute(self, goal_handle):
+        goal = goal_handle.request
+        result = RunEvent.Result()
+        label = f"configuration '{goal.configuration}', event '{goal.event}'"
+        feedback = RunEvent.Feedback()
+        try:
+            config = self._wait_for_configuration(goal.configuration)
+            if config is None:
+                raise DataError(f"configuration '{goal.configuration}' is not published "
+                                f"(known: {', '.join(sorted(self.configurations)) or 'none'})")
+            base = config
+            config = with_overrides(config, parse_set(goal.overrides))
+            feedback.progress, feedback.stage = 0.1, "solving"
+            goal_handle.publish_feedback(feedback)
+            outcome = self._run(config, goal)
+            self._set_changes = set_changes(base, config)
+            if goal_handle.is_cancel_requested:
+                goal_handle.canceled()
+                result.success, result.message = False, f"{label}: cancelled"
+                return result
+        except (DataError, SolverError) as err:
+            message = str(err) if goal.configuration in str(err) else f"{label}: {err}"
+            self.get_logger().error(message)
+            goal_handle.abort()
+            result.success, result.message = False, message
+            return result
+        except Exception as err:  # noqa: BLE001 - a solver bug must not kill the node
+            message = f"{label}: internal solver error {type(err).__name__}: {err}"
+            self.get_logger().error(message)
+            goal_handle.abort()
+            result.success, result.message = False, message
+            return result
+        self.publish_outcome(outcome, config, goal)
+        feedback.progress, feedback.stage = 1.0, "done"
+        goal_handle.publish_feedback(feedback)
+        goal_handle.succeed()
+        result.success = True
+        result.message = f"{label}: {outcome.n_steps} steps"
+        result.result = outcome_to_msg(outcome, self.get_clock().now().to_msg())
+        return result
+
+    def publish_outcome(self, outcome: EventOutcome, config: Configuration, goal) -> None:
+        stamp = self.get_clock().now().to_msg()
+        provenance = Provenance(stamp=stamp, configuration=config.name,
+                                master_file=config.master_file, data_hash=config.data_hash,
+                                model=outcome.model, fidelity=outcome.fidelity,
+                                event=outcome.event, software_version=__version__)
+        if self.status is not None:
+            changed = {g.group: g for g in self._set_changes}
+            provenance.groups = [changed.get(s.group, s) for s in self.status.status
+                                 if s.configuration == config.name]
+        self.provenance_pub.publish(provenance)
+        for sample in outcome_samples(outcome):
+            sample.header.stamp = stamp
+            self.sample_pub.publish(sample)
+        self.result_pub.publish(outcome_to_msg(outcome, stamp))
+
+
+def set_changes(base: Configuration, config: Configuration) -> list:
+    """GroupStatus messages for the groups a run's ``--set`` overrides changed."""
+    from vd_interfaces.msg import GroupStatus as GroupStatusMsg, ModifiedKey
+
+    out = []
+    for name, group in config.groups.items():
+        keys = modified_keys(base.groups[name].values, group.values)
+        if keys:
+            out.append(GroupStatusMsg(configuration=config.name, group=name,
+                                      variant=group.variant, state=GroupStatusMsg.MODIFIED,
+                                      consistency=GroupStatusMsg.DIFFERS,
+                                      modified_keys=[ModifiedKey(key=k.key,
+                                                                 data_value=k.data_value,
+                                                                 master_value=k.master_value,
+                                                                 unit=k.unit) for k in keys]))
+    return out
+
+
+def spin_node(factory: Callable[[], Node], args=None) -> None:
+    """The standard ``main()`` body: init, spin, clean shutdown on Ctrl-C / SIGTERM."""
+    from rclpy.executors import MultiThreadedExecutor
+
+    rclpy.init(args=args)
+    node = None
+    try:
+        node = factory()
+        executor = MultiThreadedExecutor(num_threads=2)
+        executor.add_node(node)
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
