@@ -1,0 +1,257 @@
+"""``vd report BAG...``: an HTML report with PNG plots from recorded bags.
+
+Per event and model, one plot per channel pair with every configuration
+overlaid (like the thesis' Figs. 4.1.1-4.1.2 and 4.2.x-4.3.x), a metrics table,
+and the configuration overview with the modified/unchanged feedback.
+"""
+from __future__ import annotations
+
+import html
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .bag import BagError, read_bag
+
+G = 9.80665
+DEG = 180.0 / math.pi
+
+
+@dataclass(frozen=True)
+class Axis:
+    channel: str
+    label: str
+    scale: float = 1.0
+
+
+#: event -> plots (x axis, y axis); channels missing from a result are skipped
+PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
+    "handling_diagram": (
+        (Axis("slip_angle_difference", "front minus rear slip angle α_f − α_r [deg]", DEG),
+         Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G)),
+        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
+         Axis("steer_angle", "road-wheel steer angle [deg]", DEG)),
+        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
+         Axis("roll_angle", "roll angle [deg]", DEG)),
+    ),
+    "steady_state_circular": (
+        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
+         Axis("steer_angle", "road-wheel steer angle [deg]", DEG)),
+        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
+         Axis("sideslip", "sideslip angle [deg]", DEG)),
+        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
+         Axis("roll_angle", "roll angle [deg]", DEG)),
+    ),
+    "step_steer": (
+        (Axis("time", "time [s]"), Axis("yaw_rate", "yaw rate [deg/s]", DEG)),
+        (Axis("time", "time [s]"), Axis("lateral_acceleration", "lateral acceleration [m/s²]")),
+    ),
+}
+HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh",
+            "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
+            "roll_gradient", "natural_frequency", "damping_ratio")
+
+
+@dataclass
+class Run:
+    bag: Path
+    event: str
+    configuration: str
+    model: str
+    axle: str
+    data_hash: str
+    metrics: dict[str, tuple[float, str]]
+    channels: dict[str, np.ndarray]
+    units: dict[str, str]
+    notes: list[str]
+    modified: list[str]
+
+    @property
+    def label(self) -> str:
+        return f"{self.configuration} ({self.model})"
+
+
+def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
+    """Every EventResult in the bags, and the newest data status seen."""
+    runs: list[Run] = []
+    status = None
+    for bag in bags:
+        provenance: dict[str, list[str]] = {}
+        for item in read_bag(bag):
+            msg = item.msg
+            if item.topic == "/vd/data_status":
+                status = msg
+            elif item.topic == "/vd/provenance":
+                provenance[msg.configuration] = [
+                    f"{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}".strip()
+                    for g in msg.groups for k in g.modified_keys]
+            elif item.topic.endswith("/result"):
+                runs.append(Run(
+                    bag=bag, event=msg.event, configuration=msg.configuration, model=msg.model,
+                    axle=msg.axle, data_hash=msg.data_hash,
+                    metrics={m.name: (m.value, m.unit) for m in msg.metrics},
+                    channels={c.name: np.asarray(c.values, dtype=float) for c in msg.channels},
+                    units={c.name: c.unit for c in msg.channels}, notes=list(msg.notes),
+                    modified=provenance.get(msg.configuration, [])))
+    return runs, status
+
+
+def build_report(bags: Sequence[Path], out: Path) -> Path:
+    """Write ``out/report.html`` and its PNGs; returns the HTML path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    for bag in bags:
+        if not (Path(bag) / "metadata.yaml").is_file():
+            raise BagError(f"{bag}: not a finished rosbag2 bag (no metadata.yaml)")
+    runs, status = load_runs(bags)
+    if not runs:
+        raise BagError("no event results in " + ", ".join(str(b) for b in bags))
+    out.mkdir(parents=True, exist_ok=True)
+    sections: list[str] = []
+    groups: dict[tuple[str, str, str], list[Run]] = {}
+    for run in runs:
+        groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
+    for (event, axle, family), members in groups.items():
+        images = []
+        for i, (xa, ya) in enumerate(PLOTS.get(event, _generic_plots(members[0]))):
+            usable = [r for r in members if xa.channel in r.channels and ya.channel in r.channels]
+            if not usable:
+                continue
+            fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
+            for run in usable:
+                ax.plot(run.channels[xa.channel] * xa.scale, run.channels[ya.channel] * ya.scale,
+                        label=run.label, marker="." if len(run.channels[xa.channel]) < 30
+                        else None)
+            ax.set_xlabel(xa.label)
+            ax.set_ylabel(ya.label)
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize="small")
+            ax.set_title(f"{event}{' ' + axle if axle else ''}: {ya.channel} vs {xa.channel}",
+                         fontsize="medium")
+            name = f"{event}{'_' + axle if axle else ''}_{family}_{i}.png"
+            fig.tight_layout()
+            fig.savefig(out / name)
+            plt.close(fig)
+            images.append(name)
+        sections.append(_section(event, axle, family, members, images))
+    html_path = out / "report.html"
+    tmp = out / ".report.html.partial"
+    tmp.write_text(_page(runs, status, sections, bags, out), encoding="utf-8")
+    os.replace(tmp, html_path)
+    return html_path
+
+
+def _family(model: str) -> str:
+    return "analytical" if model in ("bicycle", "two_track") else model
+
+
+def _generic_plots(run: Run) -> Sequence[tuple[Axis, Axis]]:
+    names = list(run.channels)
+    if not names:
+        return ()
+    x = Axis(names[0], f"{names[0]} [{run.units[names[0]]}]")
+    return tuple((x, Axis(n, f"{n} [{run.units[n]}]")) for n in names[1:7])
+
+
+def _fmt(value: float) -> str:
+    return "–" if not math.isfinite(value) else f"{value:.4g}"
+
+
+def _section(event: str, axle: str, family: str, runs: list[Run], images: list[str]) -> str:
+    names = [m for m in HEADLINE if any(m in r.metrics for r in runs)]
+    names += sorted({m for r in runs for m in r.metrics} - set(names))
+    head = "".join(f"<th>{html.escape(n)}<br><small>{html.escape(_unit(runs, n))}</small></th>"
+                   for n in names)
+    rows = "".join(
+        "<tr><td>" + html.escape(r.label) + "</td>" + "".join(
+            f"<td>{_fmt(r.metrics[n][0]) if n in r.metrics else ''}</td>" for n in names)
+        + "</tr>" for r in runs)
+    imgs = "".join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
+    notes = "".join(f"<li>{html.escape(r.label)}: {html.escape(r.notes[0])}</li>"
+                    for r in runs if r.notes)
+    title = f"{event}{' — ' + axle if axle else ''} ({family})"
+    return (f"<h2>{html.escape(title)}</h2><div class='plots'>{imgs}</div>"
+            f"<div class='scroll'><table><tr><th>run</th>{head}</tr>{rows}</table></div>"
+            f"<ul class='notes'>{notes}</ul>")
+
+
+def _unit(runs: list[Run], name: str) -> str:
+    for run in runs:
+        if name in run.metrics:
+            return run.metrics[name][1]
+    return ""
+
+
+def _overview(status) -> str:
+    if status is None:
+        return "<p>No data status recorded.</p>"
+    configs = list(status.configurations)
+    cells: dict[tuple[str, str], object] = {(s.configuration, s.group): s for s in status.status}
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in configs)
+    rows = []
+    for group in status.groups:
+        tds, consistency = [], "SAME"
+        for c in configs:
+            s = cells.get((c, group))
+            if s is None or not s.variant:
+                tds.append("<td class='unused'>–</td>")
+                continue
+            modified = s.state == s.MODIFIED
+            consistency = "DIFFERS" if s.consistency == s.DIFFERS else "SAME"
+            title = "; ".join(f"{k.key}: {k.data_value} → {k.master_value} {k.unit}"
+                              for k in s.modified_keys)
+            tds.append(f"<td class='{'mod' if modified else 'unch'}' title='{html.escape(title)}'>"
+                       f"{html.escape(s.variant)} {'MODIFIED' if modified else 'UNCHANGED'}</td>")
+        rows.append(f"<tr><th>{html.escape(group)}</th>{''.join(tds)}"
+                    f"<td class='{consistency.lower()}'>{consistency}</td></tr>")
+    modified = "".join(
+        f"<tr><td>{html.escape(s.configuration)}</td><td>{html.escape(s.group)}</td>"
+        f"<td>{html.escape(k.key)}</td><td>{html.escape(k.data_value)}</td>"
+        f"<td class='mod'>{html.escape(k.master_value)}</td><td>{html.escape(k.unit)}</td></tr>"
+        for s in status.status for k in s.modified_keys)
+    table = (f"<table><tr><th>input group</th>{head}<th>all configurations</th></tr>"
+             f"{''.join(rows)}</table>")
+    if modified:
+        table += ("<h3>Modified values</h3><table><tr><th>configuration</th><th>group</th>"
+                  "<th>key</th><th>data file</th><th>master</th><th>unit</th></tr>"
+                  f"{modified}</table>")
+    return f"<p>Master file: {html.escape(status.master_file)}</p>{table}"
+
+
+CSS = """
+body{font-family:system-ui,sans-serif;margin:2em;color:#222}
+table{border-collapse:collapse;margin:0.5em 0;font-size:0.9em}
+td,th{border:1px solid #ccc;padding:3px 8px;text-align:center}
+td.unch{background:#d9f2d9}td.mod{background:#f7c6c6;font-weight:bold}
+td.differs{background:#fff3c4}td.same{color:#777}td.unused{color:#aaa}
+.plots img{max-width:48%;margin:0.3em}.scroll{overflow-x:auto}.notes{font-size:0.85em;color:#555}
+"""
+
+
+def _page(runs: list[Run], status, sections: list[str], bags: Sequence[Path], out: Path) -> str:
+    provenance = "".join(
+        f"<tr><td>{html.escape(os.path.relpath(r.bag, out))}</td><td>{html.escape(r.event)}</td>"
+        f"<td>{html.escape(r.configuration)}</td><td>{html.escape(r.model)}</td>"
+        f"<td>{html.escape(r.data_hash)}</td><td>{html.escape('; '.join(r.modified) or '–')}</td>"
+        "</tr>" for r in runs)
+    return f"""<!DOCTYPE html>
+<html><head><meta charset="utf-8"><title>vd report</title><style>{CSS}</style></head><body>
+<h1>vd report</h1>
+<p>{len(runs)} results from {len(bags)} bag(s).</p>
+<h2>Configuration overview</h2>
+<p>Green: the data fed to the models is the shared data file unchanged; red: the master file
+modifies it (hover for the values). Last column: whether all configurations use the same data.</p>
+{_overview(status)}
+{''.join(sections)}
+<h2>Provenance</h2>
+<table><tr><th>bag</th><th>event</th><th>configuration</th><th>model</th><th>data hash</th>
+<th>modified values</th></tr>{provenance}</table>
+</body></html>
+"""
