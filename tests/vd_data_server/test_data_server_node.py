@@ -183,7 +183,7 @@ def test_set_override_with_allow_edits_validates_and_applies(server):
                     SetOverride.Request(configuration="baseline",
                                         key="front_alignment.camber", value="-2 kg"))
         assert not bad.success
-        assert bad.message == ("--set: front_alignment.camber: unit 'kg' is not a angle unit "
+        assert bad.message == ("--set: front_alignment.camber: unit 'kg' is not an angle unit "
                                "(expected e.g. 'rad')")
         good = _call(server, client_node, SetOverride, "/vd/set_override",
                      SetOverride.Request(configuration="baseline",

@@ -78,10 +78,17 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
         col.add("mirror", "only hardpoints files may set 'mirror'", raw, "mirror")
     if not isinstance(mirror, bool):
         col.add("mirror", f"expected true or false, found {mirror!r}", raw, "mirror")
+    elif mirror is False:
+        col.add("mirror", "only left-side hard points mirrored to the right are supported "
+                "(mirror: true); asymmetric suspensions are not", raw, "mirror")
     values: dict[str, Value] = {}
     _walk(schema.KINDS[expected_kind], raw["data"], "", units, col, values, raw, "data")
     if expected_kind == "hardpoints" and not col.errors:
         _check_template_points(values, col, raw["data"])
+    if expected_kind == "stabilizer" and "bar_radius" in values \
+            and "torsion_length" not in values:
+        col.add("data.torsion_length", "required with bar_radius (the bar's torsional "
+                "stiffness is G*pi*r^4/(2*L))", raw, "data")
     col.raise_if_any()
     source = display if variant == "" else f"{display} (variant {variant})"
     values = {k: v.with_source(source) for k, v in values.items()}

@@ -15,7 +15,7 @@ def sample_data_root() -> Path:
         return _source_root()
     try:
         installed = Path(get_package_share_directory(PACKAGE)) / "data"
-    except PackageNotFoundError:
+    except (PackageNotFoundError, OSError):  # OSError: no AMENT_PREFIX_PATH at all
         return _source_root()
     return installed if installed.is_dir() else _source_root()
 

@@ -16,6 +16,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -37,7 +38,7 @@ ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_trave
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
               "constant_radius_turn", "sine_with_dwell", "step_steer")
 MODELS = ("bicycle", "two_track", "kc", "vehicle")
-GOAL_TIMEOUT = 120.0  # s: a solver that does not answer by then has died or hung
+GOAL_TIMEOUT = 60.0  # s: a solver that does not answer by then has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
 
 
@@ -265,13 +266,16 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     env = dict(os.environ, ROS_DOMAIN_ID=str(domain),
                ROS_AUTOMATIC_DISCOVERY_RANGE=os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE",
                                                             "LOCALHOST"))
+    # the nodes' output goes to one log file, shown when a run fails
+    logs = tempfile.TemporaryFile(mode="w+")
     procs = [
         subprocess.Popen([_executable("vd_data_server", "data_server"), "--ros-args",
                           "--log-level", "warn", "-p",
                           f"master_file:={master}", "-p", "watch_period:=0.0"], env=env,
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE),
-        subprocess.Popen([_executable("vd_solvers", "analytical_solver")], env=env,
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE),
+                         stdout=logs, stderr=subprocess.STDOUT),
+        subprocess.Popen([_executable("vd_solvers", "analytical_solver"), "--ros-args",
+                          "--log-level", "warn"], env=env, stdout=logs,
+                         stderr=subprocess.STDOUT),
     ]
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=domain, signal_handler_options=None)
@@ -287,8 +291,12 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                 recorder = subprocess.Popen(
                     [_executable("vd_events", "recorder"), "--ros-args", "-p",
                      f"bag:={request.bag}", "-p", f"configurations:=['{request.configuration}']"],
-                    env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-                time.sleep(1.0)  # its subscriptions must match before the results flow
+                    env=env, stdout=logs, stderr=subprocess.STDOUT)
+                # the recorder's subscriptions must be matched before the results flow
+                topics = (f"/vd/{request.family}/result", f"/vd/{request.family}/state")
+                if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
+                                                         for t in topics), SERVER_TIMEOUT):
+                    raise RunError(f"{request.label}: the recorder did not start")
             t0 = time.perf_counter()
             try:
                 ok, message, result = _send(
@@ -310,7 +318,10 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={"run": time.perf_counter() - t0}))
             except RunError as err:
-                outcomes.append(RunOutcome(request, None, None, str(err)))
+                logs.seek(0)
+                tail = "".join(logs.readlines()[-5:]).strip()
+                outcomes.append(RunOutcome(request, None, None,
+                                           f"{err}" + (f"\nnode output:\n{tail}" if tail else "")))
                 if recorder is not None:
                     recorder.send_signal(signal.SIGINT)
                     recorder.wait(timeout=20)
