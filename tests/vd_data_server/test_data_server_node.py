@@ -131,7 +131,8 @@ def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: P
 
     listener = _listener("broken_listener")
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3)
+        assert spin_until([server, listener], lambda: len(listener.configs) == 3
+                          and listener.statuses)
         before = {n: m.data_hash for n, m in listener.configs.items()}
         spring = sample_root / "sedan" / "front_spring" / "X.yaml"
         time.sleep(0.01)
