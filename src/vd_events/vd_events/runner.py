@@ -40,6 +40,9 @@ ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_trave
 MODELS = ("bicycle", "two_track", "kc", "vehicle")
 GOAL_TIMEOUT = 60.0  # s: a solver that does not answer by then has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
+ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again
+GOAL_ATTEMPTS = 3
+DISCOVERY_GRACE = 0.5  # s
 
 
 class RunError(Exception):
@@ -123,6 +126,7 @@ class _Client:
         from vd_interfaces.action import RunEvent
 
         self.node = node
+        self.warm: set[str] = set()
         self.clients = {family: ActionClient(node, RunEvent, f"/vd/{family}/run_event")
                         for family in set(FAMILIES.values())}
 
@@ -149,10 +153,18 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
     action = client.clients[request.family]
     if not _spin_until(executor, action.server_is_ready, SERVER_TIMEOUT):
         raise RunError(f"{request.label}: no solver answers on /vd/{request.family}/run_event")
-    send = action.send_goal_async(client.goal(request),
-                                  feedback_callback=lambda fb: progress(fb.feedback.progress,
-                                                                        fb.feedback.stage))
-    if not _spin_until(executor, send.done, GOAL_TIMEOUT):
+    if request.family not in client.warm:
+        # Fast DDS drops a service response sent before the server has discovered the
+        # client's response reader ("failed to send response"): give discovery a moment.
+        _spin_until(executor, lambda: False, DISCOVERY_GRACE)
+        client.warm.add(request.family)
+    for _attempt in range(GOAL_ATTEMPTS):
+        send = action.send_goal_async(client.goal(request),
+                                      feedback_callback=lambda fb: progress(
+                                          fb.feedback.progress, fb.feedback.stage))
+        if _spin_until(executor, send.done, ACCEPT_TIMEOUT):
+            break
+    else:
         raise RunError(f"{request.label}: the solver did not accept the goal in time")
     handle = send.result()
     if not handle.accepted:
