@@ -51,9 +51,48 @@ PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
         (Axis("time", "time [s]"), Axis("lateral_acceleration", "lateral acceleration [m/s²]")),
     ),
 }
+_TRAVEL = Axis("wheel_travel_left", "vertical wheel travel, left [mm]", 1e3)
+_OPPOSITE = Axis("wheel_travel_left", "opposite wheel travel, left wheel [mm]", 1e3)
+_FORCE = Axis("applied_force", "applied force per wheel [kN]", 1e-3)
+_TOE = Axis("toe_left", "toe angle, left [deg]", DEG)
+_CAMBER = Axis("camber_left", "camber angle, left [deg]", DEG)
+KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
+    "parallel_wheel_travel": (
+        (_TRAVEL, _TOE), (_TRAVEL, _CAMBER),
+        (_TRAVEL, Axis("track", "track change [mm]", 1e3)),
+        (_TRAVEL, Axis("contact_point_x_left", "wheelbase change, left contact patch x [mm]",
+                       1e3)),
+        (_TRAVEL, Axis("pad_force_left", "wheel vertical load, left [N]")),
+        (_TRAVEL, Axis("caster_left", "caster, left [deg]", DEG)),
+    ),
+    "opposite_wheel_travel": (
+        (_OPPOSITE, _TOE), (_OPPOSITE, _CAMBER),
+        (_OPPOSITE, Axis("pad_force_left", "wheel vertical load, left [N]")),
+    ),
+    "lateral_force": (
+        (_FORCE, _CAMBER), (_FORCE, _TOE),
+        (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
+        (_FORCE, Axis("contact_point_y_left", "contact patch y, left [mm]", 1e3)),
+    ),
+    "longitudinal_force": (
+        (_FORCE, Axis("wheel_centre_x_left", "wheel centre x, left [mm]", 1e3)),
+        (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
+        (_FORCE, _TOE),
+    ),
+    "steering": (
+        (Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG),
+         Axis("steer_angle_left", "road-wheel angle, left [deg]", DEG)),
+        (Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG),
+         Axis("steer_angle_right", "road-wheel angle, right [deg]", DEG)),
+        (Axis("rack_travel", "rack travel [mm]", 1e3),
+         Axis("rack_force", "rack force [N]")),
+    ),
+}
 HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh",
             "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
-            "roll_gradient", "natural_frequency", "damping_ratio")
+            "roll_gradient", "natural_frequency", "damping_ratio", "bump_steer", "camber_gain",
+            "wheel_rate", "roll_centre_height_kinematic", "roll_stiffness", "roll_steer",
+            "lateral_compliance_steer", "lateral_compliance_camber", "steering_ratio")
 
 
 @dataclass
@@ -120,7 +159,8 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
     for (event, axle, family), members in groups.items():
         images = []
-        for i, (xa, ya) in enumerate(PLOTS.get(event, _generic_plots(members[0]))):
+        plots = (KC_PLOTS if family == "kc" else PLOTS).get(event, _generic_plots(members[0]))
+        for i, (xa, ya) in enumerate(plots):
             usable = [r for r in members if xa.channel in r.channels and ya.channel in r.channels]
             if not usable:
                 continue

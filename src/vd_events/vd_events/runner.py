@@ -28,12 +28,13 @@ from vd_data_server.study import Study
 from vd_solvers.analytical.events import EVENT_MODELS as ANALYTICAL_EVENTS
 from vd_solvers.analytical.events import EVENT_PARAMS as ANALYTICAL_PARAMS
 from vd_solvers.event_params import parse_params
+from vd_solvers.kc.from_config import EVENT_PARAMS as KC_PARAMS
 from vd_solvers.results import EventOutcome
 
 from .bag import BagError, check_bag_path
 
 #: model -> (solver family, events it runs)
-FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state"}
+FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc"}
 ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_travel",
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
               "constant_radius_turn", "sine_with_dwell", "step_steer")
@@ -81,7 +82,13 @@ class RunOutcome:
 def events_for(model: str) -> tuple[str, ...]:
     if model in ("bicycle", "two_track"):
         return tuple(e for e, models in ANALYTICAL_EVENTS.items() if model in models)
+    if model == "kc":
+        return tuple(KC_PARAMS)
     return ()
+
+
+def event_params(model: str, event: str):
+    return KC_PARAMS[event] if model == "kc" else ANALYTICAL_PARAMS[event]
 
 
 def validate(study: Study, request: RunRequest) -> None:
@@ -98,13 +105,23 @@ def validate(study: Study, request: RunRequest) -> None:
                        f"(its events: {', '.join(events_for(request.model))})")
     if request.fidelity not in ("rigid", "flexible"):
         raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
-    if request.fidelity == "flexible" and request.model in ("bicycle", "two_track"):
-        raise RunError(f"model '{request.model}' has no flexible fidelity")
+    if request.fidelity == "flexible":
+        raise RunError(f"fidelity 'flexible' is not available yet for model '{request.model}' "
+                       "(flexible components are a later rung)")
+    if request.model == "kc" and request.axle not in ("front", "rear"):
+        raise RunError(f"K&C events need --axle front or rear (found '{request.axle}')")
+    if request.model != "kc" and request.axle:
+        raise RunError(f"model '{request.model}' is a whole-vehicle model: no --axle")
     if request.configuration not in study.configurations:
         raise DataError(f"configuration '{request.configuration}' does not exist (available: "
                         f"{', '.join(study.configuration_names)})", file=str(study.master.path))
-    with_overrides(study.configurations[request.configuration], parse_set(request.overrides))
-    parse_params(request.event, ANALYTICAL_PARAMS[request.event], request.parameters)
+    config = with_overrides(study.configurations[request.configuration],
+                            parse_set(request.overrides))
+    if request.model == "kc" and request.event == "steering" and (
+            request.axle != "front" or "steering" not in config.groups):
+        raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
+                       f"'{request.configuration}' has no steering")
+    parse_params(request.event, event_params(request.model, request.event), request.parameters)
     if request.bag is not None:
         check_bag_path(request.bag)
 
@@ -188,6 +205,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.conversions import outcome_from_msg
+    from vd_solvers.kc_node import KCSolver
 
     from .recorder_node import Recorder
 
@@ -199,17 +217,19 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     nodes = [DataServer(context=context, parameter_overrides=[
                  Parameter("master_file", value=str(master)), Parameter("watch_period",
                                                                         value=0.0)]),
-             AnalyticalSolver(context=context)]
+             AnalyticalSolver(context=context), KCSolver(context=context)]
     client_node = Node("event_runner", context=context)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
     client = _Client(client_node)
-    solver = nodes[1]
+    solvers = nodes[1:3]
     outcomes: list[RunOutcome] = []
     try:
-        _spin_until(executor, lambda: len(solver.configurations) > 0 and solver.status
-                    is not None, SERVER_TIMEOUT)
+        # a single-threaded executor: every solver must hold the configurations before
+        # a goal arrives (a solver waiting inside a goal would block the executor)
+        _spin_until(executor, lambda: all(len(n.configurations) > 0 and n.status is not None
+                                          for n in solvers), SERVER_TIMEOUT)
         for request in requests:
             recorder = None
             if request.bag is not None:
@@ -285,9 +305,10 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                           "--log-level", "warn", "-p",
                           f"master_file:={master}", "-p", "watch_period:=0.0"], env=env,
                          stdout=logs, stderr=subprocess.STDOUT),
-        subprocess.Popen([_executable("vd_solvers", "analytical_solver"), "--ros-args",
-                          "--log-level", "warn"], env=env, stdout=logs,
-                         stderr=subprocess.STDOUT),
+        *(subprocess.Popen([_executable("vd_solvers", exe), "--ros-args", "--log-level",
+                            "warn"], env=env, stdout=logs, stderr=subprocess.STDOUT)
+          for exe in sorted({f"{'analytical' if f == 'steady_state' else f}_solver"
+                             for f in {r.family for r in requests}})),
     ]
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=domain, signal_handler_options=None)

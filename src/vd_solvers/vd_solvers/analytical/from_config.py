@@ -37,11 +37,23 @@ class AxleSuspension:
     source: str
 
 
-def vehicle_params(config: Configuration,
-                   suspension: Mapping[str, AxleSuspension] | None = None) -> VehicleParams:
+@dataclass(frozen=True)
+class MassProperties:
+    """Whole-vehicle mass properties: sprung mass plus four unsprung masses."""
+
+    mass: float  # kg
+    cog_x: float  # m, vehicle frame (negative: behind the front axle)
+    cog_height: float  # m
+    yaw_inertia: float  # kg*m^2 about the vehicle COG
+    unsprung_front: float  # kg, both front corners
+    unsprung_rear: float  # kg, both rear corners
+    unsprung_height_front: float  # m, wheel-centre height
+    unsprung_height_rear: float  # m
+
+
+def mass_properties(config: Configuration) -> MassProperties:
     mass = config.group("mass")
     geo = config.group("geometry")
-    targets = config.group("targets")
     wheelbase = geo.scalar("wheelbase")
     m_s = mass.scalar("sprung_mass")
     x_s, y_s, z_s = mass.point("sprung_cog")
@@ -56,9 +68,31 @@ def vehicle_params(config: Configuration,
     izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + y_s ** 2)
            + m_uf * ((0.0 - x_g) ** 2 + (t_f / 2.0) ** 2)
            + m_ur * ((-wheelbase - x_g) ** 2 + (t_r / 2.0) ** 2))
+    return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur)
+
+
+def static_wheel_loads(config: Configuration) -> tuple[float, float]:
+    """Static vertical load of one front and one rear wheel, N."""
+    mp = mass_properties(config)
+    wheelbase = config.group("geometry").scalar("wheelbase")
+    a = -mp.cog_x
+    weight = mp.mass * STANDARD_GRAVITY
+    return weight * (wheelbase - a) / wheelbase / 2.0, weight * a / wheelbase / 2.0
+
+
+def vehicle_params(config: Configuration,
+                   suspension: Mapping[str, AxleSuspension] | None = None) -> VehicleParams:
+    mass = config.group("mass")
+    geo = config.group("geometry")
+    targets = config.group("targets")
+    wheelbase = geo.scalar("wheelbase")
+    mp = mass_properties(config)
+    m, x_g, z_g, izz = mp.mass, mp.cog_x, mp.cog_height, mp.yaw_inertia
+    m_uf, m_ur, z_uf, z_ur = (mp.unsprung_front, mp.unsprung_rear, mp.unsprung_height_front,
+                              mp.unsprung_height_rear)
+    t_f, t_r = geo.scalar("track_front"), geo.scalar("track_rear")
     a = -x_g
-    fz_front = m * STANDARD_GRAVITY * (wheelbase - a) / wheelbase / 2.0
-    fz_rear = m * STANDARD_GRAVITY * a / wheelbase / 2.0
+    fz_front, fz_rear = static_wheel_loads(config)
     tire_front, src_tf = _fit(config, "front_tire", fz_front)
     tire_rear, src_tr = _fit(config, "rear_tire", fz_rear)
     mass_src = f"{mass.file} (sprung) + unsprung masses at the wheel centres"

@@ -22,7 +22,7 @@ local pose coordinates (dp, dtheta) per part.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Union
 
 import numpy as np
@@ -43,7 +43,6 @@ from .joints import (
     kernel,
     perpendicular_basis,
     point,
-    unit,
     vector,
 )
 from .model import SIDES, Side, SuspensionInput, mirror, validate
@@ -108,6 +107,7 @@ class Outputs:
     pad_rows: np.ndarray  # constraint rows (2,)
     tracked: tuple[dict[str, int], dict[str, int]]  # hard point -> point marker
     spring: np.ndarray  # energy measure (2,)
+    spring_length: np.ndarray  # primitive (2,)
     damper_length: np.ndarray  # primitive (2,)
     bump_stop: np.ndarray | None  # energy measure (2,)
     rebound_stop: np.ndarray | None
@@ -124,7 +124,7 @@ class Outputs:
 
 @dataclass(frozen=True)
 class _Batch:
-    """All primitives of one kind, with their static scatter indices."""
+    """All primitives of one kind: combined-marker index per slot, parameters."""
 
     kind: PrimKind
     offset: int
@@ -153,15 +153,13 @@ class System:
         self.origins = origins
         self.n_parts = len(part_names)
         self.n_dof = 6 * self.n_parts
-        self._pt_part, self._pt_local = pt_part, pt_local
-        self._vec_part, self._vec_local = vec_part, vec_local
         self._batches = batches
         self.c_g, self.c_e = c_g, c_e
         self.laws = laws
         self.outputs = outputs
         self.n_prim = c_g.shape[1]
         self.n_con = c_g.shape[0]
-        self._build_scatter()
+        self._build_scatter(pt_part, pt_local, vec_part, vec_local)
         x0 = self.primitive_values(self.design_state())
         self.g_design = c_g @ x0
         self.e_design = c_e @ x0
@@ -173,91 +171,120 @@ class System:
             self.origins.copy(), np.repeat(_EYE[None], self.n_parts, axis=0), np.zeros(self.n_con)
         )
 
-    def _markers(self, state: State) -> tuple[np.ndarray, ...]:
+    def _markers(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """World value (M, 3), rotation lever (M, 3) and pose Jacobian
+        (M, 3, 6) of all markers: points first, then vectors."""
         # The ground is an extra part n_parts in the identity pose; its
         # columns are dropped after assembly.
         p = np.vstack((state.p, np.zeros((1, 3))))
         R = np.concatenate((state.R, _EYE[None]))
-        arm = np.einsum("nij,nj->ni", R[self._pt_part], self._pt_local)
-        world = p[self._pt_part] + arm
-        vec = np.einsum("nij,nj->ni", R[self._vec_part], self._vec_local)
-        jp = np.zeros((arm.shape[0], 3, 6))
-        jp[:, :, :3] = _EYE
-        jp[:, :, 3:] = -_skew(arm)
-        jv = np.zeros((vec.shape[0], 3, 6))
-        jv[:, :, 3:] = -_skew(vec)
-        return world, arm, vec, jp, jv
+        lever = np.einsum("nij,nj->ni", R[self._marker_part], self._marker_local)
+        world = lever + self._is_point[:, None] * p[self._marker_part]
+        jac = self._jac_template.copy()
+        jac[:, :, 3:] = -_skew(lever)
+        return world, lever, jac
+
+    def marker_world(self, state: State) -> tuple[np.ndarray, np.ndarray]:
+        """World positions of all point markers (Mp, 3) and vector markers (Mv, 3)."""
+        world = self._markers(state)[0]
+        return world[: self._n_points], world[self._n_points :]
+
+    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
+        x = np.empty(self.n_prim)
+        grads: list[np.ndarray] = []
+        hess: list[np.ndarray] = []
+        for b in self._batches:
+            value, g, h = kernel(b.kind, [world[i] for i in b.slot_idx], b.param)
+            x[b.offset : b.offset + value.shape[0]] = value
+            grads.extend(g)
+            hess.extend(h)
+        return x, grads, hess
 
     def primitive_values(self, state: State) -> np.ndarray:
         """All primitive values x (n_prim,) in ``state``."""
-        world, _, vec, _, _ = self._markers(state)
-        x = np.empty(self.n_prim)
-        for b in self._batches:
-            q = [world[i] if t == "p" else vec[i] for t, i in zip(SLOTS[b.kind], b.slot_idx)]
-            x[b.offset : b.offset + b.param.shape[0]] = kernel(b.kind, q, b.param)[0]
-        return x
+        return self._kernels(self._markers(state)[0])[0]
 
     # -- static scatter indices ------------------------------------------------
-    def _build_scatter(self) -> None:
+    def _build_scatter(self, pt_part: np.ndarray, pt_local: np.ndarray,
+                       vec_part: np.ndarray, vec_local: np.ndarray) -> None:
+        """Combined marker table and the static indices that scatter slot
+        gradients into D and second-order blocks into the tangent."""
+        self._n_points = pt_part.shape[0]
+        self._marker_part = np.concatenate((pt_part, vec_part))
+        self._marker_local = np.concatenate((pt_local, vec_local)).reshape(-1, 3)
+        self._is_point = np.concatenate((np.ones(pt_part.shape[0]), np.zeros(vec_part.shape[0])))
+        self._jac_template = np.zeros((self._marker_part.shape[0], 3, 6))
+        self._jac_template[: self._n_points, :, :3] = _EYE
         nc = 6 * (self.n_parts + 1)
         self._nc = nc
-        d_idx, so_idx, so_prim = [], [], []
-        six = np.arange(6)
-        three = np.arange(3)
+        slot_marker, slot_prim, pair_a, pair_b, pair_prim = [], [], [], [], []
         for b in self._batches:
             n = b.param.shape[0]
             rows = b.offset + np.arange(n)
-            parts = [
-                (self._pt_part if t == "p" else self._vec_part)[i]
-                for t, i in zip(SLOTS[b.kind], b.slot_idx)
-            ]
-            for part in parts:
-                d_idx.append((rows[:, None] * nc + 6 * part[:, None] + six).ravel())
+            first = sum(len(m) for m in slot_marker)
+            base = []
+            for idx in b.slot_idx:
+                base.append(first)
+                first += n
+                slot_marker.append(idx)
+                slot_prim.append(rows)
             for i, j in PAIRS[b.kind]:
-                r = 6 * parts[i][:, None, None] + six[None, :, None]
-                c = 6 * parts[j][:, None, None] + six[None, None, :]
-                so_idx.append((r * nc + c).ravel())
-                so_prim.append(np.repeat(rows, 36))
-            for part in parts:
-                r = 6 * part[:, None, None] + 3 + three[None, :, None]
-                c = 6 * part[:, None, None] + 3 + three[None, None, :]
-                so_idx.append((r * nc + c).ravel())
-                so_prim.append(np.repeat(rows, 9))
-        self._d_idx = np.concatenate(d_idx)
-        self._so_idx = np.concatenate(so_idx)
-        self._so_prim = np.concatenate(so_prim)
+                pair_a.append(base[i] + np.arange(n))
+                pair_b.append(base[j] + np.arange(n))
+                pair_prim.append(rows)
+        self._slot_marker = np.concatenate(slot_marker)
+        self._pair_a = np.concatenate(pair_a) if pair_a else np.zeros(0, dtype=int)
+        self._pair_b = np.concatenate(pair_b) if pair_b else np.zeros(0, dtype=int)
+        parts = self._marker_part[self._slot_marker]
+        prims = np.concatenate(slot_prim)
+        six, three = np.arange(6), np.arange(3)
+        self._d_idx = (prims[:, None] * nc + 6 * parts[:, None] + six).ravel()
+        pa, pb = parts[self._pair_a], parts[self._pair_b]
+        pair_idx = (6 * pa[:, None, None] + six[None, :, None]) * nc + 6 * pb[:, None, None] + six
+        chart_idx = (6 * parts[:, None, None] + 3 + three[None, :, None]) * nc + (
+            6 * parts[:, None, None] + 3 + three
+        )
+        self._so_idx = np.concatenate((pair_idx.ravel(), chart_idx.ravel()))
+        self._so_prim = np.concatenate(
+            (np.repeat(prims[self._pair_a], 36), np.repeat(prims, 9))
+        )
 
     # -- evaluation -------------------------------------------------------------
     def evaluate(self, state: State, load: LoadCase) -> Evaluation:
         """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
-        world, arm, vec, jp, jv = self._markers(state)
-        x = np.empty(self.n_prim)
-        d_vals, so_pair, so_chart = [], [], []
-        for b in self._batches:
-            types = SLOTS[b.kind]
-            q = [world[i] if t == "p" else vec[i] for t, i in zip(types, b.slot_idx)]
-            value, grads, hess = kernel(b.kind, q, b.param)
-            x[b.offset : b.offset + value.shape[0]] = value
-            jac = [jp[i] if t == "p" else jv[i] for t, i in zip(types, b.slot_idx)]
-            lever = [arm[i] if t == "p" else vec[i] for t, i in zip(types, b.slot_idx)]
-            for g, jm in zip(grads, jac):
-                d_vals.append(np.einsum("ni,nij->nj", g, jm).ravel())
-            for (i, j), h in zip(PAIRS[b.kind], hess):
-                so_pair.append(np.einsum("nki,nkl,nlj->nij", jac[i], h, jac[j]).ravel())
-            for g, w in zip(grads, lever):
-                so_chart.append(_chart(g, w).ravel())
+        world, lever, jac = self._markers(state)
+        x, grads, hess = self._kernels(world)
+        g_slot = np.concatenate(grads)
+        j_slot = jac[self._slot_marker]
+        d_vals = np.einsum("si,sij->sj", g_slot, j_slot)
         nc = self._nc
-        d = np.bincount(self._d_idx, np.concatenate(d_vals), minlength=self.n_prim * nc)
+        d = np.bincount(self._d_idx, d_vals.ravel(), minlength=self.n_prim * nc)
         d = d.reshape(self.n_prim, nc)[:, : self.n_dof]
+        if hess:
+            ja = j_slot[self._pair_a]
+            blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)), j_slot[self._pair_b])
+        else:
+            blocks = np.zeros((0, 6, 6))
+        chart = _chart(g_slot, lever[self._slot_marker])
+        so_vals = np.concatenate((blocks.ravel(), chart.ravel()))
         g = self.c_g @ x - self.g_design - self._constraint_offset(load)
+        jacobian, measure_jacobian = self.c_g @ d, self.c_e @ d
         y = self.c_e @ x - self.e_design - self._energy_offset(load)
         energy, d1, d2 = (np.empty_like(y) for _ in range(3))
         for law, idx in self.laws:
             energy[idx], d1[idx], d2[idx] = law.evaluate(y[idx])
-        q_ext, k_ext = self._applied(state, world, vec, load)
+        n_pt = self._n_points
+        q_ext, k_ext = self._applied(state, world[:n_pt], world[n_pt:], load)
         return Evaluation(
-            self, x, d, g, y, energy, d1, d2, q_ext, k_ext, np.concatenate(so_pair + so_chart)
+            self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext, so_vals
         )
+
+    def second_order(self, so_vals: np.ndarray, weights: np.ndarray) -> np.ndarray:
+        """sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof) from the unweighted
+        blocks ``so_vals`` of an evaluation and primitive weights (n_prim,)."""
+        nc = self._nc
+        so = np.bincount(self._so_idx, so_vals * weights[self._so_prim], minlength=nc * nc)
+        return so.reshape(nc, nc)[: self.n_dof, : self.n_dof]
 
     def _constraint_offset(self, load: LoadCase) -> np.ndarray:
         off = np.zeros(self.n_con)
@@ -274,7 +301,7 @@ class System:
 
     def contact_points(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Wheel centres, outward spin axes and contact points, each (2, 3)."""
-        world, _, vec, _, _ = self._markers(state)
+        world, vec = self.marker_world(state)
         return self._contact(world, vec)
 
     def _contact(self, world: np.ndarray, vec: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -321,35 +348,27 @@ class Evaluation:
     """Everything one Newton iteration needs, in state q for loads."""
 
     system: System
-    x: np.ndarray
-    d: np.ndarray  # dx/dq (n_prim, n_dof)
+    x: np.ndarray  # primitive values (n_prim,)
+    jacobian: np.ndarray  # constraint Jacobian J (m, n_dof)
+    measure_jacobian: np.ndarray  # energy-measure Jacobian (n_e, n_dof)
     g: np.ndarray  # constraint residuals (m,)
-    y: np.ndarray  # energy deflections
-    energy: np.ndarray
-    d1: np.ndarray
-    d2: np.ndarray
-    q_ext: np.ndarray
-    k_ext: np.ndarray
-    so_vals: np.ndarray  # unweighted second-order blocks
-
-    @property
-    def jacobian(self) -> np.ndarray:
-        """Constraint Jacobian J (m, n_dof)."""
-        return self.system.c_g @ self.d
+    y: np.ndarray  # energy deflections (n_e,)
+    energy: np.ndarray  # V_e (n_e,), J
+    d1: np.ndarray  # V_e' (n_e,), N or N*m (generalised force of the element)
+    d2: np.ndarray  # V_e'' (n_e,)
+    q_ext: np.ndarray  # applied generalised force (n_dof,)
+    k_ext: np.ndarray  # tangent of -q_ext (n_dof, n_dof)
+    so_vals: np.ndarray  # unweighted second-order blocks of the primitives
 
     def force_residual(self, lam: np.ndarray) -> np.ndarray:
         """grad V - Q + J^T lambda (n_dof,), N and N*m."""
-        e = self.system.c_e @ self.d
-        return e.T @ self.d1 - self.q_ext + self.jacobian.T @ lam
+        return self.measure_jacobian.T @ self.d1 - self.q_ext + self.jacobian.T @ lam
 
     def tangent(self, lam: np.ndarray) -> np.ndarray:
         """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
-        s = self.system
-        e = s.c_e @ self.d
+        s, e = self.system, self.measure_jacobian
         weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
-        so = np.bincount(s._so_idx, self.so_vals * weights[s._so_prim], minlength=s._nc * s._nc)
-        so = so.reshape(s._nc, s._nc)[: s.n_dof, : s.n_dof]
-        return e.T @ (self.d2[:, None] * e) + so + self.k_ext
+        return e.T @ (self.d2[:, None] * e) + s.second_order(self.so_vals, weights) + self.k_ext
 
 
 def _skew(w: np.ndarray) -> np.ndarray:
@@ -450,9 +469,14 @@ class _Builder:
             members = [i for i, p in enumerate(prims) if p.kind is kind]
             if not members:
                 continue
+            # Marker indices into the combined table: points, then vectors.
             slot_idx = tuple(
                 np.array(
-                    [(points if t == "p" else vectors)[prims[i].markers[s]] for i in members],  # type: ignore[index]
+                    [
+                        points[prims[i].markers[s]] if t == "p"  # type: ignore[index]
+                        else len(points) + vectors[prims[i].markers[s]]  # type: ignore[index]
+                        for i in members
+                    ],
                     dtype=int,
                 )
                 for s, t in enumerate(SLOTS[kind])
@@ -471,11 +495,20 @@ class _Builder:
                     out[r, position[self._prims[p]]] += coef
             return out
 
+        # One vectorised law for all linear elements (gravity, rates, rack).
+        linear = [(law, idx) for law, idx in self.laws if isinstance(law, LinearLaw)]
+        laws = [(law, idx) for law, idx in self.laws if not isinstance(law, LinearLaw)]
+        if linear:
+            merged = LinearLaw(
+                np.concatenate([np.asarray(law.stiffness) for law, _ in linear]),
+                np.concatenate([np.asarray(law.force) for law, _ in linear]),
+            )
+            laws.append((merged, np.concatenate([idx for _, idx in linear])))
         prim_position = {p: int(position[i]) for i, p in enumerate(prims)}
         outputs = outputs_factory(index, points, vectors, prim_position)
         return System(
             names, origins, pt_part, pt_local, vec_part, vec_local, batches,
-            matrix(self.constraints), matrix(self.measures), self.laws, outputs,
+            matrix(self.constraints), matrix(self.measures), laws, outputs,
         )
 
 
@@ -487,6 +520,7 @@ class _OutputsFactory:
         self.pad_rows: dict[Side, int] = {}
         self.tracked: dict[Side, dict[str, PointRef]] = {"left": {}, "right": {}}
         self.spring: dict[Side, int] = {}
+        self.spring_length: dict[Side, Primitive] = {}
         self.damper: dict[Side, Primitive] = {}
         self.bump: dict[Side, int] = {}
         self.rebound: dict[Side, int] = {}
@@ -506,7 +540,6 @@ class _OutputsFactory:
         vectors: Mapping[VectorRef, int],
         prim_pos: Mapping[Primitive, int],
     ) -> Outputs:
-
         def pair(d: Mapping[Side, int]) -> np.ndarray:
             return np.array([d[s] for s in SIDES], dtype=int)
 
@@ -519,6 +552,7 @@ class _OutputsFactory:
             pad_rows=pair(self.pad_rows),
             tracked=tuple({k: points[v] for k, v in self.tracked[s].items()} for s in SIDES),  # type: ignore[arg-type]
             spring=pair(self.spring),
+            spring_length=np.array([prim_pos[self.spring_length[s]] for s in SIDES], dtype=int),
             damper_length=np.array([prim_pos[self.damper[s]] for s in SIDES], dtype=int),
             bump_stop=pair(self.bump) if self.bump else None,
             rebound_stop=pair(self.rebound) if self.rebound else None,
@@ -640,10 +674,11 @@ class _Assembly:
         for prim in joint_constraints("translational", GROUND, RACK, centre, y):
             self.b.constrain(prim)
         travel = Primitive(PrimKind.COMP, (point(RACK, centre), point(GROUND, centre)), (0.0, 1.0, 0.0))
-        if steering.rack_stiffness is None:
+        compliance = steering.rack_compliance()
+        if compliance == 0.0:
             self.out.rack_row = self.b.constrain(travel)
         else:
-            law = LinearLaw(np.array([steering.rack_stiffness]), np.zeros(1))
+            law = LinearLaw(np.array([1.0 / compliance]), np.zeros(1))
             self.out.rack_measure = int(self.b.energy([travel], law)[0])
             self.out.elastic.append(self.out.rack_measure)
         # A rack ahead of the wheel centre steers left when moving left.
@@ -702,10 +737,10 @@ class _Assembly:
         inp, b = self.inp, self.b
         upright = self.resolve(self.topo.wheel_part, side)
         centre = self.hp("wheel_centre", side)
-        s = 1.0 if side == "left" else -1.0
         toe, camber = inp.toe, inp.camber
         # Outward spin axis from ISO toe (+ = toe-in) and camber (+ = top out).
-        axis = np.array([np.sin(toe) * np.cos(camber), s * np.cos(toe) * np.cos(camber), -np.sin(camber)])
+        left = np.array([np.sin(toe) * np.cos(camber), np.cos(toe) * np.cos(camber), -np.sin(camber)])
+        axis = mirror(left, side)
         pc, va = point(upright, centre), vector(upright, axis)
         row = b.constrain(Primitive(PrimKind.CPZ, (pc, va), (inp.tire_radius,)))
         self.out.pad_rows[side] = row
@@ -719,6 +754,7 @@ class _Assembly:
         length = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.resolve(sp.part, side), lower)))
         design = float(np.linalg.norm(upper - lower))
         self.out.spring[side] = int(b.energy([length], spring_law(inp.spring, design))[0])
+        self.out.spring_length[side] = length
         self.out.elastic.append(self.out.spring[side])
         dp = topo.damper
         upper, lower = self.hp(dp.upper, side), self.hp(dp.lower, side)

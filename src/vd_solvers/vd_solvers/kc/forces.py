@@ -67,8 +67,7 @@ class CurveLaw:
     size: int = 1
 
     def evaluate(self, delta: np.ndarray) -> Triple:
-        c = self.curve
-        return c.integral(delta), c.value(delta), c.slope(delta)
+        return self.curve.evaluate(delta)
 
 
 @dataclass(frozen=True)
@@ -131,6 +130,8 @@ class StopLaw:
 
     The stop engages when direction*delta exceeds ``clearance``; its own
     compression s = direction*delta - clearance carries the force curve(s).
+    A curve that starts beyond s = 0 is joined to (0, 0) by a straight line,
+    so the force rises from zero at contact instead of being extrapolated.
     """
 
     curve: Curve
@@ -138,13 +139,19 @@ class StopLaw:
     direction: float
     size: int = 1
 
+    def __post_init__(self) -> None:
+        c = self.curve
+        if c.x[0] > 0.0:
+            object.__setattr__(self, "curve", Curve(np.r_[0.0, c.x], np.r_[0.0, c.y]))
+
     def evaluate(self, delta: np.ndarray) -> Triple:
         s = self.direction * delta - self.clearance
         engaged = s > 0.0
-        s = np.where(engaged, s, 0.0)
-        work = np.where(engaged, self.curve.integral(s), 0.0)
-        force = np.where(engaged, self.curve.value(s), 0.0)
-        slope = np.where(engaged, self.curve.slope(s), 0.0)
+        if not np.any(engaged):
+            zero = np.zeros_like(delta)
+            return zero, zero, zero
+        work, force, slope = self.curve.evaluate(np.where(engaged, s, 0.0))
+        work, force, slope = (np.where(engaged, v, 0.0) for v in (work, force, slope))
         return work, self.direction * force, slope
 
 

@@ -89,6 +89,15 @@ class Curve:
         """Integral of y from 0 to ``u``."""
         return self._raw_integral(np.asarray(u, dtype=float)) - self._origin
 
+    def evaluate(self, u: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(integral from 0, value, slope) at ``u`` with one segment search."""
+        u = np.asarray(u, dtype=float)
+        i = self._segment(u)
+        du = u - self.x[i]
+        value = self.y[i] + self._slope[i] * du
+        work = self._cumulative[i] + self.y[i] * du + 0.5 * self._slope[i] * du * du
+        return work - self._origin, value, self._slope[i]
+
 
 Stiffness = Union[float, Curve]
 
@@ -158,11 +167,27 @@ class StabilizerSpec:
 
 @dataclass(frozen=True)
 class SteeringSpec:
-    """Rack and pinion; the tie-rod inner points sit on the rack."""
+    """Rack and pinion; the tie-rod inner points sit on the rack.
+
+    The rack follows the steering-wheel command through the housing mount
+    (``rack_stiffness``) in series with the column twist
+    (``column_stiffness``, seen at the rack as column_stiffness/rack_ratio^2);
+    both None: the rack is held rigidly.
+    """
 
     rack_ratio: float  # m of rack travel per rad of steering-wheel angle
     rack_travel_limit: float  # m, each way from centre
     rack_stiffness: float | None = None  # N/m rack to housing; None = rigid
+    column_stiffness: float | None = None  # N*m/rad steering column; None = rigid
+
+    def rack_compliance(self) -> float:
+        """m/N of rack travel per rack force with the steering wheel held."""
+        compliance = 0.0
+        if self.rack_stiffness is not None:
+            compliance += 1.0 / self.rack_stiffness
+        if self.column_stiffness is not None:
+            compliance += self.rack_ratio**2 / self.column_stiffness
+        return compliance
 
 
 @dataclass(frozen=True)
@@ -233,12 +258,14 @@ def validate(inp: SuspensionInput) -> None:
         _positive(inp.steering.rack_ratio, "steering rack_ratio")
         _positive(inp.steering.rack_travel_limit, "steering rack_travel_limit")
         _positive(inp.steering.rack_stiffness, "steering rack_stiffness")
+        _positive(inp.steering.column_stiffness, "steering column_stiffness")
     for name, bushing in inp.bushings.items():
         if len(bushing.stiffness) != 6:
             raise SolverError(f"bushing {name!r}: six stiffnesses (x, y, z, rx, ry, rz) needed")
         for k in bushing.stiffness:
-            if not isinstance(k, Curve):
-                _positive(float(k), f"bushing {name!r} stiffness")
+            # Zero is allowed: a bushing may be free about its own axis.
+            if not isinstance(k, Curve) and not (np.isfinite(k) and k >= 0.0):
+                raise SolverError(f"bushing {name!r}: stiffness must be >= 0, got {k!r}")
     for name, mass in inp.masses.items():
         if not (np.isfinite(mass) and mass >= 0.0):
             raise SolverError(f"mass {name!r} must be >= 0 kg, got {mass!r}")

@@ -34,7 +34,9 @@ from .assembly import Evaluation, LoadCase, State, System
 
 CONSTRAINT_TOL = 1e-9  # m; angular rows (dot products) in rad, i.e. m at 1 m lever
 FORCE_TOL = 1e-6  # N and N*m, absolute ...
-FORCE_TOL_RELATIVE = 1e-13  # ... or this fraction of the largest force term if larger
+# ... or, if larger, the force of the stiffest element at a position error of
+# this size (~50 ulp of 1 m): the round-off floor of very stiff bushings.
+ROUNDOFF_LENGTH = 1e-14  # m
 MAX_NEWTON_ITERATIONS = 30
 MAX_SUBDIVISIONS = 8  # halvings of one event step (1/256 of the step)
 MAX_TRANSLATION_STEP = 0.05  # m per Newton iteration and part
@@ -95,12 +97,10 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
         residual = ev.force_residual(state.lam)
         c_res = float(np.max(np.abs(ev.g), initial=0.0))
         f_res = float(np.max(np.abs(residual), initial=0.0))
-        scale = max(
-            float(np.max(np.abs(ev.q_ext), initial=0.0)),
-            float(np.max(np.abs(residual - ev.q_ext), initial=0.0)),
-            float(np.max(np.abs(state.lam), initial=0.0)),
-        )
-        if c_res <= CONSTRAINT_TOL and f_res <= max(FORCE_TOL, FORCE_TOL_RELATIVE * scale):
+        stiffest = float(np.max(np.abs(ev.d2), initial=0.0)) * float(
+            np.max(np.abs(ev.measure_jacobian), initial=0.0)
+        ) ** 2
+        if c_res <= CONSTRAINT_TOL and f_res <= max(FORCE_TOL, ROUNDOFF_LENGTH * stiffest):
             return state, ev, Convergence(iteration, c_res, f_res)
         if iteration == MAX_NEWTON_ITERATIONS:
             break
@@ -138,6 +138,17 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
     )
 
 
+def solve_static(
+    system: System, load: LoadCase, describe: str, start: State | None = None
+) -> tuple[State, Evaluation, Convergence]:
+    """Equilibrium for ``load`` from ``start`` (default: the design pose);
+    SolverError prefixed with ``describe`` when there is none."""
+    try:
+        return newton(system, system.design_state() if start is None else start, load)
+    except _StepFailure as failure:
+        raise SolverError(f"{describe}: {failure}") from None
+
+
 @dataclass(frozen=True)
 class Solution:
     """Converged states of an event, in step order, with their evaluations."""
@@ -163,37 +174,56 @@ def solve_path(
     evals: list[Evaluation | None] = [None] * n
     conv: list[Convergence | None] = [None] * n
     design = LoadCase()
-    state, _, _ = _advance(system, system.design_state(), design, design, 0, start, describe)
-    previous = design
-    for i in range(start, n):
-        state, evals[i], conv[i] = _advance(system, state, previous, cases[i], 0, i, describe)
-        states[i], previous = state, cases[i]
-    state, previous = states[start], cases[start]  # type: ignore[assignment]
-    for i in range(start - 1, -1, -1):
-        state, evals[i], conv[i] = _advance(system, state, previous, cases[i], 0, i, describe)
-        states[i], previous = state, cases[i]
+    state, _, _ = _advance(system, system.design_state(), None, design, design, 0, start, describe)
+    for walk in (range(start, n), range(start - 1, -1, -1)):
+        if walk.start == start:
+            previous, before = design, None
+        else:
+            state, previous, before = states[start], cases[start], None  # type: ignore[assignment]
+        for i in walk:
+            # Events step uniformly, so the last increment predicts the next.
+            guess = _extrapolate(before, state) if before is not None else None
+            new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i, describe)
+            before, state, previous = state, new, cases[i]
+            states[i] = state
     return Solution(tuple(states), tuple(evals), tuple(conv))  # type: ignore[arg-type]
+
+
+def _extrapolate(before: State, state: State) -> State:
+    """Linear predictor: repeat the increment from ``before`` to ``state``."""
+    turn = np.einsum("nij,nkj->nik", state.R, before.R)  # world-frame increments
+    # Project back onto rotations: repeated products would otherwise grow
+    # round-off away from orthonormality (a Newton step that converges at
+    # once keeps its guess).
+    u, _, vt = np.linalg.svd(np.einsum("nij,njk->nik", turn, state.R))
+    return State(2.0 * state.p - before.p, u @ vt, 2.0 * state.lam - before.lam)
 
 
 def _advance(
     system: System,
     state: State,
+    guess: State | None,
     previous: LoadCase,
     target: LoadCase,
     depth: int,
     step: int,
     describe: Callable[[int], str],
 ) -> tuple[State, Evaluation, Convergence]:
-    """Solve ``target`` from the solution ``state`` of ``previous``, halving
-    the load step on failure."""
-    try:
-        new, ev, c = newton(system, state, target)
-        if _rotation_angle(new.R, state.R) > MAX_STEP_ROTATION:
-            raise _StepFailure("a part rotated too far in one step (possible branch jump)")
-        return new, ev, c
-    except _StepFailure as failure:
-        if depth >= MAX_SUBDIVISIONS:
-            raise SolverError(f"{describe(step)}: {failure}") from None
-        middle = previous.blend(target, 0.5)
-        half, _, _ = _advance(system, state, previous, middle, depth + 1, step, describe)
-        return _advance(system, half, middle, target, depth + 1, step, describe)
+    """Solve ``target`` from the solution ``state`` of ``previous`` (first
+    from the predicted ``guess`` if any), halving the load step on failure."""
+    for start in (guess, state):
+        if start is None:
+            continue
+        try:
+            new, ev, c = newton(system, start, target)
+        except _StepFailure as failure:
+            reason = str(failure)
+            continue
+        if _rotation_angle(new.R, state.R) <= MAX_STEP_ROTATION:
+            return new, ev, c
+        reason = "a part rotated too far in one step (possible branch jump)"
+    if depth >= MAX_SUBDIVISIONS:
+        raise SolverError(f"{describe(step)}: {reason}")
+    middle = previous.blend(target, 0.5)
+    half, _, _ = _advance(system, state, None, previous, middle, depth + 1, step, describe)
+    return _advance(system, half, None, middle, target, depth + 1, step, describe)

@@ -1,0 +1,34 @@
+"""``ros2 run vd_solvers kc_solver``: the rigid kinematics & compliance solver.
+
+Action ``/vd/kc/run_event`` (vd_interfaces/RunEvent, goal.axle front|rear);
+results on ``/vd/kc/result`` and per step on ``/vd/kc/state`` (see solver_node).
+"""
+from __future__ import annotations
+
+from vd_data_server.model import Configuration
+from vd_solvers.errors import SolverError
+from vd_solvers.kc.from_config import run_kc_event
+from vd_solvers.results import EventOutcome
+from vd_solvers.solver_node import SolverNode, spin_node
+
+FAMILY = "kc"
+
+
+def _run(config: Configuration, goal) -> EventOutcome:
+    if goal.fidelity not in ("", "rigid"):
+        raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
+                          f"'{goal.fidelity}' is not available (the K&C solver is rigid)")
+    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters))
+
+
+class KCSolver(SolverNode):
+    def __init__(self, **kwargs) -> None:
+        super().__init__("kc_solver", FAMILY, _run, **kwargs)
+
+
+def main(args=None) -> None:
+    spin_node(KCSolver, args)
+
+
+if __name__ == "__main__":
+    main()
