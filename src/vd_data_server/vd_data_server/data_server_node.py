@@ -39,7 +39,8 @@ class DataServer(Node):
         self.declare_parameter("allow_edits", False, ParameterDescriptor(
             description="accept /vd/set_override requests"))
         self.declare_parameter("watch_period", 0.5, ParameterDescriptor(
-            description="seconds between checks of the data files (0: do not watch)"))
+            description="seconds between checks of the data files (0: do not watch)",
+            read_only=True))
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.service = DataService(self.get_parameter("master_file").value)
         self.config_pub = self.create_publisher(ConfigurationMsg, "/vd/configuration",
@@ -55,8 +56,8 @@ class DataServer(Node):
 
     def _on_set_parameters(self, params) -> SetParametersResult:
         for p in params:
-            if p.name == "watch_period" and not float(p.value) >= 0.0:
-                return SetParametersResult(successful=False, reason="watch_period must be >= 0")
+            if p.name == "allow_edits" and not isinstance(p.value, bool):
+                return SetParametersResult(successful=False, reason="allow_edits is a bool")
         return SetParametersResult(successful=True)
 
     def _poll(self) -> None:

@@ -12,6 +12,7 @@ Conversion and dimension checks use the ``pint`` library.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from functools import lru_cache
 
@@ -20,6 +21,8 @@ import pint
 from .errors import DataError
 
 UREG = pint.UnitRegistry()
+#: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
+_NUMBER_UNIT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$")
 
 #: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
 SI_UNITS: Mapping[str, str] = {
@@ -171,7 +174,8 @@ def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float
 
 def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> tuple[float, str]:
     """Split ``"-1.5 deg"`` into (number, unit); a bare number only for dimensionless."""
-    parts = text.strip().split(None, 1)
+    match = _NUMBER_UNIT.match(text.strip())
+    parts = [match.group(1), match.group(2)] if match and match.group(2) else text.strip().split(None, 1)
     try:
         number = float(parts[0]) if parts else float("nan")
     except ValueError:

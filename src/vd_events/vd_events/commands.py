@@ -57,6 +57,10 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     launch.add_argument("--master", help="master file")
     HANDLERS["launch"] = cmd_launch
 
+    bench = sub.add_parser("bench", help="the benchmark suite")
+    bench.add_argument("--json", action="store_true")
+    HANDLERS["bench"] = cmd_bench
+
 
 def _study(master: str | None):
     from vd_data_server.paths import default_master
@@ -76,11 +80,21 @@ def _progress_printer(enabled: bool):
     return show
 
 
+def default_model(event: str) -> str:
+    """The model ``vd run EVENT`` uses without --model: two_track where it applies,
+    else the first model that runs the event."""
+    from .runner import MODELS, events_for
+
+    if event in events_for("two_track"):
+        return "two_track"
+    return next((m for m in MODELS if event in events_for(m)), "two_track")
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     from .runner import run_distributed, run_embedded, validate
 
     master, study = _study(args.master)
-    model = args.model or "two_track"
+    model = args.model or default_model(args.event)
     request = RunRequest(event=args.event, configuration=args.config or
                          study.configuration_names[0], model=model,
                          fidelity=args.fidelity or "rigid", axle=args.axle or "",
@@ -157,6 +171,17 @@ def cmd_launch(args: argparse.Namespace) -> int:
     from .launch import launch
 
     return launch(Path(args.master) if args.master else None, distributed=args.distributed)
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    from .bench import print_bench, run_bench
+
+    results = run_bench()
+    if args.json:
+        print(json.dumps(results, indent=2))
+    else:
+        print_bench(results)
+    return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:  # pragma: no cover - see cli.main

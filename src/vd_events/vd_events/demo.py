@@ -16,6 +16,24 @@ from pathlib import Path
 from rich.console import Console
 
 OUT = Path("out/demo")
+#: metric, format, scale of the one-line summaries
+HEADLINE = (
+    ("understeer_gradient_deg_per_g", "K_us {:.3f} deg/g", 1.0),
+    ("characteristic_speed_kmh", "v_char {:.0f} km/h", 1.0),
+    ("max_lateral_acceleration_g", "a_y,max {:.3f} g", 1.0),
+    ("roll_gradient", "roll {:.2f} deg/g", 1.0),
+    ("natural_frequency", "f_n {:.2f} Hz", 1.0),
+    ("bump_steer", "bump steer {:.1f} deg/m", 1.0),
+    ("camber_gain", "camber gain {:.1f} deg/m", 1.0),
+    ("wheel_rate", "wheel rate {:.1f} N/mm", 1e-3),
+    ("roll_centre_height_kinematic", "RC {:.0f} mm", 1e3),
+    ("roll_stiffness", "roll stiffness {:.0f} N*m/deg", 1.0),
+    ("lateral_compliance_steer", "lat. compl. steer {:.3f} deg/kN", 1.0),
+    ("lateral_compliance_camber", "camber {:.3f} deg/kN", 1.0),
+    ("anti_squat", "anti-squat {:.0f} %", 1.0),
+    ("steering_ratio", "steering ratio {:.1f}", 1.0),
+    ("ackermann", "Ackermann {:.0f} %", 1.0),
+)
 
 
 def _plan_path() -> Path:
@@ -38,22 +56,18 @@ def main() -> int:
     print_status(load_study(master), console)
     if OUT.exists():
         shutil.rmtree(OUT)
-    console.rule("vd demo: bicycle and two-track models through the ROS graph")
+    console.rule("vd demo: K&C, bicycle and two-track models through the ROS graph")
     plan = load_plan(_plan_path())
     summary = run_plan(plan, OUT / "bags", OUT)
     for run in summary["runs"]:
         m = run["metrics"]
         parts = []
-        for key, fmt in (("understeer_gradient_deg_per_g", "K_us {:.3f} deg/g"),
-                         ("characteristic_speed_kmh", "v_char {:.0f} km/h"),
-                         ("max_lateral_acceleration_g", "a_y,max {:.3f} g"),
-                         ("roll_gradient", "roll {:.2f} deg/g"),
-                         ("natural_frequency", "f_n {:.2f} Hz")):
+        for key, fmt, scale in HEADLINE:
             if key in m:
-                parts.append(fmt.format(m[key]["value"]))
+                parts.append(fmt.format(m[key]["value"] * scale))
         status = run["error"] or ", ".join(parts)
-        console.print(f"  {run['configuration']:<11} {run['event']:<22} {run['model']:<10} "
-                      f"{status}")
+        console.print(f"  {run['configuration']:<11} {run['event']:<22} "
+                      f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
     console.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
     console.print(f"report: {summary['report']}")
     console.print(f"done in {time.perf_counter() - t0:.1f} s")

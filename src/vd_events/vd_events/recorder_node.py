@@ -14,6 +14,7 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import UInt32
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
 
 from vd_events.bag import BagWriter
@@ -21,9 +22,11 @@ from vd_events.bag import BagWriter
 _LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
                       reliability=ReliabilityPolicy.RELIABLE,
                       durability=DurabilityPolicy.TRANSIENT_LOCAL)
-_STREAM = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=5000,
+_STREAM = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
                      reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.VOLATILE)
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+#: where the recorder says how many event results it has written completely (latched)
+RECORDED_TOPIC = "/vd/recorder/recorded"
 
 #: topic -> (type, QoS) recorded by default
 TOPICS = {
@@ -35,6 +38,21 @@ TOPICS = {
     "/vd/kc/result": (EventResult, _STREAM),
     "/vd/kc/state": (Sample, _STREAM),
 }
+
+
+_LATCHED_ONE = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1,
+                          reliability=ReliabilityPolicy.RELIABLE,
+                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+def _stamp_ns(msg) -> int | None:
+    """The stamp of a result, sample or provenance message (None for data topics)."""
+    stamp = getattr(msg, "stamp", None)
+    if stamp is None and hasattr(msg, "header"):
+        stamp = msg.header.stamp
+    if stamp is None or isinstance(msg, (Configuration, DataStatus)):
+        return None
+    return stamp.sec * 1_000_000_000 + stamp.nanosec
 
 
 class Recorder(Node):
@@ -51,6 +69,11 @@ class Recorder(Node):
         self.only = set(wanted)
         self.writer = BagWriter(path, {"vd.recorder": "vd_events recorder"})
         self.counts: dict[str, int] = {topic: 0 for topic in TOPICS}
+        self.start = self.get_clock().now().nanoseconds
+        self._samples: dict[tuple[str, str, str], int] = {}
+        self._pending: list[tuple[tuple[str, str, str], int]] = []
+        self.complete = 0  # results written together with all their step samples
+        self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
         for topic, (msg_type, qos) in TOPICS.items():
             self.create_subscription(msg_type, topic, self._callback(topic), qos)
         self.get_logger().info(f"recording to {path}")
@@ -64,6 +87,9 @@ class Recorder(Node):
                 name = msg.name
             if self.only and name is not None and name not in self.only:
                 return
+            stamp = _stamp_ns(msg)
+            if stamp is not None and stamp < self.start:
+                return  # kept by a solver from an earlier run: not this recording's
             if topic == "/vd/provenance":
                 for key in ("configuration", "data_hash", "model", "fidelity", "event",
                             "master_file", "software_version"):
@@ -73,7 +99,22 @@ class Recorder(Node):
                     for g in msg.groups for k in g.modified_keys) or "none")
             self.writer.write(topic, msg, time.time_ns())
             self.counts[topic] += 1
+            if topic.endswith("/state"):
+                key = (msg.configuration, msg.event, msg.model)
+                self._samples[key] = self._samples.get(key, 0) + 1
+            elif topic.endswith("/result"):
+                steps = max((len(c.values) for c in msg.channels), default=0)
+                self._pending.append(((msg.configuration, msg.event, msg.model), steps))
+            self._publish_complete()
         return record
+
+    def _publish_complete(self) -> None:
+        """Count the results whose every step sample is written too, and say so."""
+        done = [p for p in self._pending if self._samples.get(p[0], 0) >= p[1]]
+        if done:
+            self._pending = [p for p in self._pending if p not in done]
+            self.complete += len(done)
+            self.recorded_pub.publish(UInt32(data=self.complete))
 
     def stop(self):
         """Close the bag (renaming it to its final name) and return its path."""

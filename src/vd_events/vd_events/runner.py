@@ -127,8 +127,9 @@ def validate(study: Study, request: RunRequest) -> None:
 
 
 def _ros_args() -> list[str]:
-    """Node log level for in-process runs: warnings only unless VD_VERBOSE is set."""
-    return [] if os.environ.get("VD_VERBOSE") else ["--ros-args", "--log-level", "warn"]
+    """Node log level for in-process runs: the CLI reports errors itself, so the nodes
+    stay quiet unless VD_VERBOSE is set."""
+    return [] if os.environ.get("VD_VERBOSE") else ["--ros-args", "--log-level", "fatal"]
 
 
 def _private_domain() -> int:
@@ -249,10 +250,9 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 outcome = outcome_from_msg(result)
                 bag = None
                 if recorder is not None:
-                    topic = f"/vd/{request.family}/result"
-                    state = f"/vd/{request.family}/state"
-                    _spin_until(executor, lambda: recorder.counts[topic] >= 1 and
-                                recorder.counts[state] >= outcome.n_steps, 10.0)
+                    if not _spin_until(executor, lambda: recorder.complete >= 1, 10.0):
+                        raise RunError(f"{request.label}: the recorder did not record the "
+                                       "result")
                     bag = recorder.stop()
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={"run": time.perf_counter() - t0}))
@@ -290,9 +290,12 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
 
+    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from std_msgs.msg import UInt32
     from vd_solvers.conversions import outcome_from_msg
 
     from .bag import read_bag
+    from .recorder_node import RECORDED_TOPIC
 
     domain = _private_domain()
     env = dict(os.environ, ROS_DOMAIN_ID=str(domain),
@@ -316,10 +319,19 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     node = Node("event_runner", context=context)
     executor.add_node(node)
     client = _Client(node)
+    recorded = [0]  # results the current run's recorder says it has written
+
+    def on_recorded(msg) -> None:
+        recorded[0] = msg.data
+
+    node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, QoSProfile(
+        depth=1, reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL))
     outcomes: list[RunOutcome] = []
     try:
         for request in requests:
             recorder = None
+            recorded[0] = 0
             if request.bag is not None:
                 recorder = subprocess.Popen(
                     [_executable("vd_events", "recorder"), "--ros-args", "-p",
@@ -340,7 +352,8 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                 outcome = outcome_from_msg(result)
                 bag = None
                 if recorder is not None:
-                    time.sleep(0.5)
+                    if not _spin_until(executor, lambda: recorded[0] >= 1, 10.0):
+                        raise RunError(f"{request.label}: the recorder did not record the result")
                     recorder.send_signal(signal.SIGINT)
                     recorder.wait(timeout=20)
                     recorder = None

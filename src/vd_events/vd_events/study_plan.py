@@ -25,7 +25,7 @@ from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
 from vd_data_server.yamlio import load_file
 
-from .bag import BagError, check_bag_path
+from .bag import BagError
 from .runner import RunError, RunRequest, run_distributed, run_embedded, validate
 
 RUN_KEYS = ("event", "models", "configurations", "parameters", "overrides", "axle")
@@ -100,7 +100,6 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         if request.bag in seen:
             raise DataError(f"two runs write the same bag {request.bag}", file=str(plan.path))
         seen.add(request.bag)
-    check_bag_path(out / "report.html") if (out / "report.html").exists() else None
     runner = run_distributed if distributed else run_embedded
     results = runner(plan.master, requests, progress)
     done = [r for r in results if r.error is None]
@@ -110,7 +109,7 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         "plan": str(plan.path), "master": str(plan.master), "report": str(report),
         "bags": str(bags), "errors": errors,
         "runs": [{"event": r.request.event, "configuration": r.request.configuration,
-                  "model": r.request.model, "bag": str(r.bag) if r.bag else None,
+                  "model": r.request.model, "axle": r.request.axle, "bag": str(r.bag) if r.bag else None,
                   "error": r.error,
                   "metrics": {k: {"value": m.value, "unit": m.unit}
                               for k, m in (r.outcome.metrics.items() if r.outcome else [])}}

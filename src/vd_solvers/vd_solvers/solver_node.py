@@ -41,12 +41,15 @@ RunFn = Callable[[Configuration, RunEvent.Goal], EventOutcome]
 LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
                      reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# Results are kept for late joiners (a recorder or a solver started after the run):
+# discovery between two processes takes a moment, and a result must not be lost in it.
+# Subscribers that only want new results compare the stamps with their own start.
 RESULTS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=100,
                      reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.VOLATILE)
-SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=5000,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
                      reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.VOLATILE)
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 class SolverNode(Node):
@@ -55,7 +58,6 @@ class SolverNode(Node):
         self.family = family
         self._run = run
         self.configurations: dict[str, Configuration] = {}
-        self._set_changes: list = []
         self.status: DataStatus | None = None
         group = ReentrantCallbackGroup()
         self.create_subscription(ConfigurationMsg, "/vd/configuration", self._on_configuration,
@@ -101,7 +103,6 @@ class SolverNode(Node):
             feedback.progress, feedback.stage = 0.1, "solving"
             goal_handle.publish_feedback(feedback)
             outcome = self._run(config, goal)
-            self._set_changes = set_changes(base, config)
             if goal_handle.is_cancel_requested:
                 goal_handle.canceled()
                 result.success, result.message = False, f"{label}: cancelled"
@@ -118,7 +119,7 @@ class SolverNode(Node):
             goal_handle.abort()
             result.success, result.message = False, message
             return result
-        self.publish_outcome(outcome, config, goal)
+        self.publish_outcome(outcome, config, set_changes(base, config))
         feedback.progress, feedback.stage = 1.0, "done"
         goal_handle.publish_feedback(feedback)
         goal_handle.succeed()
@@ -127,14 +128,16 @@ class SolverNode(Node):
         result.result = outcome_to_msg(outcome, self.get_clock().now().to_msg())
         return result
 
-    def publish_outcome(self, outcome: EventOutcome, config: Configuration, goal) -> None:
+    def publish_outcome(self, outcome: EventOutcome, config: Configuration,
+                        changes: list) -> None:
+        """Publish provenance (with this goal's ``--set`` changes), samples and result."""
         stamp = self.get_clock().now().to_msg()
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
                                 model=outcome.model, fidelity=outcome.fidelity,
                                 event=outcome.event, software_version=__version__)
         if self.status is not None:
-            changed = {g.group: g for g in self._set_changes}
+            changed = {g.group: g for g in changes}
             provenance.groups = [changed.get(s.group, s) for s in self.status.status
                                  if s.configuration == config.name]
         self.provenance_pub.publish(provenance)

@@ -149,6 +149,8 @@ def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
         "slip_angle_rear": Channel("rad", diagram.slip_angle_rear),
         "slip_angle_difference": Channel("rad", diagram.slip_angle_difference),
         "roll_angle": Channel("rad", diagram.roll_angle),
+        # kinematic steady-state sideslip at the COG, as in the bicycle model
+        "sideslip": Channel("rad", p.cog_to_rear_axle / radius - diagram.slip_angle_rear),
         "lateral_force_front_axle": Channel("N", diagram.axle_force_front),
         "lateral_force_rear_axle": Channel("N", diagram.axle_force_rear),
     }

@@ -53,21 +53,20 @@ class MassProperties:
 
 def mass_properties(config: Configuration) -> MassProperties:
     mass = config.group("mass")
-    geo = config.group("geometry")
-    wheelbase = geo.scalar("wheelbase")
     m_s = mass.scalar("sprung_mass")
     x_s, y_s, z_s = mass.point("sprung_cog")
     m_uf = 2.0 * mass.scalar("unsprung_mass_front")
     m_ur = 2.0 * mass.scalar("unsprung_mass_rear")
-    z_uf = config.group("front_hardpoints").point("points.wheel_centre")[2]
-    z_ur = config.group("rear_hardpoints").point("points.wheel_centre")[2]
+    x_uf, y_uf, z_uf = config.group("front_hardpoints").point("points.wheel_centre")
+    x_ur, y_ur, z_ur = config.group("rear_hardpoints").point("points.wheel_centre")
     m = m_s + m_uf + m_ur
-    x_g = (m_s * x_s + m_uf * 0.0 + m_ur * -wheelbase) / m
+    # unsprung masses at the wheel centres (left and right: their mean y is zero)
+    x_g = (m_s * x_s + m_uf * x_uf + m_ur * x_ur) / m
+    y_g = m_s * y_s / m
     z_g = (m_s * z_s + m_uf * z_uf + m_ur * z_ur) / m
-    t_f, t_r = geo.scalar("track_front"), geo.scalar("track_rear")
-    izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + y_s ** 2)
-           + m_uf * ((0.0 - x_g) ** 2 + (t_f / 2.0) ** 2)
-           + m_ur * ((-wheelbase - x_g) ** 2 + (t_r / 2.0) ** 2))
+    izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + (y_s - y_g) ** 2)
+           + m_uf * ((x_uf - x_g) ** 2 + y_uf ** 2 + y_g ** 2)
+           + m_ur * ((x_ur - x_g) ** 2 + y_ur ** 2 + y_g ** 2))
     return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur)
 
 

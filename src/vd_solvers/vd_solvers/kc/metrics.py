@@ -180,14 +180,23 @@ def _fit_slope(x: np.ndarray, y: np.ndarray) -> float:
 
 
 def slope_at(x: np.ndarray, y: np.ndarray, x0: float, half_width: float) -> float:
-    """dy/dx at x0 from the points within ``half_width`` of x0."""
-    mask = np.abs(x - x0) <= half_width + 1e-12
+    """dy/dx at x0 from the points within ``half_width`` of x0 (at least the
+    three nearest, so a coarse sweep still gives a slope, over a wider window)."""
+    distance = np.abs(x - x0)
+    mask = distance <= half_width + 1e-12
+    if np.count_nonzero(mask) < 3:
+        mask = distance <= np.sort(distance)[min(2, distance.size - 1)] + 1e-12
     return _fit_slope(x[mask] - x0, y[mask])
 
 
 def _one_sided(x: np.ndarray, y: np.ndarray, sign: float, half_width: float) -> float:
-    """Slope at 0 from the points with sign*x in [0, half_width]."""
-    mask = (sign * x >= -1e-12) & (sign * x <= half_width + 1e-12)
+    """Slope at 0 from the points with sign*x in [0, half_width] (at least the two
+    nearest on that side)."""
+    side = sign * x >= -1e-12
+    mask = side & (sign * x <= half_width + 1e-12)
+    if np.count_nonzero(mask) < 2:
+        reach = np.sort(sign * x[side])[: 2]
+        mask = side & (sign * x <= reach[-1] + 1e-12)
     return _fit_slope(x[mask], y[mask])
 
 
@@ -308,7 +317,8 @@ def derived_metrics(
     if steer is not None:
         ch = steer.channels
         mean = ch["steer_angle"].mean(axis=1)
-        near = np.abs(ch["rack_travel"]) <= RACK_WINDOW
+        rack = np.abs(ch["rack_travel"])
+        near = rack <= max(RACK_WINDOW, np.sort(rack)[min(2, rack.size - 1)]) + 1e-12
         m["steering_ratio"] = (_fit_slope(mean[near], ch["steering_wheel_angle"][near]), "-")
         if wheelbase is not None:
             m["ackermann"] = (_ackermann(ch, wheelbase), "%")

@@ -1,0 +1,124 @@
+"""``vd bench`` / ``make bench``: the figures vd promises, measured on this machine.
+
+Timings are medians of a few repetitions (wall clock, ``time.perf_counter``),
+printed with the machine they ran on. They never decide a unit test.
+"""
+from __future__ import annotations
+
+import os
+import platform
+import statistics
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+REPEATS = 3
+
+
+def _median(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def machine() -> dict[str, Any]:
+    import numpy
+
+    return {"python": platform.python_version(), "machine": platform.machine(),
+            "cpus": os.cpu_count(), "numpy": numpy.__version__,
+            "processor": platform.processor() or platform.uname().machine}
+
+
+def run_bench() -> dict[str, Any]:
+    from vd_data_server.paths import default_master
+    from vd_data_server.study import load_study
+    from vd_solvers.analytical.events import run_event
+    from vd_solvers.kc.bench import bench_kc
+    from vd_solvers.kc.from_config import suspension_input
+
+    results: dict[str, Any] = {"machine": machine()}
+    master = default_master()
+    results["load_study_s"] = _median(lambda: load_study(master))
+    study = load_study(master)
+    config = study.configurations["baseline"]
+    front, rear = suspension_input(config, "front"), suspension_input(config, "rear")
+    kc_runs = [bench_kc(front, rear) for _ in range(REPEATS)]
+    results["kc"] = {k: statistics.median(r[k] for r in kc_runs) for k in kc_runs[0]}
+    results["bicycle_steady_state_s"] = _median(
+        lambda: run_event(config, "steady_state_circular", "bicycle"))
+    results["two_track_handling_diagram_s"] = _median(
+        lambda: run_event(config, "handling_diagram", "two_track"))
+    results["embedded_run"] = _bench_embedded(master)
+    results["bag_write"] = _bench_bag()
+    return results
+
+
+def _bench_embedded(master: Path) -> dict[str, float]:
+    """End to end through the ROS graph in one process: start, one K&C run with a bag."""
+    from .runner import RunRequest, run_embedded
+
+    with tempfile.TemporaryDirectory() as tmp:
+        request = RunRequest("parallel_wheel_travel", "baseline", "kc", axle="front",
+                             bag=Path(tmp) / "bag")
+        t0 = time.perf_counter()
+        (outcome,) = run_embedded(master, [request])
+        total = time.perf_counter() - t0
+    if outcome.error:
+        raise RuntimeError(outcome.error)
+    return {"kc_parallel_wheel_travel_with_bag_s": total,
+            "goal_to_result_s": outcome.timings["run"]}
+
+
+def _bench_bag(n: int = 20000) -> dict[str, float]:
+    """Sample messages written to an MCAP bag per second (serialisation included)."""
+    from vd_interfaces.msg import Sample
+
+    from .bag import BagWriter
+
+    msg = Sample(event="bench", configuration="baseline", model="kc", step=0,
+                 names=[f"c{i}" for i in range(16)], values=[float(i) for i in range(16)])
+    with tempfile.TemporaryDirectory() as tmp:
+        writer = BagWriter(Path(tmp) / "bag")
+        t0 = time.perf_counter()
+        for i in range(n):
+            writer.write("/vd/kc/state", msg, i)
+        writer.close()
+        elapsed = time.perf_counter() - t0
+    return {"messages": n, "messages_per_s": n / elapsed}
+
+
+def print_bench(results: dict[str, Any]) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title="vd bench  (" + ", ".join(f"{k} {v}" for k, v in
+                                                  results["machine"].items()) + ")",
+                  title_justify="left")
+    table.add_column("figure")
+    table.add_column("value", justify="right")
+    table.add_column("target")
+    kc = results["kc"]
+    rows = [
+        ("K&C 101-step parallel wheel travel, front", f"{kc['parallel_wheel_travel_front']:.3f} s",
+         "well under 1 s"),
+        ("K&C 101-step parallel wheel travel, rear", f"{kc['parallel_wheel_travel_rear']:.3f} s",
+         "well under 1 s"),
+        ("K&C five-event suite, both axles", f"{kc['suite_both_axles']:.2f} s", "a few s"),
+        ("load + resolve the sample study", f"{results['load_study_s']:.3f} s", ""),
+        ("bicycle steady state (41 steps)", f"{results['bicycle_steady_state_s']:.4f} s", ""),
+        ("two-track handling diagram to the limit",
+         f"{results['two_track_handling_diagram_s']:.3f} s", ""),
+        ("embedded run, K&C event with bag, incl. start-up",
+         f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ""),
+        ("  of which goal to result", f"{results['embedded_run']['goal_to_result_s']:.3f} s", ""),
+        ("bag write rate (Sample, 16 channels)",
+         f"{results['bag_write']['messages_per_s']:.0f} msg/s", ""),
+    ]
+    for row in rows:
+        table.add_row(*row)
+    Console(highlight=False).print(table)

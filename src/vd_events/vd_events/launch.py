@@ -1,0 +1,81 @@
+"""``vd launch [--distributed]``: start the data server and the solvers and keep them up.
+
+Unlike ``vd run`` this uses the caller's ROS graph (ROS_DOMAIN_ID as set), so
+other tools (a recorder, Foxglove, ``ros2 run vd_events event_runner``) can use
+the nodes. Ctrl-C stops everything cleanly.
+"""
+from __future__ import annotations
+
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+
+def launch(master: Path | None, *, distributed: bool) -> int:
+    from vd_data_server.paths import default_master
+    from vd_data_server.study import load_study
+
+    master = master or default_master()
+    load_study(master)  # refuse bad data before anything starts
+    if distributed:
+        return _distributed(master)
+    return _embedded(master)
+
+
+def _embedded(master: Path) -> int:
+    import rclpy
+    from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+    from rclpy.parameter import Parameter
+
+    from vd_data_server.data_server_node import DataServer
+    from vd_solvers.analytical_node import AnalyticalSolver
+    from vd_solvers.kc_node import KCSolver
+
+    rclpy.init()
+    nodes = [DataServer(parameter_overrides=[Parameter("master_file", value=str(master))]),
+             AnalyticalSolver(), KCSolver()]
+    executor = MultiThreadedExecutor(num_threads=2)
+    for node in nodes:
+        executor.add_node(node)
+    print(f"vd nodes running in one process ({master}); Ctrl-C stops them")
+    try:
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        for node in nodes:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+def _distributed(master: Path) -> int:
+    from .runner import _executable
+
+    commands = [[_executable("vd_data_server", "data_server"), "--ros-args", "-p",
+                 f"master_file:={master}"],
+                [_executable("vd_solvers", "analytical_solver")],
+                [_executable("vd_solvers", "kc_solver")]]
+    def stop(signum, frame):  # SIGTERM (and SIGINT where a shell ignores it) end the launch
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, stop)
+    procs = [subprocess.Popen(cmd) for cmd in commands]
+    print(f"vd nodes running as {len(procs)} processes ({master}); Ctrl-C stops them")
+    try:
+        while all(p.poll() is None for p in procs):
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        for p in procs:
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+    failed = [p for p in procs if p.returncode not in (0, -signal.SIGINT, None)]
+    return 1 if failed else 0

@@ -1,0 +1,92 @@
+"""K&C events over the ROS graph: every event on every configuration of both sample
+vehicles (embedded), one distributed run, JSON contract, bags and report."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+pytestmark = [pytest.mark.ros, pytest.mark.slow]
+
+EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
+          "longitudinal_force")
+
+
+def _vd(capsys, *argv):
+    from vd_events.cli import main
+
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+@pytest.mark.parametrize("vehicle, configs", [("sedan", ["baseline", "stiff_rear", "sport"]),
+                                              ("hmmwv", ["baseline", "bushings"])])
+def test_all_kc_events_on_every_configuration(capsys, tmp_path, sample_root, vehicle, configs):
+    runs = "".join(f"""  - event: {event}
+    models: [kc]
+    axle: {axle}
+    configurations: all
+    parameters: [steps=21]
+""" for event in EVENTS for axle in ("front", "rear"))
+    runs += """  - event: steering
+    models: [kc]
+    axle: front
+    configurations: all
+    parameters: [steps=21]
+"""
+    plan = tmp_path / "plan.yaml"
+    plan.write_text(f"name: kc_{vehicle}\nmaster: {sample_root / 'studies' / (vehicle + '.yaml')}"
+                    f"\nruns:\n{runs}")
+    out = tmp_path / "out"
+    rc, stdout, err = _vd(capsys, "study", str(plan), "--report", str(out), "--json")
+    assert rc == 0, err
+    summary = json.loads(stdout)
+    assert len(summary["runs"]) == 9 * len(configs)
+    assert [r["error"] for r in summary["runs"]] == [None] * len(summary["runs"])
+    for run in summary["runs"]:
+        assert run["metrics"]["max_constraint_residual"]["value"] <= 1e-9
+        assert run["metrics"]["max_force_residual"]["value"] <= 1e-6
+    html = (out / "report.html").read_text()
+    assert "parallel_wheel_travel — front (kc)" in html
+    assert (out / "parallel_wheel_travel_front_kc_0.png").stat().st_size > 10_000
+
+
+def test_kc_run_json_contract_and_distributed(capsys, tmp_path, sedan_master):
+    args = ("run", "parallel_wheel_travel", "--axle", "front", "--model", "kc", "--config",
+            "sport", "--master", str(sedan_master), "--param", "steps=21", "--json")
+    rc, out, err = _vd(capsys, *args)
+    assert rc == 0, err
+    embedded = json.loads(out)
+    assert (embedded["event"], embedded["configuration"], embedded["model"],
+            embedded["fidelity"], embedded["axle"]) == ("parallel_wheel_travel", "sport", "kc",
+                                                        "rigid", "front")
+    assert embedded["metrics"]["camber"]["unit"] == "deg"
+    assert len(embedded["channels"]["toe_left"]["values"]) == 21
+    bag = tmp_path / "kc_bag"
+    rc, out, err = _vd(capsys, *args, "--distributed", "--bag", str(bag))
+    assert rc == 0, out + err
+    distributed = json.loads(out)
+    assert distributed["metrics"] == embedded["metrics"]
+    from vd_events.bag import read_bag
+
+    topics = [m.topic for m in read_bag(bag)]
+    assert topics.count("/vd/kc/result") == 1
+    assert topics.count("/vd/kc/state") == 21
+
+
+def test_kc_bad_input(capsys, tmp_path, sedan_master):
+    rc, _, err = _vd(capsys, "run", "steering", "--model", "kc", "--axle", "rear", "--master",
+                     str(sedan_master))
+    assert rc == 2
+    assert err.strip() == ("event 'steering' needs a steered axle: the rear axle of 'baseline' "
+                           "has no steering")
+    rc, _, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--master",
+                     str(sedan_master))
+    assert rc == 2
+    assert err.strip() == "K&C events need --axle front or rear (found '')"
+    rc, _, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--axle", "front",
+                     "--fidelity", "flexible", "--master", str(sedan_master))
+    assert rc == 2
+    assert err.strip() == ("fidelity 'flexible' is not available yet for model 'kc' (flexible "
+                           "components are a later rung)")
