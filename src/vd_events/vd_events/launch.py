@@ -51,7 +51,7 @@ def _embedded(master: Path) -> int:
 
 
 def _distributed(master: Path) -> int:
-    from .runner import _executable
+    from .runner import _executable, stop_processes
 
     commands = [[_executable("vd_data_server", "data_server"), "--ros-args", "-p",
                  f"master_file:={master}"],
@@ -69,13 +69,6 @@ def _distributed(master: Path) -> int:
     except KeyboardInterrupt:
         pass
     finally:
-        for p in procs:
-            if p.poll() is None:
-                p.send_signal(signal.SIGINT)
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop_processes(procs)
     failed = [p for p in procs if p.returncode not in (0, -signal.SIGINT, None)]
     return 1 if failed else 0

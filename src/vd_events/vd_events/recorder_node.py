@@ -18,13 +18,11 @@ from std_msgs.msg import UInt32
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
 
 from vd_events.bag import BagWriter
+from vd_solvers.solver_node import LATCHED, SAMPLES
 
-_LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
-                      reliability=ReliabilityPolicy.RELIABLE,
-                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
-_STREAM = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
-                     reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# the publishers' own profiles: latched data, results and samples kept for late joiners
+_LATCHED = LATCHED
+_STREAM = SAMPLES
 #: where the recorder says how many event results it has written completely (latched)
 RECORDED_TOPIC = "/vd/recorder/recorded"
 

@@ -387,14 +387,21 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
         node.destroy_node()
         executor.shutdown()
         rclpy.try_shutdown(context=context)
-        for proc in procs:
-            proc.send_signal(signal.SIGINT)
-        for proc in procs:
-            try:
-                proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+        stop_processes(procs)
     return outcomes
+
+
+def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> None:
+    """SIGINT (a node's clean shutdown) to every process still running, then wait;
+    kill what does not stop in time."""
+    for proc in procs:
+        if proc.poll() is None:
+            proc.send_signal(signal.SIGINT)
+    for proc in procs:
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
 
 
 __all__ = ["RunRequest", "RunOutcome", "RunError", "BagError", "validate", "run_embedded",
