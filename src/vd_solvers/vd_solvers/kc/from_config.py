@@ -212,7 +212,7 @@ _UNITS = {
     "arb_twist": "rad", "arb_torque": "N*m", "arb_arm_angle": "rad", "droplink_force": "N",
     "rack_travel": "m", "rack_force": "N", "steering_wheel_angle": "rad",
     "elastic_energy": "J", "constraint_residual": "m", "force_residual": "N",
-    "iterations": "-", "camber_ground": "rad",
+    "iterations": "-", "camber_ground": "rad", "steering_axis_ground": "m",
 }
 
 
