@@ -8,9 +8,7 @@ Parameters: master_file, allow_edits, watch_period (s; 0 disables watching).
 """
 from __future__ import annotations
 
-import rclpy
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus
@@ -18,6 +16,7 @@ from vd_interfaces.srv import GetConfiguration, Reload, SetOverride
 
 from .conversions import configuration_to_msg, study_to_status_msg
 from .errors import DataError
+from .node_main import spin_node
 from .paths import default_master
 from .service import DataService
 
@@ -130,17 +129,7 @@ class DataServer(Node):
 
 
 def main(args=None) -> None:
-    rclpy.init(args=args)
-    node = None
-    try:
-        node = DataServer()
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+    spin_node(DataServer, args, threads=1)
 
 
 if __name__ == "__main__":

@@ -194,6 +194,18 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
     return result.success, result.message, result.result
 
 
+def _run_goal(executor, client: _Client, request: RunRequest,
+              progress: Callable[[RunRequest, float, str], None] | None) -> EventOutcome:
+    """One goal to its solver; the result as an EventOutcome, or RunError."""
+    from vd_solvers.conversions import outcome_from_msg
+
+    ok, message, result = _send(executor, client, request,
+                                lambda p, s: progress(request, p, s) if progress else None)
+    if not ok:
+        raise RunError(message)
+    return outcome_from_msg(result)
+
+
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  ) -> list[RunOutcome]:
@@ -205,7 +217,6 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
 
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
-    from vd_solvers.conversions import outcome_from_msg
     from vd_solvers.kc_node import KCSolver
 
     from .recorder_node import Recorder
@@ -242,12 +253,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0, 5.0)
             t0 = time.perf_counter()
             try:
-                ok, message, result = _send(
-                    executor, client, request,
-                    lambda p, s, r=request: progress(r, p, s) if progress else None)
-                if not ok:
-                    raise RunError(message)
-                outcome = outcome_from_msg(result)
+                outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
                     if not _spin_until(executor, lambda: recorder.complete >= 1, 10.0):
@@ -292,7 +298,6 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
 
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import UInt32
-    from vd_solvers.conversions import outcome_from_msg
 
     from .bag import read_bag
     from .recorder_node import RECORDED_TOPIC
@@ -337,19 +342,15 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                     [_executable("vd_events", "recorder"), "--ros-args", "-p",
                      f"bag:={request.bag}", "-p", f"configurations:=['{request.configuration}']"],
                     env=env, stdout=logs, stderr=subprocess.STDOUT)
-                # the recorder's subscriptions must be matched before the results flow
-                topics = (f"/vd/{request.family}/result", f"/vd/{request.family}/state")
-                if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
-                                                         for t in topics), SERVER_TIMEOUT):
-                    raise RunError(f"{request.label}: the recorder did not start")
             t0 = time.perf_counter()
             try:
-                ok, message, result = _send(
-                    executor, client, request,
-                    lambda p, s, r=request: progress(r, p, s) if progress else None)
-                if not ok:
-                    raise RunError(message)
-                outcome = outcome_from_msg(result)
+                if recorder is not None:
+                    # the recorder's subscriptions must be matched before the results flow
+                    topics = (f"/vd/{request.family}/result", f"/vd/{request.family}/state")
+                    if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
+                                                             for t in topics), SERVER_TIMEOUT):
+                        raise RunError(f"{request.label}: the recorder did not start")
+                outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
                     if not _spin_until(executor, lambda: recorded[0] >= 1, 10.0):

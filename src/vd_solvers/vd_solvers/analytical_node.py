@@ -19,7 +19,8 @@ from vd_data_server.model import Configuration
 from vd_solvers.analytical.events import run_event
 from vd_solvers.analytical.from_config import AxleSuspension
 from vd_solvers.results import EventOutcome
-from vd_solvers.solver_node import RESULTS, SolverNode, spin_node
+from vd_data_server.node_main import spin_node
+from vd_solvers.solver_node import RESULTS, SolverNode
 
 FAMILY = "steady_state"
 DEG = 180.0 / math.pi

@@ -9,7 +9,8 @@ from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import run_kc_event
 from vd_solvers.results import EventOutcome
-from vd_solvers.solver_node import SolverNode, spin_node
+from vd_data_server.node_main import spin_node
+from vd_solvers.solver_node import SolverNode
 
 FAMILY = "kc"
 

@@ -13,10 +13,8 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-import rclpy
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from vd_interfaces.action import RunEvent
@@ -163,22 +161,3 @@ def set_changes(base: Configuration, config: Configuration) -> list:
                                                                  master_value=k.master_value,
                                                                  unit=k.unit) for k in keys]))
     return out
-
-
-def spin_node(factory: Callable[[], Node], args=None) -> None:
-    """The standard ``main()`` body: init, spin, clean shutdown on Ctrl-C / SIGTERM."""
-    from rclpy.executors import MultiThreadedExecutor
-
-    rclpy.init(args=args)
-    node = None
-    try:
-        node = factory()
-        executor = MultiThreadedExecutor(num_threads=2)
-        executor.add_node(node)
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
