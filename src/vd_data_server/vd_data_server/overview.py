@@ -11,6 +11,17 @@ from .model import Configuration
 from .study import NOT_USED, Study, format_value
 
 GREEN = "bold green"
+#: width used when the output is not a terminal (pipes, CI logs): wide enough that
+#: group names and values are never cut
+PIPE_WIDTH = 140
+
+
+def console():
+    """A rich console: the terminal's width, or PIPE_WIDTH when piped."""
+    from rich.console import Console
+
+    probe = Console()
+    return Console(highlight=False, width=None if probe.is_terminal else PIPE_WIDTH)
 RED = "bold red"
 
 

@@ -93,7 +93,7 @@ def _bench_bag(n: int = 20000) -> dict[str, float]:
 
 
 def print_bench(results: dict[str, Any]) -> None:
-    from rich.console import Console
+    from vd_data_server.overview import console
     from rich.table import Table
 
     table = Table(title="vd bench  (" + ", ".join(f"{k} {v}" for k, v in
@@ -121,4 +121,4 @@ def print_bench(results: dict[str, Any]) -> None:
     ]
     for row in rows:
         table.add_row(*row)
-    Console(highlight=False).print(table)
+    console().print(table)

@@ -60,17 +60,17 @@ def _load(master: str | None):
 
 
 def cmd_data(args: argparse.Namespace) -> int:
-    from rich.console import Console
+    from vd_data_server.overview import console
 
     from vd_data_server.overview import configuration_json, print_configuration, print_status
 
     study = _load(args.master)
-    console = Console(highlight=False)
+    term = console()
     if args.data_command == "status":
         if args.json:
             print(json.dumps(study.to_json(), indent=2))
         else:
-            print_status(study, console)
+            print_status(study, term)
     elif args.data_command == "show":
         if args.config not in study.configurations:
             raise UsageError(f"{study.master.path}: configuration '{args.config}' does not exist "
@@ -79,7 +79,7 @@ def cmd_data(args: argparse.Namespace) -> int:
         if args.json:
             print(json.dumps(configuration_json(config), indent=2))
         else:
-            print_configuration(config, console)
+            print_configuration(config, term)
     else:
         n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
         message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "

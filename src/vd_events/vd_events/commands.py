@@ -120,7 +120,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def _print_outcome(result: RunOutcome) -> None:
-    from rich.console import Console
+    from vd_data_server.overview import console
     from rich.table import Table
 
     outcome = result.outcome
@@ -135,12 +135,12 @@ def _print_outcome(result: RunOutcome) -> None:
     for name in names:
         metric = outcome.metrics[name]
         table.add_row(name, f"{metric.value:.5g}", metric.unit)
-    console = Console(highlight=False, width=max(100, Console().width))
-    console.print(table)
+    term = console()
+    term.print(table)
     for note in outcome.notes[:1]:
-        console.print(note)
+        term.print(note)
     if result.bag:
-        console.print(f"bag: {result.bag}")
+        term.print(f"bag: {result.bag}")
 
 
 def cmd_study(args: argparse.Namespace) -> int:

@@ -8,12 +8,13 @@ Everything goes to ``out/demo/`` (replaced on each run).
 """
 from __future__ import annotations
 
+from vd_data_server.overview import console
+
 import shutil
 import sys
 import time
 from pathlib import Path
 
-from rich.console import Console
 
 OUT = Path("out/demo")
 #: metric, format, scale of the one-line summaries
@@ -49,14 +50,14 @@ def main() -> int:
 
     from .study_plan import load_plan, run_plan
 
-    console = Console(highlight=False, width=max(110, Console().width))
+    term = console()
     t0 = time.perf_counter()
     master = default_master()
-    console.rule("vd demo: the data (data server feedback)")
-    print_status(load_study(master), console)
+    term.rule("vd demo: the data (data server feedback)")
+    print_status(load_study(master), term)
     if OUT.exists():
         shutil.rmtree(OUT)
-    console.rule("vd demo: K&C, bicycle and two-track models through the ROS graph")
+    term.rule("vd demo: K&C, bicycle and two-track models through the ROS graph")
     plan = load_plan(_plan_path())
     summary = run_plan(plan, OUT / "bags", OUT)
     for run in summary["runs"]:
@@ -66,11 +67,11 @@ def main() -> int:
             if key in m:
                 parts.append(fmt.format(m[key]["value"] * scale))
         status = run["error"] or ", ".join(parts)
-        console.print(f"  {run['configuration']:<11} {run['event']:<22} "
+        term.print(f"  {run['configuration']:<11} {run['event']:<22} "
                       f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
-    console.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
-    console.print(f"report: {summary['report']}")
-    console.print(f"done in {time.perf_counter() - t0:.1f} s")
+    term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
+    term.print(f"report: {summary['report']}")
+    term.print(f"done in {time.perf_counter() - t0:.1f} s")
     return 1 if summary["errors"] else 0
 
 
