@@ -52,3 +52,62 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
     finally:
         for node in (client_node, solver, server):
             node.destroy_node()
+
+
+def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master):
+    """The real kc_solver process (multi-threaded, as ros2 run starts it): feedback rises to
+    1 during a run, and a cancel request stops a long sweep between two steps."""
+    import os
+    import signal
+    import subprocess
+
+    from action_msgs.msg import GoalStatus
+    from ament_index_python.packages import get_package_prefix
+    from rclpy.action import ActionClient
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+    from vd_interfaces.action import RunEvent
+
+    from vd_data_server.data_server_node import DataServer
+
+    server = DataServer(parameter_overrides=[Parameter("master_file", value=str(sedan_master)),
+                                             Parameter("watch_period", value=0.0)])
+    exe = os.path.join(get_package_prefix("vd_solvers"), "lib", "vd_solvers", "kc_solver")
+    solver = subprocess.Popen([exe], env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    client_node = Node("cancel_client")
+    nodes = [server, client_node]
+    try:
+        client = ActionClient(client_node, RunEvent, "/vd/kc/run_event")
+        assert spin_until(nodes, client.server_is_ready, timeout=30)
+        spin_until(nodes, lambda: False, timeout=1.0)  # discovery of the response readers
+        seen: list[float] = []
+        send = client.send_goal_async(
+            RunEvent.Goal(event="parallel_wheel_travel", configuration="baseline", model="kc",
+                          axle="front", parameters=["steps=401"]),
+            feedback_callback=lambda fb: seen.append(fb.feedback.progress))
+        assert spin_until(nodes, send.done, timeout=30)
+        done = send.result().get_result_async()
+        assert spin_until(nodes, done.done, timeout=60)
+        assert done.result().result.success
+        # feedback is a topic, the result a service: the last feedback may come after it
+        assert spin_until(nodes, lambda: seen and seen[-1] == 1.0, timeout=5)
+        assert seen == sorted(seen) and len(seen) >= 3
+        send = client.send_goal_async(
+            RunEvent.Goal(event="parallel_wheel_travel", configuration="baseline", model="kc",
+                          axle="front", parameters=["steps=2001"]))
+        assert spin_until(nodes, send.done, timeout=30)
+        handle = send.result()
+        spin_until(nodes, lambda: False, timeout=0.3)
+        cancel = handle.cancel_goal_async()
+        assert spin_until(nodes, cancel.done, timeout=30)
+        result = handle.get_result_async()
+        assert spin_until(nodes, result.done, timeout=60)
+        assert result.result().status == GoalStatus.STATUS_CANCELED
+        assert result.result().result.message == ("configuration 'baseline', event "
+                                                  "'parallel_wheel_travel': cancelled")
+    finally:
+        solver.send_signal(signal.SIGINT)
+        solver.wait(timeout=20)
+        for node in reversed(nodes):
+            node.destroy_node()

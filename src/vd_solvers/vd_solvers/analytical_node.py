@@ -59,7 +59,7 @@ class AnalyticalSolver(SolverNode):
         super().__init__("analytical_solver", FAMILY, self._solve, **kwargs)
         self.create_subscription(EventResult, "/vd/kc/result", self.kc.add, RESULTS)
 
-    def _solve(self, config: Configuration, goal) -> EventOutcome:
+    def _solve(self, config: Configuration, goal, progress) -> EventOutcome:
         return run_event(config, goal.event, goal.model or "two_track", list(goal.parameters),
                          suspension=self.kc.suspension(config))
 

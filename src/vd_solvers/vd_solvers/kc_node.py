@@ -15,11 +15,11 @@ from vd_solvers.solver_node import SolverNode
 FAMILY = "kc"
 
 
-def _run(config: Configuration, goal) -> EventOutcome:
+def _run(config: Configuration, goal, progress) -> EventOutcome:
     if goal.fidelity not in ("", "rigid"):
         raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
                           f"'{goal.fidelity}' is not available (the K&C solver is rigid)")
-    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters))
+    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters), progress)
 
 
 class KCSolver(SolverNode):

@@ -34,7 +34,14 @@ from vd_solvers.results import EventOutcome
 #: seconds a goal waits for its configuration to arrive on /vd/configuration
 CONFIGURATION_WAIT = 5.0
 
-RunFn = Callable[[Configuration, RunEvent.Goal], EventOutcome]
+#: (configuration, goal, progress(fraction, stage)) -> outcome
+RunFn = Callable[[Configuration, RunEvent.Goal, Callable[[float, str], None]], EventOutcome]
+#: least interval between two feedback messages, s
+FEEDBACK_PERIOD = 0.1
+
+
+class Cancelled(Exception):
+    """The client cancelled the goal while it was being solved."""
 
 LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
                      reliability=ReliabilityPolicy.RELIABLE,
@@ -98,13 +105,25 @@ class SolverNode(Node):
                                 f"(known: {', '.join(sorted(self.configurations)) or 'none'})")
             base = config
             config = with_overrides(config, parse_set(goal.overrides))
-            feedback.progress, feedback.stage = 0.1, "solving"
-            goal_handle.publish_feedback(feedback)
-            outcome = self._run(config, goal)
+            last = [0.0]
+
+            def progress(fraction: float, stage: str) -> None:
+                if goal_handle.is_cancel_requested:
+                    raise Cancelled
+                now = time.monotonic()
+                if now - last[0] >= FEEDBACK_PERIOD:
+                    last[0] = now
+                    feedback.progress, feedback.stage = float(fraction), stage
+                    goal_handle.publish_feedback(feedback)
+
+            progress(0.0, "solving")
+            outcome = self._run(config, goal, progress)
             if goal_handle.is_cancel_requested:
-                goal_handle.canceled()
-                result.success, result.message = False, f"{label}: cancelled"
-                return result
+                raise Cancelled
+        except Cancelled:
+            goal_handle.canceled()
+            result.success, result.message = False, f"{label}: cancelled"
+            return result
         except (DataError, SolverError) as err:
             message = str(err) if goal.configuration in str(err) else f"{label}: {err}"
             self.get_logger().error(message)

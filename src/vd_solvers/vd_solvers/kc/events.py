@@ -173,8 +173,10 @@ class KCModel:
     def _prefix(self) -> str:
         return f"{self.label}: " if self.label else ""
 
-    def run(self, event: str, **params: float) -> EventResult:
-        """Run ``event`` with ``params`` (see the event functions' defaults)."""
+    def run(self, event: str, on_step: Callable[[int, int], None] | None = None,
+            **params: float) -> EventResult:
+        """Run ``event`` with ``params`` (see the event functions' defaults);
+        ``on_step(done, total)`` reports progress."""
         plan_of = EVENTS.get(event)
         if plan_of is None:
             raise SolverError(f"{self._prefix()}unknown event {event!r}; known: {sorted(EVENTS)}")
@@ -195,7 +197,7 @@ class KCModel:
             )
 
         start = int(np.argmin(np.abs(plan.sweep)))
-        solution = solve_path(self.system, cases, start, describe)
+        solution = solve_path(self.system, cases, start, describe, on_step)
         ratio = self.inp.steering.rack_ratio if self.inp.steering is not None else None
         ch = channels(self.system, self.template, solution, cases, ratio)
         return EventResult(event, self.inp.axle, self.label, dict(plan.params), ch)

@@ -10,7 +10,7 @@ design ride height); its vertical stiffness is the .tir's VERTICAL_STIFFNESS.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -144,8 +144,11 @@ def _event_kwargs(event: str, values: Mapping[str, float]) -> dict[str, float]:
 
 
 def run_kc_event(config: Configuration, event: str, axle: str,
-                 params: Sequence[str] = ()) -> EventOutcome:
-    """One K&C event on one axle, with the derived metrics that event supports."""
+                 params: Sequence[str] = (),
+                 progress: Callable[[float, str], None] | None = None) -> EventOutcome:
+    """One K&C event on one axle, with the derived metrics that event supports.
+
+    ``progress(fraction, stage)`` is called per solved step (it may raise to cancel)."""
     label = f"configuration '{config.name}', event '{event}', axle '{axle}'"
     if event not in EVENT_PARAMS:
         raise SolverError(f"{label}: the K&C solver has no event '{event}' (events: "
@@ -157,11 +160,21 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     if event == "steering" and inp.steering is None:
         raise SolverError(f"{label}: the {axle} axle has no steering")
     model = KCModel(inp, label)
-    result = model.run(event, **_event_kwargs(event, values))
+    with_bar = event == "opposite_wheel_travel" and inp.stabilizer is not None
+    runs = 2 if with_bar else 1
+
+    def on_step(run: int, stage: str) -> Callable[[int, int], None] | None:
+        if progress is None:
+            return None
+        return lambda done, total: progress((run + done / total) / runs, stage)
+
+    result = model.run(event, on_step(0, "solving"), **_event_kwargs(event, values))
     results = {event: result}
-    if event == "opposite_wheel_travel" and inp.stabilizer is not None:
+    if with_bar:
         bare = KCModel(replace(model.inp, stabilizer=None), label)
-        results["opposite_wheel_travel_no_bar"] = bare.run(event, **_event_kwargs(event, values))
+        results["opposite_wheel_travel_no_bar"] = bare.run(
+            event, on_step(1, "solving without the anti-roll bar"),
+            **_event_kwargs(event, values))
     return _outcome(config, event, axle, inp, model, results)
 
 

@@ -163,11 +163,14 @@ def solve_path(
     cases: Sequence[LoadCase],
     start: int,
     describe: Callable[[int], str],
+    on_step: Callable[[int, int], None] | None = None,
 ) -> Solution:
     """Equilibria of ``cases`` by continuation from the design state.
 
     The walk starts at ``cases[start]`` (the one nearest the design load) and
-    runs outward in both directions. ``describe(i)`` names step i in errors.
+    runs outward in both directions. ``describe(i)`` names step i in errors;
+    ``on_step(done, total)`` is called after each solved step (progress; it may
+    raise to abandon the event).
     """
     n = len(cases)
     states: list[State | None] = [None] * n
@@ -186,6 +189,8 @@ def solve_path(
             new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i, describe)
             before, state, previous = state, new, cases[i]
             states[i] = state
+            if on_step is not None:
+                on_step(sum(st is not None for st in states), n)
     return Solution(tuple(states), tuple(evals), tuple(conv))  # type: ignore[arg-type]
 
 
