@@ -19,6 +19,7 @@ from .bag import BagError, read_bag
 
 G = 9.80665
 DEG = 180.0 / math.pi
+LINE_STYLES = ("-", "--", ":", "-.")
 
 
 @dataclass(frozen=True)
@@ -26,6 +27,7 @@ class Axis:
     channel: str
     label: str
     scale: float = 1.0
+    relative: bool = False  # plot the change from the step nearest the design (x = 0)
 
 
 #: event -> plots (x axis, y axis); channels missing from a result are skipped
@@ -59,9 +61,9 @@ _CAMBER = Axis("camber_left", "camber angle, left [deg]", DEG)
 KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
     "parallel_wheel_travel": (
         (_TRAVEL, _TOE), (_TRAVEL, _CAMBER),
-        (_TRAVEL, Axis("track", "track change [mm]", 1e3)),
+        (_TRAVEL, Axis("track", "track change [mm]", 1e3, relative=True)),
         (_TRAVEL, Axis("contact_point_x_left", "wheelbase change, left contact patch x [mm]",
-                       1e3)),
+                       1e3, relative=True)),
         (_TRAVEL, Axis("pad_force_left", "wheel vertical load, left [N]")),
         (_TRAVEL, Axis("caster_left", "caster, left [deg]", DEG)),
     ),
@@ -72,10 +74,12 @@ KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
     "lateral_force": (
         (_FORCE, _CAMBER), (_FORCE, _TOE),
         (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
-        (_FORCE, Axis("contact_point_y_left", "contact patch y, left [mm]", 1e3)),
+        (_FORCE, Axis("contact_point_y_left", "contact patch y change, left [mm]", 1e3,
+                      relative=True)),
     ),
     "longitudinal_force": (
-        (_FORCE, Axis("wheel_centre_x_left", "wheel centre x, left [mm]", 1e3)),
+        (_FORCE, Axis("wheel_centre_x_left", "wheel centre x change, left [mm]", 1e3,
+                      relative=True)),
         (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
         (_FORCE, _TOE),
     ),
@@ -165,10 +169,14 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
             if not usable:
                 continue
             fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
-            for run in usable:
-                ax.plot(run.channels[xa.channel] * xa.scale, run.channels[ya.channel] * ya.scale,
-                        label=run.label, marker="." if len(run.channels[xa.channel]) < 30
-                        else None)
+            for k, run in enumerate(usable):
+                x, y = run.channels[xa.channel], run.channels[ya.channel]
+                if ya.relative:
+                    y = y - y[int(np.argmin(np.abs(x)))]
+                # line styles cycle too, so identical curves stay visible on top of each other
+                ax.plot(x * xa.scale, y * ya.scale, label=run.label,
+                        linestyle=LINE_STYLES[k % len(LINE_STYLES)],
+                        marker="." if len(x) < 30 else None)
             ax.set_xlabel(xa.label)
             ax.set_ylabel(ya.label)
             ax.grid(True, alpha=0.3)
