@@ -313,3 +313,39 @@ def test_data_file_with_malformed_yaml_is_named_relative_to_the_root(sample_root
     lines = refused(sample_root, sedan_master)
     assert len(lines) == 1
     assert lines[0].startswith("sedan/rear_spring/X.yaml: malformed YAML: ")
+
+
+def test_geometry_must_agree_with_the_wheel_centre_hard_points(sedan_master):
+    """A wheelbase edited in the master file without moving the hard points describes two
+    different cars: refused, naming configuration, key and the values."""
+    from vdtest import tree_snapshot
+
+    text = sedan_master.read_text().replace(
+        "  baseline:\n    description: Reference car, all shared data unchanged.\n",
+        "  baseline:\n    description: Reference car.\n    overrides:\n"
+        "      geometry.wheelbase: 2700 mm\n")
+    sedan_master.write_text(text)
+    before = tree_snapshot(sedan_master.parents[1])
+    with pytest.raises(DataError) as err:
+        load_study(sedan_master)
+    assert str(err.value) == (
+        f"{sedan_master}: configurations.baseline: geometry.wheelbase: wheelbase = 2700.0 mm "
+        "but the x distance of the front and rear wheel centres is 2776.0 mm (hard points "
+        "sedan/front_hardpoints/X.yaml, sedan/rear_hardpoints/X.yaml); keep them within 1 mm")
+    assert tree_snapshot(sedan_master.parents[1]) == before
+
+
+def test_set_override_of_a_track_is_checked_against_the_hard_points(sedan_master):
+    from vd_data_server.master import with_overrides
+
+    study = load_study(sedan_master)
+    with pytest.raises(DataError) as err:
+        with_overrides(study.configurations["sport"], {"geometry.track_rear": "1600 mm"})
+    assert str(err.value) == (
+        "--set: configurations.sport: geometry.track_rear: track_rear = 1600.0 mm but twice "
+        "the rear wheel-centre y is 1580.0 mm (hard points sedan/front_hardpoints/X.yaml, "
+        "sedan/rear_hardpoints/X.yaml); keep them within 1 mm")
+    moved = with_overrides(study.configurations["sport"],
+                           {"geometry.track_rear": "1600 mm",
+                            "rear_hardpoints.points.wheel_centre.y": "800 mm"})
+    assert moved.group("geometry").scalar("track_rear") == pytest.approx(1.6)

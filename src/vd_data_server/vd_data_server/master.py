@@ -256,11 +256,41 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
                              where=f"configurations.{name}.overrides")
     if extra_overrides:
         groups = apply_overrides(groups, extra_overrides, file="--set", where="")
+    check_geometry(groups, file=master.display, configuration=name)
     tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
     hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
     return Configuration(name=name, master_file=master.display, description=spec.description,
                          groups=groups, flexible=spec.flexible,
                          flexible_components=spec.flexible_components, extra_hashes=hashes)
+
+
+#: how far the geometry group may disagree with the wheel-centre hard points, m
+GEOMETRY_TOLERANCE = 0.001
+
+
+def check_geometry(groups: Mapping[str, GroupData], *, file: str, configuration: str) -> None:
+    """Wheelbase and tracks must describe the car the hard points describe.
+
+    The geometry group states them for the models that do not read hard points; a
+    designer who moves a wheel centre (or edits the geometry) must keep both in step.
+    """
+    geo = groups.get("geometry")
+    front, rear = groups.get("front_hardpoints"), groups.get("rear_hardpoints")
+    if geo is None or front is None or rear is None:
+        return
+    wc_f, wc_r = front.point("points.wheel_centre"), rear.point("points.wheel_centre")
+    checks = (("wheelbase", wc_f[0] - wc_r[0], "the x distance of the front and rear wheel "
+               "centres"),
+              ("track_front", 2.0 * wc_f[1], "twice the front wheel-centre y"),
+              ("track_rear", 2.0 * wc_r[1], "twice the rear wheel-centre y"))
+    errors = [
+        DataError(f"{key} = {geo.scalar(key) * 1e3:.1f} mm but {what} is {value * 1e3:.1f} mm "
+                  f"(hard points {front.file}, {rear.file}); keep them within "
+                  f"{GEOMETRY_TOLERANCE * 1e3:g} mm", file=file,
+                  key=f"configurations.{configuration}: geometry.{key}")
+        for key, value, what in checks if abs(geo.scalar(key) - value) > GEOMETRY_TOLERANCE]
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
 
 
 def apply_overrides(groups: Mapping[str, GroupData], overrides: Mapping[str, Any], *, file: str,
@@ -321,6 +351,7 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Confi
     if not overrides:
         return config
     groups = apply_overrides(config.groups, overrides, file="--set", where="")
+    check_geometry(groups, file="--set", configuration=config.name)
     return Configuration(name=config.name, master_file=config.master_file,
                          description=config.description, groups=groups,
                          flexible=config.flexible, flexible_components=config.flexible_components,
