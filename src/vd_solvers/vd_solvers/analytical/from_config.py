@@ -49,6 +49,12 @@ class MassProperties:
     unsprung_rear: float  # kg, both rear corners
     unsprung_height_front: float  # m, wheel-centre height
     unsprung_height_rear: float  # m
+    front_axle_x: float  # m, front wheel-centre x (0 when the data follow the vd frame)
+
+    @property
+    def cog_to_front_axle(self) -> float:
+        """a, m: from the front axle back to the COG."""
+        return self.front_axle_x - self.cog_x
 
 
 def mass_properties(config: Configuration) -> MassProperties:
@@ -67,14 +73,14 @@ def mass_properties(config: Configuration) -> MassProperties:
     izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + (y_s - y_g) ** 2)
            + m_uf * ((x_uf - x_g) ** 2 + y_uf ** 2 + y_g ** 2)
            + m_ur * ((x_ur - x_g) ** 2 + y_ur ** 2 + y_g ** 2))
-    return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur)
+    return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur, x_uf)
 
 
 def static_wheel_loads(config: Configuration) -> tuple[float, float]:
     """Static vertical load of one front and one rear wheel, N."""
     mp = mass_properties(config)
     wheelbase = config.group("geometry").scalar("wheelbase")
-    a = -mp.cog_x
+    a = mp.cog_to_front_axle
     weight = mp.mass * STANDARD_GRAVITY
     return weight * (wheelbase - a) / wheelbase / 2.0, weight * a / wheelbase / 2.0
 
@@ -90,7 +96,7 @@ def vehicle_params(config: Configuration,
     m_uf, m_ur, z_uf, z_ur = (mp.unsprung_front, mp.unsprung_rear, mp.unsprung_height_front,
                               mp.unsprung_height_rear)
     t_f, t_r = geo.scalar("track_front"), geo.scalar("track_rear")
-    a = -x_g
+    a = mp.cog_to_front_axle
     fz_front, fz_rear = static_wheel_loads(config)
     tire_front, src_tf = _fit(config, "front_tire", fz_front)
     tire_rear, src_tr = _fit(config, "rear_tire", fz_rear)
