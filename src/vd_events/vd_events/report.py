@@ -39,6 +39,11 @@ PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
          Axis("steer_angle", "road-wheel steer angle [deg]", DEG)),
         (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
          Axis("roll_angle", "roll angle [deg]", DEG)),
+        # the thesis' Figs. 4.1.1-4.1.2: axle lateral force over slip angle
+        (Axis("slip_angle_front", "front slip angle [deg]", DEG),
+         Axis("lateral_force_front_axle", "front axle lateral force [kN]", 1e-3)),
+        (Axis("slip_angle_rear", "rear slip angle [deg]", DEG),
+         Axis("lateral_force_rear_axle", "rear axle lateral force [kN]", 1e-3)),
     ),
     "steady_state_circular": (
         (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
