@@ -54,6 +54,7 @@ def run_bench() -> dict[str, Any]:
     results["two_track_handling_diagram_s"] = _median(
         lambda: run_event(config, "handling_diagram", "two_track"))
     results["embedded_run"] = _bench_embedded(master)
+    results["data_change_to_republish_s"] = _bench_data_change(master)
     results["bag_write"] = _bench_bag()
     return results
 
@@ -72,6 +73,55 @@ def _bench_embedded(master: Path) -> dict[str, float]:
         raise RuntimeError(outcome.error)
     return {"kc_parallel_wheel_travel_with_bag_s": total,
             "goal_to_result_s": outcome.timings["run"]}
+
+
+def _bench_data_change(master: Path) -> float:
+    """Seconds from editing a data file on disk to the new configuration arriving at a
+    subscriber (data server watching every 0.5 s, its default)."""
+    import shutil
+
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+    from vd_interfaces.msg import Configuration
+
+    from vd_data_server.data_server_node import CONFIGURATION_DEPTH, DataServer, latched
+
+    from .runner import _private_domain, _ros_args, _spin_until
+
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp) / "data"
+        shutil.copytree(master.parents[1], root)
+        copy = root / master.relative_to(master.parents[1])
+        context = rclpy.Context()
+        rclpy.init(args=_ros_args(), context=context, domain_id=_private_domain(),
+                   signal_handler_options=None)
+        executor = SingleThreadedExecutor(context=context)
+        server = DataServer(context=context, parameter_overrides=[
+            Parameter("master_file", value=str(copy))])
+        listener = Node("bench_listener", context=context)
+        hashes: dict[str, str] = {}
+        listener.create_subscription(Configuration, "/vd/configuration",
+                                     lambda m: hashes.__setitem__(m.name, m.data_hash),
+                                     latched(CONFIGURATION_DEPTH))
+        for node in (server, listener):
+            executor.add_node(node)
+        try:
+            _spin_until(executor, lambda: "baseline" in hashes, 10.0)
+            before = hashes["baseline"]
+            spring = root / "sedan" / "front_spring" / "X.yaml"
+            t0 = time.perf_counter()
+            spring.write_text(spring.read_text().replace("rate: 30.0", "rate: 31.0"))
+            _spin_until(executor, lambda: hashes["baseline"] != before, 10.0)
+            elapsed = time.perf_counter() - t0
+        finally:
+            for node in (server, listener):
+                executor.remove_node(node)
+                node.destroy_node()
+            executor.shutdown()
+            rclpy.try_shutdown(context=context)
+    return elapsed
 
 
 def _bench_bag(n: int = 20000) -> dict[str, float]:
@@ -116,6 +166,8 @@ def print_bench(results: dict[str, Any]) -> None:
         ("embedded run, K&C event with bag, incl. start-up",
          f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ""),
         ("  of which goal to result", f"{results['embedded_run']['goal_to_result_s']:.3f} s", ""),
+        ("data file edited -> new configuration received",
+         f"{results['data_change_to_republish_s']:.2f} s", "about 1 s"),
         ("bag write rate (Sample, 16 channels)",
          f"{results['bag_write']['messages_per_s']:.0f} msg/s", ""),
     ]
