@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
 
 from vd_data_server.errors import DataError
@@ -182,9 +182,3 @@ def cmd_bench(args: argparse.Namespace) -> int:
     else:
         print_bench(results)
     return 0
-
-
-def main(argv: Sequence[str] | None = None) -> int:  # pragma: no cover - see cli.main
-    from .cli import main as cli_main
-
-    return cli_main(argv)

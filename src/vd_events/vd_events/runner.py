@@ -15,7 +15,6 @@ import random
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 from collections.abc import Callable, Sequence
@@ -406,4 +405,4 @@ def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> 
 
 
 __all__ = ["RunRequest", "RunOutcome", "RunError", "BagError", "validate", "run_embedded",
-           "run_distributed", "events_for", "sys"]
+           "run_distributed", "events_for", "stop_processes"]
