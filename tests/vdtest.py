@@ -30,3 +30,17 @@ def spin_until(nodes, predicate: Callable[[], bool], timeout: float = 10.0) -> b
         for node in nodes:
             executor.remove_node(node)
         executor.shutdown()
+
+
+def replace_once(path: Path, old: str, new: str) -> None:
+    """Edit a test's copy of a data file: ``old`` must occur exactly once."""
+    text = path.read_text(encoding="utf-8")
+    assert text.count(old) == 1, old
+    path.write_text(text.replace(old, new), encoding="utf-8")
+
+
+
+def line_no(path: Path, start: str) -> int:
+    """1-based number of the first line of ``path`` that starts with ``start``."""
+    lines = path.read_text(encoding="utf-8").splitlines()
+    return next(n for n, line in enumerate(lines, start=1) if line.startswith(start))

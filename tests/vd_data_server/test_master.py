@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from numpy.testing import assert_allclose
-from vdtest import tree_snapshot
+from vdtest import line_no, replace_once, tree_snapshot
 
 from vd_data_server import schema
 from vd_data_server.errors import DataError
@@ -20,18 +20,6 @@ from vd_data_server.master import load_master, resolve
 from vd_data_server.study import load_study
 
 RTOL = 1e-12
-
-
-def replace(path: Path, old: str, new: str) -> None:
-    text = path.read_text(encoding="utf-8")
-    assert text.count(old) == 1, old
-    path.write_text(text.replace(old, new), encoding="utf-8")
-
-
-def line_no(path: Path, start: str) -> int:
-    """1-based number of the first line of ``path`` that starts with ``start``."""
-    lines = path.read_text(encoding="utf-8").splitlines()
-    return next(n for n, line in enumerate(lines, start=1) if line.startswith(start))
 
 
 def refused(root: Path, master: Path) -> list[str]:
@@ -45,7 +33,7 @@ def refused(root: Path, master: Path) -> list[str]:
 
 def sport_override(master: Path, line: str) -> None:
     """Replace the sport configuration's camber override by ``line``."""
-    replace(master, "front_alignment.camber: -1.5 deg", line)
+    replace_once(master, "front_alignment.camber: -1.5 deg", line)
 
 
 # --- the master file itself -------------------------------------------------------------------
@@ -59,22 +47,22 @@ def test_master_file_not_found(tmp_path: Path) -> None:
 
 
 def test_unknown_top_level_key_is_refused(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "defaults:", "plots: true\ndefaults:")
+    replace_once(sedan_master, "defaults:", "plots: true\ndefaults:")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: plots: unknown key (expected one of: study, defaults, configurations) "
         f"(line {line_no(sedan_master, 'plots:')})"]
 
 
 def test_unknown_study_key_is_refused(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "  vehicle: sedan\n", "  vehicle: sedan\n  owner: chassis team\n")
+    replace_once(sedan_master, "  vehicle: sedan\n", "  vehicle: sedan\n  owner: chassis team\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: study.owner: unknown key (expected one of: name, description, vehicle, "
         f"data_root) (line {line_no(sedan_master, '  owner:')})"]
 
 
 def test_unknown_configuration_key_is_refused(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "    variants:\n      front_spring: Y",
-            "    variant:\n      front_spring: Y")
+    replace_once(sedan_master, "    variants:\n      front_spring: Y",
+                 "    variant:\n      front_spring: Y")
     lines = refused(sample_root, sedan_master)
     line = line_no(sedan_master, "    variant:")
     assert [(f"{sedan_master}: configurations.sport.variant: unknown key (expected one of: "
@@ -83,7 +71,7 @@ def test_unknown_configuration_key_is_refused(sample_root: Path, sedan_master: P
 
 def test_variant_that_does_not_exist_lists_the_available_ones(sample_root: Path,
                                                               sedan_master: Path) -> None:
-    replace(sedan_master, "      front_spring: Y", "      front_spring: Z")
+    replace_once(sedan_master, "      front_spring: Y", "      front_spring: Z")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: variant 'Z' of group 'front_spring' does not exist (no file "
         "sedan/front_spring/Z.yaml; available: X, Y)"]
@@ -91,7 +79,7 @@ def test_variant_that_does_not_exist_lists_the_available_ones(sample_root: Path,
 
 def test_a_group_without_a_variant_is_refused_for_every_configuration(
         sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "  front_damper: X\n", "")
+    replace_once(sedan_master, "  front_damper: X\n", "")
     message = ("no variant chosen (neither in 'defaults' nor in the configuration)")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.{name}.variants.front_damper: {message} "
@@ -100,7 +88,7 @@ def test_a_group_without_a_variant_is_refused_for_every_configuration(
 
 
 def test_unknown_group_is_refused(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "      front_spring: Y", "      front_sprung: Y")
+    replace_once(sedan_master, "      front_spring: Y", "      front_sprung: Y")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.variants.front_sprung: unknown input group "
         f"(expected one of: {', '.join(schema.all_group_names())}) "
@@ -110,42 +98,42 @@ def test_unknown_group_is_refused(sample_root: Path, sedan_master: Path) -> None
 @pytest.mark.parametrize("variant", ["../X", "sub/X", "..", "/etc/X"])
 def test_variant_names_must_be_plain_names(sample_root: Path, sedan_master: Path,
                                            variant: str) -> None:
-    replace(sedan_master, "      front_spring: Y", f"      front_spring: '{variant}'")
+    replace_once(sedan_master, "      front_spring: Y", f"      front_spring: '{variant}'")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.variants.front_spring: variant must be a plain "
         f"name, found '{variant}' (line {line_no(sedan_master, '      front_spring:')})"]
 
 
 def test_default_variant_names_must_be_plain_names(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "  front_damper: X\n", "  front_damper: ../../X\n")
+    replace_once(sedan_master, "  front_damper: X\n", "  front_damper: ../../X\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: defaults.front_damper: variant must be a plain name, found '../../X' "
         f"(line {line_no(sedan_master, '  front_damper:')})"]
 
 
 def test_vehicle_must_be_a_plain_folder_name(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "  vehicle: sedan\n", "  vehicle: ../sedan\n")
+    replace_once(sedan_master, "  vehicle: sedan\n", "  vehicle: ../sedan\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: study.vehicle: '../sedan' is not a plain folder name "
         f"(line {line_no(sedan_master, '  vehicle:')})"]
 
 
 def test_configuration_names_must_be_plain(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "  sport:\n", "  sport car:\n")
+    replace_once(sedan_master, "  sport:\n", "  sport car:\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport car: configuration names may hold letters, "
         f"digits, '_', '-' and '.' (line {line_no(sedan_master, '  sport car:')})"]
 
 
 def test_flexible_must_be_a_switch_or_a_list(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "    overrides:\n", "    flexible: 3\n    overrides:\n")
+    replace_once(sedan_master, "    overrides:\n", "    flexible: 3\n    overrides:\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.flexible: expected true, false or a list of "
         "component names, found 3"]
 
 
 def test_flexible_components_are_kept(sedan_master: Path) -> None:
-    replace(sedan_master, "    overrides:\n", "    flexible: [front_stabilizer]\n    overrides:\n")
+    replace_once(sedan_master, "    overrides:\n", "    flexible: [front_stabilizer]\n    overrides:\n")
     master = load_master(sedan_master)
     assert master.configurations["sport"].flexible is True
     assert master.configurations["sport"].flexible_components == ("front_stabilizer",)
@@ -227,21 +215,21 @@ def test_point_coordinate_override_changes_one_coordinate(sedan_master: Path) ->
 
 
 def test_point_coordinate_override_in_another_unit(sedan_master: Path) -> None:
-    replace(sedan_master, "lca_outer.z: 171 mm", "lca_outer.y: 0.6 m")
+    replace_once(sedan_master, "lca_outer.z: 171 mm", "lca_outer.y: 0.6 m")
     point = load_study(sedan_master).configurations["sport"].group(
         "front_hardpoints").point("points.lca_outer")
     assert_allclose(point, (0.0184, 0.6, 0.181), rtol=RTOL)
 
 
 def test_point_coordinate_override_needs_a_length(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "lca_outer.z: 171 mm", "lca_outer.z: 171 deg")
+    replace_once(sedan_master, "lca_outer.z: 171 mm", "lca_outer.z: 171 deg")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.overrides.front_hardpoints.points.lca_outer.z: "
         "unit 'deg' is not a length unit (expected e.g. 'm')"]
 
 
 def test_a_whole_point_cannot_be_overridden(sample_root: Path, sedan_master: Path) -> None:
-    replace(sedan_master, "lca_outer.z: 171 mm", "lca_outer: [18.4, 620.6, 171]")
+    replace_once(sedan_master, "lca_outer.z: 171 mm", "lca_outer: [18.4, 620.6, 171]")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.overrides.front_hardpoints.points.lca_outer: a "
         "point cannot be overridden as a whole; override a single value (e.g. a coordinate "
@@ -259,8 +247,8 @@ def test_a_coordinate_of_a_scalar_is_refused(sample_root: Path, sedan_master: Pa
 
 def test_every_broken_data_file_of_a_configuration_is_reported(sample_root: Path) -> None:
     master = sample_root / "studies" / "hmmwv.yaml"
-    replace(sample_root / "hmmwv/front_spring/X.yaml", "preload: 10500", "preload: -1")
-    replace(sample_root / "hmmwv/rear_damper/X.yaml", "kind: damper", "kind: spring")
+    replace_once(sample_root / "hmmwv/front_spring/X.yaml", "preload: 10500", "preload: -1")
+    replace_once(sample_root / "hmmwv/rear_damper/X.yaml", "kind: damper", "kind: spring")
     front = sample_root / "hmmwv/front_spring/X.yaml"
     assert refused(sample_root, master) == [
         f"hmmwv/front_spring/X.yaml: preload: must be >= 0 N, found -1 "
@@ -275,7 +263,7 @@ def test_tire_file_outside_the_data_root_is_refused_unread(
         target: str) -> None:
     # a valid tire file just outside the root: had it been read, the study would load
     shutil.copy(sample_root / "tires/Sedan_Pac02Tire.tir", tmp_path / "outside.tir")
-    replace(sample_root / "sedan/front_tire/X.yaml", "tires/Sedan_Pac02Tire.tir", target)
+    replace_once(sample_root / "sedan/front_tire/X.yaml", "tires/Sedan_Pac02Tire.tir", target)
     before = tree_snapshot(tmp_path)
     reads: list[Path] = []
     for method in ("read_bytes", "read_text"):
@@ -309,7 +297,7 @@ def test_tire_file_with_a_missing_block_names_file_and_block(sample_root: Path,
 
 def test_data_file_with_malformed_yaml_is_named_relative_to_the_root(sample_root: Path,
                                                                      sedan_master: Path) -> None:
-    replace(sample_root / "sedan/rear_spring/X.yaml", "rate: 55.0", "rate: [55.0")
+    replace_once(sample_root / "sedan/rear_spring/X.yaml", "rate: 55.0", "rate: [55.0")
     lines = refused(sample_root, sedan_master)
     assert len(lines) == 1
     assert lines[0].startswith("sedan/rear_spring/X.yaml: malformed YAML: ")

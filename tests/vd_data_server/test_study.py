@@ -8,6 +8,7 @@ import shutil
 from pathlib import Path
 
 from numpy.testing import assert_allclose
+from vdtest import replace_once
 
 from vd_data_server.study import ModifiedKey, Study, load_study
 
@@ -17,12 +18,6 @@ RTOL = 1e-12
 #: overrides values of front_alignment, front_hardpoints and front_damper (studies/sedan.yaml)
 SEDAN_DIFFERS = {"targets", "front_spring", "front_bushings", "rear_stabilizer",
                  "front_alignment", "front_hardpoints", "front_damper"}
-
-
-def replace(path: Path, old: str, new: str) -> None:
-    text = path.read_text(encoding="utf-8")
-    assert text.count(old) == 1, old
-    path.write_text(text.replace(old, new), encoding="utf-8")
 
 
 def states(study: Study, configuration: str) -> dict[str, str]:
@@ -77,8 +72,8 @@ def test_different_variants_with_identical_content_are_the_same(sample_root: Pat
                                                                 sedan_master: Path) -> None:
     folder = sample_root / "sedan" / "rear_spring"
     shutil.copy(folder / "X.yaml", folder / "Z.yaml")
-    replace(sedan_master, "      targets: stiff_rear\n", "      targets: stiff_rear\n"
-            "      rear_spring: Z\n")
+    replace_once(sedan_master, "      targets: stiff_rear\n", "      targets: stiff_rear\n"
+                 "      rear_spring: Z\n")
     study = load_study(sedan_master)
     assert study.status_of("stiff_rear", "rear_spring").variant == "Z"
     assert {study.status_of(c, "rear_spring").consistency for c in study.configurations} == {"SAME"}
@@ -87,9 +82,9 @@ def test_different_variants_with_identical_content_are_the_same(sample_root: Pat
 
 def test_an_override_equal_to_the_data_value_stays_unchanged(sedan_master: Path) -> None:
     # rear_alignment/X.yaml: camber -1.2 (deg); rear_hardpoints/X.yaml wheel_centre z 332 (mm)
-    replace(sedan_master, "      front_damper.scale: 120 %\n", "      front_damper.scale: 120 %\n"
-            "      rear_alignment.camber: -1.2 deg\n"
-            "      rear_hardpoints.points.wheel_centre.z: 0.332 m\n")
+    replace_once(sedan_master, "      front_damper.scale: 120 %\n", "      front_damper.scale: 120 %\n"
+                 "      rear_alignment.camber: -1.2 deg\n"
+                 "      rear_hardpoints.points.wheel_centre.z: 0.332 m\n")
     study = load_study(sedan_master)
     for group in ("rear_alignment", "rear_hardpoints"):
         entry = study.status_of("sport", group)
@@ -99,7 +94,7 @@ def test_an_override_equal_to_the_data_value_stays_unchanged(sedan_master: Path)
 def test_editing_a_data_file_changes_value_and_hash_of_its_users_only(sample_root: Path,
                                                                       sedan_master: Path) -> None:
     before = load_study(sedan_master)
-    replace(sample_root / "sedan/front_spring/X.yaml", "rate: 30.0", "rate: 32.5")
+    replace_once(sample_root / "sedan/front_spring/X.yaml", "rate: 30.0", "rate: 32.5")
     after = load_study(sedan_master)
     assert_allclose(after.configurations["baseline"].group("front_spring").scalar("rate"),
                     32.5e3, rtol=RTOL)

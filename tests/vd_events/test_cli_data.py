@@ -7,23 +7,12 @@ from pathlib import Path
 
 import pytest
 from numpy.testing import assert_allclose
-from vdtest import tree_snapshot
+from vdtest import line_no, replace_once, tree_snapshot
 
 from vd_data_server.study import load_study
 from vd_events.cli import main
 
 RTOL = 1e-12
-
-
-def replace(path: Path, old: str, new: str) -> None:
-    text = path.read_text(encoding="utf-8")
-    assert text.count(old) == 1, old
-    path.write_text(text.replace(old, new), encoding="utf-8")
-
-
-def line_no(path: Path, start: str) -> int:
-    lines = path.read_text(encoding="utf-8").splitlines()
-    return next(n for n, line in enumerate(lines, start=1) if line.startswith(start))
 
 
 def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
@@ -37,8 +26,8 @@ def broken_sedan(sample_root: Path, sedan_master: Path) -> list[str]:
     """Break two data files of the sedan; return the error lines `vd data check` must print."""
     front = sample_root / "sedan/front_spring/X.yaml"
     rear = sample_root / "sedan/rear_alignment/X.yaml"
-    replace(front, "rate: 30.0", "rate: -30.0")
-    replace(rear, "  toe: 0.15\n", "")
+    replace_once(front, "rate: 30.0", "rate: -30.0")
+    replace_once(rear, "  toe: 0.15\n", "")
     return [f"sedan/front_spring/X.yaml: rate: must be positive, found -30.0 "
             f"(line {line_no(front, '  rate:')})",
             f"sedan/rear_alignment/X.yaml: toe: missing required key "
