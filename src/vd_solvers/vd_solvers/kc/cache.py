@@ -1,0 +1,100 @@
+"""K&C results on demand, cached by the configuration's data hash.
+
+The lower rungs (effective axle characteristics of the bicycle and two-track
+models) and the full-vehicle rung (its suspension maps) need K&C results of the
+*same* configuration and data hash. They ask here: a result that exists in this
+process is returned, a missing one is computed with the ROS-free K&C core. A
+changed configuration has a new data hash, so a result of older data is never
+returned.
+
+    from vd_solvers.kc.cache import kc_result
+    par = kc_result(config, "front", "parallel_wheel_travel", steps=41)
+    par.channels["toe"]           # (n, 2) rad
+
+The key is (data hash, axle, fidelity, event, sorted parameters); the cache
+holds at most ``MAX_ENTRIES`` results (least recently used go first).
+"""
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import replace
+from threading import Lock
+
+from vd_data_server.model import Configuration
+from vd_solvers.errors import SolverError
+
+from .events import EventResult, KCModel
+
+#: results kept per process
+MAX_ENTRIES = 256
+#: fidelities the K&C model offers
+FIDELITIES = ("rigid",)
+#: the opposite-wheel-travel run without the anti-roll bar (roll stiffness split)
+NO_BAR = "opposite_wheel_travel_no_bar"
+
+_results: OrderedDict[tuple, EventResult] = OrderedDict()
+_models: OrderedDict[tuple, KCModel] = OrderedDict()
+_lock = Lock()
+
+
+def _remember(store: OrderedDict, key: tuple, value):
+    store[key] = value
+    store.move_to_end(key)
+    while len(store) > MAX_ENTRIES:
+        store.popitem(last=False)
+    return value
+
+
+def kc_model(config: Configuration, axle: str, fidelity: str = "rigid") -> KCModel:
+    """The assembled K&C model of ``axle`` of ``config`` (cached by data hash)."""
+    from .from_config import suspension_input
+
+    if fidelity not in FIDELITIES:
+        raise SolverError(f"configuration '{config.name}', axle '{axle}': K&C fidelity "
+                          f"'{fidelity}' is not available (available: {', '.join(FIDELITIES)})")
+    key = (config.data_hash, axle, fidelity)
+    with _lock:
+        model = _models.get(key)
+        if model is not None:
+            _models.move_to_end(key)
+            return model
+    label = f"configuration '{config.name}', axle '{axle}'"
+    model = KCModel(suspension_input(config, axle), label)
+    with _lock:
+        return _remember(_models, key, model)
+
+
+def kc_result(config: Configuration, axle: str, event: str, fidelity: str = "rigid",
+              **params: float) -> EventResult:
+    """One K&C event of ``config`` on ``axle``: cached, or computed now.
+
+    ``event`` is a K&C event name or ``opposite_wheel_travel_no_bar`` (the same
+    sweep with the anti-roll bar removed; SolverError if the axle has none).
+    ``params`` are the event's keyword parameters (SI).
+    """
+    key = (config.data_hash, axle, fidelity, event, tuple(sorted(params.items())))
+    with _lock:
+        hit = _results.get(key)
+        if hit is not None:
+            _results.move_to_end(key)
+            return hit
+    model = kc_model(config, axle, fidelity)
+    if event == NO_BAR:
+        if model.inp.stabilizer is None:
+            raise SolverError(f"configuration '{config.name}', axle '{axle}': no anti-roll bar")
+        bare = KCModel(replace(model.inp, stabilizer=None), model.label)
+        result = bare.run("opposite_wheel_travel", **params)
+    else:
+        result = model.run(event, **params)
+    with _lock:
+        return _remember(_results, key, result)
+
+
+def clear() -> None:
+    """Forget every cached model and result (tests)."""
+    with _lock:
+        _results.clear()
+        _models.clear()
+
+
+__all__ = ["kc_result", "kc_model", "clear", "MAX_ENTRIES", "FIDELITIES", "NO_BAR"]
