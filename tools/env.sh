@@ -15,4 +15,6 @@ set +u
 source "$ROOT/install/local_setup.bash"
 export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST}"
 export PYTHONUNBUFFERED=1
+# The dense K&C matrices are small (~100-300): BLAS threads only contend (20x slower on 2 busy cores)
+export OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}" OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 exec "$@"

@@ -85,6 +85,8 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
     _walk(schema.KINDS[expected_kind], raw["data"], "", units, col, values, raw, "data")
     if expected_kind == "hardpoints" and not col.errors:
         _check_template_points(values, col, raw["data"])
+    if expected_kind == "flex" and not col.errors:
+        _check_flex(values, col, raw["data"])
     if expected_kind == "stabilizer" and "bar_radius" in values \
             and "torsion_length" not in values:
         col.add("data.torsion_length", "required with bar_radius (the bar's torsional "
@@ -242,6 +244,61 @@ def _check_template_points(values: Mapping[str, Value], col: _Collector, data: A
     for extra in sorted(given - allowed):
         col.add(f"points.{extra}", f"unknown hard point for template '{template}' (expected: "
                 f"{', '.join(sorted(allowed))})", points, extra)
+
+
+def _names(values: Mapping[str, Value], prefix: str) -> set[str]:
+    return {k.split(".")[1] for k in values if k.startswith(prefix + ".")}
+
+
+def _check_flex(values: Mapping[str, Value], col: _Collector, data: Any) -> None:
+    """Cross-references of a flex file: materials and sections named by components
+    exist, every section has the dimensions of its shape, a component is either a beam
+    frame (material + section) or imported, shape points lie along their member."""
+    materials, sections = _names(values, "materials"), _names(values, "sections")
+    for name in sorted(sections):
+        shape = str(values[f"sections.{name}.shape"].si)
+        given = {k.split(".")[2] for k in values if k.startswith(f"sections.{name}.")} - {"shape"}
+        needed = set(schema.SECTION_SHAPES[shape])
+        allowed = needed | ({"shear_area_y", "shear_area_z"} if shape == "general" else set())
+        for key in sorted(needed - given):
+            col.add(f"sections.{name}.{key}", f"required by shape '{shape}'")
+        for key in sorted(given - allowed):
+            col.add(f"sections.{name}.{key}", f"not a dimension of shape '{shape}' (expected: "
+                    f"{', '.join(sorted(allowed))})")
+    for comp in sorted(_names(values, "components")):
+        base = f"components.{comp}"
+        imported = any(k.startswith(f"{base}.imported.") for k in values)
+        beam = [k for k in ("material", "section") if f"{base}.{k}" in values]
+        if imported and beam:
+            col.add(base, "give either 'imported' or a beam frame (material and section), "
+                    "not both")
+        elif not imported and len(beam) < 2:
+            col.add(base, "a beam frame needs both 'material' and 'section' (or give "
+                    "'imported')")
+        for key, known, what in (("material", materials, "materials"),
+                                 ("section", sections, "sections"),
+                                 ("arm_section", sections, "sections")):
+            if f"{base}.{key}" in values:
+                ref = str(values[f"{base}.{key}"].si)
+                if ref not in known:
+                    col.add(f"{base}.{key}", f"'{ref}' is not in {what} (known: "
+                            f"{', '.join(sorted(known)) or 'none'})")
+        if f"{base}.arm_section" in values and comp != schema.BAR_COMPONENT:
+            col.add(f"{base}.arm_section", f"only the {schema.BAR_COMPONENT} has arms")
+        n = values[f"{base}.elements_per_member"].si
+        if float(n) != int(n) or not 1 <= int(n) <= 50:  # type: ignore[arg-type]
+            col.add(f"{base}.elements_per_member", f"must be a whole number 1..50, found {n}")
+        for sp in sorted(_names({k[len(base) + 1:]: v for k, v in values.items()
+                                 if k.startswith(base + ".")}, "shape_points")):
+            f = float(values[f"{base}.shape_points.{sp}.fraction"].si)  # type: ignore[arg-type]
+            if not 0.0 < f < 1.0:
+                col.add(f"{base}.shape_points.{sp}.fraction", f"must lie strictly between 0 "
+                        f"and 1, found {f:g}")
+        fmt = values.get(f"{base}.imported.format")
+        if fmt is not None and fmt.si == "dmig":
+            for key in ("matrix", "grids"):
+                if not any(k.startswith(f"{base}.imported.{key}") for k in values):
+                    col.add(f"{base}.imported.{key}", "required for format 'dmig'")
 
 
 def _join(path: str, key: str) -> str:

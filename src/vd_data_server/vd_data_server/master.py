@@ -42,7 +42,7 @@ from .yamlio import line_of, load_file
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 MASTER_TOP = ("study", "defaults", "configurations")
 STUDY_KEYS = ("name", "description", "vehicle", "data_root")
-CONFIG_KEYS = ("description", "variants", "overrides", "flexible")
+CONFIG_KEYS = ("description", "variants", "overrides", "flexible", "flexible_components")
 COORDS = {"x": 0, "y": 1, "z": 2}
 
 
@@ -158,6 +158,17 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
                 err(f"{where}.variants.{group}", "no variant chosen (neither in 'defaults' nor "
                     "in the configuration)", configs_raw, name)
         flexible, components = _flexible(body.get("flexible", False), f"{where}.flexible", err)
+        if "flexible_components" in body:
+            chosen = body["flexible_components"]
+            if not (isinstance(chosen, list) and chosen
+                    and all(isinstance(c, str) and c for c in chosen)):
+                err(f"{where}.flexible_components", "expected a non-empty list of component "
+                    f"names, found {chosen!r}", body, "flexible_components")
+            elif components:
+                err(f"{where}.flexible_components", "give the components either as the "
+                    "'flexible' list or here, not both", body, "flexible_components")
+            else:
+                flexible, components = True, tuple(chosen)
         configs[name] = ConfigurationSpec(name, str(body.get("description") or ""),
                                           {str(k): str(v) for k, v in merged.items()},
                                           dict(overrides), flexible, components)
@@ -214,12 +225,17 @@ class GroupCache:
             data = load_group_file(path, display=rel, group=group, variant=variant)
             if data.kind == "tire":
                 data = self._with_tire(data)
+            elif data.kind == "flex":
+                data = self._with_imported(data)
             self._cache[key] = data
         return self._cache[key]
 
     def available(self, group: str) -> list[str]:
         folder = self.master.data_root / self.master.vehicle / group
         return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
+
+    def _with_imported(self, data: GroupData) -> GroupData:
+        return _read_imported(self, data) if _imported_keys(data) else data
 
     def _with_tire(self, data: GroupData) -> GroupData:
         rel = data.text("file")
@@ -230,6 +246,41 @@ class GroupCache:
         props = read_tir(path)
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
         return with_tire(data, props, rel)
+
+
+def _imported_keys(data: GroupData) -> list[str]:
+    return sorted(k for k in data.values if k.startswith("components.")
+                  and k.endswith(".imported.file"))
+
+
+def _read_imported(cache: "GroupCache", data: GroupData) -> GroupData:
+    values = dict(data.values)
+    for key in _imported_keys(data):
+        rel = data.text(key)
+        path = cache.master.data_root / rel
+        if not inside(cache.master.data_root, path):
+            raise DataError(f"'{rel}' is outside the data root {cache.master.data_root}",
+                            file=data.file, key=key)
+        if not path.is_file():
+            raise DataError(f"reduced stiffness file '{rel}' does not exist", file=data.file,
+                            key=key)
+        raw = path.read_bytes()
+        if len(raw) > IMPORTED_MAX_BYTES:
+            raise DataError(f"reduced stiffness file '{rel}' is larger than "
+                            f"{IMPORTED_MAX_BYTES // 1_000_000} MB", file=data.file, key=key)
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError:
+            raise DataError(f"reduced stiffness file '{rel}' is not UTF-8 text", file=data.file,
+                            key=key) from None
+        cache.extra_hashes[rel] = hashlib.sha256(raw).hexdigest()[:16]
+        content = key[: -len("file")] + "content"
+        values[content] = Value(content, "text", text, source=rel)
+    return GroupData(data.group, data.kind, data.variant, data.file, values, data.description)
+
+
+#: largest reduced stiffness file read (a 50-node superelement in text is ~2 MB)
+IMPORTED_MAX_BYTES = 20_000_000
 
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
@@ -257,7 +308,10 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
     if extra_overrides:
         groups = apply_overrides(groups, extra_overrides, file="--set", where="")
     check_geometry(groups, file=master.display, configuration=name)
+    check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
     tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
+    tire_files |= {g.text(k) for g in groups.values() if g.kind == "flex"
+                   for k in _imported_keys(g)}
     hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
     return Configuration(name=name, master_file=master.display, description=spec.description,
                          groups=groups, flexible=spec.flexible,
@@ -289,6 +343,52 @@ def check_geometry(groups: Mapping[str, GroupData], *, file: str, configuration:
                   f"{GEOMETRY_TOLERANCE * 1e3:g} mm", file=file,
                   key=f"configurations.{configuration}: geometry.{key}")
         for key, value, what in checks if abs(geo.scalar(key) - value) > GEOMETRY_TOLERANCE]
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+
+
+def flex_components(groups: Mapping[str, GroupData]) -> dict[str, tuple[str, ...]]:
+    """Flexible components defined per axle (from the ``<axle>_flex`` groups)."""
+    out = {}
+    for axle in schema.AXLES:
+        g = groups.get(f"{axle}_flex")
+        if g is not None:
+            out[axle] = tuple(sorted({k.split(".")[1] for k in g.values
+                                      if k.startswith("components.")}))
+    return out
+
+
+def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, file: str,
+                   configuration: str) -> None:
+    """Flex components must exist in the axle's template, and a configuration's
+    chosen ``flexible_components`` in its flex groups."""
+    errors = []
+    defined = flex_components(groups)
+    for axle, names in defined.items():
+        hp = groups.get(f"{axle}_hardpoints")
+        if hp is None:
+            continue
+        template = hp.text("template")
+        known = schema.TEMPLATE_COMPONENTS[template]
+        with_bar = f"{axle}_stabilizer" in groups
+        flex = groups[f"{axle}_flex"]
+        for name in names:
+            if name == schema.BAR_COMPONENT and not with_bar:
+                errors.append(DataError(f"the {axle} axle has no anti-roll bar "
+                                        f"({axle}_stabilizer) to make flexible", file=flex.file,
+                                        key=f"components.{name}"))
+            elif name != schema.BAR_COMPONENT and name not in known:
+                errors.append(DataError(
+                    f"template '{template}' has no component '{name}' (components: "
+                    f"{', '.join(known + ((schema.BAR_COMPONENT,) if with_bar else ()))})",
+                    file=flex.file, key=f"components.{name}"))
+    every = {n for names in defined.values() for n in names}
+    for name in chosen:
+        if name not in every:
+            errors.append(DataError(
+                f"flexible component '{name}' is not defined in the configuration's flex "
+                f"data (defined: {', '.join(sorted(every)) or 'none'})", file=file,
+                key=f"configurations.{configuration}.flexible_components"))
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
 

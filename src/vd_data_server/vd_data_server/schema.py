@@ -91,6 +91,22 @@ TEMPLATE_POINTS: Mapping[str, tuple[str, ...]] = {
                   "spring_upper", "spring_lower", "damper_upper", "damper_lower",
                   "wheel_centre"),
 }
+#: parts and links of each template that may be made flexible (the K&C templates'
+#: ``Topology.flexible_components``; a test keeps the two equal), plus the bar
+TEMPLATE_COMPONENTS: Mapping[str, tuple[str, ...]] = {
+    "macpherson": ("upright", "lca", "strut", "tierod"),
+    "double_wishbone": ("upright", "lca", "uca", "tierod"),
+    "multilink": ("upright", "upper_arm", "trailing_link", "lateral_link", "tierod"),
+}
+BAR_COMPONENT = "anti_roll_bar"
+SECTION_SHAPES: Mapping[str, tuple[str, ...]] = {
+    "solid_round": ("diameter",),
+    "tube": ("outer_diameter", "wall"),
+    "rectangle": ("width", "height"),
+    "i_beam": ("height", "flange_width", "flange_thickness", "web_thickness"),
+    "general": ("area", "iy", "iz", "torsion_constant"),
+}
+
 #: optional points every template understands (anti-roll bar drop link and pivot)
 OPTIONAL_POINTS = ("arb_link_lower", "arb_link_upper", "arb_pivot")
 
@@ -186,6 +202,76 @@ KINDS: Mapping[str, Section] = {
         "unsprung_mass_front": Scalar("mass", "unsprung mass per front corner", positive=True),
         "unsprung_mass_rear": Scalar("mass", "unsprung mass per rear corner", positive=True),
     }),
+    "flex": Section({
+        "materials": MapOf(Section({
+            "youngs_modulus": Scalar("pressure", "Young's modulus E", positive=True),
+            "poissons_ratio": Scalar("dimensionless", "Poisson's ratio (G = E / (2 (1 + nu)))",
+                                     required=False),
+            "shear_modulus": Scalar("pressure", "shear modulus G", required=False,
+                                    positive=True),
+            "density": Scalar("density", "density (0: a massless model)", minimum=0.0),
+        }, one_of=(("poissons_ratio", "shear_modulus"),)), "materials by name"),
+        "sections": MapOf(Section({
+            "shape": Text("cross-section shape", choices=("solid_round", "tube", "rectangle",
+                                                          "i_beam", "general")),
+            "diameter": Scalar("length", "solid_round: diameter", required=False,
+                               positive=True),
+            "outer_diameter": Scalar("length", "tube: outer diameter", required=False,
+                                     positive=True),
+            "wall": Scalar("length", "tube: wall thickness", required=False, positive=True),
+            "width": Scalar("length", "rectangle: width along the beam's local y (horizontal)",
+                            required=False, positive=True),
+            "height": Scalar("length", "rectangle, i_beam: height along the beam's local z "
+                             "(vertical)", required=False, positive=True),
+            "flange_width": Scalar("length", "i_beam: flange width", required=False,
+                                   positive=True),
+            "flange_thickness": Scalar("length", "i_beam: flange thickness", required=False,
+                                       positive=True),
+            "web_thickness": Scalar("length", "i_beam: web thickness", required=False,
+                                    positive=True),
+            "area": Scalar("area", "general: cross-section area", required=False,
+                           positive=True),
+            "iy": Scalar("area_moment", "general: second moment of area about local y "
+                         "(vertical bending)", required=False, positive=True),
+            "iz": Scalar("area_moment", "general: second moment of area about local z",
+                         required=False, positive=True),
+            "torsion_constant": Scalar("area_moment", "general: torsion constant J",
+                                       required=False, positive=True),
+            "shear_area_y": Scalar("area", "general: shear area along local y (omit both "
+                                   "for Euler-Bernoulli)", required=False, positive=True),
+            "shear_area_z": Scalar("area", "general: shear area along local z",
+                                   required=False, positive=True),
+        }), "cross-sections by name"),
+        "components": MapOf(Section({
+            "material": Text("material name (beam frame)", required=False),
+            "section": Text("section name (beam frame)", required=False),
+            "arm_section": Text("anti_roll_bar only: section of the two arms (default: "
+                                "section)", required=False),
+            "elements_per_member": Scalar("dimensionless", "beam elements per straight "
+                                          "piece of a member (1..50)", required=False,
+                                          default=1.0, positive=True),
+            "rigid_mass": Scalar("mass", "the part's mass in the rigid K&C model (at the "
+                                 "centroid of its hard points, thesis 5.1)", required=False,
+                                 minimum=0.0),
+            "shape_points": MapOf(Section({
+                "from": Text("member start point (hard point name)"),
+                "to": Text("member end point (hard point name)"),
+                "fraction": Scalar("dimensionless", "position along the member, 0..1"),
+                "offset": Point("offset from that position (left side)", required=False),
+            }), "bends of a member, defined relative to its hard points", required=False),
+            "imported": Section({
+                "file": Text("reduced stiffness file, path relative to the data root"),
+                "format": Text("file format", choices=("plain", "dmig")),
+                "matrix": Text("dmig: the DMIG matrix name (e.g. KAAX)", required=False),
+                "grids": MapOf(Text("hard point the GRID is attached to"),
+                               "dmig: GRID id -> hard point", required=False),
+                "length_unit": Text("dmig: length unit of the FE model (default m)",
+                                    required=False),
+                "force_unit": Text("dmig: force unit of the FE model (default N)",
+                                   required=False),
+            }, required=False),
+        }), "flexible components by name (template parts and links, anti_roll_bar)"),
+    }),
     "geometry": Section({
         "wheelbase": Scalar("length", "front to rear axle distance at design", positive=True),
         "track_front": Scalar("length", "front wheel-centre track at design", positive=True),
@@ -207,7 +293,7 @@ KINDS: Mapping[str, Section] = {
 VEHICLE_KINDS = ("mass", "geometry", "targets", "steering")
 #: per-axle groups are named ``front_<kind>`` / ``rear_<kind>``
 AXLE_KINDS = ("hardpoints", "spring", "damper", "bump_stop", "rebound_stop", "bushings",
-              "stabilizer", "alignment", "tire")
+              "stabilizer", "alignment", "tire", "flex")
 #: groups a configuration must pick a variant for
 REQUIRED_GROUPS = ("mass", "geometry", "targets",
                    *(f"{a}_{k}" for a in AXLES for k in
@@ -258,6 +344,7 @@ def describe(spec: Spec, prefix: str = "") -> list[FieldDoc]:
 
 
 __all__ = ["AXLES", "KINDS", "TEMPLATE_POINTS", "OPTIONAL_POINTS", "REQUIRED_GROUPS",
+           "TEMPLATE_COMPONENTS", "BAR_COMPONENT", "SECTION_SHAPES",
            "Scalar", "Curve", "Point", "Vector", "Text", "Section", "MapOf", "group_kind",
            "all_group_names", "describe"]
 

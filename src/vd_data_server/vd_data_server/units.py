@@ -39,6 +39,9 @@ SI_UNITS: Mapping[str, str] = {
     "torque": "N*m",
     "inertia": "kg*m^2",
     "pressure": "Pa",
+    "density": "kg/m^3",
+    "area": "m^2",
+    "area_moment": "m^4",
     "rack_ratio": "m/rad",
     "acceleration": "m/s^2",
     "frequency": "1/s",
@@ -57,6 +60,9 @@ _DERIVED: Mapping[str, str] = {
     "torque": "{force}*{length}",
     "inertia": "{mass}*{length}^2",
     "pressure": "{force}/{length}^2",
+    "density": "{mass}/{length}^3",
+    "area": "{length}^2",
+    "area_moment": "{length}^4",
     "rack_ratio": "{length}/revolution",
 }
 
@@ -64,7 +70,7 @@ _DERIVED: Mapping[str, str] = {
 SI_SYMBOLS: Mapping[str, str] = {
     "m": "m", "rad": "rad", "N": "N", "kg": "kg", "s": "s", "m/s": "m/s", "N/m": "N/m",
     "N*s/m": "N·s/m", "N*m/rad": "N·m/rad", "N*m*s/rad": "N·m·s/rad", "N*m": "N·m",
-    "kg*m^2": "kg·m²", "Pa": "Pa", "m/rad": "m/rad", "m/s^2": "m/s²", "1/s": "1/s", "": "-",
+    "kg*m^2": "kg·m²", "Pa": "Pa", "kg/m^3": "kg/m³", "m^2": "m²", "m^4": "m⁴", "m/rad": "m/rad", "m/s^2": "m/s²", "1/s": "1/s", "": "-",
 }
 
 

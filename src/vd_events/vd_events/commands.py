@@ -25,7 +25,8 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     run.add_argument("event")
     run.add_argument("--config", default=None, help="configuration (default: the first)")
     run.add_argument("--model", default=None, help="bicycle | two_track | kc | vehicle")
-    run.add_argument("--fidelity", default="rigid", choices=None)
+    run.add_argument("--fidelity", default="", help="rigid | flexible (K&C; default: the "
+                     "configuration's 'flexible' switch in the master file)")
     run.add_argument("--axle", default="", help="front | rear (K&C events)")
     run.add_argument("--set", dest="overrides", action="append", default=[],
                      metavar="KEY=VALUE", help="temporary override, e.g. "
@@ -95,9 +96,14 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     master, study = _study(args.master)
     model = args.model or default_model(args.event)
-    request = RunRequest(event=args.event, configuration=args.config or
-                         study.configuration_names[0], model=model,
-                         fidelity=args.fidelity or "rigid", axle=args.axle or "",
+    config_name = args.config or study.configuration_names[0]
+    fidelity = args.fidelity
+    if not fidelity:
+        config = study.configurations.get(config_name)
+        fidelity = "flexible" if model == "kc" and config is not None and config.flexible \
+            else "rigid"
+    request = RunRequest(event=args.event, configuration=config_name, model=model,
+                         fidelity=fidelity, axle=args.axle or "",
                          overrides=tuple(args.overrides), parameters=tuple(args.parameters),
                          bag=Path(args.bag) if args.bag else None)
     try:

@@ -104,9 +104,9 @@ def validate(study: Study, request: RunRequest) -> None:
                        f"(its events: {', '.join(events_for(request.model))})")
     if request.fidelity not in ("rigid", "flexible"):
         raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
-    if request.fidelity == "flexible":
-        raise RunError(f"fidelity 'flexible' is not available yet for model '{request.model}' "
-                       "(flexible components are a later rung)")
+    if request.fidelity == "flexible" and request.model != "kc":
+        raise RunError(f"fidelity 'flexible' is available for model 'kc' only (model "
+                       f"'{request.model}' has no flexible components)")
     if request.model == "kc" and request.axle not in ("front", "rear"):
         raise RunError(f"K&C events need --axle front or rear (found '{request.axle}')")
     if request.model != "kc" and request.axle:
@@ -120,6 +120,11 @@ def validate(study: Study, request: RunRequest) -> None:
             request.axle != "front" or "steering" not in config.groups):
         raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
                        f"'{request.configuration}' has no steering")
+    if request.model == "kc" and request.fidelity == "flexible":
+        axle_flex = f"{request.axle}_flex"
+        if axle_flex not in config.groups:
+            raise RunError(f"configuration '{request.configuration}' has no flexible components "
+                           f"on the {request.axle} axle (no {axle_flex} group in the master file)")
     parse_params(request.event, event_params(request.model, request.event), request.parameters)
     if request.bag is not None:
         check_bag_path(request.bag)

@@ -11,6 +11,7 @@ Plan file::
         parameters: [radius=100 m]   # optional event parameters
         overrides: []                # optional GROUP.KEY=VALUE for these runs
         axle: front                  # optional (K&C events)
+        fidelity: flexible           # optional (K&C: rigid, the default, or flexible)
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ from vd_data_server.yamlio import load_file
 from .bag import BagError
 from .runner import RunError, RunRequest, run_distributed, run_embedded, validate
 
-RUN_KEYS = ("event", "models", "configurations", "parameters", "overrides", "axle")
+RUN_KEYS = ("event", "models", "configurations", "parameters", "overrides", "axle", "fidelity")
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 
 
@@ -77,9 +78,12 @@ def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
             for config in configs:
                 axle = str(run.get("axle", ""))
                 bag = bags / f"{run['event']}{'_' + axle if axle else ''}_{model}_{config}"
+                fidelity = str(run.get("fidelity", "rigid"))
+                if fidelity != "rigid":
+                    bag = bag.with_name(f"{bag.name}_{fidelity}")
                 requests.append(RunRequest(
                     event=str(run["event"]), configuration=str(config), model=str(model),
-                    axle=axle, overrides=tuple(str(o) for o in run.get("overrides", [])),
+                    axle=axle, fidelity=fidelity, overrides=tuple(str(o) for o in run.get("overrides", [])),
                     parameters=tuple(str(p) for p in run.get("parameters", [])), bag=bag))
     return requests
 

@@ -1,4 +1,6 @@
-"""``ros2 run vd_solvers kc_solver``: the rigid kinematics & compliance solver.
+"""``ros2 run vd_solvers kc_solver``: the rigid and flexible kinematics & compliance solver.
+
+Goal fidelity 'rigid' or 'flexible'; empty: the configuration's ``flexible`` switch.
 
 Action ``/vd/kc/run_event`` (vd_interfaces/RunEvent, goal.axle front|rear);
 results on ``/vd/kc/result`` and per step on ``/vd/kc/state`` (see solver_node).
@@ -7,7 +9,7 @@ from __future__ import annotations
 
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
-from vd_solvers.kc.from_config import run_kc_event
+from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
 from vd_solvers.results import EventOutcome
 from vd_data_server.node_main import spin_node
 from vd_solvers.solver_node import SolverNode
@@ -16,10 +18,13 @@ FAMILY = "kc"
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
-    if goal.fidelity not in ("", "rigid"):
+    fidelity = goal.fidelity or ("flexible" if config.flexible else "rigid")
+    if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
-                          f"'{goal.fidelity}' is not available (the K&C solver is rigid)")
-    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters), progress)
+                          f"'{goal.fidelity}' is not available (fidelities: "
+                          f"{', '.join(FIDELITIES)})")
+    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters), progress,
+                        fidelity)
 
 
 class KCSolver(SolverNode):

@@ -30,7 +30,11 @@ import numpy as np
 from vd_solvers.errors import SolverError
 
 from .bushing import Measure, bushing_frame, bushing_measures, side_frame
-from .forces import EnergyLaw, LinearLaw, StopLaw, TorsionLaw, spring_law, stiffness_law
+from vd_solvers.flex.component import Condensed, build, clamped
+from vd_solvers.flex.imported import mirror_stiffness
+
+from .forces import (EnergyLaw, LinearLaw, MatrixLaw, StopLaw, TorsionLaw, spring_law,
+                     stiffness_law)
 from .joints import (
     GROUND,
     PAIRS,
@@ -45,11 +49,12 @@ from .joints import (
     point,
     vector,
 )
-from .model import SIDES, Side, SuspensionInput, mirror, validate
-from .templates import ARB_POINTS, STEERING, TEMPLATES, LinkDef, SuspensionTemplate, Topology
+from .model import SIDES, FlexSpec, Side, SuspensionInput, mirror, validate
+from .templates import ARB_POINTS, STEERING, TEMPLATES, LinkDef, PartDef, SuspensionTemplate, Topology
 
 GRAVITY = 9.80665  # m/s^2, standard gravity
 RACK = "rack"
+BAR = "anti_roll_bar"
 _EYE = np.eye(3)
 
 
@@ -120,6 +125,7 @@ class Outputs:
     rack_row: int | None  # constraint row (rigid rack)
     elastic: np.ndarray  # energy measures that store elastic energy
     steer_sign: float  # +1 if +y rack travel steers left
+    components: tuple[Condensed, ...] = ()  # flexible components as built (left side, bar once)
 
 
 @dataclass(frozen=True)
@@ -156,6 +162,8 @@ class System:
         self._batches = batches
         self.c_g, self.c_e = c_g, c_e
         self.laws = laws
+        self.coupled = [(idx, law.matrix) for law, idx in laws if isinstance(law, MatrixLaw)]
+        self.coupled_max = max((float(np.max(np.abs(k))) for _, k in self.coupled), default=0.0)
         self.outputs = outputs
         self.n_prim = c_g.shape[1]
         self.n_con = c_g.shape[0]
@@ -368,7 +376,11 @@ class Evaluation:
         """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
         s, e = self.system, self.measure_jacobian
         weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
-        return e.T @ (self.d2[:, None] * e) + s.second_order(self.so_vals, weights) + self.k_ext
+        k = e.T @ (self.d2[:, None] * e) + s.second_order(self.so_vals, weights) + self.k_ext
+        for idx, matrix in s.coupled:
+            block = e[idx]
+            k += block.T @ matrix @ block
+        return k
 
 
 def _skew(w: np.ndarray) -> np.ndarray:
@@ -532,6 +544,7 @@ class _OutputsFactory:
         self.rack_row: int | None = None
         self.elastic: list[int] = []
         self.steer_sign = 1.0
+        self.components: list[Condensed] = []
 
     def __call__(
         self,
@@ -565,6 +578,7 @@ class _OutputsFactory:
             rack_row=self.rack_row,
             elastic=np.array(self.elastic, dtype=int),
             steer_sign=self.steer_sign,
+            components=tuple(self.components),
         )
 
 
@@ -602,6 +616,11 @@ def _check_keys(inp: SuspensionInput, topo: Topology) -> None:
     for name in inp.masses:
         if name not in masses:
             raise SolverError(f"mass {name!r} names no part; known: {sorted(masses)}")
+    known = topo.flexible_components(inp.stabilizer is not None)
+    for name in inp.flexible:
+        if name not in known:
+            raise SolverError(f"unknown flexible component {name!r} (components of template "
+                              f"{inp.template!r}: {', '.join(known)})")
     universals = {j.point for j in topo.joints if j.kind == "universal"}
     for name in inp.joint_axes:
         if name not in universals:
@@ -616,6 +635,9 @@ class _Assembly:
         self.b = _Builder()
         self.out = _OutputsFactory()
         self.steered = inp.steering is not None
+        #: (component, side) -> hard point -> node part, for flexible components
+        self.nodes: dict[tuple[str, Side], dict[str, str]] = {}
+        self._condensed: dict[str, Condensed] = {}
 
     def run(self) -> System:
         inp = self.inp
@@ -624,12 +646,26 @@ class _Assembly:
         for side in SIDES:
             self._corner(side)
         if inp.stabilizer is not None:
-            self._bar_torsion()
+            if BAR in inp.flexible:
+                self._flex_bar()
+            else:
+                self._bar_torsion()
+        for side in SIDES:
+            self._tracking(side)
         return self.b.build(self.out)
 
     # -- helpers ---------------------------------------------------------------
     def hp(self, name: str, side: Side) -> np.ndarray:
         return mirror(self.inp.hardpoints[name], side)
+
+    def at(self, part: str, point_name: str, side: Side) -> str:
+        """The part that carries hard point ``point_name`` of ``part``: the part
+        itself, or the node of a flexible component at that point (its
+        reference node if the point is no node of it)."""
+        nodes = self.nodes.get((part, side))
+        if nodes is None:
+            return self.resolve(part, side)
+        return nodes.get(point_name, next(iter(nodes.values())))
 
     def resolve(self, part: str, side: Side) -> str:
         if part == GROUND:
@@ -689,11 +725,14 @@ class _Assembly:
         inp, topo, b = self.inp, self.topo, self.b
         masses = inp.masses
         for part in topo.parts:
+            if part.name in inp.flexible:
+                self._flex_part(part, side)
+                continue
             at = np.mean([self.hp(n, side) for n in part.points], axis=0)
             name = b.part(self.resolve(part.name, side), at)
             self._gravity(name, at, masses.get(part.name, 0.0))
         for j in topo.joints:
-            a, c = self.resolve(j.inboard, side), self.resolve(j.outboard, side)
+            a, c = self.at(j.inboard, j.point, side), self.at(j.outboard, j.point, side)
             at = self.hp(j.point, side)
             axis = cross = None
             if j.axis is not None:
@@ -711,16 +750,19 @@ class _Assembly:
             self._link(link, side)
         self._wheel(side)
         self._force_lines(side)
-        if inp.stabilizer is not None:
+        if inp.stabilizer is not None and BAR not in inp.flexible:
             self._bar_arm(side)
-        self._tracking(side)
 
     def _link(self, link: LinkDef, side: Side) -> None:
         """Distance constraint, or a rigid link part when an end has a bushing
         (its spin about its own axis is then held by the bushing)."""
         inp, b = self.inp, self.b
-        a, c = self.resolve(link.inboard, side), self.resolve(link.outboard, side)
+        a = self.at(link.inboard, link.inboard_point, side)
+        c = self.at(link.outboard, link.outboard_point, side)
         pa, pc = self.hp(link.inboard_point, side), self.hp(link.outboard_point, side)
+        if link.name in inp.flexible:
+            self._flex_link(link, side, a, c, pa, pc)
+            return
         mass = inp.masses.get(link.name, 0.0)
         # A link's mass is split between its two ends (two-force member).
         self._gravity(a, pa, 0.5 * mass)
@@ -735,7 +777,7 @@ class _Assembly:
 
     def _wheel(self, side: Side) -> None:
         inp, b = self.inp, self.b
-        upright = self.resolve(self.topo.wheel_part, side)
+        upright = self.at(self.topo.wheel_part, "wheel_centre", side)
         centre = self.hp("wheel_centre", side)
         toe, camber = inp.toe, inp.camber
         # Outward spin axis from ISO toe (+ = toe-in) and camber (+ = top out).
@@ -751,14 +793,14 @@ class _Assembly:
         inp, topo, b = self.inp, self.topo, self.b
         sp = topo.spring
         upper, lower = self.hp(sp.upper, side), self.hp(sp.lower, side)
-        length = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.resolve(sp.part, side), lower)))
+        length = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.at(sp.part, sp.lower, side), lower)))
         design = float(np.linalg.norm(upper - lower))
         self.out.spring[side] = int(b.energy([length], spring_law(inp.spring, design))[0])
         self.out.spring_length[side] = length
         self.out.elastic.append(self.out.spring[side])
         dp = topo.damper
         upper, lower = self.hp(dp.upper, side), self.hp(dp.lower, side)
-        damper = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.resolve(dp.part, side), lower)))
+        damper = Primitive(PrimKind.DIST, (point(GROUND, upper), point(self.at(dp.part, dp.lower, side), lower)))
         b.prim(damper)
         self.out.damper[side] = damper
         for stop, direction, store in (
@@ -777,7 +819,7 @@ class _Assembly:
         arm = b.part(f"arb_arm.{side}", pivot)
         for prim in joint_constraints("revolute", GROUND, arm, pivot, np.array([0.0, 1.0, 0.0])):
             b.constrain(prim)
-        lower_part = self.resolve(self.topo.arb_part, side)
+        lower_part = self.at(self.topo.arb_part, "arb_link_lower", side)
         lower = self.hp("arb_link_lower", side)
         row = b.constrain(Primitive(PrimKind.DIST, (point(lower_part, lower), point(arm, upper))))
         self.out.droplink_rows[side] = row
@@ -815,9 +857,162 @@ class _Assembly:
         for name in inp.hardpoints:
             part = owner.get(name, GROUND)
             if name == "arb_link_upper" and inp.stabilizer is not None:
-                resolved = f"arb_arm.{side}"
+                resolved = (self.nodes[(BAR, "left")][f"arb_link_upper.{side}"]
+                            if BAR in inp.flexible else f"arb_arm.{side}")
             else:
-                resolved = self.resolve(part, side)
+                resolved = self.at(part, name, side)
             ref = point(resolved, self.hp(name, side))
             self.b.extra_points.append(ref)
             tracked[name] = ref
+
+    # -- flexible components ------------------------------------------------------
+    def _attachments(self, part: str) -> list[str]:
+        """Hard points of other elements that act on ``part`` (spring and damper
+        seats, the drop-link mount): they must be nodes of its FE frame."""
+        topo, out = self.topo, []
+        for line in (topo.spring, topo.damper):
+            if line.part == part:
+                out.append(line.lower)
+        if self.inp.stabilizer is not None and topo.arb_part == part:
+            out.append("arb_link_lower")
+        return out
+
+    def _component(self, name: str, points: list[str], members, attachments=()) -> Condensed:
+        """The left-side condensed component ``name`` (built once)."""
+        if name in self._condensed:
+            return self._condensed[name]
+        spec: FlexSpec = self.inp.flexible[name]
+        hp = {n: np.asarray(self.inp.hardpoints[n], dtype=float) for n in points}
+        if spec.imported is not None:
+            comp = _check_imported(name, spec.imported, hp)
+        else:
+            comp = build(name, hp, members, spec.material, spec.section,  # type: ignore[arg-type]
+                         attachments=attachments, shape_points=spec.shape_points,
+                         elements_per_member=spec.elements_per_member)
+        self._condensed[name] = comp
+        self.out.components.append(comp)
+        return comp
+
+    def _embed(self, comp: Condensed, side: Side, key: tuple[str, Side],
+               positions: np.ndarray, stiffness: np.ndarray, cog: np.ndarray) -> dict[str, str]:
+        """Node parts of a condensed component and its co-rotational potential.
+
+        Deformations are measured in the frame of the first node (the
+        reference): per other node, its displacement relative to the point of
+        the reference frame it coincided with, and its small-angle rotation
+        relative to that frame (the six bushing measures). Rigid motions of all
+        nodes leave every measure at zero, so the potential is objective; the
+        stiffness on these measures is the condensed one with the reference
+        node clamped (exact for a matrix whose null space is the rigid modes).
+        """
+        b = self.b
+        nodes = {n: b.part(f"{key[0]}.{key[1]}@{n}", positions[i])
+                 for i, n in enumerate(comp.nodes)}
+        ref = nodes[comp.nodes[0]]
+        measures = []
+        for i, n in enumerate(comp.nodes[1:], start=1):
+            measures += bushing_measures(ref, nodes[n], positions[i], np.eye(3), np.ones(6))
+        idx = b.energy(measures, MatrixLaw(clamped(stiffness)))
+        self.out.elastic.extend(int(i) for i in idx)
+        self._gravity(ref, cog, comp.mass)
+        for alias, target in comp.aliases.items():
+            nodes[alias] = nodes[target]
+        self.nodes[key] = nodes
+        return nodes
+
+    def _flex_part(self, part: PartDef, side: Side) -> None:
+        members = self.topo.frames.get(part.name)
+        if members is None:
+            raise SolverError(f"template {self.template.name!r} has no beam frame for part "
+                              f"{part.name!r}; it cannot be made flexible")
+        extra = [p for p in part.points + tuple(self._attachments(part.name))
+                 if p not in {n for m in members for n in m}]
+        points = list(dict.fromkeys([n for m in members for n in m] + extra))
+        comp = self._component(part.name, points, members, extra)
+        self._place(comp, part.name, side)
+
+    def _place(self, comp: Condensed, name: str, side: Side) -> dict[str, str]:
+        positions = np.array([mirror(p, side) for p in comp.positions])
+        stiffness = comp.stiffness if side == "left" else mirror_stiffness(comp.stiffness)
+        return self._embed(comp, side, (name, side), positions, stiffness, mirror(comp.cog, side))
+
+    def _flex_link(self, link: LinkDef, side: Side, a: str, c: str,
+                   pa: np.ndarray, pc: np.ndarray) -> None:
+        """A flexible two-force link: a beam between its ball joints. Ideal ball
+        joints at both ends would leave its spin about its own axis free, so the
+        inboard joint is a universal joint whose cross is normal to the link (it
+        only stops the spin, which carries no load)."""
+        comp = self._component(link.name, [link.inboard_point, link.outboard_point],
+                               [(link.inboard_point, link.outboard_point)])
+        nodes = self._place(comp, link.name, side)
+        inner, outer = nodes[link.inboard_point], nodes[link.outboard_point]
+        axis = pc - pa
+        self._connection("universal", link.inboard_point, a, inner, pa, side, axis,
+                         perpendicular_basis(axis))
+        self._connection("spherical", link.outboard_point, outer, c, pc, side)
+
+    def _flex_bar(self) -> None:
+        """The anti-roll bar as a beam frame: drop-link end, arm, body mount
+        (pivot), torsion part across to the other side. The mounts are ball
+        joints on the body; the drop links are distance constraints."""
+        spec = self.inp.flexible[BAR]
+        names = {s: (f"arb_link_upper.{s}", f"arb_pivot.{s}") for s in SIDES}
+        points = {f"{n}.{s}": mirror(self.inp.hardpoints[n], s) for s in SIDES
+                  for n in ("arb_link_upper", "arb_pivot")}
+        members = [names["left"], (names["left"][1], names["right"][1]),
+                   (names["right"][1], names["right"][0])]
+        if spec.imported is not None:
+            raise SolverError("anti_roll_bar: an imported stiffness is not supported for the bar")
+        shapes = []
+        for sp in spec.shape_points:
+            if (sp.start, sp.end) != ("arb_link_upper", "arb_pivot"):
+                raise SolverError("anti_roll_bar: shape points lie on the arm, from "
+                                  "arb_link_upper to arb_pivot")
+            shapes.append(type(sp)(names["left"][0], names["left"][1], sp.fraction, sp.offset))
+            shapes.append(type(sp)(names["right"][1], names["right"][0], 1.0 - sp.fraction,
+                                   tuple(mirror(np.asarray(sp.offset), "right"))))
+        arm = spec.arm_section or spec.section
+        comp = build(BAR, points, members, spec.material, spec.section,  # type: ignore[arg-type]
+                     shape_points=shapes, elements_per_member=spec.elements_per_member,
+                     member_sections={names["left"]: arm, members[2]: arm})
+        self.out.components.append(comp)
+        nodes = self._embed(comp, "left", (BAR, "left"), comp.positions, comp.stiffness, comp.cog)
+        for side in SIDES:
+            upper, pivot = names[side]
+            for prim in joint_constraints("spherical", GROUND, nodes[pivot], points[pivot]):
+                self.b.constrain(prim)
+            lower = self.hp("arb_link_lower", side)
+            lower_part = self.at(self.topo.arb_part, "arb_link_lower", side)
+            row = self.b.constrain(Primitive(PrimKind.DIST, (point(lower_part, lower),
+                                                             point(nodes[upper], points[upper]))))
+            self.out.droplink_rows[side] = row
+            self.out.arb_arms[side] = nodes[upper]
+
+
+def _check_imported(name: str, comp: Condensed, hardpoints: dict[str, np.ndarray]) -> Condensed:
+    """An imported reduced stiffness must have its nodes on the component's hard points."""
+    missing = [n for n in hardpoints if n not in comp.nodes]
+    if missing:
+        raise SolverError(f"flexible component {name!r}: the imported stiffness has no node "
+                          f"for hard point(s) {', '.join(missing)} (nodes: {', '.join(comp.nodes)})")
+    order = [comp.nodes.index(n) for n in hardpoints]
+    extra = [n for n in comp.nodes if n not in hardpoints]
+    if extra:
+        raise SolverError(f"flexible component {name!r}: imported node(s) {', '.join(extra)} are "
+                          f"not attachment points of this component ({', '.join(hardpoints)})")
+    for i, n in zip(order, hardpoints):
+        gap = float(np.linalg.norm(comp.positions[i] - hardpoints[n]))
+        if np.isfinite(gap) and gap > IMPORT_POSITION_TOL:
+            raise SolverError(f"flexible component {name!r}: imported node {n} lies "
+                              f"{gap * 1e3:.1f} mm from the hard point (more than "
+                              f"{IMPORT_POSITION_TOL * 1e3:g} mm): the stiffness belongs to "
+                              "other geometry")
+    dofs = np.concatenate([np.arange(6 * i, 6 * i + 6) for i in order])
+    positions = np.array([hardpoints[n] for n in hardpoints])
+    cog = comp.cog if np.all(np.isfinite(comp.cog)) else positions.mean(axis=0)
+    return Condensed(name, tuple(hardpoints), positions, comp.stiffness[np.ix_(dofs, dofs)],
+                     comp.mass, cog, 0, comp.source)
+
+
+#: how far an imported node may lie from its hard point, m
+IMPORT_POSITION_TOL = 0.002

@@ -27,8 +27,7 @@ from .events import EventResult, KCModel
 
 #: results kept per process
 MAX_ENTRIES = 256
-#: fidelities the K&C model offers
-FIDELITIES = ("rigid",)
+from .from_config import FIDELITIES  # noqa: E402  (fidelities the K&C model offers)
 #: the opposite-wheel-travel run without the anti-roll bar (roll stiffness split)
 NO_BAR = "opposite_wheel_travel_no_bar"
 
@@ -59,7 +58,7 @@ def kc_model(config: Configuration, axle: str, fidelity: str = "rigid") -> KCMod
             _models.move_to_end(key)
             return model
     label = f"configuration '{config.name}', axle '{axle}'"
-    model = KCModel(suspension_input(config, axle), label)
+    model = KCModel(suspension_input(config, axle, fidelity), label)
     with _lock:
         return _remember(_models, key, model)
 

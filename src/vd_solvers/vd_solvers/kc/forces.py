@@ -173,6 +173,27 @@ class TorsionLaw:
         return 0.5 * k * twist * twist, d1, d2
 
 
+@dataclass(frozen=True, eq=False)
+class MatrixLaw:
+    """V = delta^T K delta / 2 with a full symmetric ``matrix`` K (n, n).
+
+    The condensed stiffness of a flexible component on its deformation
+    measures. ``evaluate`` returns the per-measure split delta_i (K delta)_i / 2
+    of V (they sum to V), the exact gradient K delta and a zero diagonal: the
+    coupled tangent K enters the Newton matrix through :attr:`matrix`.
+    """
+
+    matrix: np.ndarray
+
+    @property
+    def size(self) -> int:
+        return int(self.matrix.shape[0])
+
+    def evaluate(self, delta: np.ndarray) -> Triple:
+        force = self.matrix @ delta
+        return 0.5 * delta * force, force, np.zeros_like(delta)
+
+
 def stiffness_law(stiffness: Stiffness) -> EnergyLaw:
     """Law of one bushing direction: linear rate or force-deflection curve."""
     if isinstance(stiffness, Curve):

@@ -23,8 +23,10 @@ from vd_solvers.results import Channel, EventOutcome, Metric
 
 from .events import EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
-from .model import (Bushing, Curve, DamperSpec, SpringSpec, StabilizerSpec, SteeringSpec,
-                    StopSpec, SuspensionInput)
+from .model import (Bushing, Curve, DamperSpec, FlexSpec, SpringSpec, StabilizerSpec,
+                    SteeringSpec, StopSpec, SuspensionInput)
+
+FIDELITIES = ("rigid", "flexible")
 
 DEG = 180.0 / math.pi
 SIX = ("x", "y", "z", "rx", "ry", "rz")
@@ -69,8 +71,15 @@ def _optional(config: Configuration, name: str) -> GroupData | None:
     return config.groups.get(name)
 
 
-def suspension_input(config: Configuration, axle: str) -> SuspensionInput:
-    """The K&C input of ``axle`` ('front' or 'rear') of ``config``."""
+def suspension_input(config: Configuration, axle: str, fidelity: str = "rigid") -> SuspensionInput:
+    """The K&C input of ``axle`` ('front' or 'rear') of ``config``.
+
+    ``fidelity`` 'flexible' makes the components of the ``<axle>_flex`` group
+    flexible (the configuration's ``flexible_components`` if it names any on
+    this axle, else all of them); 'rigid' uses their ``rigid_mass`` only."""
+    if fidelity not in FIDELITIES:
+        raise SolverError(f"configuration '{config.name}', axle '{axle}': unknown fidelity "
+                          f"'{fidelity}' (fidelities: {', '.join(FIDELITIES)})")
     hp = config.group(f"{axle}_hardpoints")
     points = {k.split(".", 1)[1]: np.asarray(v.si, dtype=float)
               for k, v in hp.values.items() if k.startswith("points.")}
@@ -116,6 +125,19 @@ def suspension_input(config: Configuration, axle: str) -> SuspensionInput:
     tire = config.group(f"{axle}_tire")
     front_load, rear_load = static_wheel_loads(config)
     unsprung = config.group("mass").scalar(f"unsprung_mass_{axle}")
+    masses: dict[str, float] = {"wheel": unsprung}
+    flexible: dict[str, FlexSpec] = {}
+    flex_g = _optional(config, f"{axle}_flex")
+    specs = flex_specs(flex_g) if flex_g is not None else {}
+    for name, (_, rigid_mass) in specs.items():
+        if rigid_mass and name != "anti_roll_bar":
+            masses[name] = rigid_mass
+    if fidelity == "flexible":
+        if not specs:
+            raise SolverError(f"configuration '{config.name}': the {axle} axle has no flexible "
+                              f"components (no {axle}_flex group); run it rigid or add the group")
+        chosen = [c for c in config.flexible_components if c in specs] or sorted(specs)
+        flexible = {c: specs[c][0] for c in chosen}
     return SuspensionInput(
         template=hp.text("template"), axle=axle, hardpoints=points, spring=spring,  # type: ignore[arg-type]
         tire_radius=points["wheel_centre"][2],
@@ -123,7 +145,111 @@ def suspension_input(config: Configuration, axle: str) -> SuspensionInput:
         corner_load=front_load if axle == "front" else rear_load,
         damper=damper, bump_stop=stops["bump_stop"], rebound_stop=stops["rebound_stop"],
         bushings=bushings, stabilizer=stabilizer, steering=steering,
-        camber=align.scalar("camber"), toe=align.scalar("toe"), masses={"wheel": unsprung})
+        camber=align.scalar("camber"), toe=align.scalar("toe"), masses=masses,
+        flexible=flexible)
+
+
+def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
+    """Every component of a flex group: its FlexSpec and its rigid-model mass (kg)."""
+    from vd_solvers.flex import section as sec
+    from vd_solvers.flex.component import ShapePoint
+
+    materials = {}
+    for name in sorted({k.split(".")[1] for k in group.values if k.startswith("materials.")}):
+        base = f"materials.{name}"
+        e, rho = group.scalar(f"{base}.youngs_modulus"), group.scalar(f"{base}.density")
+        g_mod = group.get_scalar(f"{base}.shear_modulus")
+        try:
+            materials[name] = (sec.Material(e, g_mod, rho) if g_mod is not None else
+                               sec.Material.from_poisson(e, group.scalar(f"{base}.poissons_ratio"),
+                                                         rho))
+        except SolverError as err:
+            raise SolverError(f"{group.file}: {base}: {err}") from None
+
+    def section(name: str, nu: float):
+        base = f"sections.{name}"
+        shape = group.text(f"{base}.shape")
+        get = lambda k: group.scalar(f"{base}.{k}")  # noqa: E731
+        try:
+            if shape == "solid_round":
+                return sec.solid_round(get("diameter"), nu)
+            if shape == "tube":
+                return sec.tube(get("outer_diameter"), get("wall"), nu)
+            if shape == "rectangle":
+                return sec.rectangle(get("width"), get("height"), nu)
+            if shape == "i_beam":
+                return sec.i_beam(get("height"), get("flange_width"), get("flange_thickness"),
+                                  get("web_thickness"))
+            return sec.Section(get("area"), get("iy"), get("iz"), get("torsion_constant"),
+                               group.get_scalar(f"{base}.shear_area_y"),
+                               group.get_scalar(f"{base}.shear_area_z"))
+        except SolverError as err:
+            raise SolverError(f"{group.file}: {base}: {err}") from None
+
+    out: dict[str, tuple[FlexSpec, float]] = {}
+    for comp in sorted({k.split(".")[1] for k in group.values if k.startswith("components.")}):
+        base = f"components.{comp}"
+        rigid_mass = group.get_scalar(f"{base}.rigid_mass", 0.0) or 0.0
+        source = f"{group.file} {base}"
+        if group.has(f"{base}.imported.content"):
+            spec = FlexSpec(imported=_imported(group, comp, base), source=source)
+        else:
+            material = materials[group.text(f"{base}.material")]
+            nu = material.poissons_ratio
+            shapes = tuple(
+                ShapePoint(group.text(f"{base}.shape_points.{sp}.from"),
+                           group.text(f"{base}.shape_points.{sp}.to"),
+                           group.scalar(f"{base}.shape_points.{sp}.fraction"),
+                           tuple(group.point(f"{base}.shape_points.{sp}.offset"))
+                           if group.has(f"{base}.shape_points.{sp}.offset") else (0.0, 0.0, 0.0))
+                for sp in sorted({k.split(".")[3] for k in group.values
+                                  if k.startswith(f"{base}.shape_points.")}))
+            arm = (section(group.text(f"{base}.arm_section"), nu)
+                   if group.has(f"{base}.arm_section") else None)
+            spec = FlexSpec(material, section(group.text(f"{base}.section"), nu), shapes,
+                            int(group.scalar(f"{base}.elements_per_member")), arm,
+                            source=source)
+        out[comp] = (spec, rigid_mass)
+    return out
+
+
+def _imported(group: GroupData, comp: str, base: str):
+    """The reduced stiffness of an imported component (file content carried in the group)."""
+    import yaml
+
+    from vd_data_server.units import si_factor
+    from vd_solvers.flex.imported import from_dmig, from_plain
+
+    rel = group.text(f"{base}.imported.file")
+    text = group.text(f"{base}.imported.content")
+    what = f"{rel} ({group.file} {base}.imported)"
+    if group.text(f"{base}.imported.format") == "plain":
+        try:
+            raw = yaml.safe_load(text)
+        except yaml.YAMLError as err:
+            raise SolverError(f"{what}: not valid YAML ({err.__class__.__name__})") from None
+        units = (raw or {}).get("units", {}) if isinstance(raw, dict) else {}
+    else:
+        raw = None
+        units = {q: group.text(f"{base}.imported.{q}_unit") for q in ("length", "force")
+                 if group.has(f"{base}.imported.{q}_unit")}
+    try:
+        factors = {q: si_factor(str(units.get(q, d)), q) for q, d in
+                   (("length", "m"), ("force", "N"), ("angle", "rad"), ("mass", "kg"))}
+    except (ValueError, AttributeError) as err:
+        raise SolverError(f"{what}: units: {err}") from None
+    if raw is not None:
+        return from_plain(comp, raw, what=what, factors=factors)
+    grids = {}
+    for k, v in group.values.items():
+        if k.startswith(f"{base}.imported.grids."):
+            try:
+                grids[int(k.rsplit(".", 1)[1])] = str(v.si)
+            except ValueError:
+                raise SolverError(f"{what}: GRID id '{k.rsplit('.', 1)[1]}' is not a whole "
+                                  "number") from None
+    return from_dmig(comp, text, matrix=group.text(f"{base}.imported.matrix"), grids=grids,
+                     what=what, factors=factors)
 
 
 def bar_stiffness(group: GroupData) -> float:
@@ -145,10 +271,12 @@ def _event_kwargs(event: str, values: Mapping[str, float]) -> dict[str, float]:
 
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
-                 progress: Callable[[float, str], None] | None = None) -> EventOutcome:
+                 progress: Callable[[float, str], None] | None = None,
+                 fidelity: str = "rigid") -> EventOutcome:
     """One K&C event on one axle, with the derived metrics that event supports.
 
-    ``progress(fraction, stage)`` is called per solved step (it may raise to cancel)."""
+    ``progress(fraction, stage)`` is called per solved step (it may raise to cancel);
+    ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`)."""
     label = f"configuration '{config.name}', event '{event}', axle '{axle}'"
     if event not in EVENT_PARAMS:
         raise SolverError(f"{label}: the K&C solver has no event '{event}' (events: "
@@ -156,7 +284,10 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     if axle not in ("front", "rear"):
         raise SolverError(f"{label}: K&C events need --axle front or rear")
     values = parse_params(event, EVENT_PARAMS[event], params)
-    inp = suspension_input(config, axle)
+    try:
+        inp = suspension_input(config, axle, fidelity)
+    except SolverError as err:
+        raise SolverError(f"{label}: {err}") from None
     if event == "steering" and inp.steering is None:
         raise SolverError(f"{label}: the {axle} axle has no steering")
     model = KCModel(inp, label)
@@ -175,10 +306,10 @@ def run_kc_event(config: Configuration, event: str, axle: str,
         results["opposite_wheel_travel_no_bar"] = bare.run(
             event, on_step(1, "solving without the anti-roll bar"),
             **_event_kwargs(event, values))
-    return _outcome(config, event, axle, inp, model, results)
+    return _outcome(config, event, axle, inp, model, results, fidelity)
 
 
-def _outcome(config, event, axle, inp, model, results) -> EventOutcome:
+def _outcome(config, event, axle, inp, model, results, fidelity="rigid") -> EventOutcome:
     geo = config.group("geometry")
     mass_cog = _cog_height(config)
     metrics = {k: Metric(float(v), u) for k, (v, u) in derived_metrics(
@@ -195,11 +326,26 @@ def _outcome(config, event, axle, inp, model, results) -> EventOutcome:
     residual_f = float(np.max(raw["force_residual"]))
     metrics["max_constraint_residual"] = Metric(residual_c, "m")
     metrics["max_force_residual"] = Metric(residual_f, "N")
-    notes = [f"rigid K&C, {inp.template} {axle}; joints to 1e-9 m, forces to 1e-6 N "
+    kind = "rigid" if fidelity == "rigid" else (
+        "flexible (" + ", ".join(sorted(inp.flexible)) + ")")
+    notes = [f"{kind} K&C, {inp.template} {axle}; joints to 1e-9 m, forces to 1e-6 N "
              f"(worst step: {residual_c:.1e} m, {residual_f:.1e} N)",
              f"spring preload at design: {model.inp.spring.preload or 0.0:.0f} N; corner load "
              f"{inp.corner_load:.0f} N from the mass data"]
-    return EventOutcome(event=event, configuration=config.name, model="kc", fidelity="rigid",
+    for comp in model.system.outputs.components:
+        metrics[f"component_mass.{comp.name}"] = Metric(comp.mass, "kg", comp.source)
+        for c, axis in enumerate("xyz"):
+            metrics[f"component_cog_{axis}.{comp.name}"] = Metric(float(comp.cog[c]), "m",
+                                                                 comp.source)
+        rigid = inp.masses.get(comp.name)
+        notes.append(f"{comp.name}: {comp.source}, FE mass {comp.mass:.2f} kg at "
+                     f"({', '.join(f'{v * 1e3:.0f}' for v in comp.cog)}) mm"
+                     + (f"; rigid model {rigid:.2f} kg at the hard-point centroid"
+                        if rigid else ""))
+    for name, mass in inp.masses.items():
+        if name != "wheel":
+            metrics[f"rigid_mass.{name}"] = Metric(mass, "kg", "rigid_mass of the flex data")
+    return EventOutcome(event=event, configuration=config.name, model="kc", fidelity=fidelity,
                         axle=axle, data_hash=config.data_hash, metrics=metrics,
                         channels=channels, notes=tuple(notes))
 

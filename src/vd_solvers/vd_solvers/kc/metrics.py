@@ -143,13 +143,16 @@ def channels(
     for name, idx in out.bushings.items():
         ch[f"bushing_force.{name}"] = d1[:, idx]
         ch[f"bushing_deflection.{name}"] = y[:, idx]
-    if out.arb_twist is not None and out.arb_arms is not None and out.droplink_rows is not None:
-        twist = np.arcsin(y[:, out.arb_twist])
-        ch["arb_twist"] = twist
-        ch["arb_torque"] = d1[:, out.arb_twist] * np.sqrt(1.0 - y[:, out.arb_twist] ** 2)
+    if out.arb_arms is not None and out.droplink_rows is not None:
+        # arm (or, for the beam-model bar, drop-link end node) rotation about y
         rot = np.array([s.R[out.arb_arms] for s in solution.states])
         ch["arb_arm_angle"] = np.arctan2(rot[..., 0, 2], rot[..., 0, 0])
         ch["droplink_force"] = lam[:, out.droplink_rows]
+        if out.arb_twist is not None:
+            ch["arb_twist"] = np.arcsin(y[:, out.arb_twist])
+            ch["arb_torque"] = d1[:, out.arb_twist] * np.sqrt(1.0 - y[:, out.arb_twist] ** 2)
+        else:
+            ch["arb_twist"] = ch["arb_arm_angle"][:, 0] - ch["arb_arm_angle"][:, 1]
     if out.rack_part is not None:
         rack = np.array([s.p[out.rack_part, 1] for s in solution.states]) - design.p[out.rack_part, 1]
         ch["rack_travel"] = rack

@@ -20,6 +20,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from vd_solvers.errors import SolverError
+from vd_solvers.flex.component import Condensed, ShapePoint
+from vd_solvers.flex.section import Material, Section
 
 Axle = Literal["front", "rear"]
 Side = Literal["left", "right"]
@@ -191,6 +193,28 @@ class SteeringSpec:
 
 
 @dataclass(frozen=True)
+class FlexSpec:
+    """One flexible component (thesis 3.3): a beam frame generated from the
+    hard points of the part it replaces, or an imported reduced stiffness.
+
+    Beam frame: ``material``, ``section`` (the anti-roll bar's arms may have
+    ``arm_section``), ``shape_points`` (bends, defined relative to the hard
+    points), ``elements_per_member``. Imported: ``imported`` holds the reduced
+    free-free stiffness of the attachment nodes (left side, vehicle axes), its
+    node names (hard points) and positions, mass and centre of mass; the nodes
+    must sit on the hard points. ``source`` names where the data came from.
+    """
+
+    material: Material | None = None
+    section: Section | None = None
+    shape_points: tuple[ShapePoint, ...] = ()
+    elements_per_member: int = 1
+    arm_section: Section | None = None
+    imported: Condensed | None = None
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class SuspensionInput:
     """One axle's suspension as a K&C rig sees it.
 
@@ -200,7 +224,10 @@ class SuspensionInput:
     template's part names plus ``"wheel"`` (at the wheel centre); a part's
     centre of mass is the centroid of its hard points (thesis 5.1).
     ``joint_axes``: optional universal-joint cross axes (body-side, part-side),
-    keyed by the joint's hard point. ``camber``/``toe``: static design
+    keyed by the joint's hard point. ``flexible``: components modelled as
+    flexible bodies (part or link names of the template, or
+    ``anti_roll_bar``); their mass and centre of mass come from the FE model
+    and replace ``masses`` of that part. ``camber``/``toe``: static design
     alignment (rad; ISO: positive toe = toe-in, negative camber = top inward).
     ``tire_radius``: loaded radius (m) at ``corner_load`` (N, the static design
     wheel load).
@@ -223,6 +250,7 @@ class SuspensionInput:
     toe: float = 0.0
     masses: Mapping[str, float] = field(default_factory=dict)
     joint_axes: Mapping[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    flexible: Mapping[str, FlexSpec] = field(default_factory=dict)
 
 
 def _positive(value: float | None, what: str) -> None:
@@ -269,6 +297,10 @@ def validate(inp: SuspensionInput) -> None:
     for name, mass in inp.masses.items():
         if not (np.isfinite(mass) and mass >= 0.0):
             raise SolverError(f"mass {name!r} must be >= 0 kg, got {mass!r}")
+    for name, spec in inp.flexible.items():
+        if spec.imported is None and (spec.material is None or spec.section is None):
+            raise SolverError(f"flexible component {name!r}: give a material and a section, "
+                              "or an imported stiffness")
     for name, value in (("camber", inp.camber), ("toe", inp.toe)):
         if not (np.isfinite(value) and abs(value) < 0.5):
             raise SolverError(f"{name} must be a finite angle in rad below 0.5, got {value!r}")

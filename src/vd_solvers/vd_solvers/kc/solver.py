@@ -97,7 +97,7 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
         residual = ev.force_residual(state.lam)
         c_res = float(np.max(np.abs(ev.g), initial=0.0))
         f_res = float(np.max(np.abs(residual), initial=0.0))
-        stiffest = float(np.max(np.abs(ev.d2), initial=0.0)) * float(
+        stiffest = max(float(np.max(np.abs(ev.d2), initial=0.0)), system.coupled_max) * float(
             np.max(np.abs(ev.measure_jacobian), initial=0.0)
         ) ** 2
         if c_res <= CONSTRAINT_TOL and f_res <= max(FORCE_TOL, ROUNDOFF_LENGTH * stiffest):

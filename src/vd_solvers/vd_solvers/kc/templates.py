@@ -82,6 +82,14 @@ class Topology:
     arb_part: str
     wheel_part: str = "upright"
     tracked: Mapping[str, str] = field(default_factory=dict)
+    #: beam members of each part when it is made flexible (pairs of its hard points);
+    #: links are one member from inboard to outboard point
+    frames: Mapping[str, tuple[tuple[str, str], ...]] = field(default_factory=dict)
+
+    def flexible_components(self, with_bar: bool) -> tuple[str, ...]:
+        """Names that may be made flexible: parts, links, and the anti-roll bar."""
+        names = tuple(p.name for p in self.parts) + tuple(link.name for link in self.links)
+        return names + (("anti_roll_bar",) if with_bar else ())
 
 
 class SuspensionTemplate(Protocol):
@@ -108,6 +116,15 @@ def _arm(prefix: str, part: str, outer_part: str) -> tuple[JointDef, ...]:
         JointDef("inline", rear, GROUND, part, axis=(front, rear)),
         JointDef("spherical", outer, part, outer_part),
     )
+
+
+def _arm_frame(prefix: str) -> tuple[tuple[str, str], ...]:
+    return ((f"{prefix}_front", f"{prefix}_outer"), (f"{prefix}_rear", f"{prefix}_outer"))
+
+
+def _star(centre: str, *points: str) -> tuple[tuple[str, str], ...]:
+    """Knuckle arms: a beam from the spindle (wheel centre) to each joint."""
+    return tuple((centre, p) for p in points)
 
 
 def _closest_point(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarray) -> np.ndarray:
@@ -145,6 +162,8 @@ class DoubleWishbone:
             spring=LineDef("spring_upper", "spring_lower", "lca"),
             damper=LineDef("damper_upper", "damper_lower", "lca"),
             arb_part="lca",
+            frames={"upright": _star("wheel_centre", "uca_outer", "lca_outer", "tierod_outer"),
+                    "lca": _arm_frame("lca"), "uca": _arm_frame("uca")},
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -183,6 +202,8 @@ class MacPherson:
             damper=LineDef("strut_top", "strut_lower", "upright"),
             arb_part="upright",
             tracked={"strut_top": "strut"},
+            frames={"upright": _star("wheel_centre", "lca_outer", "tierod_outer", "strut_lower"),
+                    "lca": _arm_frame("lca"), "strut": (("strut_top", "strut_lower"),)},
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -230,6 +251,10 @@ class MultiLink:
             spring=LineDef("spring_upper", "spring_lower", "trailing_link"),
             damper=LineDef("damper_upper", "damper_lower", "trailing_link"),
             arb_part="trailing_link",
+            frames={"upright": _star("wheel_centre", "upper_outer", "lateral_outer",
+                                     "trailing_outer", "tierod_outer"),
+                    "upper_arm": _arm_frame("upper"),
+                    "trailing_link": (("trailing_inner", "trailing_outer"),)},
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
