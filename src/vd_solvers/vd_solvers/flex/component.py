@@ -30,6 +30,8 @@ from .section import Material, Section
 
 #: an attachment point this close to a member lies on it (no bracket), m
 ON_MEMBER = 1e-3
+#: hard points this close share one node (a spring seat 2 mm from the damper eye), m
+COINCIDENT = 5e-3
 #: eigenvalues below this fraction of the largest count as rigid-body modes
 RIGID_MODE_RATIO = 1e-10
 
@@ -77,6 +79,7 @@ class Frame:
     elements: tuple[tuple[int, int], ...]
     stiffness: np.ndarray  # (6N, 6N)
     attachment_nodes: tuple[int, ...]
+    sections: tuple[Section, ...] = ()  # per element
 
 
 def _foot(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
@@ -119,7 +122,7 @@ def build(name: str, points: Mapping[str, np.ndarray], members: Sequence[tuple[s
     for i, a in enumerate(order):
         for b in order[:i]:
             if b not in aliases and np.linalg.norm(np.asarray(points[a], float)
-                                                   - np.asarray(points[b], float)) <= ON_MEMBER:
+                                                   - np.asarray(points[b], float)) <= COINCIDENT:
                 aliases[a] = b
                 break
     for a, b in members:
@@ -192,7 +195,8 @@ def build(name: str, points: Mapping[str, np.ndarray], members: Sequence[tuple[s
         moment += m * c
     masters = np.arange(len(order))
     k_red = condense(k_full, masters, name)
-    frame = Frame(xyz, tuple((i, j) for i, j, _ in elements), k_full, tuple(masters))
+    frame = Frame(xyz, tuple((i, j) for i, j, _ in elements), k_full, tuple(masters),
+                  tuple(sec for _, _, sec in elements))
     cog = moment / mass if mass > 0.0 else xyz[: len(order)].mean(axis=0)
     return Condensed(name, tuple(order), xyz[: len(order)].copy(), k_red, mass, cog,
                      len(elements), f"beam frame of {len(elements)} elements", frame, aliases)

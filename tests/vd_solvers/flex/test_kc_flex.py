@@ -1,0 +1,242 @@
+"""Flexible components inside the K&C model: objectivity of the co-rotational
+embedding, the rigid limit, softening, the beam anti-roll bar against G J / L,
+imported stiffness equal to the generated one, and the thesis' trends (5.1)."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from vd_data_server.study import load_study
+from vd_solvers.errors import SolverError
+from vd_solvers.flex import section as sec
+from vd_solvers.flex.imported import from_dmig, from_plain, mirror_stiffness
+from vd_solvers.kc.assembly import LoadCase, assemble
+from vd_solvers.kc.events import KCModel
+from vd_solvers.kc.forces import MatrixLaw
+from vd_solvers.kc.from_config import suspension_input
+from vd_solvers.kc.metrics import derived_metrics
+from vd_solvers.kc.model import FlexSpec, StabilizerSpec
+from vd_solvers.kc.solver import rotation_vectors_to_matrices
+
+EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
+          "longitudinal_force")
+STEPS = 11
+
+
+@pytest.fixture(scope="module")
+def studies():
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "studies"
+    return {v: load_study(root / f"{v}.yaml") for v in ("sedan", "hmmwv")}
+
+
+def _inputs(studies, fidelity):
+    for vehicle, study in studies.items():
+        for name, config in study.configurations.items():
+            for axle in ("front", "rear"):
+                yield f"{vehicle}/{name}/{axle}", suspension_input(config, axle, fidelity)
+
+
+def test_rigid_rotation_of_a_component_stores_no_energy(studies):
+    """Objectivity: rotate every node of the flexible lower arm rigidly by 30 deg,
+    deformed or not; the component's strain energy and internal force are unchanged."""
+    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    system = assemble(inp)
+    law_idx = [i for law, i in system.laws if isinstance(law, MatrixLaw)]
+    # round-off floor: the stiffest entry times a position error of ~50 ulp of 1 m
+    floor = system.coupled_max * 1e-14
+    nodes = [k for k, n in enumerate(system.part_names) if n.startswith("lca.left@")]
+    assert len(nodes) == 3
+    # the lca's measures are the ones that change when only its nodes move
+    state = system.design_state()
+    rng = np.random.default_rng(7)
+    deformed = state.copy()
+    deformed.p[nodes] += rng.normal(scale=2e-4, size=(3, 3))
+    deformed.R[nodes] = rotation_vectors_to_matrices(rng.normal(scale=2e-3, size=(3, 3))) @ deformed.R[nodes]
+    q = rotation_vectors_to_matrices(np.array([[np.radians(30.0) / np.sqrt(3.0)] * 3]))[0]
+    centre = state.p[nodes[0]]
+    for base in (state, deformed):
+        turned = base.copy()
+        turned.p[nodes] = centre + (base.p[nodes] - centre) @ q.T
+        turned.R[nodes] = q @ base.R[nodes]
+        e0 = system.evaluate(base, LoadCase())
+        e1 = system.evaluate(turned, LoadCase())
+        for i in law_idx:
+            assert e1.energy[i].sum() == pytest.approx(e0.energy[i].sum(), rel=1e-9,
+                                                       abs=floor * 1e-14)
+            # internal forces in the reference node's frame: unchanged by the rotation
+            np.testing.assert_allclose(e1.d1[i], e0.d1[i], rtol=1e-7, atol=floor)
+    undeformed = system.evaluate(state, LoadCase())
+    for i in law_idx:
+        assert np.abs(undeformed.energy[i]).max() == 0.0
+
+
+#: E and G scale of the rigid limit. 1e6 pushes the KKT matrix's pivot range (bushings
+#: at 1e5 N/m beside components at 1e14 N/m) past the solver's singularity guard
+#: (SINGULAR_PIVOT_RATIO, which protects against locked mechanisms); 1e5 already
+#: shrinks every component deflection 100 000-fold.
+RIGID_LIMIT_SCALE = 1e5
+
+
+def _stiffened(inp, factor=RIGID_LIMIT_SCALE):
+    """Every flexible component except the bar made far stiffer and massless,
+    the rigid model's part masses removed (so both carry the same weights)."""
+    flex = {}
+    for name, spec in inp.flexible.items():
+        if name == "anti_roll_bar":
+            continue
+        m = spec.material
+        flex[name] = replace(spec, material=sec.Material(m.youngs_modulus * factor,
+                                                         m.shear_modulus * factor, 0.0))
+    return replace(inp, flexible=flex, masses={"wheel": inp.masses["wheel"]})
+
+
+def test_rigid_limit_equals_the_rigid_model(studies):
+    """E and G x 1e5: the flexible K&C equals the rigid K&C within 1e-4 deg and 1e-3 mm
+    on every event, every configuration of both sample vehicles."""
+    checked = 0
+    for label, inp in _inputs(studies, "flexible"):
+        stiff = _stiffened(inp)
+        rigid = replace(inp, flexible={}, masses={"wheel": inp.masses["wheel"]})
+        m_rigid, m_flex = KCModel(rigid, label), KCModel(stiff, label)
+        for event in EVENTS:
+            a, b = m_rigid.run(event, steps=STEPS), m_flex.run(event, steps=STEPS)
+            for ch in ("toe", "camber"):
+                assert np.degrees(np.abs(a.channels[ch] - b.channels[ch]).max()) < 1e-4, (label, event, ch)
+            for ch in ("wheel_centre", "contact_point"):
+                assert np.abs(a.channels[ch] - b.channels[ch]).max() < 1e-6, (label, event, ch)
+            checked += 1
+    assert checked == 4 * 2 * (3 + 2)  # events x axles x configurations (sedan 3, hmmwv 2)
+
+
+def _metrics(inp, label):
+    model = KCModel(inp, label)
+    results = {e: model.run(e, steps=11) for e in EVENTS}
+    return derived_metrics(results, inp.tire_vertical_stiffness)
+
+
+def test_flexibility_can_only_soften(studies):
+    """Compliance added in series can only increase the flexibility of a loaded point in
+    the direction of its load (Rayleigh): the work-conjugate stiffnesses -- lateral at the
+    contact point, traction at the wheel centre, roll -- cannot rise. (Braking acts on the
+    locked wheel at the contact patch while its metric follows the wheel centre, which a
+    softer knuckle may let move less: not a conjugate pair, so not part of the property.)"""
+    for label, inp in _inputs(studies, "flexible"):
+        rigid = replace(inp, flexible={})
+        mr, mf = _metrics(rigid, label), _metrics(inp, label)
+        for key in ("lateral_stiffness", "longitudinal_stiffness_traction", "roll_stiffness"):
+            assert mf[key][0] <= mr[key][0] * (1 + 1e-9), (label, key, mf[key][0], mr[key][0])
+
+
+def test_straight_beam_bar_matches_torsion_spring(studies):
+    """A straight bar with stiff arms running along x: its roll stiffness equals the
+    torsion-spring model's with k = G J / L (L the distance between the mounts), within 1 %."""
+    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "rigid")
+    hp = dict(inp.hardpoints)
+    upper = hp["arb_link_upper"]
+    hp["arb_pivot"] = np.array([hp["arb_pivot"][0], upper[1], upper[2]])  # arm along x
+    bar = sec.solid_round(0.022, 0.3)
+    steel = sec.Material(206e9, 79.3e9, 0.0)  # massless: the stiff arms would weigh 90 kg
+    length = 2.0 * hp["arb_pivot"][1]
+    base = replace(inp, hardpoints=hp, masses={"wheel": inp.masses["wheel"]})
+    rigid = replace(base, stabilizer=StabilizerSpec(steel.shear_modulus * bar.j / length))
+    stiff_arm = sec.solid_round(0.2, 0.3)
+    flex = replace(base, flexible={"anti_roll_bar": FlexSpec(steel, bar, arm_section=stiff_arm,
+                                                             elements_per_member=4)})
+    bare = replace(base, stabilizer=None)
+
+    def roll(i):
+        r = KCModel(i).run("opposite_wheel_travel", steps=11, amplitude=0.02)
+        return derived_metrics({"opposite_wheel_travel": r}, i.tire_vertical_stiffness)["roll_stiffness"][0]
+
+    k0 = roll(bare)
+    assert roll(flex) - k0 == pytest.approx(roll(rigid) - k0, rel=0.01)
+
+
+def _plain(comp, length=1e-3):
+    """The condensed component written in the plain format in mm and N."""
+    from vd_solvers.flex.imported import dof_scales
+
+    k = comp.stiffness / dof_scales(len(comp.nodes), length, 1.0, 1.0)
+    return {"units": {"length": "mm"}, "mass": comp.mass, "cog": list(comp.cog / length),
+            "nodes": {n: list(p / length) for n, p in zip(comp.nodes, comp.positions)},
+            "stiffness": k.tolist()}
+
+
+def _dmig(comp, grids):
+    lines = [f"DMIG*   {'KAAX':<16}{0:>16}{6:>16}{2:>16}", "*       " + f"{0:>16}"]
+    for j in range(comp.stiffness.shape[0]):
+        lines.append(f"DMIG*   {'KAAX':<16}{grids[j // 6]:>16}{j % 6 + 1:>16}")
+        for i in range(j + 1):
+            lines.append(f"*       {grids[i // 6]:>16}{i % 6 + 1:>16}"
+                         f"{comp.stiffness[i, j]:>16.9E}".replace("E", "D"))
+    return "\n".join(lines) + "\n"
+
+
+def test_imported_stiffness_equals_the_generated_frame(studies):
+    """The lower arm's condensed stiffness written as a plain file and as a Nastran DMIG
+    punch, read back and used in the K&C model: the same results as the beam frame."""
+    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    model = KCModel(replace(inp, flexible={"lca": inp.flexible["lca"]}))
+    (comp,) = [c for c in model.system.outputs.components if c.name == "lca"]
+    factors = {"length": 1.0, "force": 1.0, "angle": 1.0, "mass": 1.0}
+    plain = from_plain("lca", _plain(comp), what="test", factors={**factors, "length": 1e-3})
+    np.testing.assert_allclose(plain.stiffness, comp.stiffness, rtol=1e-12)
+    grids = {101 + i: n for i, n in enumerate(comp.nodes)}
+    dmig = from_dmig("lca", _dmig(comp, list(grids)), matrix="KAAX", grids=grids, what="test",
+                     factors=factors)
+    np.testing.assert_allclose(dmig.stiffness, comp.stiffness, rtol=1e-8,
+                               atol=1e-8 * np.abs(comp.stiffness).max())
+    ref = model.run("lateral_force", steps=STEPS)
+    for imported in (plain, replace(dmig, mass=comp.mass, cog=comp.cog)):
+        spec = FlexSpec(imported=imported)
+        got = KCModel(replace(inp, flexible={"lca": spec})).run("lateral_force", steps=STEPS)
+        np.testing.assert_allclose(got.channels["toe"], ref.channels["toe"], atol=1e-9)
+
+
+def test_mirrored_stiffness_is_the_mirror_image():
+    k = np.diag(np.arange(1.0, 13.0))
+    k[0, 1] = k[1, 0] = 0.5  # x-y coupling flips sign in the mirror image
+    m = mirror_stiffness(k)
+    assert m[0, 1] == -0.5 and m[0, 0] == 1.0
+
+
+def test_malformed_dmig_is_refused():
+    with pytest.raises(SolverError) as err:
+        from_dmig("lca", "DMIG    KGG     0       6       2\n", matrix="KAAX", grids={1: "a"},
+                  what="f.pch", factors={"length": 1.0, "force": 1.0, "angle": 1.0})
+    assert str(err.value) == "f.pch: no DMIG matrix 'KAAX' (found: KGG)"
+    text = ("DMIG    KAAX    0       6       2\n"
+            "DMIG    KAAX    101     1               101     1       1.0x+3\n")
+    with pytest.raises(SolverError) as err:
+        from_dmig("lca", text, matrix="KAAX", grids={101: "a"}, what="f.pch",
+                  factors={"length": 1.0, "force": 1.0, "angle": 1.0})
+    assert str(err.value) == "f.pch: '1.0x+3' is not a number"
+
+
+def test_unknown_component_for_the_template_is_refused(studies):
+    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    with pytest.raises(SolverError) as err:
+        KCModel(replace(inp, flexible={"subframe": inp.flexible["lca"]}), "cfg")
+    assert str(err.value) == ("cfg: unknown flexible component 'subframe' (components of "
+                              "template 'macpherson': upright, lca, strut, tierod, anti_roll_bar)")
+
+
+def test_thesis_trends(studies):
+    """Thesis 5.1: the force events differ between rigid and flexible; the steering
+    event (kinematics) nearly agrees."""
+    config = studies["sedan"].configurations["baseline"]
+    inp = suspension_input(config, "front", "flexible")
+    rigid, flex = KCModel(replace(inp, flexible={})), KCModel(inp)
+
+    def toe_gap(event, **kw):
+        a, b = rigid.run(event, steps=STEPS, **kw), flex.run(event, steps=STEPS, **kw)
+        return np.degrees(np.abs((a.channels["toe"] - a.channels["toe"][STEPS // 2])
+                                 - (b.channels["toe"] - b.channels["toe"][STEPS // 2])).max())
+
+    lateral, steering = toe_gap("lateral_force"), toe_gap("steering")
+    assert lateral > 0.05  # a designer would see it
+    assert steering < 0.2 * lateral
