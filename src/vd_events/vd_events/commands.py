@@ -58,6 +58,18 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     launch.add_argument("--master", help="master file")
     HANDLERS["launch"] = cmd_launch
 
+    cap = sub.add_parser("capability", help="rigid vs flexible K&C: which model each "
+                         "event and quantity needs (thesis Tables 5.2.1/5.2.2)")
+    cap.add_argument("--config", default=None, help="configuration (default: the first)")
+    cap.add_argument("--axle", default="", help="front | rear (default: both)")
+    cap.add_argument("--master", help="master file (default: the bundled sample study)")
+    cap.add_argument("--out", default=None, help="folder for the bags and tables "
+                     "(default: out/capability/<configuration>; must not hold them yet)")
+    cap.add_argument("--param", dest="parameters", action="append", default=[],
+                     metavar="NAME=VALUE", help="event parameter for every event, e.g. steps=41")
+    cap.add_argument("--json", action="store_true")
+    HANDLERS["capability"] = cmd_capability
+
     bench = sub.add_parser("bench", help="the benchmark suite")
     bench.add_argument("--json", action="store_true")
     HANDLERS["bench"] = cmd_bench
@@ -187,4 +199,49 @@ def cmd_bench(args: argparse.Namespace) -> int:
         print(json.dumps(results, indent=2))
     else:
         print_bench(results)
+    return 0
+
+
+def cmd_capability(args: argparse.Namespace) -> int:
+    from .capability import format_table, run_study, QUANTITIES
+
+    master, study = _study(args.master)
+    name = args.config or study.configuration_names[0]
+    if name not in study.configurations:
+        raise DataError(f"configuration '{name}' does not exist (available: "
+                        f"{', '.join(study.configuration_names)})", file=str(master))
+    if args.axle not in ("", "front", "rear"):
+        raise DataError(f"--axle must be front or rear, found '{args.axle}'")
+    axles = [args.axle] if args.axle else ["front", "rear"]
+    steps = [p for p in args.parameters if p.partition("=")[0].strip() == "steps"]
+    if len(steps) != len(args.parameters):
+        raise DataError("vd capability takes only the parameter 'steps' (every event has it)")
+    out = Path(args.out) if args.out else Path("out") / "capability" / name
+    progress = _progress_printer(sys.stderr.isatty() and not args.json)
+    tables = run_study(master, study, name, axles, out, args.parameters, progress=progress)
+    if progress:
+        print(file=sys.stderr)
+    if args.json:
+        print(json.dumps({"configuration": name, "out": str(out),
+                          "tables": [t.to_json() for t in tables]}))
+        return 0
+    from rich.table import Table as RichTable
+
+    from vd_data_server.overview import console
+
+    term = console()
+    for t in tables:
+        table = RichTable(title=f"capability - {t.configuration} - {t.axle} axle "
+                          f"(flexible: {', '.join(t.components)})", title_justify="left")
+        table.add_column("event")
+        for q in QUANTITIES:
+            table.add_column(q)
+        for row in format_table(t):
+            table.add_row(*[c if i == 0 else (f"[red]{c}[/red]" if c.startswith("Flexible")
+                                              else f"[green]{c}[/green]")
+                            for i, c in enumerate(row)])
+        term.print(table)
+        for note in t.notes:
+            term.print(note)
+    term.print(f"bags and tables: {out}")
     return 0

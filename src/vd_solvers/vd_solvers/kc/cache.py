@@ -23,6 +23,7 @@ from threading import Lock
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
 
+from .model import without_bar
 from .events import EventResult, KCModel
 
 #: results kept per process
@@ -81,7 +82,7 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = "rig
     if event == NO_BAR:
         if model.inp.stabilizer is None:
             raise SolverError(f"configuration '{config.name}', axle '{axle}': no anti-roll bar")
-        bare = KCModel(replace(model.inp, stabilizer=None), model.label)
+        bare = KCModel(without_bar(model.inp), model.label)
         result = bare.run("opposite_wheel_travel", **params)
     else:
         result = model.run(event, **params)

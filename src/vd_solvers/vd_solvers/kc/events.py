@@ -23,7 +23,7 @@ from vd_solvers.errors import SolverError
 
 from .assembly import LoadCase, State, System, assemble
 from .metrics import channels
-from .model import Axle, SuspensionInput
+from .model import Axle, SuspensionInput, without_bar
 from .solver import solve_path, solve_static
 from .templates import TEMPLATES
 
@@ -254,7 +254,7 @@ def run_suite(
     names = [e for e in EVENTS if e != "steering" or inp.steering is not None]
     results = {e: model.run(e, **params.get(e, {})) for e in names}
     if inp.stabilizer is not None:
-        bare = KCModel(replace(model.inp, stabilizer=None), label)
+        bare = KCModel(without_bar(model.inp), label)
         results["opposite_wheel_travel_no_bar"] = bare.run(
             "opposite_wheel_travel", **params.get("opposite_wheel_travel", {})
         )

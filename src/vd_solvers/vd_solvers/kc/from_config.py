@@ -21,6 +21,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
+from .model import without_bar
 from .events import EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
 from .model import (Bushing, Curve, DamperSpec, FlexSpec, SpringSpec, StabilizerSpec,
@@ -302,7 +303,7 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     result = model.run(event, on_step(0, "solving"), **_event_kwargs(event, values))
     results = {event: result}
     if with_bar:
-        bare = KCModel(replace(model.inp, stabilizer=None), label)
+        bare = KCModel(without_bar(model.inp), label)
         results["opposite_wheel_travel_no_bar"] = bare.run(
             event, on_step(1, "solving without the anti-roll bar"),
             **_event_kwargs(event, values))

@@ -304,3 +304,11 @@ def validate(inp: SuspensionInput) -> None:
     for name, value in (("camber", inp.camber), ("toe", inp.toe)):
         if not (np.isfinite(value) and abs(value) < 0.5):
             raise SolverError(f"{name} must be a finite angle in rad below 0.5, got {value!r}")
+
+
+def without_bar(inp: SuspensionInput) -> SuspensionInput:
+    """``inp`` with the anti-roll bar removed (and its beam model, if flexible)."""
+    from dataclasses import replace
+
+    return replace(inp, stabilizer=None,
+                   flexible={k: v for k, v in inp.flexible.items() if k != "anti_roll_bar"})
