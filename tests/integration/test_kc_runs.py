@@ -86,7 +86,19 @@ def test_kc_bad_input(capsys, tmp_path, sedan_master):
     assert rc == 2
     assert err.strip() == "K&C events need --axle front or rear (found '')"
     rc, _, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--axle", "front",
+                     "--fidelity", "wobbly", "--master", str(sedan_master))
+    assert rc == 2
+    assert err.strip() == "unknown fidelity 'wobbly' (rigid, flexible)"
+    rc, _, err = _vd(capsys, "run", "steady_state_circular", "--model", "bicycle",
                      "--fidelity", "flexible", "--master", str(sedan_master))
     assert rc == 2
-    assert err.strip() == ("fidelity 'flexible' is not available yet for model 'kc' (flexible "
-                           "components are a later rung)")
+    assert err.strip() == ("fidelity 'flexible' is available for model 'kc' only (model "
+                           "'bicycle' has no flexible components)")
+    from vdtest import replace_once
+
+    replace_once(sedan_master, "  front_flex: X\n", "")
+    rc, _, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--axle", "front",
+                     "--fidelity", "flexible", "--master", str(sedan_master))
+    assert rc == 2
+    assert err.strip() == ("configuration 'baseline' has no flexible components on the front "
+                           "axle (no front_flex group in the master file)")

@@ -481,3 +481,50 @@ def _flat(si: Any) -> list[float]:
         return [c for part in si for c in _flat(part)]
     assert isinstance(si, float) and math.isfinite(si)
     return [si]
+
+
+# --- flex files -------------------------------------------------------------------------------
+
+def _flex_refused(sample_root, old, new):
+    from vdtest import replace_once, tree_snapshot
+
+    from vd_data_server.study import load_study
+
+    path = sample_root / "sedan" / "front_flex" / "X.yaml"
+    replace_once(path, old, new)
+    before = tree_snapshot(sample_root)
+    with pytest.raises(DataError) as info:
+        load_study(sample_root / "studies" / "sedan.yaml")
+    assert tree_snapshot(sample_root) == before
+    return str(info.value).splitlines()
+
+
+def test_flex_section_with_zero_size_is_refused(sample_root):
+    from vdtest import line_no
+
+    lines = _flex_refused(sample_root, "knuckle: {shape: solid_round, diameter: 36}",
+                          "knuckle: {shape: solid_round, diameter: 0}")
+    line = line_no(sample_root / "sedan" / "front_flex" / "X.yaml", "    knuckle:")
+    assert lines == ["sedan/front_flex/X.yaml: sections.knuckle.diameter: must be positive, "
+                     f"found 0 (line {line})"]
+
+
+def test_flex_section_needs_its_shape_dimensions(sample_root):
+    lines = _flex_refused(sample_root, "strut_tube: {shape: tube, outer_diameter: 50, wall: 3}",
+                          "strut_tube: {shape: tube, outer_diameter: 50, diameter: 3}")
+    assert lines == ["sedan/front_flex/X.yaml: sections.strut_tube.wall: required by shape 'tube'",
+                     "sedan/front_flex/X.yaml: sections.strut_tube.diameter: not a dimension of "
+                     "shape 'tube' (expected: outer_diameter, wall)"]
+
+
+def test_flex_component_must_name_a_known_section(sample_root):
+    lines = _flex_refused(sample_root, "section: tie_rod,", "section: tie_bar,")
+    assert lines == ["sedan/front_flex/X.yaml: components.tierod.section: 'tie_bar' is not in "
+                     "sections (known: bar, knuckle, pressed_arm, strut_tube, tie_rod)"]
+
+
+def test_flex_component_must_exist_in_the_template(sample_root):
+    lines = _flex_refused(sample_root, "    tierod: {", "    subframe: {")
+    assert lines == ["sedan/front_flex/X.yaml: components.subframe: template 'macpherson' has no "
+                     "component 'subframe' (components: upright, lca, strut, tierod, "
+                     "anti_roll_bar)"]

@@ -66,7 +66,7 @@ def test_unknown_configuration_key_is_refused(sample_root: Path, sedan_master: P
     lines = refused(sample_root, sedan_master)
     line = line_no(sedan_master, "    variant:")
     assert [(f"{sedan_master}: configurations.sport.variant: unknown key (expected one of: "
-            f"description, variants, overrides, flexible) (line {line})")] == lines
+            f"description, variants, overrides, flexible, flexible_components) (line {line})")] == lines
 
 
 def test_variant_that_does_not_exist_lists_the_available_ones(sample_root: Path,
@@ -133,11 +133,29 @@ def test_flexible_must_be_a_switch_or_a_list(sample_root: Path, sedan_master: Pa
 
 
 def test_flexible_components_are_kept(sedan_master: Path) -> None:
-    replace_once(sedan_master, "    overrides:\n", "    flexible: [front_stabilizer]\n    overrides:\n")
+    replace_once(sedan_master, "    overrides:\n", "    flexible: [lca]\n    overrides:\n")
     master = load_master(sedan_master)
     assert master.configurations["sport"].flexible is True
-    assert master.configurations["sport"].flexible_components == ("front_stabilizer",)
+    assert master.configurations["sport"].flexible_components == ("lca",)
     assert master.configurations["baseline"].flexible is False
+
+
+def test_flexible_components_key_switches_a_subset_on(sedan_master: Path) -> None:
+    replace_once(sedan_master, "    overrides:\n",
+                 "    flexible_components: [lca, trailing_link]\n    overrides:\n")
+    study = load_study(sedan_master)
+    sport = study.configurations["sport"]
+    assert sport.flexible and sport.flexible_components == ("lca", "trailing_link")
+    assert sport.data_hash != load_study(sedan_master).configurations["baseline"].data_hash
+
+
+def test_unknown_flexible_component_is_refused(sample_root: Path, sedan_master: Path) -> None:
+    replace_once(sedan_master, "    overrides:\n",
+                 "    flexible_components: [lca, subframe]\n    overrides:\n")
+    assert refused(sample_root, sedan_master) == [
+        f"{sedan_master}: configurations.sport.flexible_components: flexible component "
+        "'subframe' is not defined in the configuration's flex data (defined: anti_roll_bar, "
+        "lateral_link, lca, strut, tierod, trailing_link, upper_arm, upright)"]
 
 
 def test_unknown_configuration_is_refused(sedan_master: Path) -> None:

@@ -138,6 +138,8 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
     store = typestore()
     with Reader(path) as reader:
         conns = [c for c in reader.connections if topics is None or c.topic in topics]
+        if not conns:  # rosbags reads every connection when given none
+            return
         for conn, timestamp, raw in reader.messages(connections=conns):
             yield BagMessage(conn.topic, conn.msgtype, timestamp,
                              store.deserialize_cdr(raw, conn.msgtype))

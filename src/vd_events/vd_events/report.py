@@ -117,10 +117,12 @@ class Run:
     units: dict[str, str]
     notes: list[str]
     modified: list[str]
+    fidelity: str = "rigid"
 
     @property
     def label(self) -> str:
-        return f"{self.configuration} ({self.model})"
+        flex = ", flexible" if self.fidelity == "flexible" else ""
+        return f"{self.configuration} ({self.model}{flex})"
 
 
 def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
@@ -144,7 +146,7 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
                     metrics={m.name: (m.value, m.unit) for m in msg.metrics},
                     channels={c.name: np.asarray(c.values, dtype=float) for c in msg.channels},
                     units={c.name: c.unit for c in msg.channels}, notes=list(msg.notes),
-                    modified=provenance.get(msg.configuration, [])))
+                    modified=provenance.get(msg.configuration, []), fidelity=msg.fidelity))
     return runs, status
 
 
@@ -159,10 +161,11 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
         if not (Path(bag) / "metadata.yaml").is_file():
             raise BagError(f"{bag}: not a finished rosbag2 bag (no metadata.yaml)")
     runs, status = load_runs(bags)
-    if not runs:
+    tables = load_capability(bags)
+    if not runs and not tables:
         raise BagError("no event results in " + ", ".join(str(b) for b in bags))
     out.mkdir(parents=True, exist_ok=True)
-    sections: list[str] = []
+    sections: list[str] = [_capability_section(t) for t in tables]
     groups: dict[tuple[str, str, str], list[Run]] = {}
     for run in runs:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
@@ -308,3 +311,46 @@ modifies it (hover for the values). Last column: whether all configurations use 
 <th>modified values</th></tr>{provenance}</table>
 </body></html>
 """
+
+
+def load_capability(bags: Sequence[Path]) -> list:
+    """Every capability table (vd capability) recorded in the bags."""
+    from .capability import TOPIC, from_msg
+
+    return [from_msg(item.msg) for bag in bags for item in read_bag(bag, {TOPIC})]
+
+
+def _capability_section(table) -> str:
+    """The table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
+    from .capability import DISPLAY, QUANTITIES, format_table
+
+    head = "".join(f"<th>{html.escape(q)}</th>" for q in QUANTITIES)
+    rows = []
+    for row in format_table(table):
+        cells = "".join(
+            f'<td style="background:{"#f4c7c3" if c.startswith("Flexible") else "#c9e7c0"}">'
+            f"{html.escape(c)}</td>" for c in row[1:])
+        rows.append(f"<tr><td>{html.escape(row[0])}</td>{cells}</tr>")
+    metric_rows = []
+    for c in table.metrics:
+        unit = html.escape(c.unit)
+        metric_rows.append(
+            f'<tr><td>{html.escape(c.event)}</td><td>{html.escape(c.quantity)}</td>'
+            f"<td>{c.rigid_value:.4g}</td><td>{c.flexible_value:.4g}</td><td>{unit}</td>"
+            f'<td style="background:{"#f4c7c3" if c.verdict == "Flexible" else "#c9e7c0"}">'
+            f"{c.verdict}</td></tr>")
+    offsets = "; ".join(
+        f"{c.event} {c.quantity} {c.design_offset * DISPLAY.get(c.unit, ('', 1.0))[1]:.3g} "
+        f"{DISPLAY.get(c.unit, (c.unit, 1.0))[0]}" for c in table.cells
+        if c.quantity == "wheel_load" and abs(c.design_offset) > 0.0)
+    return (f"<h2>Analytical capability: {html.escape(table.configuration)}, "
+            f"{html.escape(table.axle)} axle</h2>"
+            f"<p>Rigid vs flexible K&amp;C (flexible: {html.escape(', '.join(table.components))}"
+            f"; data hash {html.escape(table.data_hash)}). Green: the rigid model is good "
+            f"enough; red: the flexible model is needed; worst difference in brackets. "
+            f"{html.escape(' '.join(table.notes))}</p>"
+            f"<table><tr><th>event</th>{head}</tr>{''.join(rows)}</table>"
+            f"<p>Wheel-load offset at design (flexible − rigid: FE vs user-given masses, "
+            f"thesis 5.1): {html.escape(offsets or 'none')}</p>"
+            f"<table><tr><th>event</th><th>metric</th><th>rigid</th><th>flexible</th>"
+            f"<th>unit</th><th>verdict</th></tr>{''.join(metric_rows)}</table>")
