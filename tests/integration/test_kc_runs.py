@@ -102,3 +102,31 @@ def test_kc_bad_input(capsys, tmp_path, sedan_master):
     assert rc == 2
     assert err.strip() == ("configuration 'baseline' has no flexible components on the front "
                            "axle (no front_flex group in the master file)")
+
+
+@pytest.mark.slow
+def test_flexible_kc_runs_embedded_and_distributed(capsys, tmp_path, sedan_master):
+    """`vd run lateral_force --model kc --fidelity flexible` over the ROS graph: the same
+    numbers embedded and distributed, softer than rigid, labelled flexible, in a bag."""
+    from vd_events.bag import read_bag
+
+    runs = {}
+    for mode in ("embedded", "distributed"):
+        args = ["run", "lateral_force", "--model", "kc", "--axle", "front", "--fidelity",
+                "flexible", "--param", "steps=11", "--json", "--master", str(sedan_master),
+                "--bag", str(tmp_path / mode)]
+        rc, out, err = _vd(capsys, *args, *(["--distributed"] if mode == "distributed" else []))
+        assert rc == 0, err
+        runs[mode] = json.loads(out)
+    rc, out, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--axle", "front",
+                       "--param", "steps=11", "--json", "--master", str(sedan_master))
+    rigid = json.loads(out)
+    flex = runs["embedded"]
+    assert flex["fidelity"] == "flexible" and rigid["fidelity"] == "rigid"
+    for name in ("lateral_stiffness", "lateral_compliance_camber"):
+        assert runs["distributed"]["metrics"][name]["value"] == pytest.approx(
+            flex["metrics"][name]["value"], rel=1e-12)
+    assert flex["metrics"]["lateral_stiffness"]["value"] < rigid["metrics"]["lateral_stiffness"]["value"]
+    assert flex["metrics"]["component_mass.lca"]["value"] > 0.0
+    results = [m.msg for m in read_bag(tmp_path / "embedded") if m.topic == "/vd/kc/result"]
+    assert [r.fidelity for r in results] == ["flexible"]

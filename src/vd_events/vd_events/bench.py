@@ -53,10 +53,40 @@ def run_bench() -> dict[str, Any]:
         lambda: run_event(config, "steady_state_circular", "bicycle"))
     results["two_track_handling_diagram_s"] = _median(
         lambda: run_event(config, "handling_diagram", "two_track"))
+    results["flex"] = _bench_flex(config)
+    results["capability_both_axles_s"] = _bench_capability(master)
     results["embedded_run"] = _bench_embedded(master)
     results["data_change_to_republish_s"] = _bench_data_change(master)
     results["bag_write"] = _bench_bag()
     return results
+
+
+def _bench_flex(config) -> dict[str, float]:
+    """101-step parallel wheel travel, rigid and flexible (every component of the flex
+    groups), per axle; target: flexible within 3x rigid."""
+    from vd_solvers.kc.events import KCModel
+    from vd_solvers.kc.from_config import suspension_input
+
+    out: dict[str, float] = {}
+    for axle in ("front", "rear"):
+        for fidelity in ("rigid", "flexible"):
+            model = KCModel(suspension_input(config, axle, fidelity))
+            out[f"{axle}_{fidelity}_s"] = _median(lambda: model.run("parallel_wheel_travel"))
+        out[f"{axle}_ratio"] = out[f"{axle}_flexible_s"] / out[f"{axle}_rigid_s"]
+    return out
+
+
+def _bench_capability(master: Path) -> float:
+    """The whole capability study of both axles (18 runs, 101 steps, through the ROS
+    graph, with bags); target: under 20 s."""
+    from vd_data_server.study import load_study
+
+    from .capability import run_study
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        run_study(master, load_study(master), "baseline", ["front", "rear"], Path(tmp) / "cap")
+        return time.perf_counter() - t0
 
 
 def _bench_embedded(master: Path) -> dict[str, float]:
@@ -159,6 +189,14 @@ def print_bench(results: dict[str, Any]) -> None:
         ("K&C 101-step parallel wheel travel, rear", f"{kc['parallel_wheel_travel_rear']:.3f} s",
          "well under 1 s"),
         ("K&C five-event suite, both axles", f"{kc['suite_both_axles']:.2f} s", "a few s"),
+        ("flexible K&C 101-step parallel travel, front",
+         f"{results['flex']['front_flexible_s']:.3f} s ({results['flex']['front_ratio']:.2f}x rigid)",
+         "within 3x rigid"),
+        ("flexible K&C 101-step parallel travel, rear",
+         f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
+         "within 3x rigid"),
+        ("capability study, both axles (18 runs via ROS, bags)",
+         f"{results['capability_both_axles_s']:.1f} s", "under 20 s"),
         ("load + resolve the sample study", f"{results['load_study_s']:.3f} s", ""),
         ("bicycle steady state (41 steps)", f"{results['bicycle_steady_state_s']:.4f} s", ""),
         ("two-track handling diagram to the limit",

@@ -160,7 +160,11 @@ class System:
         self.n_parts = len(part_names)
         self.n_dof = 6 * self.n_parts
         self._batches = batches
-        self.c_g, self.c_e = c_g, c_e
+        # The primitive-combination matrices are very sparse (a few entries per row):
+        # products with them dominate an evaluation in dense form.
+        import scipy.sparse
+
+        self.c_g, self.c_e = scipy.sparse.csr_matrix(c_g), scipy.sparse.csr_matrix(c_e)
         self.laws = laws
         self.coupled = [(idx, law.matrix) for law, idx in laws if isinstance(law, MatrixLaw)]
         self.coupled_max = max((float(np.max(np.abs(k))) for _, k in self.coupled), default=0.0)
@@ -246,7 +250,8 @@ class System:
         parts = self._marker_part[self._slot_marker]
         prims = np.concatenate(slot_prim)
         six, three = np.arange(6), np.arange(3)
-        self._d_idx = (prims[:, None] * nc + 6 * parts[:, None] + six).ravel()
+        self._d_rows = np.repeat(prims, 6)
+        self._d_cols = (6 * parts[:, None] + six).ravel()
         pa, pb = parts[self._pair_a], parts[self._pair_b]
         pair_idx = (6 * pa[:, None, None] + six[None, :, None]) * nc + 6 * pb[:, None, None] + six
         chart_idx = (6 * parts[:, None, None] + 3 + three[None, :, None]) * nc + (
@@ -265,9 +270,10 @@ class System:
         g_slot = np.concatenate(grads)
         j_slot = jac[self._slot_marker]
         d_vals = np.einsum("si,sij->sj", g_slot, j_slot)
-        nc = self._nc
-        d = np.bincount(self._d_idx, d_vals.ravel(), minlength=self.n_prim * nc)
-        d = d.reshape(self.n_prim, nc)[:, : self.n_dof]
+        import scipy.sparse
+
+        d = scipy.sparse.csr_matrix((d_vals.ravel(), (self._d_rows, self._d_cols)),
+                                    shape=(self.n_prim, self._nc))[:, : self.n_dof]
         if hess:
             ja = j_slot[self._pair_a]
             blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)), j_slot[self._pair_b])
@@ -276,7 +282,7 @@ class System:
         chart = _chart(g_slot, lever[self._slot_marker])
         so_vals = np.concatenate((blocks.ravel(), chart.ravel()))
         g = self.c_g @ x - self.g_design - self._constraint_offset(load)
-        jacobian, measure_jacobian = self.c_g @ d, self.c_e @ d
+        jacobian, measure_jacobian = (self.c_g @ d).toarray(), (self.c_e @ d).toarray()
         y = self.c_e @ x - self.e_design - self._energy_offset(load)
         energy, d1, d2 = (np.empty_like(y) for _ in range(3))
         for law, idx in self.laws:
@@ -376,7 +382,9 @@ class Evaluation:
         """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
         s, e = self.system, self.measure_jacobian
         weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
-        k = e.T @ (self.d2[:, None] * e) + s.second_order(self.so_vals, weights) + self.k_ext
+        stiff = np.nonzero(self.d2)[0]  # measures with a diagonal stiffness
+        k = e[stiff].T @ (self.d2[stiff, None] * e[stiff])
+        k += s.second_order(self.so_vals, weights) + self.k_ext
         for idx, matrix in s.coupled:
             block = e[idx]
             k += block.T @ matrix @ block
