@@ -37,8 +37,8 @@ def broken_sedan(sample_root: Path, sedan_master: Path) -> list[str]:
 @pytest.mark.parametrize(("study", "configurations", "files"), [
     # sedan: 22 default variants + front_spring Y, front_bushings Y, rear_stabilizer Y,
     # targets stiff_rear; hmmwv: 18 defaults + the front_bushings of one configuration
-    ("sedan", 3, 26),
-    ("hmmwv", 2, 19),
+    ("sedan", 3, 28),  # incl. front_flex and rear_flex
+    ("hmmwv", 2, 21),
 ])
 def test_check_accepts_the_sample_studies(capsys: pytest.CaptureFixture[str], sample_root: Path,
                                           study: str, configurations: int, files: int) -> None:
@@ -74,7 +74,7 @@ def test_check_json_success_shape(capsys: pytest.CaptureFixture[str], sedan_mast
     rc, out, _ = run(capsys, "data", "check", "--master", str(sedan_master), "--json")
     assert rc == 0
     assert json.loads(out) == {"ok": True, "message": f"{sedan_master}: OK (3 configurations, "
-                                                      "26 data files)"}
+                                                      "28 data files)"}
 
 
 def test_missing_master_file_exits_2(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
