@@ -79,7 +79,6 @@ class Frame:
     elements: tuple[tuple[int, int], ...]
     stiffness: np.ndarray  # (6N, 6N)
     attachment_nodes: tuple[int, ...]
-    sections: tuple[Section, ...] = ()  # per element
 
 
 def _foot(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
@@ -195,8 +194,7 @@ def build(name: str, points: Mapping[str, np.ndarray], members: Sequence[tuple[s
         moment += m * c
     masters = np.arange(len(order))
     k_red = condense(k_full, masters, name)
-    frame = Frame(xyz, tuple((i, j) for i, j, _ in elements), k_full, tuple(masters),
-                  tuple(sec for _, _, sec in elements))
+    frame = Frame(xyz, tuple((i, j) for i, j, _ in elements), k_full, tuple(masters))
     cog = moment / mass if mass > 0.0 else xyz[: len(order)].mean(axis=0)
     return Condensed(name, tuple(order), xyz[: len(order)].copy(), k_red, mass, cog,
                      len(elements), f"beam frame of {len(elements)} elements", frame, aliases)

@@ -172,6 +172,14 @@ class System:
         self.n_prim = c_g.shape[1]
         self.n_con = c_g.shape[0]
         self._build_scatter(pt_part, pt_local, vec_part, vec_local)
+        # per coupled law: the DOFs its measures touch (its nodes' parts), so its
+        # tangent block is assembled on those columns only
+        self._coupled_cols = []
+        for idx, _ in self.coupled:
+            prims = np.unique(self.c_e[idx].indices)
+            cols = np.unique(self._d_cols[np.isin(self._d_rows, prims)])
+            cols = cols[cols < self.n_dof]
+            self._coupled_cols.append((np.ix_(idx, cols), np.ix_(cols, cols)))
         x0 = self.primitive_values(self.design_state())
         self.g_design = c_g @ x0
         self.e_design = c_e @ x0
@@ -385,9 +393,9 @@ class Evaluation:
         stiff = np.nonzero(self.d2)[0]  # measures with a diagonal stiffness
         k = e[stiff].T @ (self.d2[stiff, None] * e[stiff])
         k += s.second_order(self.so_vals, weights) + self.k_ext
-        for idx, matrix in s.coupled:
-            block = e[idx]
-            k += block.T @ matrix @ block
+        for (_, matrix), (rows, square) in zip(s.coupled, s._coupled_cols):
+            block = e[rows]
+            k[square] += block.T @ matrix @ block
         return k
 
 
@@ -933,33 +941,6 @@ class _Assembly:
         self.nodes[key] = nodes
         return nodes
 
-    def _embed_elements(self, comp: Condensed, key: tuple[str, Side]) -> dict[str, str]:
-        """Every node of the un-condensed frame a part, every element co-rotational in
-        the frame of its first node. For the anti-roll bar: its twist reaches several
-        degrees end to end, where one frame for the whole component would err by
-        O(twist^2) (about 1 % at 6 deg); per element the error is that over the
-        number of elements squared."""
-        from vd_solvers.flex.beam import element_stiffness
-
-        frame = comp.full
-        assert frame is not None
-        spec = self.inp.flexible[key[0]]
-        names = {i: n for i, n in enumerate(comp.nodes)}
-        parts = {i: self.b.part(f"{key[0]}.{key[1]}@{names.get(i, f'#{i}')}", frame.positions[i])
-                 for i in range(frame.positions.shape[0])}
-        for (i, j), sec in zip(frame.elements, frame.sections):
-            k = element_stiffness(frame.positions[i], frame.positions[j], spec.material, sec)
-            measures = bushing_measures(parts[i], parts[j], frame.positions[j], np.eye(3),
-                                        np.ones(6))
-            idx = self.b.energy(measures, MatrixLaw(clamped(k)))
-            self.out.elastic.extend(int(e) for e in idx)
-            m = spec.material.density * sec.area * float(  # type: ignore[union-attr]
-                np.linalg.norm(frame.positions[j] - frame.positions[i]))
-            self._gravity(parts[i], 0.5 * (frame.positions[i] + frame.positions[j]), m)
-        nodes = {n: parts[i] for i, n in names.items()}
-        self.nodes[key] = nodes
-        return nodes
-
     def _flex_part(self, part: PartDef, side: Side) -> None:
         members = self.topo.frames.get(part.name)
         if members is None:
@@ -1016,7 +997,7 @@ class _Assembly:
                      shape_points=shapes, elements_per_member=spec.elements_per_member,
                      member_sections={names["left"]: arm, members[2]: arm})
         self.out.components.append(comp)
-        nodes = self._embed_elements(comp, (BAR, "left"))
+        nodes = self._embed(comp, "left", (BAR, "left"), comp.positions, comp.stiffness, comp.cog)
         for side in SIDES:
             upper, pivot = names[side]
             for prim in joint_constraints("spherical", GROUND, nodes[pivot], points[pivot]):
