@@ -2,8 +2,10 @@
 
 1. The data server serves the sample sedan study; its feedback (the thesis'
    overview tab) is printed as received over ROS.
-2. The demo plan runs the bicycle and two-track models on every configuration
-   through the ROS graph (embedded), one MCAP bag per run, and builds the report.
+2. The demo plan runs the K&C, bicycle and two-track models on every configuration
+   through the ROS graph (embedded), one MCAP bag per run.
+3. The capability study runs every K&C event rigid and flexible on ``baseline`` and
+   says, per axle, which events need the flexible model; the report holds it all.
 Everything goes to ``out/demo/`` (replaced on each run).
 """
 from __future__ import annotations
@@ -48,6 +50,8 @@ def main() -> int:
     from vd_data_server.paths import default_master
     from vd_data_server.study import load_study
 
+    from .capability import run_study
+    from .report import build_report
     from .study_plan import load_plan, run_plan
 
     term = console()
@@ -60,6 +64,17 @@ def main() -> int:
     term.rule("vd demo: K&C, bicycle and two-track models through the ROS graph")
     plan = load_plan(_plan_path())
     summary = run_plan(plan, OUT / "bags", OUT)
+    term.rule("vd demo: rigid vs flexible K&C, the analytical capability of the models")
+    study = load_study(master)
+    tables = run_study(master, study, "baseline", ["front", "rear"], OUT / "capability")
+    for table in tables:
+        needs = sorted({c.event for c in table.cells if c.verdict == "Flexible"})
+        term.print(f"  baseline    {table.axle:<5} flexible ({', '.join(table.components)}) "
+                   f"needed for: {', '.join(needs) or 'none'}")
+    bags = [Path(r["bag"]) for r in summary["runs"] if r["bag"]]
+    bags += sorted(p for p in (OUT / "capability").glob("capability_*"))
+    bags += sorted((OUT / "capability" / "bags").iterdir())
+    summary["report"] = str(build_report(bags, OUT))
     for run in summary["runs"]:
         m = run["metrics"]
         parts = []
