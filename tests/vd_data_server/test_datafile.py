@@ -520,11 +520,23 @@ def test_flex_section_needs_its_shape_dimensions(sample_root):
 def test_flex_component_must_name_a_known_section(sample_root):
     lines = _flex_refused(sample_root, "section: tie_rod,", "section: tie_bar,")
     assert lines == ["sedan/front_flex/X.yaml: components.tierod.section: 'tie_bar' is not in "
-                     "sections (known: bar, knuckle, pressed_arm, strut_tube, tie_rod)"]
+                     "sections (known: bar, knuckle, pressed_arm, strut_tube, subframe_box, tie_rod)"]
 
 
 def test_flex_component_must_exist_in_the_template(sample_root):
-    lines = _flex_refused(sample_root, "    tierod: {", "    subframe: {")
-    assert lines == ["sedan/front_flex/X.yaml: components.subframe: template 'macpherson' has no "
-                     "component 'subframe' (components: upright, lca, strut, tierod, "
-                     "anti_roll_bar)"]
+    lines = _flex_refused(sample_root, "    tierod: {", "    crossmember: {")
+    assert lines == ["sedan/front_flex/X.yaml: components.crossmember: template 'macpherson' has "
+                     "no component 'crossmember' (components: upright, lca, strut, tierod, "
+                     "anti_roll_bar, subframe)"]
+
+
+def test_flexible_subframe_needs_its_mounts(sample_root):
+    from vdtest import replace_once
+
+    replace_once(sample_root / "sedan" / "front_hardpoints" / "X.yaml",
+                 "    subframe_rear:  [-420.0, 320.0, 250.0]\n", "")
+    lines = _flex_refused(sample_root, "section: subframe_box, elements_per_member: 2",
+                          "section: subframe_box, elements_per_member: 3")
+    assert lines == ["sedan/front_flex/X.yaml: components.subframe: a flexible subframe needs "
+                     "its body mounts: hard point(s) subframe_rear missing in "
+                     "sedan/front_hardpoints/X.yaml"]

@@ -151,11 +151,11 @@ def test_flexible_components_key_switches_a_subset_on(sedan_master: Path) -> Non
 
 def test_unknown_flexible_component_is_refused(sample_root: Path, sedan_master: Path) -> None:
     replace_once(sedan_master, "    overrides:\n",
-                 "    flexible_components: [lca, subframe]\n    overrides:\n")
+                 "    flexible_components: [lca, crossmember]\n    overrides:\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.flexible_components: flexible component "
-        "'subframe' is not defined in the configuration's flex data (defined: anti_roll_bar, "
-        "lateral_link, lca, strut, tierod, trailing_link, upper_arm, upright)"]
+        "'crossmember' is not defined in the configuration's flex data (defined: anti_roll_bar, "
+        "lateral_link, lca, strut, subframe, tierod, trailing_link, upper_arm, upright)"]
 
 
 def test_unknown_configuration_is_refused(sedan_master: Path) -> None:

@@ -372,15 +372,23 @@ def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, fi
         known = schema.TEMPLATE_COMPONENTS[template]
         with_bar = f"{axle}_stabilizer" in groups
         flex = groups[f"{axle}_flex"]
+        points = {k.split(".", 1)[1] for k in hp.values if k.startswith("points.")}
         for name in names:
-            if name == schema.BAR_COMPONENT and not with_bar:
+            if name == schema.SUBFRAME_COMPONENT:
+                missing = [p for p in schema.SUBFRAME_POINTS if p not in points]
+                if missing:
+                    errors.append(DataError(
+                        f"a flexible subframe needs its body mounts: hard point(s) "
+                        f"{', '.join(missing)} missing in {hp.file}", file=flex.file,
+                        key=f"components.{name}"))
+            elif name == schema.BAR_COMPONENT and not with_bar:
                 errors.append(DataError(f"the {axle} axle has no anti-roll bar "
                                         f"({axle}_stabilizer) to make flexible", file=flex.file,
                                         key=f"components.{name}"))
             elif name != schema.BAR_COMPONENT and name not in known:
                 errors.append(DataError(
                     f"template '{template}' has no component '{name}' (components: "
-                    f"{', '.join(known + ((schema.BAR_COMPONENT,) if with_bar else ()))})",
+                    f"{', '.join(known + ((schema.BAR_COMPONENT,) if with_bar else ()) + (schema.SUBFRAME_COMPONENT,))})",
                     file=flex.file, key=f"components.{name}"))
     every = {n for names in defined.values() for n in names}
     for name in chosen:

@@ -107,8 +107,12 @@ SECTION_SHAPES: Mapping[str, tuple[str, ...]] = {
     "general": ("area", "iy", "iz", "torsion_constant"),
 }
 
-#: optional points every template understands (anti-roll bar drop link and pivot)
-OPTIONAL_POINTS = ("arb_link_lower", "arb_link_upper", "arb_pivot")
+#: optional points every template understands (anti-roll bar drop link and pivot, and
+#: the body mounts of a flexible subframe)
+OPTIONAL_POINTS = ("arb_link_lower", "arb_link_upper", "arb_pivot", "subframe_front",
+                   "subframe_rear")
+SUBFRAME_COMPONENT = "subframe"
+SUBFRAME_POINTS = ("subframe_front", "subframe_rear")
 
 _STOP = Section({
     "clearance": Scalar("length", "travel of the spring/damper from design length before the "
@@ -344,7 +348,7 @@ def describe(spec: Spec, prefix: str = "") -> list[FieldDoc]:
 
 
 __all__ = ["AXLES", "KINDS", "TEMPLATE_POINTS", "OPTIONAL_POINTS", "REQUIRED_GROUPS",
-           "TEMPLATE_COMPONENTS", "BAR_COMPONENT", "SECTION_SHAPES",
+           "TEMPLATE_COMPONENTS", "BAR_COMPONENT", "SUBFRAME_COMPONENT", "SECTION_SHAPES",
            "Scalar", "Curve", "Point", "Vector", "Text", "Section", "MapOf", "group_kind",
            "all_group_names", "describe"]
 

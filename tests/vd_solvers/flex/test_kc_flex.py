@@ -220,9 +220,9 @@ def test_malformed_dmig_is_refused():
 def test_unknown_component_for_the_template_is_refused(studies):
     inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
     with pytest.raises(SolverError) as err:
-        KCModel(replace(inp, flexible={"subframe": inp.flexible["lca"]}), "cfg")
-    assert str(err.value) == ("cfg: unknown flexible component 'subframe' (components of "
-                              "template 'macpherson': upright, lca, strut, tierod, anti_roll_bar)")
+        KCModel(replace(inp, flexible={"crossmember": inp.flexible["lca"]}), "cfg")
+    assert str(err.value) == ("cfg: unknown flexible component 'crossmember' (components of "
+                              "template 'macpherson': upright, lca, strut, tierod, anti_roll_bar, subframe)")
 
 
 def test_thesis_trends(studies):
@@ -269,3 +269,22 @@ def test_tangent_is_consistent_with_the_internal_forces(studies):
     fd = (residual(h * direction) - residual(-h * direction)) / (2 * h)
     exact = k @ direction.ravel()
     np.testing.assert_allclose(fd, exact, rtol=1e-6, atol=1e-7 * np.abs(k).max())
+
+
+def test_flexible_subframe_carries_the_arm_pivots(studies):
+    """The subframe alone: the lower-arm joints sit on its nodes, so it adds lateral
+    compliance at the contact patch; made 1e5 times stiffer it is the body again."""
+    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    spec = inp.flexible["subframe"]
+    rigid = replace(inp, flexible={})
+    only = replace(inp, flexible={"subframe": spec})
+    stiff = replace(inp, flexible={"subframe": replace(spec, material=sec.Material(
+        spec.material.youngs_modulus * 1e5, spec.material.shear_modulus * 1e5, 0.0))})
+    m_rigid, m_only = _metrics(rigid, "rigid"), _metrics(only, "subframe")
+    assert m_only["lateral_stiffness"][0] < m_rigid["lateral_stiffness"][0]
+    a = KCModel(rigid).run("lateral_force", steps=STEPS)
+    b = KCModel(stiff).run("lateral_force", steps=STEPS)
+    assert np.degrees(np.abs(a.channels["toe"] - b.channels["toe"]).max()) < 1e-4
+    assert np.abs(a.channels["contact_point"] - b.channels["contact_point"]).max() < 1e-6
+    names = KCModel(only).system.part_names
+    assert "subframe.left@lca_front.right" in names

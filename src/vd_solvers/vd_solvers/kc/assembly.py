@@ -50,11 +50,13 @@ from .joints import (
     vector,
 )
 from .model import SIDES, FlexSpec, Side, SuspensionInput, mirror, validate
-from .templates import ARB_POINTS, STEERING, TEMPLATES, LinkDef, PartDef, SuspensionTemplate, Topology
+from .templates import (ARB_POINTS, STEERING, SUBFRAME_POINTS, TEMPLATES, LinkDef, PartDef,
+                        SuspensionTemplate, Topology)
 
 GRAVITY = 9.80665  # m/s^2, standard gravity
 RACK = "rack"
 BAR = "anti_roll_bar"
+SUBFRAME = "subframe"
 _EYE = np.eye(3)
 
 
@@ -606,7 +608,8 @@ def assemble(inp: SuspensionInput) -> System:
         raise SolverError(
             f"unknown suspension template {inp.template!r}; known: {sorted(TEMPLATES)}"
         )
-    required = template.required_points + (ARB_POINTS if inp.stabilizer is not None else ())
+    required = template.required_points + (ARB_POINTS if inp.stabilizer is not None else ()) \
+        + (SUBFRAME_POINTS if SUBFRAME in inp.flexible else ())
     for name in required:
         if name not in inp.hardpoints:
             raise SolverError(f"template {template.name!r}: hard point {name!r} is missing")
@@ -659,6 +662,8 @@ class _Assembly:
         inp = self.inp
         if self.steered:
             self._rack()
+        if SUBFRAME in inp.flexible:
+            self._flex_subframe()
         for side in SIDES:
             self._corner(side)
         if inp.stabilizer is not None:
@@ -678,9 +683,13 @@ class _Assembly:
         """The part that carries hard point ``point_name`` of ``part``: the part
         itself, or the node of a flexible component at that point (its
         reference node if the point is no node of it)."""
+        resolved = self.resolve(part, side)
+        if resolved == GROUND:
+            carried = self.nodes.get((SUBFRAME, "left"), {})
+            return carried.get(f"{point_name}.{side}", GROUND)
         nodes = self.nodes.get((part, side))
         if nodes is None:
-            return self.resolve(part, side)
+            return resolved
         return nodes.get(point_name, next(iter(nodes.values())))
 
     def resolve(self, part: str, side: Side) -> str:
@@ -971,6 +980,31 @@ class _Assembly:
         self._connection("universal", link.inboard_point, a, inner, pa, side, axis,
                          perpendicular_basis(axis))
         self._connection("spherical", link.outboard_point, outer, c, pc, side)
+
+    def _flex_subframe(self) -> None:
+        """A subframe carrying the template's body-side pivots of both sides: per side a
+        rail from the front mount through the carried points to the rear mount, and
+        cross-members joining each carried point to its mirror image. The mounts are
+        bolted to the body (fixed joints); the carried joints and bushings attach to the
+        subframe's nodes instead of the body."""
+        spec = self.inp.flexible[SUBFRAME]
+        if spec.imported is not None:
+            raise SolverError("subframe: an imported stiffness is not supported for the subframe")
+        carried = self.topo.subframe_points
+        chain = ("subframe_front",) + carried + ("subframe_rear",)
+        points = {f"{n}.{s}": mirror(self.inp.hardpoints[n], s) for s in SIDES for n in chain}
+        members = [(f"{a}.{s}", f"{b}.{s}") for s in SIDES for a, b in zip(chain, chain[1:])]
+        members += [(f"{n}.left", f"{n}.right") for n in carried]
+        comp = build(SUBFRAME, points, members, spec.material, spec.section,  # type: ignore[arg-type]
+                     elements_per_member=spec.elements_per_member)
+        self.out.components.append(comp)
+        nodes = self._embed(comp, "left", (SUBFRAME, "left"), comp.positions, comp.stiffness,
+                            comp.cog)
+        for s in SIDES:
+            for mount in ("subframe_front", "subframe_rear"):
+                name = f"{mount}.{s}"
+                for prim in joint_constraints("fixed", GROUND, nodes[name], points[name]):
+                    self.b.constrain(prim)
 
     def _flex_bar(self) -> None:
         """The anti-roll bar as a beam frame: drop-link end, arm, body mount

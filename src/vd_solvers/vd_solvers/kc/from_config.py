@@ -131,7 +131,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = "rigid") 
     flex_g = _optional(config, f"{axle}_flex")
     specs = flex_specs(flex_g) if flex_g is not None else {}
     for name, (_, rigid_mass) in specs.items():
-        if rigid_mass and name != "anti_roll_bar":
+        if rigid_mass and name not in ("anti_roll_bar", "subframe"):
             masses[name] = rigid_mass
     if fidelity == "flexible":
         if not specs:

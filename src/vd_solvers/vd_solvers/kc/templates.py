@@ -25,6 +25,8 @@ from .joints import GROUND, JointKind
 STEERING = "steering"  # the rack on a steered axle, else the body
 
 ARB_POINTS: tuple[str, ...] = ("arb_link_lower", "arb_link_upper", "arb_pivot")
+#: body mounts of a flexible subframe (left side; mirrored)
+SUBFRAME_POINTS: tuple[str, ...] = ("subframe_front", "subframe_rear")
 
 
 @dataclass(frozen=True)
@@ -85,11 +87,13 @@ class Topology:
     #: beam members of each part when it is made flexible (pairs of its hard points);
     #: links are one member from inboard to outboard point
     frames: Mapping[str, tuple[tuple[str, str], ...]] = field(default_factory=dict)
+    #: body-side hard points a subframe carries (front to rear), when one is modelled
+    subframe_points: tuple[str, ...] = ()
 
     def flexible_components(self, with_bar: bool) -> tuple[str, ...]:
-        """Names that may be made flexible: parts, links, and the anti-roll bar."""
+        """Names that may be made flexible: parts, links, the anti-roll bar, the subframe."""
         names = tuple(p.name for p in self.parts) + tuple(link.name for link in self.links)
-        return names + (("anti_roll_bar",) if with_bar else ())
+        return names + (("anti_roll_bar",) if with_bar else ()) + ("subframe",)
 
 
 class SuspensionTemplate(Protocol):
@@ -164,6 +168,7 @@ class DoubleWishbone:
             arb_part="lca",
             frames={"upright": _star("wheel_centre", "uca_outer", "lca_outer", "tierod_outer"),
                     "lca": _arm_frame("lca"), "uca": _arm_frame("uca")},
+            subframe_points=("lca_front", "lca_rear"),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -204,6 +209,7 @@ class MacPherson:
             tracked={"strut_top": "strut"},
             frames={"upright": _star("wheel_centre", "lca_outer", "tierod_outer", "strut_lower"),
                     "lca": _arm_frame("lca"), "strut": (("strut_top", "strut_lower"),)},
+            subframe_points=("lca_front", "lca_rear"),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -255,6 +261,7 @@ class MultiLink:
                                      "trailing_outer", "tierod_outer"),
                     "upper_arm": _arm_frame("upper"),
                     "trailing_link": (("trailing_inner", "trailing_outer"),)},
+            subframe_points=("upper_front", "lateral_inner", "upper_rear", "tierod_inner"),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
