@@ -126,14 +126,16 @@ def test_configuration_names_must_be_plain(sample_root: Path, sedan_master: Path
 
 
 def test_flexible_must_be_a_switch_or_a_list(sample_root: Path, sedan_master: Path) -> None:
-    replace_once(sedan_master, "    overrides:\n", "    flexible: 3\n    overrides:\n")
+    replace_once(sedan_master, "    flexible_components: [lca, strut, upright]\n",
+                 "    flexible: 3\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.flexible: expected true, false or a list of "
         "component names, found 3"]
 
 
 def test_flexible_components_are_kept(sedan_master: Path) -> None:
-    replace_once(sedan_master, "    overrides:\n", "    flexible: [lca]\n    overrides:\n")
+    replace_once(sedan_master, "    flexible_components: [lca, strut, upright]\n",
+                 "    flexible: [lca]\n")
     master = load_master(sedan_master)
     assert master.configurations["sport"].flexible is True
     assert master.configurations["sport"].flexible_components == ("lca",)
@@ -141,8 +143,8 @@ def test_flexible_components_are_kept(sedan_master: Path) -> None:
 
 
 def test_flexible_components_key_switches_a_subset_on(sedan_master: Path) -> None:
-    replace_once(sedan_master, "    overrides:\n",
-                 "    flexible_components: [lca, trailing_link]\n    overrides:\n")
+    replace_once(sedan_master, "    flexible_components: [lca, strut, upright]\n",
+                 "    flexible_components: [lca, trailing_link]\n")
     study = load_study(sedan_master)
     sport = study.configurations["sport"]
     assert sport.flexible and sport.flexible_components == ("lca", "trailing_link")
@@ -150,8 +152,8 @@ def test_flexible_components_key_switches_a_subset_on(sedan_master: Path) -> Non
 
 
 def test_unknown_flexible_component_is_refused(sample_root: Path, sedan_master: Path) -> None:
-    replace_once(sedan_master, "    overrides:\n",
-                 "    flexible_components: [lca, crossmember]\n    overrides:\n")
+    replace_once(sedan_master, "    flexible_components: [lca, strut, upright]\n",
+                 "    flexible_components: [lca, crossmember]\n")
     assert refused(sample_root, sedan_master) == [
         f"{sedan_master}: configurations.sport.flexible_components: flexible component "
         "'crossmember' is not defined in the configuration's flex data (defined: anti_roll_bar, "

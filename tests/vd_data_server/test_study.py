@@ -138,7 +138,8 @@ def test_optional_group_used_by_one_configuration_differs(sample_root: Path) -> 
 def test_status_json_has_exactly_the_contract_keys(sedan_master: Path) -> None:
     study = load_study(sedan_master)
     data = json.loads(json.dumps(study.to_json()))
-    assert set(data) == {"master", "configurations", "groups", "status"}
+    # the ARCHITECTURE contract, extended by the flexible-components switch
+    assert set(data) == {"master", "configurations", "groups", "status", "flexible"}
     assert data["master"] == str(sedan_master)
     assert data["configurations"] == ["baseline", "stiff_rear", "sport"]
     assert data["groups"] == list(study.groups)
@@ -178,3 +179,16 @@ def test_extra_overrides_count_as_modifications(sedan_master: Path) -> None:
     value = study.configurations["baseline"].group("rear_spring").values["rate"]
     assert value.source == "--set rear_spring.rate"
     assert_allclose(value.si, 60e3, rtol=RTOL)
+
+
+def test_flexible_switch_is_part_of_the_feedback(sedan_master):
+    """The overview shows each configuration's flexible-components switch (thesis
+    Fig. 2.3.2) and whether the configurations agree on it."""
+    from vd_data_server.study import load_study
+
+    status = load_study(sedan_master).to_json()["flexible"]
+    assert status == [
+        {"configuration": "baseline", "flexible": False, "components": [], "consistency": "DIFFERS"},
+        {"configuration": "stiff_rear", "flexible": False, "components": [], "consistency": "DIFFERS"},
+        {"configuration": "sport", "flexible": True, "components": ["lca", "strut", "upright"],
+         "consistency": "DIFFERS"}]

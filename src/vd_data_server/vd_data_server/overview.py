@@ -47,6 +47,16 @@ def status_table(study: Study) -> Table:
                 cells.append(Text(f"{entry.variant} UNCHANGED", style=GREEN))
         cells.append(Text(consistency, style="yellow" if consistency == "DIFFERS" else "dim"))
         table.add_row(*cells)
+    # the flexible-components switch of each configuration (thesis Fig. 2.3.2)
+    switches = study.flexible_switches()
+    cells = [Text("flexible components", style="bold")]
+    for name in study.configuration_names:
+        on, components = switches[name]
+        label = ("on (" + ", ".join(components) + ")" if components else "on") if on else "off"
+        cells.append(Text(label, style="cyan" if on else "dim"))
+    same = len(set(switches.values())) == 1
+    cells.append(Text("SAME" if same else "DIFFERS", style="dim" if same else "yellow"))
+    table.add_row(*cells)
     return table
 
 

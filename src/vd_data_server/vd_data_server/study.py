@@ -60,9 +60,18 @@ class Study:
                 return entry
         raise KeyError((configuration, group))
 
+    def flexible_switches(self) -> dict[str, tuple[bool, tuple[str, ...]]]:
+        """Per configuration: flexible components on, and the chosen subset (empty: all)."""
+        return {n: (c.flexible, tuple(c.flexible_components))
+                for n, c in self.configurations.items()}
+
     def to_json(self) -> dict[str, Any]:
         """The ``vd data status --json`` contract (ARCHITECTURE §5)."""
+        switches = self.flexible_switches()
+        consistency = "SAME" if len(set(switches.values())) == 1 else "DIFFERS"
         return {
+            "flexible": [{"configuration": n, "flexible": on, "components": list(comps),
+                          "consistency": consistency} for n, (on, comps) in switches.items()],
             "master": str(self.master.path),
             "configurations": self.configuration_names,
             "groups": list(self.groups),
