@@ -58,9 +58,10 @@ def test_kc_run_json_contract_and_distributed(capsys, tmp_path, sedan_master):
     rc, out, err = _vd(capsys, *args)
     assert rc == 0, err
     embedded = json.loads(out)
+    # sport switches its front components flexible in the master file: the default fidelity
     assert (embedded["event"], embedded["configuration"], embedded["model"],
             embedded["fidelity"], embedded["axle"]) == ("parallel_wheel_travel", "sport", "kc",
-                                                        "rigid", "front")
+                                                        "flexible", "front")
     assert embedded["metrics"]["camber"]["unit"] == "deg"
     assert len(embedded["channels"]["toe_left"]["values"]) == 21
     bag = tmp_path / "kc_bag"
