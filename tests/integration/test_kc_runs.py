@@ -98,6 +98,7 @@ def test_kc_bad_input(capsys, tmp_path, sedan_master):
     from vdtest import replace_once
 
     replace_once(sedan_master, "  front_flex: X\n", "")
+    replace_once(sedan_master, "    flexible_components: [lca, strut, upright]\n", "")
     rc, _, err = _vd(capsys, "run", "lateral_force", "--model", "kc", "--axle", "front",
                      "--fidelity", "flexible", "--master", str(sedan_master))
     assert rc == 2
