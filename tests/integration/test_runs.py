@@ -107,7 +107,7 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
 @pytest.mark.parametrize("argv, message", [
     (("run", "nope"), "unknown event 'nope' (events: steady_state_circular, handling_diagram, "
      "parallel_wheel_travel, opposite_wheel_travel, lateral_force, longitudinal_force, steering, "
-     "constant_radius_turn, sine_with_dwell, step_steer)"),
+     "aligning_torque, constant_radius_turn, sine_with_dwell, step_steer)"),
     (("run", "handling_diagram", "--model", "tricycle"),
      "unknown model 'tricycle' (models: bicycle, two_track, kc, vehicle)"),
     (("run", "step_steer", "--model", "two_track"),

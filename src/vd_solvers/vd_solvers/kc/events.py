@@ -6,6 +6,8 @@
 * ``longitudinal_force``: braking (force < 0) at the contact point with the
   wheel locked, traction (force > 0) at the wheel centre; pads held.
 * ``steering``: rack swept lock to lock (or to a steering-wheel angle).
+* ``aligning_torque``: moment about +z at both contact points, pads held
+  (the K&C rig's aligning-torque compliance test).
 
 Pads move the contact-point height (m, from design); the wheel is locked to
 the upright throughout (its rotation reacts in the upright), the steering is
@@ -143,12 +145,29 @@ def steering(
     )
 
 
+def aligning_torque(
+    inp: SuspensionInput, moment_min: float = -200.0, moment_max: float = 200.0,
+    steps: int = DEFAULT_STEPS,
+) -> _Plan:
+    """Moment about +z (N*m, counter-clockwise from above) at both contact
+    points, pads at design height, steering held."""
+    mz = _sweep(moment_min, moment_max, steps, "aligning_torque")
+    cases = []
+    for v in mz:
+        moment = np.zeros((2, 3))
+        moment[:, 2] = v
+        cases.append(LoadCase(contact_moment=moment))
+    params = {"moment_min": moment_min, "moment_max": moment_max, "steps": steps}
+    return _Plan(cases, mz, "aligning torque", "N*m", params)
+
+
 EVENTS: dict[str, Callable[..., _Plan]] = {
     "parallel_wheel_travel": parallel_wheel_travel,
     "opposite_wheel_travel": opposite_wheel_travel,
     "lateral_force": lateral_force,
     "longitudinal_force": longitudinal_force,
     "steering": steering,
+    "aligning_torque": aligning_torque,
 }
 
 

@@ -57,6 +57,12 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                                       minimum=0.0),
         "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
     },
+    "aligning_torque": {
+        "moment_min": Param("torque", -200.0, "lowest moment about +z at both contact patches",
+                            maximum=0.0),
+        "moment_max": Param("torque", 200.0, "highest moment", minimum=0.0),
+        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+    },
 }
 
 
@@ -188,6 +194,8 @@ def _outcome(config, event, axle, inp, model, results) -> EventOutcome:
     channels = flatten_channels(raw)
     if event == "lateral_force":
         channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 1])
+    elif event == "aligning_torque":
+        channels["applied_moment"] = Channel("N*m", raw["contact_moment"][:, 0, 2])
     elif event == "longitudinal_force":
         channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 0]
                                             + raw["centre_force"][:, 0, 0])
@@ -217,7 +225,8 @@ SIX_NAMES = ("x", "y", "z", "rx", "ry", "rz")
 
 _UNITS = {
     "wheel_travel": "m", "pad_travel": "m", "wheel_centre": "m", "contact_point": "m",
-    "track": "m", "contact_force": "N", "centre_force": "N", "toe": "rad", "camber": "rad",
+    "track": "m", "contact_force": "N", "centre_force": "N", "contact_moment": "N*m", "toe": "rad",
+    "camber": "rad",
     "caster": "rad", "kingpin_inclination": "rad", "scrub_radius": "m",
     "mechanical_trail": "m", "steer_angle": "rad", "pad_force": "N", "spring_length": "m",
     "spring_force": "N", "damper_length": "m", "bump_stop_force": "N",
