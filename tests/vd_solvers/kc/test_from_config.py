@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 from vd_data_server.master import with_overrides
 from vd_data_server.study import load_study
 from vd_solvers.analytical.events import run_event
-from vd_solvers.analytical.from_config import AxleSuspension, static_wheel_loads
+from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
 
@@ -154,19 +154,27 @@ def test_stabilizer_without_its_hard_points_is_refused(hmmwv, sedan):
 
 
 def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
-    config = sedan.configurations["baseline"]
-    targets = run_event(config, "handling_diagram", "two_track", ["steps=5"])
-    from vd_solvers.kc.from_config import axle_roll_properties
+    """The two-track model computes the K&C roll properties on demand: the same
+    numbers as a direct K&C run of the same configuration, labelled with the data
+    hash; without K&C the parameters say 'design target'."""
+    from vd_solvers.analytical.from_config import vehicle_params
+    from vd_solvers.kc.events import KCModel
+    from vd_solvers.kc.metrics import derived_metrics
 
-    kc = {axle: AxleSuspension(*axle_roll_properties(config, axle), source=f"K&C {axle}")
-          for axle in ("front", "rear")}
-    fed = run_event(config, "handling_diagram", "two_track", ["steps=5"], suspension=kc)
-    assert fed.metrics["roll_stiffness_front"].value == pytest.approx(kc["front"].roll_stiffness)
-    assert fed.metrics["roll_stiffness_front"].source == "K&C front"
-    assert targets.metrics["roll_stiffness_front"].source.startswith("design target")
-    # the K&C car is stiffer in roll than the targets: less roll per g
-    total_kc = kc["front"].roll_stiffness + kc["rear"].roll_stiffness
-    total_targets = (targets.metrics["roll_stiffness_front"].value
-                     + targets.metrics["roll_stiffness_rear"].value)
-    assert total_kc > total_targets
-    assert fed.metrics["roll_gradient"].value < targets.metrics["roll_gradient"].value
+    config = sedan.configurations["baseline"]
+    fed = run_event(config, "handling_diagram", "two_track", ["steps=5"])
+    for axle in ("front", "rear"):
+        inp = suspension_input(config, axle)
+        model = KCModel(inp)
+        direct = derived_metrics({e: model.run(e) for e in ("opposite_wheel_travel",
+                                                             "parallel_wheel_travel")},
+                                 inp.tire_vertical_stiffness)
+        stiffness = fed.metrics[f"roll_stiffness_{axle}"]
+        assert stiffness.value == pytest.approx(direct["roll_stiffness"][0] * 180.0 / math.pi,
+                                                rel=1e-12)
+        assert stiffness.source == (f"K&C {axle} axle (opposite and parallel wheel travel, "
+                                    f"data hash {config.data_hash})")
+        height = fed.metrics[f"roll_centre_height_{axle}"].value
+        assert height == pytest.approx(direct["roll_centre_height_kinematic"][0], rel=1e-12)
+    targets = vehicle_params(config)
+    assert targets.sources["roll_stiffness_front"].startswith("design target sedan/targets/")

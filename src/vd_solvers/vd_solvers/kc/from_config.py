@@ -177,7 +177,7 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     result = model.run(event, on_step(0, "solving"), **_event_kwargs(event, values))
     results = {event: result}
     if with_bar:
-        bare = KCModel(replace(model.inp, stabilizer=None), label)
+        bare = KCModel(replace(model.inp, stabilizer=None), label, solved=True)
         results["opposite_wheel_travel_no_bar"] = bare.run(
             event, on_step(1, "solving without the anti-roll bar"),
             **_event_kwargs(event, values))
@@ -266,15 +266,5 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     return out
 
 
-def axle_roll_properties(config: Configuration, axle: str) -> tuple[float, float]:
-    """(roll stiffness N*m/rad incl. the bar, roll-centre height m) of ``axle`` from the
-    K&C opposite-wheel-travel and lateral-force events: what the two-track model takes."""
-    inp = suspension_input(config, axle)
-    model = KCModel(inp, f"configuration '{config.name}', axle '{axle}'")
-    results = {e: model.run(e, steps=21) for e in ("opposite_wheel_travel", "parallel_wheel_travel")}
-    m = derived_metrics(results, inp.tire_vertical_stiffness)
-    return m["roll_stiffness"][0] * DEG, m["roll_centre_height_kinematic"][0]
-
-
 __all__ = ["EVENT_PARAMS", "EVENTS", "run_kc_event", "run_suite", "suspension_input",
-           "axle_roll_properties", "bar_stiffness", "flatten_channels"]
+           "bar_stiffness", "flatten_channels"]
