@@ -62,10 +62,7 @@ class BudgetTerm:
     front: float
     rear: float
     source: str
-
-    @property
-    def value(self) -> float:
-        return self.front - self.rear
+    value: float  # front - rear (the tire term: (N_f/C_f - N_r/C_r)/g as eq. 2 rounds it)
 
 
 @dataclass(frozen=True)
@@ -126,10 +123,11 @@ def understeer_budget(p: VehicleParams) -> UndersteerBudget:
     slip_r = compliance_slip(p, "rear", rho)
     terms = [BudgetTerm("tire", load_f / c_f / p.g, load_r / c_r / p.g,
                         f"front: {p.sources.get('tire_front', 'tire_front')}; "
-                        f"rear: {p.sources.get('tire_rear', 'tire_rear')}")]
+                        f"rear: {p.sources.get('tire_rear', 'tire_rear')}",
+                        (load_f / c_f - load_r / c_r) / p.g)]
     for name in TERMS[1:]:
         terms.append(BudgetTerm(name, slip_f[name], slip_r[name],
-                                _source(p, name, comp_f, comp_r)))
+                                _source(p, name, comp_f, comp_r), slip_f[name] - slip_r[name]))
     return UndersteerBudget(tuple(terms), rho)
 
 
