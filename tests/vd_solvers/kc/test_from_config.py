@@ -36,22 +36,22 @@ def hmmwv():
 def test_input_carries_the_data_in_si(sedan):
     inp = suspension_input(sedan.configurations["baseline"], "front")
     assert inp.template == "macpherson"
-    # front_hardpoints/X.yaml writes lca_outer as [18.4, 620.6, 181.0] mm
-    assert_allclose(inp.hardpoints["lca_outer"], [0.0184, 0.6206, 0.181], atol=1e-12)
+    # front_hardpoints/X.yaml writes lca_outer as [18.4, 706.0, 181.0] mm
+    assert_allclose(inp.hardpoints["lca_outer"], [0.0184, 0.706, 0.181], atol=1e-12)
     assert inp.spring.rate == pytest.approx(30.0e3)  # 30 N/mm
-    assert inp.spring.preload == pytest.approx(4600.0)
+    assert inp.spring.preload == pytest.approx(4475.0)
     assert inp.tire_vertical_stiffness == pytest.approx(280835.2941)  # Sedan_Pac02Tire.tir
     assert inp.tire_radius == pytest.approx(0.329)  # design wheel-centre height
     assert inp.camber == pytest.approx(math.radians(-0.5))
     assert inp.toe == pytest.approx(math.radians(0.05))
-    # stabilizer from bar geometry: G pi r^4 / (2 L), r = 11 mm, L = 800 mm, G = 79300 N/mm^2
+    # stabilizer from bar geometry: G pi r^4 / (2 L), r = 12 mm, L = 800 mm, G = 79300 N/mm^2
     assert inp.stabilizer.torsional_stiffness == pytest.approx(
-        79300e6 * math.pi * 0.011 ** 4 / 2.0 / 0.8)
+        79300e6 * math.pi * 0.012 ** 4 / 2.0 / 0.8)
     # bushing rates: 8000 N/mm and 4000 N*mm/deg
     lca = inp.bushings["lca_front"]
     assert lca.stiffness[0] == pytest.approx(8.0e6)
     assert lca.stiffness[3] == pytest.approx(4000e-3 * 180.0 / math.pi)
-    assert inp.steering.rack_ratio == pytest.approx(0.050 / (2.0 * math.pi))
+    assert inp.steering.rack_ratio == pytest.approx(0.078 / (2.0 * math.pi))
     assert suspension_input(sedan.configurations["baseline"], "rear").steering is None
 
 
