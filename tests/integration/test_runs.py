@@ -74,7 +74,7 @@ def test_set_override_changes_result_and_is_recorded_as_modified(capsys, tmp_pat
                                "--param", "steps=5", "--json")
     bag = tmp_path / "set"
     rc, out, err = _vd(capsys, "run", "handling_diagram", "--master", str(sedan_master),
-                       "--param", "steps=5", "--set", "targets.roll_stiffness_rear=1400 N*m/deg",
+                       "--param", "steps=5", "--set", "rear_stabilizer.bar_radius=11 mm",
                        "--bag", str(bag), "--json")
     assert base_rc == rc == 0, err
     base, changed = json.loads(base_out), json.loads(out)
@@ -84,8 +84,7 @@ def test_set_override_changes_result_and_is_recorded_as_modified(capsys, tmp_pat
             > base["metrics"]["max_lateral_acceleration"]["value"])
     from vd_events.bag import custom_data
 
-    assert "targets.roll_stiffness_rear=1400 N·m/deg" in custom_data(bag)["vd.modified"] or \
-        "targets.roll_stiffness_rear=" in custom_data(bag)["vd.modified"]
+    assert "rear_stabilizer.bar_radius=" in custom_data(bag)["vd.modified"]
 
 
 def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
@@ -196,6 +195,9 @@ runs:
     assert [r["error"] for r in summary["runs"]] == [None] * 4
     html = (out / "report.html").read_text()
     assert "stiff_rear" in html and "MODIFIED" in html and "UNCHANGED" in html
+    # the understeer budget of every analytical run, each term with its source
+    assert "Understeer budget — baseline (bicycle)" in html
+    assert "<td>lateral compliance steer</td>" in html and "K&amp;C front lateral_force" in html
     assert (out / "handling_diagram_analytical_0.png").stat().st_size > 10_000
     bags = sorted(p.name for p in (out / "bags").iterdir())
     assert bags == ["handling_diagram_two_track_baseline", "handling_diagram_two_track_sport",
