@@ -122,6 +122,13 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
     (("run", "handling_diagram", "--param", "diameter=5 m"),
      "event handling_diagram: unknown parameter 'diameter' (parameters of handling_diagram: "
      "radius, steps, max_lateral_acceleration, speed)"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "moment_max=-5 N*m"),
+     "event aligning_torque: moment_max: -5 N*m is outside [0, inf] N*m"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "moment_max=5 kg"),
+     "event aligning_torque: moment_max: unit 'kg' is not a torque unit (expected e.g. 'N*m')"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "force_max=5 N"),
+     "event aligning_torque: unknown parameter 'force_max' (parameters of aligning_torque: "
+     "moment_min, moment_max, steps)"),
 ])
 def test_bad_run_input_exits_2_with_message_and_writes_nothing(capsys, tmp_path, sedan_master,
                                                                argv, message):
