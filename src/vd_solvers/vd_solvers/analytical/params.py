@@ -72,10 +72,6 @@ class AxleCompliance:
             value = getattr(self, f.name)
             if isinstance(value, (int, float)) and not math.isfinite(value):
                 raise ValueError(f"{f.name} must be finite, got {value!r}")
-        _require(self.pneumatic_trail >= 0.0, "pneumatic_trail", "must not be negative",
-                 self.pneumatic_trail)
-        _require(self.camber_stiffness >= 0.0, "camber_stiffness", "must not be negative",
-                 self.camber_stiffness)
         known = {f.name for f in fields(self)} - {"sources"}
         for key in self.sources:
             _require(key in known, "sources", f"names unknown field {key!r}", key)
