@@ -16,7 +16,7 @@ from vd_solvers.kc.from_config import run_kc_event, suspension_input
 
 G = 9.80665
 EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-          "longitudinal_force", "steering")
+          "longitudinal_force", "steering", "aligning_torque")
 
 
 @pytest.fixture(scope="module")
