@@ -138,3 +138,23 @@ def test_hmmwv_front_bushings_pivot_freely() -> None:
     ideal = kc(study.configurations["baseline"], "front", "opposite_wheel_travel")["roll_stiffness"]
     bushed = kc(study.configurations["bushings"], "front", "opposite_wheel_travel")["roll_stiffness"]
     assert math.isclose(bushed, ideal, rel_tol=0.05)
+
+
+def test_without_a_k_and_c_model_the_result_says_bare_tire_and_design_target() -> None:
+    from dataclasses import replace
+
+    config = STUDIES["sedan"].configurations["baseline"]
+    groups = {k: v for k, v in config.groups.items() if k != "rear_spring"}
+    bare = replace(config, groups=groups)
+    out = run_event(bare, "steady_state_circular", "bicycle", ["steps=3"])
+    assert "bare tire and design targets: no K&C model ('rear_spring')" in out.notes
+    m = out.metrics
+    assert m["understeer_gradient_deg_per_g"].source == "bare tire: no K&C results"
+    assert m["understeer_budget_roll_steer_deg_per_g"].source == (
+        "front: bare tire: no K&C results; rear: bare tire: no K&C results")
+    # the bare-tire gradient is the tire term alone
+    assert m["understeer_gradient_deg_per_g"].value == m["understeer_budget_total_deg_per_g"].value
+    assert m["understeer_budget_tire_deg_per_g"].value == pytest.approx(
+        m["understeer_gradient_deg_per_g"].value, rel=1e-12)
+    two = run_event(bare, "handling_diagram", "two_track", ["steps=3"])
+    assert two.metrics["roll_stiffness_front"].source == "design target sedan/targets/X.yaml (variant X)"
