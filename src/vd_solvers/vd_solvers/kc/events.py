@@ -190,7 +190,10 @@ class KCModel:
         self.label = label
         try:
             if not solved:
-                self.inp = self._aligned(self._trimmed(self._aligned(inp)), inp)
+                aligned = self._aligned(inp)
+                trimmed = self._trimmed(aligned)
+                # the trim moves the design state a little: align again to the specification
+                self.inp = aligned if trimmed is aligned else self._aligned(trimmed, inp)
             self.system: System = assemble(self.inp)
         except SolverError as err:
             raise SolverError(f"{self._prefix()}{err}") from None
