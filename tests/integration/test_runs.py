@@ -74,7 +74,7 @@ def test_set_override_changes_result_and_is_recorded_as_modified(capsys, tmp_pat
                                "--param", "steps=5", "--json")
     bag = tmp_path / "set"
     rc, out, err = _vd(capsys, "run", "handling_diagram", "--master", str(sedan_master),
-                       "--param", "steps=5", "--set", "targets.roll_stiffness_rear=1400 N*m/deg",
+                       "--param", "steps=5", "--set", "rear_stabilizer.bar_radius=11 mm",
                        "--bag", str(bag), "--json")
     assert base_rc == rc == 0, err
     base, changed = json.loads(base_out), json.loads(out)
@@ -84,8 +84,7 @@ def test_set_override_changes_result_and_is_recorded_as_modified(capsys, tmp_pat
             > base["metrics"]["max_lateral_acceleration"]["value"])
     from vd_events.bag import custom_data
 
-    assert "targets.roll_stiffness_rear=1400 N·m/deg" in custom_data(bag)["vd.modified"] or \
-        "targets.roll_stiffness_rear=" in custom_data(bag)["vd.modified"]
+    assert "rear_stabilizer.bar_radius=" in custom_data(bag)["vd.modified"]
 
 
 def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
@@ -107,7 +106,7 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
 @pytest.mark.parametrize("argv, message", [
     (("run", "nope"), "unknown event 'nope' (events: steady_state_circular, handling_diagram, "
      "parallel_wheel_travel, opposite_wheel_travel, lateral_force, longitudinal_force, steering, "
-     "constant_radius_turn, sine_with_dwell, step_steer)"),
+     "aligning_torque, constant_radius_turn, sine_with_dwell, step_steer)"),
     (("run", "handling_diagram", "--model", "tricycle"),
      "unknown model 'tricycle' (models: bicycle, two_track, kc, vehicle)"),
     (("run", "step_steer", "--model", "two_track"),
@@ -123,6 +122,13 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
     (("run", "handling_diagram", "--param", "diameter=5 m"),
      "event handling_diagram: unknown parameter 'diameter' (parameters of handling_diagram: "
      "radius, steps, max_lateral_acceleration, speed)"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "moment_max=-5 N*m"),
+     "event aligning_torque: moment_max: -5 N*m is outside [0, inf] N*m"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "moment_max=5 kg"),
+     "event aligning_torque: moment_max: unit 'kg' is not a torque unit (expected e.g. 'N*m')"),
+    (("run", "aligning_torque", "--axle", "front", "--param", "force_max=5 N"),
+     "event aligning_torque: unknown parameter 'force_max' (parameters of aligning_torque: "
+     "moment_min, moment_max, steps)"),
 ])
 def test_bad_run_input_exits_2_with_message_and_writes_nothing(capsys, tmp_path, sedan_master,
                                                                argv, message):
@@ -196,6 +202,9 @@ runs:
     assert [r["error"] for r in summary["runs"]] == [None] * 4
     html = (out / "report.html").read_text()
     assert "stiff_rear" in html and "MODIFIED" in html and "UNCHANGED" in html
+    # the understeer budget of every analytical run, each term with its source
+    assert "Understeer budget — baseline (bicycle)" in html
+    assert "<td>lateral compliance steer</td>" in html and "K&amp;C front lateral_force" in html
     assert (out / "handling_diagram_analytical_0.png").stat().st_size > 10_000
     bags = sorted(p.name for p in (out / "bags").iterdir())
     assert bags == ["handling_diagram_two_track_baseline", "handling_diagram_two_track_sport",

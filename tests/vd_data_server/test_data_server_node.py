@@ -127,7 +127,7 @@ def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: P
 
 
 def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: Path):
-    from vdtest import spin_until
+    from vdtest import line_no, spin_until
 
     listener = _listener("broken_listener")
     try:
@@ -139,7 +139,8 @@ def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: P
         spring.write_text(spring.read_text().replace("rate: 30.0", "rate: -30.0"))
         assert spin_until([server, listener], lambda: listener.statuses[-1].errors, timeout=5.0)
         assert listener.statuses[-1].errors == [
-            "sedan/front_spring/X.yaml: rate: must be positive, found -30.0 (line 6)"]
+            "sedan/front_spring/X.yaml: rate: must be positive, found -30.0 "
+            f"(line {line_no(spring, '  rate:')})"]
         assert {n: m.data_hash for n, m in listener.configs.items()} == before
     finally:
         listener.destroy_node()

@@ -226,12 +226,12 @@ def test_several_bad_overrides_are_all_reported(sample_root: Path, sedan_master:
 
 
 def test_point_coordinate_override_changes_one_coordinate(sedan_master: Path) -> None:
-    # sedan.yaml: front_hardpoints.points.lca_outer.z: 171 mm; X.yaml: [18.4, 620.6, 181.0] mm
+    # sedan.yaml: front_hardpoints.points.lca_outer.z: 171 mm; X.yaml: [18.4, 706.0, 181.0] mm
     study = load_study(sedan_master)
     sport = study.configurations["sport"].group("front_hardpoints").point("points.lca_outer")
     base = study.configurations["baseline"].group("front_hardpoints").point("points.lca_outer")
-    assert_allclose(sport, (0.0184, 0.6206, 0.171), rtol=RTOL)
-    assert_allclose(base, (0.0184, 0.6206, 0.181), rtol=RTOL)
+    assert_allclose(sport, (0.0184, 0.706, 0.171), rtol=RTOL)
+    assert_allclose(base, (0.0184, 0.706, 0.181), rtol=RTOL)
 
 
 def test_point_coordinate_override_in_another_unit(sedan_master: Path) -> None:
@@ -267,7 +267,7 @@ def test_a_coordinate_of_a_scalar_is_refused(sample_root: Path, sedan_master: Pa
 
 def test_every_broken_data_file_of_a_configuration_is_reported(sample_root: Path) -> None:
     master = sample_root / "studies" / "hmmwv.yaml"
-    replace_once(sample_root / "hmmwv/front_spring/X.yaml", "preload: 10500", "preload: -1")
+    replace_once(sample_root / "hmmwv/front_spring/X.yaml", "preload: 11740", "preload: -1")
     replace_once(sample_root / "hmmwv/rear_damper/X.yaml", "kind: damper", "kind: spring")
     front = sample_root / "hmmwv/front_spring/X.yaml"
     assert refused(sample_root, master) == [

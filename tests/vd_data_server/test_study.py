@@ -56,7 +56,7 @@ def test_modified_keys_give_data_value_master_value_and_file_unit(sedan_master: 
     assert study.status_of("sport", "front_alignment").modified_keys == (
         ModifiedKey("camber", "-0.5", "-1.5", "deg"),)
     assert study.status_of("sport", "front_hardpoints").modified_keys == (
-        ModifiedKey("points.lca_outer", "[18.4, 620.6, 181]", "[18.4, 620.6, 171]", "mm"),)
+        ModifiedKey("points.lca_outer", "[18.4, 706, 181]", "[18.4, 706, 171]", "mm"),)
     assert study.status_of("sport", "front_damper").modified_keys == (
         ModifiedKey("scale", "1", "1.2", ""),)
 

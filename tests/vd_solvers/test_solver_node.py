@@ -38,8 +38,7 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
         assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
         bad = _goal(client_node, solver, server, event="handling_diagram",
                     configuration="baseline", model="two_track",
-                    overrides=["targets.roll_stiffness_front=1 N*m/rad",
-                               "targets.roll_stiffness_rear=1 N*m/rad"])
+                    overrides=["mass.sprung_cog.z=20000 mm"])
         assert not bad.success
         assert bad.message.startswith(
             "configuration 'baseline', event 'handling_diagram', model 'two_track': ")

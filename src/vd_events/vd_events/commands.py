@@ -155,7 +155,7 @@ def _print_outcome(result: RunOutcome) -> None:
         table.add_row(name, f"{metric.value:.5g}", metric.unit)
     term = console()
     term.print(table)
-    for note in outcome.notes[:1]:
+    for note in [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith("inner "))]:
         term.print(note)
     if result.bag:
         term.print(f"bag: {result.bag}")

@@ -10,10 +10,12 @@ import html
 import math
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from vd_solvers.analytical.budget import TERMS as BUDGET_TERMS
 
 from .bag import BagError, read_bag
 
@@ -117,6 +119,7 @@ class Run:
     units: dict[str, str]
     notes: list[str]
     modified: list[str]
+    sources: dict[str, str] = field(default_factory=dict)
     fidelity: str = "rigid"
 
     @property
@@ -146,7 +149,9 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
                     metrics={m.name: (m.value, m.unit) for m in msg.metrics},
                     channels={c.name: np.asarray(c.values, dtype=float) for c in msg.channels},
                     units={c.name: c.unit for c in msg.channels}, notes=list(msg.notes),
-                    modified=provenance.get(msg.configuration, []), fidelity=msg.fidelity))
+                    modified=provenance.get(msg.configuration, []),
+                    sources={m.name: m.source for m in msg.metrics},
+                    fidelity=msg.fidelity))
     return runs, status
 
 
@@ -233,9 +238,27 @@ def _section(event: str, axle: str, family: str, runs: list[Run], images: list[s
     notes = "".join(f"<li>{html.escape(r.label)}: {html.escape(r.notes[0])}</li>"
                     for r in runs if r.notes)
     title = f"{event}{' — ' + axle if axle else ''} ({family})"
+    budgets = "".join(_budget(r) for r in runs)
     return (f"<h2>{html.escape(title)}</h2><div class='plots'>{imgs}</div>"
             f"<div class='scroll'><table><tr><th>run</th>{head}</tr>{rows}</table></div>"
-            f"<ul class='notes'>{notes}</ul>")
+            f"{budgets}<ul class='notes'>{notes}</ul>")
+
+
+def _budget(run: Run) -> str:
+    """The understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
+    names = [f"understeer_budget_{t}_deg_per_g" for t in BUDGET_TERMS]
+    if not all(n in run.metrics for n in names):
+        return ""
+    rows = "".join(
+        f"<tr><td>{html.escape(t.replace('_', ' '))}</td><td>{run.metrics[n][0]:.3f}</td>"
+        f"<td><small>{html.escape(run.sources.get(n, ''))}</small></td></tr>"
+        for t, n in zip(BUDGET_TERMS, names))
+    total = run.metrics.get("understeer_budget_total_deg_per_g")
+    if total is not None:
+        rows += f"<tr><th>total</th><th>{total[0]:.3f}</th><td></td></tr>"
+    return (f"<h3>Understeer budget — {html.escape(run.label)}</h3>"
+            f"<table class='budget'><tr><th>term</th><th>deg/g</th><th>source</th></tr>"
+            f"{rows}</table>")
 
 
 def _unit(runs: list[Run], name: str) -> str:

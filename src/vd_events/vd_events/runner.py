@@ -36,7 +36,7 @@ from .bag import BagError, check_bag_path
 FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc"}
 ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_travel",
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
-              "constant_radius_turn", "sine_with_dwell", "step_steer")
+              "aligning_torque", "constant_radius_turn", "sine_with_dwell", "step_steer")
 MODELS = ("bicycle", "two_track", "kc", "vehicle")
 GOAL_TIMEOUT = 60.0  # s: a solver that does not answer by then has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear

@@ -201,12 +201,54 @@ def test_oversteering_car_is_rear_limited(oversteering_car: VehicleParams) -> No
         two_track.steady_state(oversteering_car, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
 
 
-def test_inner_wheel_lift_ends_the_model(make_car: CarFactory) -> None:
+def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> None:
+    # stiff front in roll, high COG: the inner front wheel lifts at 0.77 g, the
+    # front axle saturates later, on its outer wheel alone
+    car = make_car(cog_height=0.75, roll_stiffness_front=100000.0, roll_stiffness_rear=30000.0)
+    axle, onset = two_track.wheel_lift_onset(car)
+    assert axle == "front"
+    geo = two_track.roll_geometry(car)
+    # eq. 4 with both wheels down reaches N_f/2 exactly at the onset
+    transfer = (geo.sprung_mass_front * onset * car.roll_centre_height_front
+                + car.roll_stiffness_front * geo.roll_gradient * onset
+                + car.unsprung_mass_front * onset * car.unsprung_cog_height_front) / car.track_front
+    assert transfer == pytest.approx(car.axle_load_front / 2.0, rel=1e-12)
+    limit = two_track.max_lateral_acceleration(car, RADIUS)
+    assert (limit.limiting_axle, limit.cause) == ("front", "saturation")
+    assert limit.lateral_acceleration > onset + 0.5
+    a_y = 0.5 * (onset + limit.lateral_acceleration)
+    point = two_track.steady_state(car, a_y, RADIUS)
+    loads = point.wheel_loads
+    assert loads[0] == pytest.approx(0.0, abs=1e-9)
+    assert loads[1] == pytest.approx(car.axle_load_front, rel=1e-12)
+    assert point.lateral_force[0] == 0.0
+    # equilibrium of the whole car, recomputed from the returned state
+    phi = point.roll_angle
+    d_front, d_rear = (loads[1] - loads[0]) / 2.0, (loads[3] - loads[2]) / 2.0
+    overturning = car.mass * a_y * car.cog_height + geo.sprung_mass * car.g * geo.roll_arm * phi
+    assert d_front * car.track_front + d_rear * car.track_rear == pytest.approx(overturning, rel=1e-12)
+    assert point.axle_force_front + point.axle_force_rear == pytest.approx(car.mass * a_y, rel=1e-9)
+    assert (car.cog_to_front_axle * point.axle_force_front
+            - car.cog_to_rear_axle * point.axle_force_rear) == pytest.approx(0.0, abs=1e-6)
+    # the body rolls against the rear alone: m_s h1 (a_y + g phi) = front moment at lift + K_r phi
+    front_moment = (car.axle_load_front / 2.0 * car.track_front
+                    - geo.sprung_mass_front * a_y * car.roll_centre_height_front
+                    - car.unsprung_mass_front * a_y * car.unsprung_cog_height_front)
+    body = geo.sprung_mass * geo.roll_arm * (a_y + car.g * phi)
+    assert body == pytest.approx(front_moment + car.roll_stiffness_rear * phi, rel=1e-12)
+    assert phi > geo.roll_gradient * a_y  # rolls more than eq. 3 once the front is lifted
+    # continuous at the onset
+    below, above = two_track.roll_angle(car, [onset * (1 - 1e-9), onset * (1 + 1e-9)])
+    assert above == pytest.approx(below, rel=1e-6)
+
+
+def test_rollover_when_both_inner_wheels_lift(make_car: CarFactory) -> None:
     tall = make_car(cog_height=0.9, roll_stiffness_front=80000.0, roll_stiffness_rear=20000.0)
     limit = two_track.max_lateral_acceleration(tall, RADIUS)
-    assert (limit.limiting_axle, limit.cause, limit.behaviour) == ("front", "wheel_lift", "wheel lift")
-    assert two_track.steady_state(tall, limit.lateral_acceleration, RADIUS).wheel_loads[0] > 0.0
-    with pytest.raises(BeyondLimitError, match="inner front wheel lifts"):
+    assert (limit.limiting_axle, limit.cause, limit.behaviour) == ("front", "rollover", "rollover")
+    loads = two_track.steady_state(tall, limit.lateral_acceleration, RADIUS).wheel_loads
+    assert loads[0] == pytest.approx(0.0, abs=1e-9) and loads[2] > 0.0
+    with pytest.raises(BeyondLimitError, match="rolls over"):
         two_track.steady_state(tall, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
 
 

@@ -209,3 +209,43 @@ def test_stiff_bushings_converge_to_the_ideal_joints(hmmwv_front) -> None:
     for name in ("toe", "camber", "pad_force"):
         scale = np.max(np.abs(a[name] - a[name][10]))
         np.testing.assert_allclose(b[name], a[name], atol=2e-3 * scale, err_msg=name)
+
+
+# --- aligning torque (moment about +z at both contact points) ------------------------------
+
+
+def test_rigid_steering_does_not_steer_under_aligning_torque(macpherson_front) -> None:
+    ch = run_event(macpherson_front(), "aligning_torque").channels
+    np.testing.assert_allclose(ch["steer_angle"] - ch["steer_angle"][50], 0.0, atol=1e-12)
+    np.testing.assert_array_equal(ch["contact_moment"][:, :, 2], np.repeat(ch["contact_moment"][:, :1, 2], 2, 1))
+
+
+def test_aligning_torque_steers_through_the_rack_compliance(macpherson_front) -> None:
+    rigid = macpherson_front()
+    k = 2e6
+    soft = run_event(macpherson_front(steering=replace(rigid.steering, rack_stiffness=k)),
+                     "aligning_torque", moment_min=-50.0, moment_max=50.0, steps=11)
+
+    def compliance(stiffness: float) -> float:
+        run = run_event(macpherson_front(steering=replace(rigid.steering, rack_stiffness=stiffness)),
+                        "aligning_torque", moment_min=-50.0, moment_max=50.0, steps=11).channels
+        return slope_at(run["contact_moment"][:, 0, 2], run["steer_angle"][:, 0], 0.0, 25.0)
+
+    ch = soft.channels
+    mz = ch["contact_moment"][:, 0, 2]
+    # the rack force balances its spring
+    np.testing.assert_allclose(ch["rack_force"], k * ch["rack_travel"], rtol=1e-9, atol=1e-9)
+    # both wheels turn the way the moment turns them, by the same angle (mirror symmetry)
+    left = slope_at(mz, ch["steer_angle"][:, 0], 0.0, 25.0)
+    right = slope_at(mz, ch["steer_angle"][:, 1], 0.0, 25.0)
+    assert left > 0.0
+    assert right == pytest.approx(left, rel=1e-9)
+    # a rigid linkage on one compliant rack, in parallel with the constant geometric
+    # stiffness of the corner load on the inclined steering axis: 1/compliance is
+    # affine in the rack stiffness
+    inverse = [1.0 / compliance(k / n) for n in (1.0, 2.0, 4.0)]
+    assert inverse[0] == pytest.approx(1.0 / left, rel=1e-12)
+    assert inverse[0] - inverse[1] == pytest.approx(2.0 * (inverse[1] - inverse[2]), rel=1e-6)
+    m = derived_metrics({"aligning_torque": soft}, rigid.tire_vertical_stiffness)
+    assert m["aligning_torque_compliance_steer"] == (pytest.approx(left * 180.0 / np.pi * 1e3, rel=1e-12),
+                                                    "deg/(kN*m)")

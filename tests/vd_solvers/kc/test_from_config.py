@@ -10,13 +10,13 @@ from numpy.testing import assert_allclose
 from vd_data_server.master import with_overrides
 from vd_data_server.study import load_study
 from vd_solvers.analytical.events import run_event
-from vd_solvers.analytical.from_config import AxleSuspension, static_wheel_loads
+from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
 
 G = 9.80665
 EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-          "longitudinal_force", "steering")
+          "longitudinal_force", "steering", "aligning_torque")
 
 
 @pytest.fixture(scope="module")
@@ -36,22 +36,22 @@ def hmmwv():
 def test_input_carries_the_data_in_si(sedan):
     inp = suspension_input(sedan.configurations["baseline"], "front")
     assert inp.template == "macpherson"
-    # front_hardpoints/X.yaml writes lca_outer as [18.4, 620.6, 181.0] mm
-    assert_allclose(inp.hardpoints["lca_outer"], [0.0184, 0.6206, 0.181], atol=1e-12)
+    # front_hardpoints/X.yaml writes lca_outer as [18.4, 706.0, 181.0] mm
+    assert_allclose(inp.hardpoints["lca_outer"], [0.0184, 0.706, 0.181], atol=1e-12)
     assert inp.spring.rate == pytest.approx(30.0e3)  # 30 N/mm
-    assert inp.spring.preload == pytest.approx(4600.0)
+    assert inp.spring.preload == pytest.approx(4475.0)
     assert inp.tire_vertical_stiffness == pytest.approx(280835.2941)  # Sedan_Pac02Tire.tir
     assert inp.tire_radius == pytest.approx(0.329)  # design wheel-centre height
     assert inp.camber == pytest.approx(math.radians(-0.5))
     assert inp.toe == pytest.approx(math.radians(0.05))
-    # stabilizer from bar geometry: G pi r^4 / (2 L), r = 11 mm, L = 800 mm, G = 79300 N/mm^2
+    # stabilizer from bar geometry: G pi r^4 / (2 L), r = 12 mm, L = 800 mm, G = 79300 N/mm^2
     assert inp.stabilizer.torsional_stiffness == pytest.approx(
-        79300e6 * math.pi * 0.011 ** 4 / 2.0 / 0.8)
+        79300e6 * math.pi * 0.012 ** 4 / 2.0 / 0.8)
     # bushing rates: 8000 N/mm and 4000 N*mm/deg
     lca = inp.bushings["lca_front"]
     assert lca.stiffness[0] == pytest.approx(8.0e6)
     assert lca.stiffness[3] == pytest.approx(4000e-3 * 180.0 / math.pi)
-    assert inp.steering.rack_ratio == pytest.approx(0.050 / (2.0 * math.pi))
+    assert inp.steering.rack_ratio == pytest.approx(0.078 / (2.0 * math.pi))
     assert suspension_input(sedan.configurations["baseline"], "rear").steering is None
 
 
@@ -154,19 +154,27 @@ def test_stabilizer_without_its_hard_points_is_refused(hmmwv, sedan):
 
 
 def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
-    config = sedan.configurations["baseline"]
-    targets = run_event(config, "handling_diagram", "two_track", ["steps=5"])
-    from vd_solvers.kc.from_config import axle_roll_properties
+    """The two-track model computes the K&C roll properties on demand: the same
+    numbers as a direct K&C run of the same configuration, labelled with the data
+    hash; without K&C the parameters say 'design target'."""
+    from vd_solvers.analytical.from_config import vehicle_params
+    from vd_solvers.kc.events import KCModel
+    from vd_solvers.kc.metrics import derived_metrics
 
-    kc = {axle: AxleSuspension(*axle_roll_properties(config, axle), source=f"K&C {axle}")
-          for axle in ("front", "rear")}
-    fed = run_event(config, "handling_diagram", "two_track", ["steps=5"], suspension=kc)
-    assert fed.metrics["roll_stiffness_front"].value == pytest.approx(kc["front"].roll_stiffness)
-    assert fed.metrics["roll_stiffness_front"].source == "K&C front"
-    assert targets.metrics["roll_stiffness_front"].source.startswith("design target")
-    # the K&C car is stiffer in roll than the targets: less roll per g
-    total_kc = kc["front"].roll_stiffness + kc["rear"].roll_stiffness
-    total_targets = (targets.metrics["roll_stiffness_front"].value
-                     + targets.metrics["roll_stiffness_rear"].value)
-    assert total_kc > total_targets
-    assert fed.metrics["roll_gradient"].value < targets.metrics["roll_gradient"].value
+    config = sedan.configurations["baseline"]
+    fed = run_event(config, "handling_diagram", "two_track", ["steps=5"])
+    for axle in ("front", "rear"):
+        inp = suspension_input(config, axle)
+        model = KCModel(inp)
+        direct = derived_metrics({e: model.run(e) for e in ("opposite_wheel_travel",
+                                                             "parallel_wheel_travel")},
+                                 inp.tire_vertical_stiffness)
+        stiffness = fed.metrics[f"roll_stiffness_{axle}"]
+        assert stiffness.value == pytest.approx(direct["roll_stiffness"][0] * 180.0 / math.pi,
+                                                rel=1e-12)
+        assert stiffness.source == (f"K&C {axle} axle (opposite and parallel wheel travel, "
+                                    f"data hash {config.data_hash})")
+        height = fed.metrics[f"roll_centre_height_{axle}"].value
+        assert height == pytest.approx(direct["roll_centre_height_kinematic"][0], rel=1e-12)
+    targets = vehicle_params(config)
+    assert targets.sources["roll_stiffness_front"].startswith("design target sedan/targets/")

@@ -79,9 +79,23 @@ def test_curvature_is_limited_to_one() -> None:
 
 
 @pytest.mark.parametrize(("path", "fz_range"), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
-def test_fit_reproduces_cornering_stiffness_over_range(path: Path, fz_range: tuple[float, float]) -> None:
+def test_fit_is_exact_at_the_reference_load(path: Path, fz_range: tuple[float, float]) -> None:
+    # where the bicycle model uses the tire: the static wheel load = fz0
     mf = MagicFormula(read_tir(path))
-    fz = np.linspace(*fz_range, 101)
+    fit = fit_simple_tire(mf, fz_range)
+    fz0 = 0.5 * (fz_range[0] + fz_range[1])
+    npt.assert_allclose(fit.cornering_stiffness(fz0), -mf.cornering_stiffness(fz0), rtol=1e-13)
+    npt.assert_allclose(fit.friction(fz0), mf.peak_lateral_friction(fz0), rtol=1e-13)
+
+
+@pytest.mark.parametrize(("path", "fz_range"), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
+def test_fit_reproduces_cornering_stiffness_around_the_reference_load(
+        path: Path, fz_range: tuple[float, float]) -> None:
+    # the middle half of the range (fz0 +- 25 % of its width): the line through
+    # the exact point at fz0 cannot also follow the MF's curvature to the ends
+    mf = MagicFormula(read_tir(path))
+    low, high = fz_range
+    fz = np.linspace(0.75 * low + 0.25 * high, 0.25 * low + 0.75 * high, 101)
     fitted = fit_simple_tire(mf, fz_range).cornering_stiffness(fz)
     npt.assert_allclose(fitted, -mf.cornering_stiffness(fz), rtol=STIFFNESS_FIT_RTOL)
 
@@ -115,7 +129,8 @@ def test_fitted_tire_gives_positive_force_for_positive_slip(sedan_fit: SimpleTir
 
 
 def test_source_names_file_and_range(sedan_fit: SimpleTire) -> None:
-    assert sedan_fit.source == "Sedan_Pac02Tire.tir (PAC2002): least-squares fit over Fz 2000..6000 N, n=20"
+    assert sedan_fit.source == ("Sedan_Pac02Tire.tir (PAC2002): exact at Fz 4000 N, slopes fitted "
+                                "over 2000..6000 N, n=20")
 
 
 # --- bad input --------------------------------------------------------------------

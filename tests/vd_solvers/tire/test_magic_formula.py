@@ -369,3 +369,48 @@ def test_non_positive_lfzo_is_refused() -> None:
         "x.tir: LFZO: key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, found 0",
         "LFZO",
     )
+
+
+# --- pneumatic trail (PAC2002, Pacejka 3rd ed. 4.E31-4.E49) ------------------------
+
+
+def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
+    """t(alpha = 0) written out with math, one equation a line."""
+    q = lambda name: props.number("ALIGNING_COEFFICIENTS", name, 0.0)  # noqa: E731
+    lam = lambda name: props.number("SCALING_COEFFICIENTS", name, 1.0)  # noqa: E731
+    fz0 = props.fnomin * lam("LFZO")
+    dfz = (fz - fz0) / fz0
+    gz = gamma * lam("LGAZ")
+    sht = q("QHZ1") + q("QHZ2") * dfz + (q("QHZ3") + q("QHZ4") * dfz) * gz
+    alpha_t = 0.0 + sht
+    bt = (q("QBZ1") + q("QBZ2") * dfz + q("QBZ3") * dfz**2) * (1 + q("QBZ4") * gz + q("QBZ5") * abs(gz))
+    bt *= lam("LKY") / lam("LMUY")
+    ct = q("QCZ1")
+    dt = fz * (q("QDZ1") + q("QDZ2") * dfz) * (1 + q("QDZ3") * gz + q("QDZ4") * gz**2)
+    dt *= props.unloaded_radius / fz0 * lam("LTR")
+    et = (q("QEZ1") + q("QEZ2") * dfz + q("QEZ3") * dfz**2)
+    et *= 1 + (q("QEZ4") + q("QEZ5") * gz) * (2 / math.pi) * math.atan(bt * ct * alpha_t)
+    et = min(et, 1.0)
+    x = bt * alpha_t
+    return dt * math.cos(ct * math.atan(x - et * (x - math.atan(x)))) * math.cos(0.0)
+
+
+@pytest.mark.parametrize("path", [SEDAN, HMMWV])
+@pytest.mark.parametrize("fz, gamma", [(2000.0, 0.0), (4850.0, 0.0), (7000.0, 0.03), (4000.0, -0.02)])
+def test_pneumatic_trail_is_pac2002_by_hand(path: Path, fz: float, gamma: float) -> None:
+    props = read_tir(path)
+    expected = _trail_by_hand(props, fz, gamma)
+    npt.assert_allclose(MagicFormula(props).pneumatic_trail(fz, gamma), expected, rtol=RTOL)
+
+
+def test_pneumatic_trail_of_the_sedan_tire_is_a_few_centimetres() -> None:
+    # QDZ1 R0 = 0.0935 * 0.344 m = 32 mm at the nominal load (Dt at dfz = 0)
+    trail = float(MagicFormula(read_tir(SEDAN)).pneumatic_trail(4850.0))
+    assert 0.02 < trail < 0.04
+
+
+def test_pneumatic_trail_mirrors_camber_and_is_zero_off_the_ground() -> None:
+    props = read_tir(SEDAN)
+    right = MagicFormula(props, side="RIGHT")
+    npt.assert_allclose(right.pneumatic_trail(4000.0, 0.02), _trail_by_hand(props, 4000.0, -0.02), rtol=RTOL)
+    npt.assert_array_equal(MagicFormula(props).pneumatic_trail([0.0, -10.0]), [0.0, 0.0])

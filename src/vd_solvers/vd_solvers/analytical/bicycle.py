@@ -13,8 +13,11 @@ agrees with it only when a_y is expressed in g.  This module works in SI:
 by g, so that ``delta = L/R + K * a_y`` with a_y in m/s^2;
 ``understeer_gradient_deg_per_g`` gives the customary deg/g.  N and C may be
 taken per tire (thesis Table 3.1.1) or per axle; the ratio is the same.  Here
-C_a is the axle cornering stiffness: two tires at the static wheel load
-N/2 (thesis eq. 7).
+C_a is the *effective* axle cornering stiffness (``budget.py``): two tires at
+the static wheel load N/2 (thesis eq. 7), softened or stiffened by the
+axle's compliance steer, roll steer and camber (Milliken & Milliken ch. 5);
+for a rigid axle it is the bare tires' value.  Slip angles are then the
+axle's kinematic slip (delta - beta - a r/V at the front), not the tires'.
 
 Slip angles are magnitudes in the tire model's convention (a positive slip
 angle gives a positive, leftward force), so in a left turn alpha_f and
@@ -39,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import signal
 
+from vd_solvers.analytical.budget import effective_axle_cornering_stiffness
 from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.errors import BeyondLimitError
 
@@ -117,12 +121,20 @@ def axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
     return front, rear
 
 
+def effective_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
+    """Front and rear effective axle cornering stiffness C_af, C_ar, N/rad
+    (:func:`~vd_solvers.analytical.budget.effective_axle_cornering_stiffness`)."""
+    return effective_axle_cornering_stiffness(p)
+
+
 def understeer_gradient(p: VehicleParams) -> float:
     """Understeer gradient K, rad/(m/s^2) (thesis eq. 2 divided by g).
 
-    K = (N_f/C_af - N_r/C_ar)/g; positive: understeer, negative: oversteer.
+    K = (N_f/C_af - N_r/C_ar)/g with the effective axle cornering
+    stiffnesses; it equals the total of the understeer budget. Positive:
+    understeer, negative: oversteer.
     """
-    c_front, c_rear = axle_cornering_stiffness(p)
+    c_front, c_rear = effective_cornering_stiffness(p)
     return (p.axle_load_front / c_front - p.axle_load_rear / c_rear) / p.g
 
 
@@ -200,7 +212,7 @@ def sideslip_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
     V = sqrt(b L C_ar/(m a)).  ``speed`` in m/s, any shape.
     """
     speed = _non_negative_speed(speed)
-    _, c_rear = axle_cornering_stiffness(p)
+    _, c_rear = effective_cornering_stiffness(p)
     numerator = p.cog_to_rear_axle - p.mass * p.cog_to_front_axle * speed**2 / (p.wheelbase * c_rear)
     return numerator / _gain_denominator(p, speed)
 
@@ -209,7 +221,7 @@ def steady_state(p: VehicleParams, radius: float, speed: float) -> SteadyStateRe
     """Steady-state cornering on a circle of ``radius`` (m) at ``speed`` (m/s)."""
     radius = float(_nonzero_radius(radius))
     speed = float(_non_negative_speed(speed))
-    c_front, c_rear = axle_cornering_stiffness(p)
+    c_front, c_rear = effective_cornering_stiffness(p)
     a_y = speed**2 / radius
     # Moment balance about each axle: F_yf = m a_y b/L, F_yr = m a_y a/L.
     alpha_front = p.mass * a_y * p.cog_to_rear_axle / (p.wheelbase * c_front)
@@ -230,7 +242,7 @@ def state_space(p: VehicleParams, speed: float) -> StateSpace:
     """State matrices of the linear single track at forward ``speed`` > 0, m/s."""
     if not speed > 0.0:
         raise ValueError(f"speed must be positive for the transient model, got {speed!r}")
-    c_front, c_rear = axle_cornering_stiffness(p)
+    c_front, c_rear = effective_cornering_stiffness(p)
     m, izz, u = p.mass, p.yaw_inertia, speed
     a, b = p.cog_to_front_axle, p.cog_to_rear_axle
     # Force and moment derivatives with respect to v and r (Milliken ch. 5).

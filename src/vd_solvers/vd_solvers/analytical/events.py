@@ -3,6 +3,9 @@ handling diagram, and the linear step steer (ISO 7401) of the bicycle model.
 
 ``run_event(config, event, model, params)`` returns an :class:`EventOutcome`
 with SI channels and metrics (plus the conventional deg/g, g, km/h figures).
+The roll properties and the compliance of both axles come from the K&C
+results of the same configuration and data hash, computed on demand and
+cached (``kc_link.py``); the understeer budget is part of every result.
 """
 from __future__ import annotations
 
@@ -13,7 +16,9 @@ import numpy as np
 
 from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle, two_track
-from vd_solvers.analytical.from_config import AxleSuspension, vehicle_params
+from vd_solvers.analytical.budget import TERMS, understeer_budget
+from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
+from vd_solvers.analytical.kc_link import try_kc_inputs
 from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.errors import BeyondLimitError, SolverError
 from vd_solvers.event_params import Param, parse_params
@@ -50,8 +55,8 @@ EVENT_MODELS: Mapping[str, tuple[str, ...]] = {
 }
 
 
-def run_event(config: Configuration, event: str, model: str, params: Sequence[str] = (),
-              suspension: Mapping[str, AxleSuspension] | None = None) -> EventOutcome:
+def run_event(config: Configuration, event: str, model: str,
+              params: Sequence[str] = ()) -> EventOutcome:
     """Run ``event`` with ``model`` on ``config``. Raises SolverError naming both."""
     label = f"configuration '{config.name}', event '{event}', model '{model}'"
     if event not in EVENT_PARAMS:
@@ -61,7 +66,17 @@ def run_event(config: Configuration, event: str, model: str, params: Sequence[st
         raise SolverError(f"{label}: event '{event}' runs on models "
                           f"{', '.join(EVENT_MODELS[event])}")
     values = parse_params(event, EVENT_PARAMS[event], params)
-    p = vehicle_params(config, suspension)
+    try:
+        kc = try_kc_inputs(config, static_wheel_loads(config))
+    except SolverError as err:
+        raise SolverError(f"{label}: K&C results: {err}") from err
+    if isinstance(kc, str):
+        p = vehicle_params(config)
+        kc_notes = [f"bare tire and design targets: {kc}"]
+    else:
+        p = vehicle_params(config, kc.suspension, kc.compliance)
+        kc_notes = [f"roll stiffness, roll centres and compliance from the K&C model "
+                    f"(data hash {config.data_hash})"]
     try:
         if event == "step_steer":
             metrics, channels, notes = _step_steer(p, values)
@@ -71,20 +86,43 @@ def run_event(config: Configuration, event: str, model: str, params: Sequence[st
             metrics, channels, notes = _two_track_sweep(p, values)
     except SolverError as err:
         raise SolverError(f"{label}: {err}") from err
-    notes = [*notes, *(f"{k}: {v}" for k, v in sorted(p.sources.items()))]
+    notes = [*notes, *kc_notes, *(f"{k}: {v}" for k, v in sorted(p.sources.items()))]
     return EventOutcome(event=event, configuration=config.name, model=model, fidelity="rigid",
                         axle="", data_hash=config.data_hash, metrics=metrics, channels=channels,
                         notes=tuple(notes))
 
 
+def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
+    """The understeer budget: ``understeer_budget_<term>`` in rad/(m/s^2) and
+    ``..._deg_per_g``, each with its source, and the total."""
+    budget = understeer_budget(p)
+    metrics = {}
+    for term in budget.terms:
+        metrics[f"understeer_budget_{term.name}"] = Metric(term.value, "rad/(m/s^2)", term.source)
+        metrics[f"understeer_budget_{term.name}_deg_per_g"] = Metric(term.value * DEG * G, "deg/g",
+                                                                      term.source)
+    metrics["understeer_budget_total"] = Metric(budget.total, "rad/(m/s^2)",
+                                                "sum of the terms " + ", ".join(TERMS))
+    metrics["understeer_budget_total_deg_per_g"] = Metric(budget.total * DEG * G, "deg/g",
+                                                          "sum of the terms " + ", ".join(TERMS))
+    return metrics
+
+
 def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]:
     k = bicycle.understeer_gradient(p)
     c_f, c_r = bicycle.axle_cornering_stiffness(p)
+    e_f, e_r = bicycle.effective_cornering_stiffness(p)
+    k_source = ("effective axle cornering stiffness: tires with K&C compliance"
+                if not (p.compliance_front.is_rigid and p.compliance_rear.is_rigid)
+                else "bare tire: no K&C results")
     metrics = {
-        "understeer_gradient": Metric(k, "rad/(m/s^2)"),
-        "understeer_gradient_deg_per_g": Metric(k * DEG * G, "deg/g"),
+        "understeer_gradient": Metric(k, "rad/(m/s^2)", k_source),
+        "understeer_gradient_deg_per_g": Metric(k * DEG * G, "deg/g", k_source),
         "cornering_stiffness_front_axle": Metric(c_f, "N/rad", p.sources.get("tire_front", "")),
         "cornering_stiffness_rear_axle": Metric(c_r, "N/rad", p.sources.get("tire_rear", "")),
+        "effective_cornering_stiffness_front_axle": Metric(e_f, "N/rad", k_source),
+        "effective_cornering_stiffness_rear_axle": Metric(e_r, "N/rad", k_source),
+        **budget_metrics(p),
         "mass": Metric(p.mass, "kg", p.sources.get("mass", "")),
         "cog_to_front_axle": Metric(p.cog_to_front_axle, "m"),
         "cog_height": Metric(p.cog_height, "m"),
@@ -168,11 +206,21 @@ def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
                                        p.sources.get("roll_stiffness_front", "")),
         "roll_stiffness_rear": Metric(p.roll_stiffness_rear, "N*m/rad",
                                       p.sources.get("roll_stiffness_rear", "")),
+        "roll_centre_height_front": Metric(p.roll_centre_height_front, "m",
+                                           p.sources.get("roll_centre_height_front", "")),
+        "roll_centre_height_rear": Metric(p.roll_centre_height_rear, "m",
+                                          p.sources.get("roll_centre_height_rear", "")),
         "radius": Metric(radius, "m"),
+        **budget_metrics(p),
     }
     notes = [f"limit: {limit.behaviour} at {limit.lateral_acceleration:.3f} m/s^2 "
              f"({limit.lateral_acceleration / G:.3f} g), {limit.limiting_axle} axle, "
              f"{limit.cause}; the model has no steady state beyond it"]
+    lift = two_track.wheel_lift_onset(p)
+    if lift is not None and lift[1] < abs(limit.lateral_acceleration):
+        metrics["wheel_lift_lateral_acceleration"] = Metric(lift[1], "m/s^2")
+        notes.append(f"inner {lift[0]} wheel lifts at {lift[1]:.3f} m/s^2 ({lift[1] / G:.3f} g); "
+                     "from there the outer wheel carries the axle load up to the limit")
     return metrics, channels, notes
 
 

@@ -11,7 +11,10 @@ derived here, and every value says where it came from (``VehicleParams.sources``
   FIT_RANGE times the static wheel load of that axle (``tire/fit.py``);
 * roll stiffness and roll-centre heights: the design targets of the targets
   group, unless K&C results of the same configuration are passed in
-  (``suspension``), which then win and are labelled as such.
+  (``suspension``), which then win and are labelled as such;
+* per-axle compliance steer, roll steer and camber (``compliance``, from the
+  K&C results, see ``kc_link.py``); without them the axles are rigid and
+  every compliance term of the understeer budget says "bare tire".
 """
 from __future__ import annotations
 
@@ -20,21 +23,14 @@ from dataclasses import dataclass
 
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
-from vd_solvers.analytical.params import STANDARD_GRAVITY, VehicleParams
+from vd_solvers.analytical.budget import BARE_TIRE
+from vd_solvers.analytical.kc_link import AxleSuspension
+from vd_solvers.analytical.params import STANDARD_GRAVITY, AxleCompliance, VehicleParams
 from vd_solvers.tire.fit import fit_simple_tire
 from vd_solvers.tire.magic_formula import MagicFormula
 
 #: load range of the simple-tire fit, as fractions of the static wheel load
 FIT_RANGE = (0.2, 1.8)
-
-
-@dataclass(frozen=True)
-class AxleSuspension:
-    """Roll properties of one axle from the K&C model."""
-
-    roll_stiffness: float  # N*m/rad, incl. anti-roll bar
-    roll_centre_height: float  # m
-    source: str
 
 
 @dataclass(frozen=True)
@@ -86,7 +82,8 @@ def static_wheel_loads(config: Configuration) -> tuple[float, float]:
 
 
 def vehicle_params(config: Configuration,
-                   suspension: Mapping[str, AxleSuspension] | None = None) -> VehicleParams:
+                   suspension: Mapping[str, AxleSuspension] | None = None,
+                   compliance: Mapping[str, AxleCompliance] | None = None) -> VehicleParams:
     mass = config.group("mass")
     geo = config.group("geometry")
     targets = config.group("targets")
@@ -122,12 +119,19 @@ def vehicle_params(config: Configuration,
             for key in (f"roll_stiffness_{axle}", f"roll_centre_height_{axle}"):
                 roll[key] = targets.scalar(key)
                 sources[key] = f"design target {targets.values[key].source}"
+    comp = {}
+    for axle in ("front", "rear"):
+        given = (compliance or {}).get(axle)
+        comp[f"compliance_{axle}"] = given if given is not None else AxleCompliance()
+        sources[f"compliance_{axle}"] = (
+            "; ".join(dict.fromkeys(given.sources.values())) if given is not None and given.sources
+            else BARE_TIRE)
     return VehicleParams(
         mass=m, wheelbase=wheelbase, cog_to_front_axle=a, track_front=t_f, track_rear=t_r,
         cog_height=z_g, yaw_inertia=izz, tire_front=tire_front, tire_rear=tire_rear,
         unsprung_mass_front=m_uf, unsprung_mass_rear=m_ur,
         unsprung_cog_height_front=z_uf, unsprung_cog_height_rear=z_ur, sources=sources,
-        **roll)
+        **roll, **comp)
 
 
 def _fit(config: Configuration, group: str, fz_static: float):

@@ -4,8 +4,11 @@ One frozen :class:`VehicleParams` carries everything both analytical models
 need: mass and its position, tracks, roll centres and roll stiffnesses
 (thesis Table 3.1.2), unsprung masses for the unsprung part of the lateral
 load transfer (Milliken & Milliken, "Race Car Vehicle Dynamics", ch. 18),
-the yaw inertia of the transient single-track model and one
-:class:`~vd_solvers.tire.simple.SimpleTire` per axle (thesis eqs. 6-9).
+the yaw inertia of the transient single-track model, one
+:class:`~vd_solvers.tire.simple.SimpleTire` per axle (thesis eqs. 6-9) and
+one :class:`AxleCompliance` per axle: the linear compliance steer, roll steer
+and camber that the K&C model of the same configuration measured, and the
+tire's pneumatic trail and camber stiffness (zero: the bare-tire models).
 
 Units are SI throughout (m, kg, N, rad); axes follow ISO 8855 (x forward,
 y left, z up).  Distances along x are measured rearward from the front axle.
@@ -27,6 +30,61 @@ STANDARD_GRAVITY = 9.80665  # m/s^2, ISO 80000-3 standard acceleration of gravit
 _SHAPE_MIN = 1.0  # exclusive
 _SHAPE_MAX = 2.0  # exclusive
 _CURVATURE_MAX = 1.0  # exclusive
+
+
+@dataclass(frozen=True)
+class AxleCompliance:
+    """Linear steer and camber changes of one axle's wheels (K&C) and the tire
+    properties that turn them into slip (all zero: a rigid, bare-tire axle).
+
+    Signs (ISO 8855, per wheel; the left and right wheel are mirror images):
+
+    Attributes:
+        lateral_compliance_steer: steer angle change (positive to the left)
+            per N of lateral force along +y at the contact point, rad/N.  The
+            K&C metric ``lateral_compliance_steer`` (toe-in per inward force)
+            is the same number.
+        lateral_compliance_camber: camber change (top outward) per N of
+            inward force at the contact point, rad/N (K&C metric of that name).
+        roll_steer: steer angle change (positive to the left) per rad of body
+            roll (ISO: right side down positive), rad/rad.
+        roll_camber: camber to the road of the left wheel (top outward) per
+            rad of body roll, rad/rad.
+        aligning_torque_compliance_steer: steer angle change (positive to the
+            left) per N*m of moment about +z at the contact point, rad/(N*m).
+        pneumatic_trail: of the tire at the static wheel load and zero slip, m.
+        camber_stiffness: lateral force towards the side the wheel top leans,
+            per rad of lean, at the static wheel load, N/rad.
+        sources: provenance per attribute name (not part of equality).
+    """
+
+    lateral_compliance_steer: float = 0.0
+    lateral_compliance_camber: float = 0.0
+    roll_steer: float = 0.0
+    roll_camber: float = 0.0
+    aligning_torque_compliance_steer: float = 0.0
+    pneumatic_trail: float = 0.0
+    camber_stiffness: float = 0.0
+    sources: Mapping[str, str] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, (int, float)) and not math.isfinite(value):
+                raise ValueError(f"{f.name} must be finite, got {value!r}")
+        known = {f.name for f in fields(self)} - {"sources"}
+        for key in self.sources:
+            _require(key in known, "sources", f"names unknown field {key!r}", key)
+        object.__setattr__(self, "sources", MappingProxyType(dict(self.sources)))
+
+    @property
+    def is_rigid(self) -> bool:
+        """True when no term moves the tire slip away from the axle's kinematic slip."""
+        aligning = self.aligning_torque_compliance_steer != 0.0 and self.pneumatic_trail != 0.0
+        camber = self.camber_stiffness != 0.0 and (self.roll_camber != 0.0
+                                                   or self.lateral_compliance_camber != 0.0)
+        return not (self.lateral_compliance_steer != 0.0 or self.roll_steer != 0.0
+                    or aligning or camber)
 
 
 @dataclass(frozen=True)
@@ -55,6 +113,8 @@ class VehicleParams:
             m (typically the wheel-centre height).
         unsprung_cog_height_rear: COG height of the rear unsprung mass, m.
         g: acceleration of gravity, m/s^2.
+        compliance_front: compliance steer/camber of the front axle.
+        compliance_rear: compliance steer/camber of the rear axle.
         sources: provenance per field name, e.g. ``{"mass": "vehicle.xlsx
             Overview!C4"}``; filled by the vehicle-data adapter.
     """
@@ -77,6 +137,8 @@ class VehicleParams:
     unsprung_cog_height_front: float = 0.0
     unsprung_cog_height_rear: float = 0.0
     g: float = STANDARD_GRAVITY
+    compliance_front: AxleCompliance = field(default_factory=AxleCompliance)
+    compliance_rear: AxleCompliance = field(default_factory=AxleCompliance)
     # Provenance is not physics: two parameter sets with the same numbers
     # compare equal whatever their sources say.
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
@@ -116,6 +178,10 @@ class VehicleParams:
             "put the sprung COG outside the wheelbase",
             sprung_x,
         )
+        for name in ("compliance_front", "compliance_rear"):
+            if not isinstance(getattr(self, name), AxleCompliance):
+                raise ValueError(f"{name} must be an AxleCompliance, "
+                                 f"got {type(getattr(self, name)).__name__}")
         _check_tire("tire_front", self.tire_front, self.axle_load_front / 2.0)
         _check_tire("tire_rear", self.tire_rear, self.axle_load_rear / 2.0)
         known = {f.name for f in fields(self)} - {"sources"}

@@ -38,10 +38,30 @@ more heavily loaded ones.  Slip angles and lateral forces follow the tire
 model's convention, positive in a left turn.  The vehicle is left/right
 symmetric, so a right turn mirrors a left turn.
 
+Inner-wheel lift.  When the load transfer of one axle reaches its inner
+wheel's static load, that wheel leaves the ground and the outer wheel carries
+the whole axle load; the axle's suspension can then resist no more roll
+moment than it does at lift-off, so the body rolls further against the other
+axle's roll stiffness alone::
+
+    m_s h1 (a_y + g phi) = (N_f t_f / 2 - M_f a_y h_f - m_uf a_y h_uf) + K_phi_r phi
+
+(front lifted; the rear mirrors it), which keeps the overturning-moment
+balance exact.  The steady state continues until an axle saturates; when the
+other axle's inner wheel lifts too the vehicle rolls over, and there the model
+ends (limit cause ``rollover``).
+
+Compliance (``VehicleParams.compliance_front/_rear``, see ``budget.py``).  The
+wheels of an axle steer by ``c F_w + roll_steer phi - c_Mz t F_w`` (F_w = the
+axle force / 2) and lean towards +y by ``roll_camber phi -
+lateral_compliance_camber F_w``, which gives each tire the camber thrust
+``C_gamma lean``.  The tires carry the rest of the axle force at the shared
+tire slip angle; the axle's kinematic slip (what enters delta) is the tire slip
+minus the steer change.  With zero compliance both slips are the same.
+
 Beyond an axle's peak force the model has no steady state: it raises
 :class:`~vd_solvers.errors.BeyondLimitError` rather than return numbers, as it
-does when an inner wheel's load reaches zero (the roll model then no longer
-holds).
+does when both inner wheels have lifted (rollover).
 """
 from __future__ import annotations
 
@@ -58,7 +78,7 @@ from vd_solvers.errors import BeyondLimitError, SolverError
 from vd_solvers.tire.simple import SimpleTire
 
 Axle = Literal["front", "rear"]
-LimitCause = Literal["saturation", "wheel_lift"]
+LimitCause = Literal["saturation", "rollover"]
 
 WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
 
@@ -96,9 +116,9 @@ class CorneringLimit:
 
     @property
     def behaviour(self) -> str:
-        """'limit understeer' (front saturates), 'limit oversteer' (rear) or 'wheel lift'."""
-        if self.cause == "wheel_lift":
-            return "wheel lift"
+        """'limit understeer' (front saturates), 'limit oversteer' (rear) or 'rollover'."""
+        if self.cause == "rollover":
+            return "rollover"
         return "limit understeer" if self.limiting_axle == "front" else "limit oversteer"
 
 
@@ -111,13 +131,14 @@ class TwoTrackPoint:
     lateral_acceleration: float  # m/s^2
     speed: float  # m/s
     steer_angle: float  # rad, road wheel
-    slip_angle_front: float  # rad
+    slip_angle_front: float  # rad, the axle's kinematic slip (tire slip - steer change)
     slip_angle_rear: float  # rad
     roll_angle: float  # rad
-    wheel_loads: np.ndarray  # N (eq. 5)
+    wheel_loads: np.ndarray  # N (eq. 5), 0 on a lifted wheel
     friction: np.ndarray  # - (eq. 6)
     cornering_stiffness: np.ndarray  # N/rad (eq. 7)
-    lateral_force: np.ndarray  # N (eq. 9)
+    lateral_force: np.ndarray  # N (eq. 9 plus camber thrust)
+    tire_slip_angle: np.ndarray  # rad, slip angle of each tire
 
     @property
     def axle_force_front(self) -> float:
@@ -204,28 +225,19 @@ def roll_geometry(p: VehicleParams) -> RollGeometry:
 
 
 def roll_angle(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
-    """Body roll angle, rad, any shape of a_y (m/s^2) (eq. 3)."""
-    return roll_geometry(p).roll_gradient * np.asarray(lateral_acceleration, dtype=float)
+    """Body roll angle, rad, any shape of a_y (m/s^2) (eq. 3; beyond an inner
+    wheel's lift the lifted axle resists no further roll, module doc)."""
+    return _roll_state(p, lateral_acceleration)[0]
 
 
 def load_transfer(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
     """Lateral load transfer per axle (front, rear), N, shape (..., 2) (eq. 4).
 
-    Signed like a_y: positive values load the right wheels.
+    Signed like a_y: positive values load the right wheels. An axle whose
+    inner wheel has lifted transfers its whole static load N/2.  Where both
+    inner wheels would lift (rollover) the values are nan.
     """
-    geometry = roll_geometry(p)
-    a_y = np.asarray(lateral_acceleration, dtype=float)
-    phi = geometry.roll_gradient * a_y
-    front = (
-        geometry.sprung_mass_front * a_y * p.roll_centre_height_front
-        + p.roll_stiffness_front * phi
-        + p.unsprung_mass_front * a_y * p.unsprung_cog_height_front
-    ) / p.track_front
-    rear = (
-        geometry.sprung_mass_rear * a_y * p.roll_centre_height_rear
-        + p.roll_stiffness_rear * phi
-        + p.unsprung_mass_rear * a_y * p.unsprung_cog_height_rear
-    ) / p.track_rear
+    _, front, rear = _roll_state(p, lateral_acceleration)
     return np.stack([front, rear], axis=-1)
 
 
@@ -237,14 +249,95 @@ def wheel_loads(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray
     return np.stack([half_front - front, half_front + front, half_rear - rear, half_rear + rear], axis=-1)
 
 
+def wheel_lift_onset(p: VehicleParams) -> tuple[Axle, float] | None:
+    """The axle whose inner wheel lifts first and the a_y (m/s^2, > 0) where it
+    does, from the linear load transfer of eq. 4; None if neither ever lifts."""
+    geometry = roll_geometry(p)
+    per_g = [(_linear_transfer(p, geometry, "front", 1.0), p.axle_load_front / 2.0, "front"),
+             (_linear_transfer(p, geometry, "rear", 1.0), p.axle_load_rear / 2.0, "rear")]
+    onsets = [(cap / rate, axle) for rate, cap, axle in per_g if rate > 0.0]
+    if not onsets:
+        return None
+    a_y, axle = min(onsets)
+    return axle, a_y
+
+
+def _linear_transfer(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: ArrayLike) -> np.ndarray:
+    """Load transfer of ``axle`` by eq. 4 with both wheels on the ground, N."""
+    a_y = np.asarray(a_y, dtype=float)
+    phi = geometry.roll_gradient * a_y
+    return (_geometric_moment(p, geometry, axle, a_y) + _roll_stiffness(p, axle) * phi) / _track(p, axle)
+
+
+def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: np.ndarray) -> np.ndarray:
+    """The part of the axle's load-transfer moment through its roll centre and
+    unsprung mass, N*m."""
+    if axle == "front":
+        return (geometry.sprung_mass_front * a_y * p.roll_centre_height_front
+                + p.unsprung_mass_front * a_y * p.unsprung_cog_height_front)
+    return (geometry.sprung_mass_rear * a_y * p.roll_centre_height_rear
+            + p.unsprung_mass_rear * a_y * p.unsprung_cog_height_rear)
+
+
+def _roll_stiffness(p: VehicleParams, axle: Axle) -> float:
+    return p.roll_stiffness_front if axle == "front" else p.roll_stiffness_rear
+
+
+def _track(p: VehicleParams, axle: Axle) -> float:
+    return p.track_front if axle == "front" else p.track_rear
+
+
+def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.ndarray, ...]:
+    """Roll angle (rad) and front and rear load transfer (N), signed like a_y.
+
+    Eqs. 3-4 up to an inner wheel's lift; beyond it the lifted axle's
+    transfer stays at N/2 and the body rolls against the other axle alone
+    (module doc). nan where both inner wheels are off the ground.
+    """
+    geometry = roll_geometry(p)
+    a_y = np.asarray(lateral_acceleration, dtype=float)
+    sign, a = np.sign(a_y), np.abs(a_y)
+    phi = geometry.roll_gradient * a
+    front = _linear_transfer(p, geometry, "front", a)
+    rear = _linear_transfer(p, geometry, "rear", a)
+    caps = {"front": p.axle_load_front / 2.0, "rear": p.axle_load_rear / 2.0}
+    net = geometry.sprung_mass * p.g * geometry.roll_arm
+    lifted = {"front": front > caps["front"], "rear": rear > caps["rear"]}
+    first_front = front / caps["front"] >= rear / caps["rear"]
+    for axle, other, first in (("front", "rear", first_front), ("rear", "front", ~first_front)):
+        case = lifted[axle] & first
+        if not np.any(case):
+            continue
+        moment = caps[axle] * _track(p, axle) - _geometric_moment(p, geometry, axle, a)
+        k_other = _roll_stiffness(p, other)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            phi_lift = np.where(k_other > net,
+                                (geometry.sprung_mass * geometry.roll_arm * a - moment) / (k_other - net),
+                                np.nan)
+        other_transfer = ((_geometric_moment(p, geometry, other, a) + k_other * phi_lift)
+                          / _track(p, other))
+        over = ~(other_transfer < caps[other])  # nan (no roll stiffness left) counts as over
+        phi = np.where(case, np.where(over, np.nan, phi_lift), phi)
+        capped = np.where(over, np.nan, caps[axle])
+        other_value = np.where(over, np.nan, other_transfer)
+        if axle == "front":
+            front, rear = np.where(case, capped, front), np.where(case, other_value, rear)
+        else:
+            rear, front = np.where(case, capped, rear), np.where(case, other_value, front)
+    return sign * phi, sign * front, sign * rear
+
+
 def axle_lateral_force(tire: SimpleTire, loads: ArrayLike, alpha: ArrayLike) -> np.ndarray:
     """Lateral force of an axle's two wheels at a common slip angle, N.
 
     ``loads``: the two wheel loads (2,), N; ``alpha``: slip angle(s), rad,
     any shape (eqs. 6-9 summed over the wheels).
     """
-    left, right = np.asarray(loads, dtype=float)
-    return tire.lateral_force(left, alpha) + tire.lateral_force(right, alpha)
+    total = np.zeros(np.shape(alpha))
+    for fz in np.asarray(loads, dtype=float):
+        if fz > 0.0:  # a lifted wheel carries no force
+            total = total + tire.lateral_force(fz, alpha)
+    return total
 
 
 def tire_peak_slip(tire: SimpleTire, fz: ArrayLike) -> np.ndarray:
@@ -273,7 +366,8 @@ def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
     the sum peaks between the two wheels' peak slips; it is maximised there.
     """
     loads = np.asarray(loads, dtype=float)
-    low, high = sorted(float(a) for a in tire_peak_slip(tire, loads))
+    slips = [float(a) for a in tire_peak_slip(tire, loads[loads > 0.0])]
+    low, high = min(slips), max(slips)
 
     def force(alpha: float) -> float:
         return float(axle_lateral_force(tire, loads, alpha))
@@ -293,7 +387,7 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
 
     a_y and the radius share their sign (a_y = V^2/R).  Raises
     BeyondLimitError naming the axle when an axle cannot produce the force
-    the turn needs or an inner wheel lifts, and SolverError on roll
+    the turn needs or both inner wheels have lifted, and SolverError on roll
     instability.
     """
     a_y = float(lateral_acceleration)
@@ -301,21 +395,27 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
     if not math.isfinite(a_y) or a_y * radius < 0.0:
         raise ValueError(f"lateral_acceleration {a_y!r} must be finite and share the sign of radius {radius!r}")
     loads = _checked_wheel_loads(p, a_y)
-    alpha_front, alpha_rear = _slip_angles(p, a_y, loads)
+    front, rear = _axle_states(p, a_y, loads)
     tires = (p.tire_front, p.tire_front, p.tire_rear, p.tire_rear)
-    alphas = (alpha_front, alpha_front, alpha_rear, alpha_rear)
+    tire_slip = np.array([front.tire_slip, front.tire_slip, rear.tire_slip, rear.tire_slip])
+    thrust = (front.camber_thrust, front.camber_thrust, rear.camber_thrust, rear.camber_thrust)
+    on = loads > 0.0
+    safe = np.where(on, loads, 1.0)
     return TwoTrackPoint(
         radius=radius,
         lateral_acceleration=a_y,
         speed=math.sqrt(a_y * radius),
-        steer_angle=p.wheelbase / radius + alpha_front - alpha_rear,
-        slip_angle_front=alpha_front,
-        slip_angle_rear=alpha_rear,
+        steer_angle=p.wheelbase / radius + front.slip - rear.slip,
+        slip_angle_front=front.slip,
+        slip_angle_rear=rear.slip,
         roll_angle=float(roll_angle(p, a_y)),
         wheel_loads=loads,
-        friction=np.array([float(t.friction(fz)) for t, fz in zip(tires, loads)]),
-        cornering_stiffness=np.array([float(t.cornering_stiffness(fz)) for t, fz in zip(tires, loads)]),
-        lateral_force=np.array([float(t.lateral_force(fz, al)) for t, fz, al in zip(tires, loads, alphas)]),
+        friction=np.array([float(t.friction(fz)) if o else 0.0 for t, fz, o in zip(tires, safe, on)]),
+        cornering_stiffness=np.array([float(t.cornering_stiffness(fz)) if o else 0.0
+                                      for t, fz, o in zip(tires, safe, on)]),
+        lateral_force=np.array([float(t.lateral_force(fz, al)) + f_c if o else 0.0
+                                for t, fz, al, f_c, o in zip(tires, safe, tire_slip, thrust, on)]),
+        tire_slip_angle=tire_slip,
     )
 
 
@@ -406,30 +506,64 @@ def _check_radius(radius: float) -> float:
 
 
 def _checked_wheel_loads(p: VehicleParams, a_y: float) -> np.ndarray:
-    """Wheel loads at ``a_y``; BeyondLimitError if an inner wheel lifts."""
+    """Wheel loads at ``a_y``; BeyondLimitError if both inner wheels have lifted."""
     loads = wheel_loads(p, a_y)
-    for axle, pair in (("front", loads[:2]), ("rear", loads[2:])):
-        if pair.min() <= 0.0:
-            raise BeyondLimitError(
-                f"inner {axle} wheel lifts at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): "
-                f"wheel loads {pair[0]:.1f} N, {pair[1]:.1f} N"
-            )
+    if not np.all(np.isfinite(loads)):
+        lift = wheel_lift_onset(p)
+        axle = lift[0] if lift is not None else "front"
+        raise BeyondLimitError(
+            f"the vehicle rolls over at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): after the inner "
+            f"{axle} wheel, the other inner wheel lifts too")
     return loads
 
 
+@dataclass(frozen=True)
+class _AxleState:
+    slip: float  # rad, kinematic axle slip (enters delta)
+    tire_slip: float  # rad, shared slip angle of the axle's tires
+    camber_thrust: float  # N, per wheel
+
+
+def _required_forces(p: VehicleParams, a_y: float) -> tuple[float, float]:
+    """m a_y b/L and m a_y a/L, N."""
+    return (p.mass * a_y * p.cog_to_rear_axle / p.wheelbase,
+            p.mass * a_y * p.cog_to_front_axle / p.wheelbase)
+
+
+def _compliance(p: VehicleParams, axle: Axle, a_y: float, required: float) -> tuple[float, float]:
+    """Steer change of the axle's wheels (rad, + left) and camber thrust per wheel (N)."""
+    c = p.compliance_front if axle == "front" else p.compliance_rear
+    if c.is_rigid:
+        return 0.0, 0.0
+    phi = float(roll_angle(p, a_y))
+    per_wheel = required / 2.0
+    steer = (c.lateral_compliance_steer * per_wheel + c.roll_steer * phi
+             - c.aligning_torque_compliance_steer * c.pneumatic_trail * per_wheel)
+    lean = c.roll_camber * phi - c.lateral_compliance_camber * per_wheel
+    return steer, c.camber_stiffness * lean
+
+
+def _axle_states(p: VehicleParams, a_y: float, loads: np.ndarray) -> tuple[_AxleState, _AxleState]:
+    """Front and rear axle states that carry m a_y b/L and m a_y a/L."""
+    out = []
+    for axle, tire, pair, required in zip(("front", "rear"), (p.tire_front, p.tire_rear),
+                                          (loads[:2], loads[2:]), _required_forces(p, a_y)):
+        steer, thrust = _compliance(p, axle, a_y, required)
+        tire_slip = _axle_slip(p, axle, tire, pair, required - 2.0 * thrust, a_y)
+        out.append(_AxleState(tire_slip - steer, tire_slip, thrust))
+    return out[0], out[1]
+
+
 def _slip_angles(p: VehicleParams, a_y: float, loads: np.ndarray) -> tuple[float, float]:
-    """Front and rear slip angles that carry m a_y b/L and m a_y a/L, rad."""
-    required_front = p.mass * a_y * p.cog_to_rear_axle / p.wheelbase
-    required_rear = p.mass * a_y * p.cog_to_front_axle / p.wheelbase
-    alpha_front = _axle_slip(p, "front", p.tire_front, loads[:2], required_front, a_y)
-    alpha_rear = _axle_slip(p, "rear", p.tire_rear, loads[2:], required_rear, a_y)
-    return alpha_front, alpha_rear
+    """Front and rear kinematic slip angles at ``a_y``, rad."""
+    front, rear = _axle_states(p, a_y, loads)
+    return front.slip, rear.slip
 
 
 def _axle_slip(
     p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray, required: float, a_y: float
 ) -> float:
-    """Slip angle giving the axle force ``required`` (N, signed), rad.
+    """Slip angle giving the tire force ``required`` (N, signed), rad.
 
     The axle is symmetric in slip, so the magnitude is solved on [0,
     alpha_peak], where the force rises monotonically, and given the sign.
@@ -451,8 +585,10 @@ def _axle_slip(
 
 
 def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray, a_y: float) -> None:
-    """SolverError when eqs. 6-7 leave their physical range at these loads."""
-    if np.any(tire.friction(loads) <= 0.0) or np.any(tire.cornering_stiffness(loads) <= 0.0):
+    """SolverError when eqs. 6-7 leave their physical range at these loads
+    (a lifted wheel, load 0, carries nothing and is not checked)."""
+    on = loads[loads > 0.0]
+    if np.any(tire.friction(on) <= 0.0) or np.any(tire.cornering_stiffness(on) <= 0.0):
         raise SolverError(
             f"{axle} tire model gives no friction or cornering stiffness at wheel loads "
             f"{loads[0]:.1f} N, {loads[1]:.1f} N (a_y = {a_y:.6g} m/s^2)"
@@ -462,24 +598,20 @@ def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.
 def _violation(p: VehicleParams, a_y: float) -> tuple[Axle, LimitCause] | None:
     """The constraint a_y (>= 0, m/s^2) breaks first, or None if solvable.
 
-    Wheel lift is checked first because the axle forces are undefined after
-    it; between two saturated axles the one short by the larger fraction of
-    its required force limits.
+    Rollover (both inner wheels off the ground) is checked first because the
+    axle forces are undefined after it; between two saturated axles the one
+    short by the larger fraction of its required force limits.
     """
     loads = wheel_loads(p, a_y)
-    front_loads, rear_loads = loads[:2], loads[2:]
-    lifted = [(float(pair.min()), axle) for axle, pair in (("front", front_loads), ("rear", rear_loads))]
-    lowest, lift_axle = min(lifted)
-    if lowest <= 0.0:
-        return lift_axle, "wheel_lift"
+    if not np.all(np.isfinite(loads)):
+        lift = wheel_lift_onset(p)
+        return (lift[0] if lift is not None else "front"), "rollover"
     shortfalls: list[tuple[float, Axle]] = []
-    for axle, tire, pair, lever in (
-        ("front", p.tire_front, front_loads, p.cog_to_rear_axle),
-        ("rear", p.tire_rear, rear_loads, p.cog_to_front_axle),
-    ):
+    for axle, tire, pair, required in zip(("front", "rear"), (p.tire_front, p.tire_rear),
+                                          (loads[:2], loads[2:]), _required_forces(p, a_y)):
         _check_tire_range(p, axle, tire, pair, a_y)
-        required = p.mass * a_y * lever / p.wheelbase
+        _, thrust = _compliance(p, axle, a_y, required)
         _, force_peak = axle_peak(tire, pair)
-        shortfalls.append(((required - force_peak) / required, axle))
+        shortfalls.append(((abs(required - 2.0 * thrust) - force_peak) / required, axle))
     shortfall, axle = max(shortfalls)
     return (axle, "saturation") if shortfall > 0.0 else None

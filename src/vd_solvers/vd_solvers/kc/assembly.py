@@ -66,13 +66,16 @@ class LoadCase:
 
     ``pad``: contact-point height change from design (m); ``contact_force``:
     force on the tire at the contact point (N, vehicle axes); ``centre_force``:
-    force at the wheel centre (N); ``rack``: commanded rack travel (m, +y).
+    force at the wheel centre (N); ``rack``: commanded rack travel (m, +y);
+    ``contact_moment``: moment on the tire at the contact point (N*m, vehicle
+    axes; the aligning-torque rig test applies it about z).
     """
 
     pad: np.ndarray = field(default_factory=lambda: np.zeros(2))
     contact_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
     centre_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
     rack: float = 0.0
+    contact_moment: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
 
     def blend(self, other: LoadCase, t: float) -> LoadCase:
         """The load case a fraction ``t`` of the way from self to ``other``."""
@@ -81,6 +84,7 @@ class LoadCase:
             contact_force=(1 - t) * self.contact_force + t * other.contact_force,
             centre_force=(1 - t) * self.centre_force + t * other.centre_force,
             rack=(1 - t) * self.rack + t * other.rack,
+            contact_moment=(1 - t) * self.contact_moment + t * other.contact_moment,
         )
 
 
@@ -347,11 +351,14 @@ class System:
         """
         q = np.zeros(self.n_dof)
         k = np.zeros((self.n_dof, self.n_dof))
-        if not (np.any(load.contact_force) or np.any(load.centre_force)):
+        if not (np.any(load.contact_force) or np.any(load.centre_force)
+                or np.any(load.contact_moment)):
             return q, k
         centre, _, contact = self._contact(world, vec)
         for s, wheel in enumerate(self.outputs.wheels):
             u = wheel.part
+            # a pure moment, fixed in the vehicle axes: no lever, no tangent term
+            q[6 * u + 3 : 6 * u + 6] += load.contact_moment[s]
             for at, force in ((contact[s], load.contact_force[s]), (centre[s], load.centre_force[s])):
                 lever = at - state.p[u]
                 q[6 * u : 6 * u + 3] += force

@@ -1,7 +1,7 @@
 """Wall-clock timings of the K&C solver (not run by the unit tests).
 
 Targets (2-core machine): a 101-step parallel-wheel-travel sweep of one axle
-well under a second; the five-event suite of both axles a few seconds.
+well under a second; the six-event suite of both axles a few seconds.
 
 Example::
 

@@ -82,7 +82,7 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = "rig
     if event == NO_BAR:
         if model.inp.stabilizer is None:
             raise SolverError(f"configuration '{config.name}', axle '{axle}': no anti-roll bar")
-        bare = KCModel(without_bar(model.inp), model.label)
+        bare = KCModel(without_bar(model.inp), model.label, solved=True)
         result = bare.run("opposite_wheel_travel", **params)
     else:
         result = model.run(event, **params)

@@ -6,6 +6,8 @@
 * ``longitudinal_force``: braking (force < 0) at the contact point with the
   wheel locked, traction (force > 0) at the wheel centre; pads held.
 * ``steering``: rack swept lock to lock (or to a steering-wheel angle).
+* ``aligning_torque``: moment about +z at both contact points, pads held
+  (the K&C rig's aligning-torque compliance test).
 
 Pads move the contact-point height (m, from design); the wheel is locked to
 the upright throughout (its rotation reacts in the upright), the steering is
@@ -22,7 +24,7 @@ import numpy as np
 from vd_solvers.errors import SolverError
 
 from .assembly import LoadCase, State, System, assemble
-from .metrics import channels
+from .metrics import channels, wheel_angles
 from .model import Axle, SuspensionInput, without_bar
 from .solver import solve_path, solve_static
 from .templates import TEMPLATES
@@ -31,6 +33,9 @@ DEFAULT_STEPS = 101
 # Spring-preload trim: secant iterations and relative tolerance on the pad load.
 MAX_TRIM_ITERATIONS = 8
 TRIM_TOL = 1e-9
+# Loaded alignment: fixed-point iterations and tolerance on toe and camber, rad.
+MAX_ALIGN_ITERATIONS = 12
+ALIGN_TOL = 1e-10
 
 
 @dataclass(frozen=True)
@@ -143,12 +148,29 @@ def steering(
     )
 
 
+def aligning_torque(
+    inp: SuspensionInput, moment_min: float = -200.0, moment_max: float = 200.0,
+    steps: int = DEFAULT_STEPS,
+) -> _Plan:
+    """Moment about +z (N*m, counter-clockwise from above) at both contact
+    points, pads at design height, steering held."""
+    mz = _sweep(moment_min, moment_max, steps, "aligning_torque")
+    cases = []
+    for v in mz:
+        moment = np.zeros((2, 3))
+        moment[:, 2] = v
+        cases.append(LoadCase(contact_moment=moment))
+    params = {"moment_min": moment_min, "moment_max": moment_max, "steps": steps}
+    return _Plan(cases, mz, "aligning torque", "N*m", params)
+
+
 EVENTS: dict[str, Callable[..., _Plan]] = {
     "parallel_wheel_travel": parallel_wheel_travel,
     "opposite_wheel_travel": opposite_wheel_travel,
     "lateral_force": lateral_force,
     "longitudinal_force": longitudinal_force,
     "steering": steering,
+    "aligning_torque": aligning_torque,
 }
 
 
@@ -157,14 +179,21 @@ class KCModel:
 
     ``label`` (e.g. the configuration name) prefixes every error message.
     ``inp`` is the input as solved: with the trimmed spring preload if the
-    spring had neither free length nor preload.
+    spring had neither free length nor preload, and with the toe and camber
+    the wheel is assembled with solved so that the loaded axle at design
+    height has the specified alignment (:meth:`_aligned`). ``solved=True``
+    takes ``inp`` as already solved (e.g. a model's ``inp`` without its bar).
     """
 
-    def __init__(self, inp: SuspensionInput, label: str = "") -> None:
+    def __init__(self, inp: SuspensionInput, label: str = "", solved: bool = False) -> None:
         self.inp = inp
         self.label = label
         try:
-            self.inp = self._trimmed(inp)
+            if not solved:
+                aligned = self._aligned(inp)
+                trimmed = self._trimmed(aligned)
+                # the trim moves the design state a little: align again to the specification
+                self.inp = aligned if trimmed is aligned else self._aligned(trimmed, inp)
             self.system: System = assemble(self.inp)
         except SolverError as err:
             raise SolverError(f"{self._prefix()}{err}") from None
@@ -201,6 +230,34 @@ class KCModel:
         ratio = self.inp.steering.rack_ratio if self.inp.steering is not None else None
         ch = channels(self.system, self.template, solution, cases, ratio)
         return EventResult(event, self.inp.axle, self.label, dict(plan.params), ch)
+
+    @staticmethod
+    def _aligned(inp: SuspensionInput, spec: SuspensionInput | None = None) -> SuspensionInput:
+        """``inp`` with the toe and camber the wheel is assembled with solved so
+        that under the static corner load at design height (pads at design,
+        bushings deflected) the left wheel has the toe and camber of ``spec``
+        (default ``inp``): alignment is specified for the loaded car. Without
+        bushings the linkage does not deflect and ``inp`` is returned.
+        Fixed-point iteration on the deflection, to ALIGN_TOL."""
+        spec = inp if spec is None else spec
+        if not inp.bushings:
+            return inp
+        target = np.array([spec.toe, spec.camber])
+        x = np.array([inp.toe, inp.camber])
+        last: State | None = None
+        for _ in range(MAX_ALIGN_ITERATIONS):
+            trial = replace(inp, toe=float(x[0]), camber=float(x[1]))
+            system = assemble(trial)
+            last, _, _ = solve_static(system, LoadCase(), "loaded alignment", last)
+            _, axis, _ = system.contact_points(last)
+            angles = wheel_angles(axis)
+            error = np.array([angles["toe"][0], angles["camber"][0]]) - target
+            if np.max(np.abs(error)) <= ALIGN_TOL:
+                return trial
+            x = x - error
+        raise SolverError(
+            f"loaded alignment: toe and camber {np.degrees(error)} deg off the specified values "
+            f"after {MAX_ALIGN_ITERATIONS} iterations")
 
     @staticmethod
     def _trimmed(inp: SuspensionInput) -> SuspensionInput:
@@ -254,7 +311,7 @@ def run_suite(
     names = [e for e in EVENTS if e != "steering" or inp.steering is not None]
     results = {e: model.run(e, **params.get(e, {})) for e in names}
     if inp.stabilizer is not None:
-        bare = KCModel(without_bar(model.inp), label)
+        bare = KCModel(without_bar(model.inp), label, solved=True)
         results["opposite_wheel_travel_no_bar"] = bare.run(
             "opposite_wheel_travel", **params.get("opposite_wheel_travel", {})
         )

@@ -60,6 +60,12 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                                       minimum=0.0),
         "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
     },
+    "aligning_torque": {
+        "moment_min": Param("torque", -200.0, "lowest moment about +z at both contact patches",
+                            maximum=0.0),
+        "moment_max": Param("torque", 200.0, "highest moment", minimum=0.0),
+        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+    },
 }
 
 
@@ -303,7 +309,7 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     result = model.run(event, on_step(0, "solving"), **_event_kwargs(event, values))
     results = {event: result}
     if with_bar:
-        bare = KCModel(without_bar(model.inp), label)
+        bare = KCModel(without_bar(model.inp), label, solved=True)
         results["opposite_wheel_travel_no_bar"] = bare.run(
             event, on_step(1, "solving without the anti-roll bar"),
             **_event_kwargs(event, values))
@@ -320,6 +326,8 @@ def _outcome(config, event, axle, inp, model, results, fidelity="rigid") -> Even
     channels = flatten_channels(raw)
     if event == "lateral_force":
         channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 1])
+    elif event == "aligning_torque":
+        channels["applied_moment"] = Channel("N*m", raw["contact_moment"][:, 0, 2])
     elif event == "longitudinal_force":
         channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 0]
                                             + raw["centre_force"][:, 0, 0])
@@ -364,7 +372,8 @@ SIX_NAMES = ("x", "y", "z", "rx", "ry", "rz")
 
 _UNITS = {
     "wheel_travel": "m", "pad_travel": "m", "wheel_centre": "m", "contact_point": "m",
-    "track": "m", "contact_force": "N", "centre_force": "N", "toe": "rad", "camber": "rad",
+    "track": "m", "contact_force": "N", "centre_force": "N", "contact_moment": "N*m", "toe": "rad",
+    "camber": "rad",
     "caster": "rad", "kingpin_inclination": "rad", "scrub_radius": "m",
     "mechanical_trail": "m", "steer_angle": "rad", "pad_force": "N", "spring_length": "m",
     "spring_force": "N", "damper_length": "m", "bump_stop_force": "N",
@@ -404,15 +413,5 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     return out
 
 
-def axle_roll_properties(config: Configuration, axle: str) -> tuple[float, float]:
-    """(roll stiffness N*m/rad incl. the bar, roll-centre height m) of ``axle`` from the
-    K&C opposite-wheel-travel and lateral-force events: what the two-track model takes."""
-    inp = suspension_input(config, axle)
-    model = KCModel(inp, f"configuration '{config.name}', axle '{axle}'")
-    results = {e: model.run(e, steps=21) for e in ("opposite_wheel_travel", "parallel_wheel_travel")}
-    m = derived_metrics(results, inp.tire_vertical_stiffness)
-    return m["roll_stiffness"][0] * DEG, m["roll_centre_height_kinematic"][0]
-
-
 __all__ = ["EVENT_PARAMS", "EVENTS", "run_kc_event", "run_suite", "suspension_input",
-           "axle_roll_properties", "bar_stiffness", "flatten_channels"]
+           "bar_stiffness", "flatten_channels"]

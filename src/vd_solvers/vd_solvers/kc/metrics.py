@@ -42,6 +42,7 @@ SIDE_SIGNS = np.array([1.0, -1.0])
 # Half-widths of the windows for slopes "at design" (quadratic least squares).
 TRAVEL_WINDOW = 0.010  # m of wheel travel
 FORCE_WINDOW = 500.0  # N of applied force
+MOMENT_WINDOW = 25.0  # N*m of applied aligning torque
 RACK_WINDOW = 0.005  # m of rack travel
 ACKERMANN_REFERENCE_ANGLE = np.radians(20.0)  # inner road-wheel angle, rad
 # A compliance below this (m/N) is reported as infinite stiffness (rigid).
@@ -119,6 +120,7 @@ def channels(
         "track": contact[:, 0, 1] - contact[:, 1, 1],
         "contact_force": np.array([c.contact_force for c in cases]),
         "centre_force": np.array([c.centre_force for c in cases]),
+        "contact_moment": np.array([c.contact_moment for c in cases]),
     }
     ch.update(wheel_angles(axis))
     ch.update(steering_geometry(upper, lower, contact, axis))
@@ -288,6 +290,12 @@ def derived_metrics(
             -cp[at, s, 1] * slope_at(f, ch["pad_force"][:, s], 0.0, FORCE_WINDOW) for s in range(2)
         ]
         m["roll_centre_height_force"] = (float(np.mean(heights)), "m")
+    aligning = results.get("aligning_torque")
+    if aligning is not None:
+        ch = aligning.channels
+        mz = ch["contact_moment"][:, 0, 2]
+        steer = [slope_at(mz, ch["steer_angle"][:, s], 0.0, MOMENT_WINDOW) for s in range(2)]
+        m["aligning_torque_compliance_steer"] = (float(np.mean(steer)) * DEG * 1e3, "deg/(kN*m)")
     lon = results.get("longitudinal_force")
     if lon is not None:
         ch = lon.channels

@@ -4,13 +4,18 @@ Over ``n`` loads evenly spread across ``fz_range``, with the reference load
 fz0 = the middle of the range (so the linear load terms are centred where the
 fit is used, not at FNOMIN LFZO, which may lie outside it):
 
-* mu0, mu1: least-squares line mu_y(Fz) = mu0 (1 - mu1 (Fz - fz0)) (eq. 6)
-  through :meth:`MagicFormula.peak_lateral_friction` at zero camber. PAC2002's
-  mu_y is linear in Fz, so this reproduces it exactly.
-* c0, c1: least squares of the cornering stiffness, in N/rad,
-  C(Fz) = c0 Fz (1 - c1 (Fz - fz0)) (eq. 7), which is linear in the unknowns
-  (c0, c0 c1). The data are the slope of :meth:`MagicFormula.fy_iso` at zero
-  slip (= -:meth:`MagicFormula.cornering_stiffness`), so c0 > 0 in the
+Both lines pass exactly through the Magic Formula's values at fz0 (the
+static wheel load where the bicycle model uses the tire); only the slopes are
+fitted over the range:
+
+* mu0, mu1: mu0 = :meth:`MagicFormula.peak_lateral_friction` at fz0 and zero
+  camber; mu1 from the least-squares slope of mu_y(Fz) = mu0 (1 - mu1 (Fz -
+  fz0)) (eq. 6) through that point. PAC2002's mu_y is linear in Fz, so the
+  line reproduces it everywhere.
+* c0, c1: c0 fz0 = the Magic Formula's cornering stiffness at fz0, in N/rad;
+  c1 from least squares of C(Fz) = c0 Fz (1 - c1 (Fz - fz0)) (eq. 7), linear in
+  c0 c1 once c0 is fixed. The data are the slope of :meth:`MagicFormula.fy_iso`
+  at zero slip (= -:meth:`MagicFormula.cornering_stiffness`), so c0 > 0 in the
   convention of :class:`SimpleTire`.
 * shape = C_y = PCY1 LCY.
 * curvature = E_y at fz0 and zero camber, the part even in the slip
@@ -49,10 +54,12 @@ def fit_simple_tire(mf: MagicFormula, fz_range: tuple[float, float], n: int = 20
     fz0 = 0.5 * (low + high)
     dfz = fz - fz0
 
-    mu_slope, mu0 = np.polyfit(dfz, mf.peak_lateral_friction(fz), 1)
+    mu0 = float(mf.peak_lateral_friction(fz0))
+    mu_slope = _slope_through(dfz, mf.peak_lateral_friction(fz) - mu0)
 
-    stiffness = -mf.cornering_stiffness(fz)
-    (c0, c0_c1), *_ = np.linalg.lstsq(np.column_stack((fz, fz * dfz)), stiffness, rcond=None)
+    c0 = float(-mf.cornering_stiffness(fz0)) / fz0
+    # C(Fz) - c0 Fz = -(c0 c1) Fz dfz
+    c0_c1 = -_slope_through(fz * dfz, -mf.cornering_stiffness(fz) - c0 * fz)
     if c0 <= 0.0:
         raise SolverError(
             f"{mf.props.path}: cornering stiffness of fy_iso fitted as c0 = {c0:g} 1/rad, not > 0; "
@@ -65,8 +72,14 @@ def fit_simple_tire(mf: MagicFormula, fz_range: tuple[float, float], n: int = 20
         mu1=float(-mu_slope / mu0),
         fz0=fz0,
         c0=float(c0),
-        c1=float(-c0_c1 / c0),
+        c1=float(c0_c1 / c0),
         shape=mf.lateral_shape_factor,
         curvature=float(mf.lateral_curvature(fz0)),
-        source=f"{name} ({mf.props.file_format}): least-squares fit over Fz {low:g}..{high:g} N, n={n}",
+        source=f"{name} ({mf.props.file_format}): exact at Fz {fz0:g} N, slopes fitted over "
+        f"{low:g}..{high:g} N, n={n}",
     )
+
+
+def _slope_through(x: np.ndarray, y: np.ndarray) -> float:
+    """Least-squares slope k of y = k x (a line through the origin)."""
+    return float(np.dot(x, y) / np.dot(x, x))

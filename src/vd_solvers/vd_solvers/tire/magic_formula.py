@@ -298,6 +298,47 @@ class MagicFormula:
             sv=fz * (c["PVX1"] + c["PVX2"] * dfz) * c["LVX"] * c["LMUX"],
         )
 
+    def pneumatic_trail(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
+        """Pneumatic trail t at zero slip angle, m (PAC2002, Pacejka 3rd ed. 4.E31-4.E49).
+
+        ``t = Dt cos(Ct arctan(Bt at - Et (Bt at - arctan(Bt at)))) cos(alpha)`` at alpha = 0,
+        so at = SHt, with (gamma_z = gamma LGAZ, R0 = UNLOADED_RADIUS)::
+
+            SHt = QHZ1 + QHZ2 dfz + (QHZ3 + QHZ4 dfz) gamma_z
+            Bt  = (QBZ1 + QBZ2 dfz + QBZ3 dfz^2) (1 + QBZ4 gamma_z + QBZ5 |gamma_z|) LKY / LMUY
+            Ct  = QCZ1
+            Dt  = Fz (QDZ1 + QDZ2 dfz) (1 + QDZ3 gamma_z + QDZ4 gamma_z^2) (R0 / Fz0') LTR
+            Et  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2) (1 + (QEZ4 + QEZ5 gamma_z) (2/pi) arctan(Bt Ct at)) <= 1
+
+        Positive t: the lateral force acts behind the contact centre, so the
+        aligning torque -t Fy turns the wheel towards its direction of travel.
+        The residual torque Mzr is not part of the trail. Off the ground: 0.
+        """
+        fz_, gamma_ = _arrays(fz, gamma)
+        loaded, fz_eval = self._loaded(fz_)
+        q = {name: self.props.number("ALIGNING_COEFFICIENTS", name, 0.0)
+             for name in ("QBZ1", "QBZ2", "QBZ3", "QBZ4", "QBZ5", "QCZ1", "QDZ1", "QDZ2", "QDZ3",
+                          "QDZ4", "QEZ1", "QEZ2", "QEZ3", "QEZ4", "QEZ5", "QHZ1", "QHZ2", "QHZ3",
+                          "QHZ4")}
+        scale = {name: self.props.number("SCALING_COEFFICIENTS", name, 1.0)
+                 for name in ("LGAZ", "LTR")}
+        c = self._c
+        fz0 = c["FZ0_PRIME"]
+        dfz = (fz_eval - fz0) / fz0
+        gamma_z = self._mirror * gamma_ * scale["LGAZ"]
+        at = q["QHZ1"] + q["QHZ2"] * dfz + (q["QHZ3"] + q["QHZ4"] * dfz) * gamma_z
+        bt = ((q["QBZ1"] + q["QBZ2"] * dfz + q["QBZ3"] * dfz**2)
+              * (1.0 + q["QBZ4"] * gamma_z + q["QBZ5"] * np.abs(gamma_z)) * c["LKY"] / c["LMUY"])
+        ct = q["QCZ1"]
+        dt = (fz_eval * (q["QDZ1"] + q["QDZ2"] * dfz) * (1.0 + q["QDZ3"] * gamma_z + q["QDZ4"] * gamma_z**2)
+              * (self.props.unloaded_radius / fz0) * scale["LTR"])
+        et = np.minimum((q["QEZ1"] + q["QEZ2"] * dfz + q["QEZ3"] * dfz**2)
+                        * (1.0 + (q["QEZ4"] + q["QEZ5"] * gamma_z) * (2.0 / np.pi) * np.arctan(bt * ct * at)),
+                        _MAX_CURVATURE)
+        bat = bt * at
+        trail = dt * np.cos(ct * np.arctan(bat - et * (bat - np.arctan(bat))))
+        return np.where(loaded, trail, 0.0)
+
 
 def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarray:
     """E = min(e_even (1 - e_odd sgn(x)), 1)."""
