@@ -102,14 +102,14 @@ def test_vd_capability_end_to_end(tmp_path):
     (table,) = json.loads(proc.stdout)["tables"]
     events = {c["event"] for c in table["cells"]}
     assert events == {"parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-                      "longitudinal_force"}
-    assert len(table["cells"]) == 4 * len(QUANTITIES)
+                      "longitudinal_force", "aligning_torque"}
+    assert len(table["cells"]) == 5 * len(QUANTITIES)
     assert {c["verdict"] for c in table["cells"]} <= {"Rigid", "Flexible"}
     assert "trailing_link" in table["flexible_components"]
     (msg,) = [m.msg for m in read_bag(out / "capability_baseline_rear")]
     assert [c.verdict for c in msg.cells] == [c["verdict"] for c in table["cells"]]
     bags = sorted(p.name for p in (out / "bags").iterdir())
-    assert len(bags) == 8 and sum(b.endswith("_flexible") for b in bags) == 4
+    assert len(bags) == 10 and sum(b.endswith("_flexible") for b in bags) == 5
 
 
 @pytest.mark.ros

@@ -84,7 +84,7 @@ def _bench_flex(config) -> dict[str, float]:
 
 
 def _bench_capability(master: Path) -> float:
-    """The whole capability study of both axles (18 runs, 101 steps, through the ROS
+    """The whole capability study of both axles (22 runs, 101 steps, through the ROS
     graph, with bags); target: under 20 s."""
     from vd_data_server.study import load_study
 
@@ -202,7 +202,7 @@ def print_bench(results: dict[str, Any]) -> None:
         ("flexible K&C 101-step parallel travel, rear",
          f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
          "within 3x rigid"),
-        ("capability study, both axles (18 runs via ROS, bags)",
+        ("capability study, both axles (22 runs via ROS, bags)",
          f"{results['capability_both_axles_s']:.1f} s", "under 20 s"),
         ("load + resolve the sample study", f"{results['load_study_s']:.3f} s", ""),
         ("bicycle steady state, K&C inputs computed (empty cache)",

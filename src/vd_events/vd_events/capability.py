@@ -55,11 +55,12 @@ METRICS: Mapping[str, Mapping[str, float]] = {
     "longitudinal_force": {"longitudinal_stiffness_braking": 10.0,
                            "longitudinal_stiffness_traction": 10.0,
                            "longitudinal_compliance_steer_braking": 0.01},
+    "aligning_torque": {"aligning_torque_compliance_steer": 0.01},
     "steering": {"steering_ratio": 0.1, "ackermann": 1.0},
 }
 METRIC_RELATIVE = 0.05
 EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-          "longitudinal_force", "steering")
+          "longitudinal_force", "aligning_torque", "steering")
 STOPS = ("bump_stop_force_left", "bump_stop_force_right", "rebound_stop_force_left",
          "rebound_stop_force_right")
 
@@ -108,7 +109,7 @@ class Table:
 #: the swept channel of each event, whose zero is the design step
 SWEEP = {"parallel_wheel_travel": "pad_travel_left", "opposite_wheel_travel": "pad_travel_left",
          "lateral_force": "applied_force", "longitudinal_force": "applied_force",
-         "steering": "steering_wheel_angle"}
+         "aligning_torque": "applied_moment", "steering": "steering_wheel_angle"}
 
 
 def _design_step(outcome: EventOutcome) -> int:
