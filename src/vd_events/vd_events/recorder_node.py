@@ -14,6 +14,7 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
 
@@ -35,6 +36,9 @@ TOPICS = {
     "/vd/steady_state/state": (Sample, _STREAM),
     "/vd/kc/result": (EventResult, _STREAM),
     "/vd/kc/state": (Sample, _STREAM),
+    "/vd/vehicle/result": (EventResult, _STREAM),
+    "/vd/vehicle/state": (Sample, _STREAM),
+    "/vd/vehicle/odom": (Odometry, _STREAM),
 }
 
 

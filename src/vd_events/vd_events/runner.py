@@ -29,11 +29,13 @@ from vd_solvers.analytical.events import EVENT_PARAMS as ANALYTICAL_PARAMS
 from vd_solvers.event_params import parse_params
 from vd_solvers.kc.from_config import EVENT_PARAMS as KC_PARAMS
 from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.events import EVENT_PARAMS as VEHICLE_PARAMS
 
 from .bag import BagError, check_bag_path
 
 #: model -> (solver family, events it runs)
-FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc"}
+FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc",
+            "vehicle": "vehicle"}
 ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_travel",
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
               "constant_radius_turn", "sine_with_dwell", "step_steer")
@@ -83,11 +85,17 @@ def events_for(model: str) -> tuple[str, ...]:
         return tuple(e for e, models in ANALYTICAL_EVENTS.items() if model in models)
     if model == "kc":
         return tuple(KC_PARAMS)
+    if model == "vehicle":
+        return tuple(VEHICLE_PARAMS)
     return ()
 
 
 def event_params(model: str, event: str):
-    return KC_PARAMS[event] if model == "kc" else ANALYTICAL_PARAMS[event]
+    if model == "kc":
+        return KC_PARAMS[event]
+    if model == "vehicle":
+        return VEHICLE_PARAMS[event]
+    return ANALYTICAL_PARAMS[event]
 
 
 def validate(study: Study, request: RunRequest) -> None:
@@ -104,7 +112,8 @@ def validate(study: Study, request: RunRequest) -> None:
                        f"(its events: {', '.join(events_for(request.model))})")
     if request.fidelity not in ("rigid", "flexible"):
         raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
-    if request.fidelity == "flexible":
+    # the full vehicle passes the fidelity to its K&C maps, which say whether they have it
+    if request.fidelity == "flexible" and request.model != "vehicle":
         raise RunError(f"fidelity 'flexible' is not available yet for model '{request.model}' "
                        "(flexible components are a later rung)")
     if request.model == "kc" and request.axle not in ("front", "rear"):
@@ -217,6 +226,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.kc_node import KCSolver
+    from vd_solvers.vehicle_node import VehicleSolver
 
     from .recorder_node import Recorder
 
@@ -228,13 +238,14 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     nodes = [DataServer(context=context, parameter_overrides=[
                  Parameter("master_file", value=str(master)), Parameter("watch_period",
                                                                         value=0.0)]),
-             AnalyticalSolver(context=context), KCSolver(context=context)]
+             AnalyticalSolver(context=context), KCSolver(context=context),
+             VehicleSolver(context=context)]
     client_node = Node("event_runner", context=context)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
     client = _Client(client_node)
-    solvers = nodes[1:3]
+    solvers = nodes[1:4]
     outcomes: list[RunOutcome] = []
     try:
         # a single-threaded executor: every solver must hold the configurations before

@@ -146,9 +146,12 @@ class SolverNode(Node):
         return result
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
-                        changes: list) -> None:
-        """Publish provenance (with this goal's ``--set`` changes), samples and result."""
-        stamp = self.get_clock().now().to_msg()
+                        changes: list, stamp=None) -> None:
+        """Publish provenance (with this goal's ``--set`` changes), samples and result.
+
+        Samples of a time-domain event (a ``time`` channel) are stamped ``stamp`` +
+        simulated time, the others ``stamp``."""
+        stamp = stamp if stamp is not None else self.get_clock().now().to_msg()
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
                                 model=outcome.model, fidelity=outcome.fidelity,
@@ -158,8 +161,7 @@ class SolverNode(Node):
             provenance.groups = [changed.get(s.group, s) for s in self.status.status
                                  if s.configuration == config.name]
         self.provenance_pub.publish(provenance)
-        for sample in outcome_samples(outcome):
-            sample.header.stamp = stamp
+        for sample in outcome_samples(outcome, stamp):
             self.sample_pub.publish(sample)
         self.result_pub.publish(outcome_to_msg(outcome, stamp))
 

@@ -98,8 +98,12 @@ class VehicleModel:
         self.options = options
         self.maps = maps if maps is not None else suspension_maps(config, fidelity)
         mass = config.group("mass")
-        self.tires = (MagicFormula(tire_properties(config.group("front_tire"))),
-                      MagicFormula(tire_properties(config.group("rear_tire"))))
+        front_props = tire_properties(config.group("front_tire"))
+        rear_props = tire_properties(config.group("rear_tire"))
+        self.tires = (MagicFormula(front_props), MagicFormula(rear_props))
+        # one vectorised evaluation of all four wheels where both axles share the .tir data
+        self._one_tire = (front_props.file_format == rear_props.file_format
+                          and front_props.sections == rear_props.sections)
         for axle, tire in zip(("front", "rear"), self.tires):
             if tire.vertical_stiffness <= 0.0:
                 raise SolverError(f"configuration '{config.name}': {axle} tire has no "
@@ -161,11 +165,17 @@ class VehicleModel:
     def initial_state(self, speed: float, yaw_rate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """(q, v) at design height moving straight ahead at ``speed`` (m/s) with ``yaw_rate``."""
         q = pin.neutral(self.model)
+        fz_static = self._static_loads()
+        # body height and pitch at which the tires carry the static loads at zero travel
+        sink = (self.r0 - fz_static / self.cz) - self.wheel_centres[:, 2]
+        x_f, x_r = self.wheel_centres[0, 0], self.wheel_centres[2, 0]
+        pitch = (sink[2] - sink[0]) / (x_f - x_r) * -1.0
+        q[2] = sink[0] + pitch * x_f
+        q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(0.0, pitch, 0.0)).coeffs()
         v = np.zeros(self.model.nv)
         v[0] = speed
         v[1] = yaw_rate * (-self.wheel_centres[:, 0].mean())  # the origin is ahead of the centre
         v[5] = yaw_rate
-        fz_static = self._static_loads()
         _, r_e = self._radii(fz_static)
         # wheel-centre speeds of a body yawing about its origin
         vx_wheel = speed - yaw_rate * self.wheel_centres[:, 1]
@@ -179,6 +189,8 @@ class VehicleModel:
         return np.array([front, front, rear, rear])
 
     def _radii(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if self._one_tire:
+            return self.tires[0].radii(fz)
         lf, ef = self.tires[0].radii(fz[:2])
         lr, er = self.tires[1].radii(fz[2:])
         return np.concatenate([lf, lr]), np.concatenate([ef, er])
@@ -200,14 +212,13 @@ class VehicleModel:
         v_lin, omega = v[0:3], v[3:6]
         r = self.wheel_centres.copy()
         r[:, 2] += z  # wheel centres, body frame
-        v_body = v_lin + np.cross(omega, r)
+        v_body = v_lin + _cross(omega, r)
         v_body[:, 2] += zdot  # wheel-centre velocity, body axes
         p_world = q[0:3] + r @ rot.T
         v_world = v_body @ rot.T
         tau = np.zeros(self.model.nv)
         maps = self.maps
         table = maps.travel(z)
-        fz_prev = previous.fx if previous is not None else np.zeros(4)
         # --- tire kinematics
         yaw = np.arctan2(rot[1, 0], rot[0, 0])
         roll = np.arcsin(np.clip(rot[2, 1], -1.0, 1.0))
@@ -218,7 +229,7 @@ class VehicleModel:
             fy_b = previous.fx * np.sin(previous.steer) + previous.fy * np.cos(previous.steer)
             fx_b = previous.fx * np.cos(previous.steer) - previous.fy * np.sin(previous.steer)
         else:
-            fy_b = fx_b = fz_prev
+            fy_b = fx_b = np.zeros(4)
         side = np.where(fx_b < 0.0, 0, 1)
         cols = np.arange(4)
         toe = table[1] + maps.compliance_steer_y * fy_b + maps.compliance_steer_x[side, cols] * fx_b
@@ -253,15 +264,14 @@ class VehicleModel:
         e_l = np.stack([-sh, ch, np.zeros(4)], axis=1)
         force = f.fx[:, None] * e_h + f.fy[:, None] * e_l
         force[:, 2] = fz
-        lever = np.zeros((4, 3))
-        lever[:, 2] = -height
-        moment = np.cross(lever, force) + f.mz[:, None] * np.array([0.0, 0.0, 1.0]) \
+        # (contact point - wheel centre) x force, the lever being (0, 0, -height)
+        moment = np.stack([height * force[:, 1], -height * force[:, 0], f.mz], axis=1) \
             + f.mx[:, None] * e_h + f.my[:, None] * e_l
         force_b = force @ rot
         moment_b = moment @ rot
         # carrier Jacobian: body linear, body angular (about the origin), travel
         tau[0:3] = force_b.sum(axis=0)
-        tau[3:6] = (np.cross(r, force_b) + moment_b).sum(axis=0)
+        tau[3:6] = (_cross(r, force_b) + moment_b).sum(axis=0)
         tau[6::2] = force_b[:, 2]
         tau[7::2] = moment_b[:, 1] + wheel_torque
         # --- suspension
@@ -278,6 +288,8 @@ class VehicleModel:
         return tau, wheel, new_slip
 
     def _tire(self, fz, kappa, alpha, gamma, vx):
+        if self._one_tire:
+            return self.tires[0].steady_state(fz, kappa, alpha, gamma, vx, mirror=self.mirror)
         front = self.tires[0].steady_state(fz[:2], kappa[:2], alpha[:2], gamma[:2], vx[:2],
                                            mirror=self.mirror[:2])
         rear = self.tires[1].steady_state(fz[2:], kappa[2:], alpha[2:], gamma[2:], vx[2:],
@@ -285,6 +297,8 @@ class VehicleModel:
         return type(front)(*(np.concatenate([a, b]) for a, b in zip(front, rear)))
 
     def _relaxation(self, fz, gamma):
+        if self._one_tire:
+            return self.tires[0].relaxation_lengths(fz, gamma)
         kf, af = self.tires[0].relaxation_lengths(fz[:2], gamma[:2])
         kr, ar = self.tires[1].relaxation_lengths(fz[2:], gamma[2:])
         return np.concatenate([kf, kr]), np.concatenate([af, ar])
@@ -312,6 +326,13 @@ class VehicleModel:
 
     def label(self, event: str, t: float) -> str:
         return f"configuration '{self.config.name}', event '{event}', t = {t:.3f} s"
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b row by row for (3,) or (n, 3) operands (np.cross costs more on small arrays)."""
+    a = np.broadcast_to(a, b.shape)
+    return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                     a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
 __all__ = ["VehicleModel", "WheelState", "Options", "STEP", "WHEELS"]
