@@ -386,6 +386,13 @@ class MagicFormula:
                                                + c["QSY4"] * v_rel**4) * c["LMY"]  # fmt: skip
         return TireForces(*(np.where(loaded, f, 0.0) for f in (fx, s * fy, s * mx, my, s * mz)))
 
+    def slip_stiffness(self, fz: ArrayLike) -> np.ndarray:
+        """Longitudinal slip stiffness K_x = B_x C_x D_x = dFx0/dkappa at kappa = -SH_x, N."""
+        fz_ = np.asarray(fz, dtype=float)
+        loaded, fz_e = self._loaded(fz_)
+        curve = self._longitudinal(fz_e, np.zeros_like(fz_e))
+        return np.where(loaded, curve.b * curve.c * curve.d, 0.0)
+
     def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure side-slip aligning moment M_z0 = -t F_y0 + M_zr, N*m (file convention)."""
         zero = np.zeros_like(np.asarray(fz, dtype=float))

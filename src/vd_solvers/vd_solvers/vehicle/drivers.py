@@ -76,22 +76,26 @@ class CirclePathFollower:
 
     The circle of ``radius`` starts at the origin heading +x and turns left (centre at
     (0, radius)). The driver looks ``preview_time`` * speed (at least ``min_preview``)
-    ahead along the direction of travel, and steers by the feed-forward Ackermann angle
-    of the path, plus proportional and integral terms of the preview point's radial
-    error (outside the circle is positive): the integral removes the steady error that
-    the vehicle's understeer would leave. Output in steering-wheel angle through the
-    steering ratio, limited to ``max_angle``.
+    ahead, along an arc of the path's curvature from the body's heading, and steers the road wheels by the path's
+    Ackermann angle L / R plus a pure-pursuit correction L * 2 e / d^2 for the preview
+    point's radial error e (outside the circle positive) at preview distance d, plus
+    the integral of that correction over ``integral_time``: the integral removes the
+    steady error the vehicle's understeer would leave. Output in steering-wheel angle
+    through the steering ratio, after a first-order lag ``lag`` (the driver's
+    neuromuscular lag, which also keeps the loop clear of the tire's fast modes),
+    limited to ``max_angle``.
     """
 
     radius: float
     wheelbase: float
     steering_ratio: float
     max_angle: float
-    preview_time: float = 0.5
-    min_preview: float = 3.0
-    gain: float = 0.05  # rad road-wheel angle per m of radial error
-    integral_gain: float = 0.05  # rad per (m s)
+    preview_time: float = 1.0
+    min_preview: float = 8.0
+    integral_time: float = 1.0
+    lag: float = 0.1  # s, first-order lag of the driver's steering (neuromuscular)
     _integral: float = field(default=0.0, init=False)
+    _output: float | None = field(default=None, init=False)
 
     def radial_error(self, x: float, y: float) -> float:
         """Distance outside the circle, m."""
@@ -99,13 +103,19 @@ class CirclePathFollower:
 
     def steering_wheel_angle(self, obs: Observation, h: float) -> float:
         preview = max(self.preview_time * obs.speed, self.min_preview)
-        px = obs.x + preview * math.cos(obs.course)
-        py = obs.y + preview * math.sin(obs.course)
-        error = self.radial_error(px, py)
-        self._integral += error * h
-        delta = (self.wheelbase / self.radius + self.gain * error
-                 + self.integral_gain * self._integral)
-        return float(np.clip(delta * self.steering_ratio, -self.max_angle, self.max_angle))
+        # where an arc of the path's curvature from the current course would be after
+        # ``preview`` m: on the circle when the vehicle is on it and tangent to it
+        turn = preview / (2.0 * self.radius)
+        chord = 2.0 * self.radius * math.sin(turn)
+        px = obs.x + chord * math.cos(obs.yaw + turn)
+        py = obs.y + chord * math.sin(obs.yaw + turn)
+        correction = self.wheelbase * 2.0 * self.radial_error(px, py) / preview**2
+        self._integral += correction * h / self.integral_time
+        wanted = (self.wheelbase / self.radius + correction + self._integral) * self.steering_ratio
+        if self._output is None:
+            self._output = wanted
+        self._output += (wanted - self._output) * (1.0 - math.exp(-h / self.lag))
+        return float(np.clip(self._output, -self.max_angle, self.max_angle))
 
 
 @dataclass

@@ -170,7 +170,7 @@ def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
         return ""
 
     trace = simulate(model, follower, speed, v["max_duration"], event="constant_radius_turn",
-                     initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=25,
+                     initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=10,
                      drive_front=v["drive_front"], brake_front=v["brake_front"], stop=stop,
                      progress=progress)
     channels = _channels(model, trace)
@@ -228,7 +228,7 @@ def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
                                     angles=[0.0, 0.0, swa, swa])
         trace = simulate(model, steering, _speed_controller(model, lambda t: speed),
                          v["duration"], event="step_steer", initial_speed=speed,
-                         record_every=5, drive_front=v["drive_front"],
+                         record_every=2, drive_front=v["drive_front"],
                          brake_front=v["brake_front"], progress=progress)
         ch = trace.channels()
         steady = ch["time"] >= ch["time"][-1] - STEADY_WINDOW

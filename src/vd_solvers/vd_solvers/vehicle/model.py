@@ -30,7 +30,9 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
 
 Integrator: semi-implicit (symplectic) Euler on Pinocchio's ABA accelerations,
 ``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), with the
-transient slips advanced analytically. A non-finite state is a SolverError naming
+transient slips advanced analytically (exact first-order decay over the step) and the
+stiff wheel-spin / longitudinal-slip coupling linearly implicit (see
+:meth:`VehicleModel.forces`): that is what makes the step independent of speed. A non-finite state is a SolverError naming
 configuration, event and time.
 
 Not modelled (documented in docs/models.md): steering-system inertia and compliance
@@ -55,7 +57,7 @@ from vd_solvers.tire.magic_formula import MagicFormula
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
 #: integration step, s
-STEP = 0.002
+STEP = 0.005
 #: slip-velocity floor of the slip definitions, m/s (the .tir VXLOW when it is larger)
 VX_FLOOR = 1.0
 #: the data have no wheel spin inertia: I_spin = SPIN_INERTIA_FACTOR m_corner R0^2
@@ -64,6 +66,23 @@ SPIN_INERTIA_FACTOR = 0.3
 #: side sign per wheel: +1 left, -1 right
 SIDE = np.array([1.0, -1.0, 1.0, -1.0])
 FRONT = np.array([True, True, False, False])
+
+
+class SlipUpdate(NamedTuple):
+    """How the transient slips move over a step (arrays (4,)): alpha' explicitly, kappa'
+    with the wheel spin at the end of the step (see :meth:`VehicleModel.forces`)."""
+
+    alpha: np.ndarray  # alpha' at the end of the step
+    kappa: np.ndarray  # kappa' at the start of the step
+    decay: np.ndarray  # exp(-|V_x| h / sigma_kappa)
+    radius: np.ndarray  # effective rolling radius R_e, m
+    vx: np.ndarray  # m/s
+    denominator: np.ndarray  # max(|V_x|, floor), m/s
+
+    def kappa_next(self, spin: np.ndarray) -> np.ndarray:
+        """kappa' at the end of the step for the spin rates ``spin`` (rad/s) reached."""
+        target = (spin * self.radius - self.vx) / self.denominator
+        return target + (self.kappa - target) * self.decay
 
 
 class WheelState(NamedTuple):
@@ -199,8 +218,8 @@ class VehicleModel:
 
     def forces(self, q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.ndarray,
                slip: np.ndarray, previous: WheelState | None, h: float
-               ) -> tuple[np.ndarray, WheelState, np.ndarray]:
-        """Generalised forces tau (nv,), the wheels' state, and the transient slips after ``h``.
+               ) -> tuple[np.ndarray, WheelState, SlipUpdate]:
+        """Generalised forces tau (nv,), the wheels' state, and how the transient slips move.
 
         ``slip`` (2, 4): transient [kappa', alpha'] at the start of the step; ``wheel_torque``
         (4,) N*m drive (+) / brake torques about the spin axes.
@@ -251,11 +270,13 @@ class VehicleModel:
         kappa = (spin * r_e - vx) / denom
         alpha = np.arctan(vy / denom)
         sigma_k, sigma_a = self._relaxation(fz, gamma)
-        new_slip = np.empty_like(slip)
-        for row, (target, sigma) in enumerate(((kappa, sigma_k), (alpha, sigma_a))):
-            decay = np.exp(-np.abs(vx) * h / np.maximum(sigma, 1e-6))
-            new_slip[row] = np.where(sigma > 0.0, target + (slip[row] - target) * decay, target)
-        k_t, a_t = slip if previous is not None else (kappa, alpha)
+        decay_k = np.where(sigma_k > 0.0, np.exp(-np.abs(vx) * h / np.maximum(sigma_k, 1e-9)), 0.0)
+        decay_a = np.where(sigma_a > 0.0, np.exp(-np.abs(vx) * h / np.maximum(sigma_a, 1e-9)), 0.0)
+        if previous is None:
+            slip = np.stack([kappa, alpha])  # start in the steady state
+        k_t, a_t = slip
+        update = SlipUpdate(alpha=alpha + (a_t - alpha) * decay_a, kappa=k_t, decay=decay_k,
+                            radius=r_e, vx=vx, denominator=denom)
         f = self._tire(fz, k_t, a_t, gamma, vx)
         wheel = WheelState(fz=fz, fx=f.fx, fy=f.fy, mz=f.mz, kappa=k_t, alpha=a_t, gamma=gamma,
                            steer=steer, travel=z)
@@ -273,7 +294,16 @@ class VehicleModel:
         tau[0:3] = force_b.sum(axis=0)
         tau[3:6] = (_cross(r, force_b) + moment_b).sum(axis=0)
         tau[6::2] = force_b[:, 2]
-        tau[7::2] = moment_b[:, 1] + wheel_torque
+        # Linearly implicit wheel spin. With Fx linearised in the transient slip (slope K_x)
+        # and kappa' advanced with the spin rate at the end of the step,
+        #   I dw = h (T - R_e K_x ((1 - d)(kappa - kappa') + (1 - d) R_e dw / V)),
+        # so dw = h T_eff / I with T_eff below. The explicit form is unstable for
+        # h > V / (sigma omega_n^2) (omega_n of the spin/slip mode): 1.7 ms at 10 m/s.
+        k_x = self._slip_stiffness(fz)
+        spin_torque = moment_b[:, 1] + wheel_torque
+        lag = (1.0 - decay_k) * r_e * k_x
+        tau[7::2] = (spin_torque - lag * (kappa - k_t)) * self.spin_inertia / (
+            self.spin_inertia + h * lag * r_e / denom)
         # --- suspension
         suspension = table[0] + maps.arb(z)
         if self.options.dampers:
@@ -285,7 +315,7 @@ class VehicleModel:
         side_now = np.where(force_b[:, 0] < 0.0, 0, 1)
         jacking = maps.jacking_y * force_b[:, 1] + maps.jacking_x[side_now, cols] * force_b[:, 0]
         tau[6::2] -= suspension + (jacking if self.options.road else 0.0)
-        return tau, wheel, new_slip
+        return tau, wheel, update
 
     def _tire(self, fz, kappa, alpha, gamma, vx):
         if self._one_tire:
@@ -295,6 +325,12 @@ class VehicleModel:
         rear = self.tires[1].steady_state(fz[2:], kappa[2:], alpha[2:], gamma[2:], vx[2:],
                                           mirror=self.mirror[2:])
         return type(front)(*(np.concatenate([a, b]) for a, b in zip(front, rear)))
+
+    def _slip_stiffness(self, fz):
+        if self._one_tire:
+            return self.tires[0].slip_stiffness(fz)
+        return np.concatenate([self.tires[0].slip_stiffness(fz[:2]),
+                               self.tires[1].slip_stiffness(fz[2:])])
 
     def _relaxation(self, fz, gamma):
         if self._one_tire:
@@ -335,4 +371,4 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                      a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
-__all__ = ["VehicleModel", "WheelState", "Options", "STEP", "WHEELS"]
+__all__ = ["VehicleModel", "WheelState", "SlipUpdate", "Options", "STEP", "WHEELS"]

@@ -86,7 +86,7 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
         torque = speed.wheel_torque(obs, h) if speed is not None else 0.0
         torques = wheel_torques(torque, drive_front, brake_front, v[7::2])
         c0 = time.perf_counter()
-        tau, wheel, slip_next = model.forces(q, v, swa, torques, slip, previous, h)
+        tau, wheel, update = model.forces(q, v, swa, torques, slip, previous, h)
         c1 = time.perf_counter()
         if step % record_every == 0:
             row = _row(model, q, v, t, swa, wheel, cog, torque)
@@ -108,7 +108,8 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
         q, v = model.integrate(q, v, a, h)
         t_mb += time.perf_counter() - c2
         t_forces += c1 - c0
-        slip, previous = slip_next, wheel
+        slip = np.stack([update.kappa_next(v[7::2]), update.alpha])
+        previous = wheel
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
             raise SolverError(f"{model.label(event, t + h)}: the state became non-finite")
         trace.steps += 1
