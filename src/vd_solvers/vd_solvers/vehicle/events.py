@@ -63,11 +63,11 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                         maximum=500.0),
         "start_lateral_acceleration": Param("acceleration", 0.5, "lateral acceleration at the "
                                             "start speed", minimum=0.1, maximum=5.0),
-        "speed_rate": Param("acceleration", 0.5, "rate of the slow speed increase "
+        "speed_rate": Param("acceleration", 0.25, "rate of the slow speed increase "
                             "(quasi-steady)", minimum=0.01, maximum=2.0),
         "radius_tolerance": Param("length", 1.0, "radial deviation of the CoG at which the "
                                   "radius counts as no longer held", minimum=0.05),
-        "max_duration": Param("time", 80.0, "longest simulated time", minimum=5.0,
+        "max_duration": Param("time", 90.0, "longest simulated time", minimum=5.0,
                               maximum=600.0),
         "drive_front": Param("dimensionless", 0.5, "front share of the drive torque (0 rear, 1 front)",
                              minimum=0.0, maximum=1.0),

@@ -148,9 +148,10 @@ class VehicleModel:
         self.model = self._build(mass)
         self.data = self.model.createData()
         self.total_mass = float(sum(i.mass for i in self.model.inertias))
-        self._zero_forces = pin.StdVec_Force()
-        for _ in range(self.model.njoints):
-            self._zero_forces.append(pin.Force.Zero())
+        self._static = self._static_loads()
+        # slip stiffness for the implicit spin update, taken proportional to the load
+        # (PKX1 Fz): only the stability of the update depends on it
+        self._slip_stiffness_static = self._slip_stiffness(self._static)
 
     @staticmethod
     def _mirror(tire: MagicFormula, side: float) -> float:
@@ -299,7 +300,7 @@ class VehicleModel:
         #   I dw = h (T - R_e K_x ((1 - d)(kappa - kappa') + (1 - d) R_e dw / V)),
         # so dw = h T_eff / I with T_eff below. The explicit form is unstable for
         # h > V / (sigma omega_n^2) (omega_n of the spin/slip mode): 1.7 ms at 10 m/s.
-        k_x = self._slip_stiffness(fz)
+        k_x = self._slip_stiffness_static * fz / self._static
         spin_torque = moment_b[:, 1] + wheel_torque
         lag = (1.0 - decay_k) * r_e * k_x
         tau[7::2] = (spin_torque - lag * (kappa - k_t)) * self.spin_inertia / (
