@@ -131,7 +131,7 @@ def _channels(model: VehicleModel, trace: Trace) -> dict[str, Channel]:
     out = {name: Channel(unit, ch[name]) for name, unit in units.items()}
     wheel_units = {"wheel_load": "N", "wheel_travel": "m", "slip_angle": "rad",
                    "slip_ratio": "-", "inclination": "rad", "tire_force_x": "N",
-                   "tire_force_y": "N"}
+                   "tire_force_y": "N", "wheel_steer": "rad", "aligning_moment": "N*m"}
     for key, unit in wheel_units.items():
         for w, name in enumerate(WHEELS):
             out[f"{key}_{name}"] = Channel(unit, ch[key][:, w])

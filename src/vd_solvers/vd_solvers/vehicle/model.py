@@ -22,7 +22,8 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
   heading (body yaw + steering-map angle + toe map + compliance steer from the previous
   step's forces), inclination = camber map (+ compliance camber) to the body plus body
   roll; first-order transient slip with the .tir relaxation lengths,
-  ``sigma dalpha'/dt + |V_x| alpha' = |V_x| alpha``, integrated exactly over a step;
+  ``sigma dalpha'/dt + V alpha' = V alpha`` (V = max(|V_x|, VX_FLOOR)), integrated
+  exactly over a step;
   combined-slip Magic Formula forces and moments. The contact wrench is mapped to the
   generalised forces with the carrier's Jacobian (body, travel), and its moment about
   the spin axis drives the wheel.
@@ -271,8 +272,11 @@ class VehicleModel:
         kappa = (spin * r_e - vx) / denom
         alpha = np.arctan(vy / denom)
         sigma_k, sigma_a = self._relaxation(fz, gamma)
-        decay_k = np.where(sigma_k > 0.0, np.exp(-np.abs(vx) * h / np.maximum(sigma_k, 1e-9)), 0.0)
-        decay_a = np.where(sigma_a > 0.0, np.exp(-np.abs(vx) * h / np.maximum(sigma_a, 1e-9)), 0.0)
+        # The transient slips follow the steady ones with the time constant sigma / V, V the
+        # same floored speed as in the slip definitions: at standstill the tire then acts as
+        # a damper instead of freezing a slip (a limit cycle at rest).
+        decay_k = np.where(sigma_k > 0.0, np.exp(-denom * h / np.maximum(sigma_k, 1e-9)), 0.0)
+        decay_a = np.where(sigma_a > 0.0, np.exp(-denom * h / np.maximum(sigma_a, 1e-9)), 0.0)
         if previous is None:
             slip = np.stack([kappa, alpha])  # start in the steady state
         k_t, a_t = slip

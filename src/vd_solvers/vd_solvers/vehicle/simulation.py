@@ -25,7 +25,7 @@ TRACE = ("time", "x", "y", "yaw", "roll", "pitch", "yaw_rate", "speed", "sidesli
          "steering_wheel_angle", "steer_angle_front_left", "steer_angle_front_right",
          "cog_velocity_x", "cog_velocity_y", "cog_velocity_z", "wheel_torque")
 PER_WHEEL = ("wheel_load", "wheel_travel", "slip_angle", "slip_ratio", "inclination",
-             "tire_force_x", "tire_force_y")
+             "tire_force_x", "tire_force_y", "wheel_steer", "aligning_moment")
 
 
 @dataclass
@@ -92,7 +92,8 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
             row = _row(model, q, v, t, swa, wheel, cog, torque)
             trace.rows.append(row)
             for key, values in zip(PER_WHEEL, (wheel.fz, wheel.travel, wheel.alpha, wheel.kappa,
-                                               wheel.gamma, wheel.fx, wheel.fy)):
+                                               wheel.gamma, wheel.fx, wheel.fy, wheel.steer,
+                                               wheel.mz)):
                 trace.wheels[key].append(values)
             if stop is not None:
                 reason = stop(dict(zip(TRACE, row)))
