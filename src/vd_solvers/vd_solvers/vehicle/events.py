@@ -11,7 +11,8 @@ preview holds a left circle of ``radius``; the speed starts at the value giving
 radius can no longer be held (``radius_tolerance`` exceeded at the CoG, or sideslip
 beyond MAX_SIDESLIP) or ``max_duration``. Gradients are least-squares slopes over the
 linear range LINEAR_RANGE of lateral acceleration: understeer gradient
-K = (1/i_s) d(delta_sw)/d(a_y) (constant radius, so d(L/R)/d(a_y) = 0), roll and
+K = d(delta_sw / i_s - L r / v)/d(a_y), with the Ackermann angle of the path actually
+driven (r / v, which the path follower keeps within the tolerance of 1 / R), roll and
 sideslip gradients.
 
 step_steer (ISO 7401:2011, step input): straight at ``speed``, then a steering-wheel
@@ -178,7 +179,10 @@ def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
     held = ch["time"] >= SETTLE_TIME
     a_y = ch["lateral_acceleration"]
     ratio = maps.steering_ratio
-    k_us = _slope(a_y[held], ch["steering_wheel_angle"][held] / ratio, LINEAR_RANGE)
+    # ISO 4138: steer angle less the Ackermann angle of the path actually driven, L r / v
+    ackermann = wheelbase * ch["yaw_rate"] / np.maximum(ch["speed"], 1e-9)
+    k_us = _slope(a_y[held], ch["steering_wheel_angle"][held] / ratio - ackermann[held],
+                  LINEAR_RANGE)
     roll = _slope(a_y[held], ch["roll"][held], LINEAR_RANGE)
     beta = _slope(a_y[held], ch["sideslip"][held], LINEAR_RANGE)
     a_max = float(np.max(a_y[held]))
