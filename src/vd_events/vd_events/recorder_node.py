@@ -27,6 +27,8 @@ _STREAM = SAMPLES
 #: where the recorder says how many event results it has written completely (latched)
 RECORDED_TOPIC = "/vd/recorder/recorded"
 
+#: the full vehicle's pose, one message per recorded step
+ODOMETRY_TOPIC = "/vd/vehicle/odom"
 #: topic -> (type, QoS) recorded by default
 TOPICS = {
     "/vd/configuration": (Configuration, _LATCHED),
@@ -38,7 +40,7 @@ TOPICS = {
     "/vd/kc/state": (Sample, _STREAM),
     "/vd/vehicle/result": (EventResult, _STREAM),
     "/vd/vehicle/state": (Sample, _STREAM),
-    "/vd/vehicle/odom": (Odometry, _STREAM),
+    ODOMETRY_TOPIC: (Odometry, _STREAM),
 }
 
 
@@ -73,7 +75,8 @@ class Recorder(Node):
         self.counts: dict[str, int] = {topic: 0 for topic in TOPICS}
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
-        self._pending: list[tuple[tuple[str, str, str], int]] = []
+        self._pending: list[tuple[tuple[str, str, str], int, int]] = []
+        self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
         self.complete = 0  # results written together with all their step samples
         self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
         for topic, (msg_type, qos) in TOPICS.items():
@@ -106,13 +109,19 @@ class Recorder(Node):
                 self._samples[key] = self._samples.get(key, 0) + 1
             elif topic.endswith("/result"):
                 steps = max((len(c.values) for c in msg.channels), default=0)
-                self._pending.append(((msg.configuration, msg.event, msg.model), steps))
+                if msg.model == "vehicle":
+                    self._odometry_needed += steps
+                self._pending.append(((msg.configuration, msg.event, msg.model), steps,
+                                      self._odometry_needed))
             self._publish_complete()
         return record
 
     def _publish_complete(self) -> None:
-        """Count the results whose every step sample is written too, and say so."""
-        done = [p for p in self._pending if self._samples.get(p[0], 0) >= p[1]]
+        """Count the results whose every step sample (and, for the full vehicle, every
+        odometry message) is written too, and say so."""
+        odometry = self.counts[ODOMETRY_TOPIC]
+        done = [p for p in self._pending
+                if self._samples.get(p[0], 0) >= p[1] and odometry >= p[2]]
         if done:
             self._pending = [p for p in self._pending if p not in done]
             self.complete += len(done)

@@ -33,9 +33,10 @@ class VehicleSolver(SolverNode):
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list) -> None:
         stamp = self.get_clock().now().to_msg()
-        super().publish_outcome(outcome, config, changes, stamp=stamp)
+        # odometry first: a recorder stops once the result and its samples are in
         for msg in outcome_odometry(outcome, stamp):
             self.odom_pub.publish(msg)
+        super().publish_outcome(outcome, config, changes, stamp=stamp)
 
 
 def main(args=None) -> None:
