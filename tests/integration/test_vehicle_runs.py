@@ -31,12 +31,12 @@ def _messages(bag: Path) -> dict[str, list]:
 def test_embedded_step_steer_records_states_odometry_and_result(capsys, tmp_path, sedan_master):
     bag = tmp_path / "ss"
     rc, out, err = _vd(capsys, "run", "step_steer", "--model", "vehicle", "--master",
-                       str(sedan_master), "--param", "duration=4 s", "--bag", str(bag), "--json")
+                       str(sedan_master), "--param", "duration=3 s", "--bag", str(bag), "--json")
     assert rc == 0, err
     result = json.loads(out)
     assert (result["model"], result["fidelity"], result["axle"]) == ("vehicle", "rigid", "")
     time = result["channels"]["time"]["values"]
-    assert result["channels"]["time"]["unit"] == "s" and time[-1] == pytest.approx(4.0)
+    assert result["channels"]["time"]["unit"] == "s" and time[-1] == pytest.approx(3.0)
     assert result["metrics"]["steady_lateral_acceleration"]["value"] == pytest.approx(4.0,
                                                                                      rel=0.02)
     msgs = _messages(bag)
@@ -68,7 +68,7 @@ def test_distributed_constant_radius_turn_on_the_hmmwv(capsys, tmp_path, sample_
     master = sample_root / "studies" / "hmmwv.yaml"
     rc, out, err = _vd(capsys, "run", "constant_radius_turn", "--model", "vehicle",
                        "--master", str(master), "--param", "speed_rate=1 m/s^2",
-                       "--param", "max_duration=20 s", "--distributed", "--bag", str(bag),
+                       "--param", "max_duration=8 s", "--distributed", "--bag", str(bag),
                        "--json")
     assert rc == 0, err
     result = json.loads(out)
