@@ -7,7 +7,6 @@ consistency checks within one run (which compare quantities of the same samples)
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np

@@ -27,7 +27,8 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
   combined-slip Magic Formula forces and moments. The contact wrench is mapped to the
   generalised forces with the carrier's Jacobian (body, travel), and its moment about
   the spin axis drives the wheel.
-* driveline and brakes: wheel torques from the drivers (:mod:`.driveline`).
+* driveline and brakes: wheel torques from the speed driver, split by
+  :func:`.drivers.wheel_torques` (front/rear share, open differentials).
 
 Integrator: semi-implicit (symplectic) Euler on Pinocchio's ABA accelerations,
 ``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), with the
