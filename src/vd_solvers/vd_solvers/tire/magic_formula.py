@@ -315,7 +315,9 @@ class MagicFormula:
 
     def peak_lateral_friction(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """mu_y = D_y / Fz, -: the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1) per load."""
-        fz_, gamma_ = _arrays(fz, gamma)
+        return self._peak_friction(*_arrays(fz, gamma))
+
+    def _peak_friction(self, fz_: np.ndarray, gamma_: np.ndarray) -> np.ndarray:
         c = self._c
         dfz = (fz_ - c["FZ0_PRIME"]) / c["FZ0_PRIME"]
         gamma_y = gamma_ * c["LGAY"]
@@ -469,7 +471,7 @@ class MagicFormula:
         dfz = (fz - fz0) / fz0
         gamma_y = gamma * c["LGAY"]
         shape = c["PCY1"] * c["LCY"]
-        peak = self.peak_lateral_friction(fz, gamma) * fz
+        peak = self._peak_friction(fz, gamma) * fz
         stiffness = (
             c["PKY1"] * fz0 * np.sin(2.0 * np.arctan(fz / (c["PKY2"] * fz0)))
             * (1.0 - c["PKY3"] * np.abs(gamma_y)) * c["LKY"]
@@ -532,5 +534,11 @@ def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarr
 
 
 def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
-    """Float arrays broadcast to one shape."""
+    """Float arrays broadcast to one shape (returned as they are when they already are:
+    the full vehicle calls this every step with four-wheel arrays)."""
+    first = values[0]
+    if isinstance(first, np.ndarray) and first.dtype == np.float64 and all(
+            isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == first.shape
+            for v in values):
+        return values  # type: ignore[return-value]
     return tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))

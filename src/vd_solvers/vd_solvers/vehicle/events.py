@@ -57,6 +57,10 @@ STEP_AIM_TOLERANCE = 0.02
 STEP_AIM_ITERATIONS = 3
 #: time of the steer step (after a straight run), s
 STEP_TIME = 1.0
+#: integration step of the quasi-steady constant radius turn, s: the implicit wheel spin
+#: keeps 8 ms stable, and the slow manoeuvre needs no finer one (gradients within 0.5 %
+#: of a 5 ms run, measured on the sample sedan)
+TURN_STEP = 0.008
 
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
     "constant_radius_turn": {
@@ -109,8 +113,9 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         raise SolverError(f"{label}: {err}") from err
     run = _constant_radius if event == "constant_radius_turn" else _step_steer
     metrics, channels, notes = run(model, values, progress)
-    notes = [*notes, f"integrator: semi-implicit Euler on Pinocchio ABA, step {STEP * 1e3:g} ms; "
-             "transient slip integrated exactly per step",
+    step = TURN_STEP if event == "constant_radius_turn" else STEP
+    notes = [*notes, f"integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; "
+             "transient slip integrated exactly per step, wheel spin linearly implicit",
              *(f"{k}: {v}" for k, v in sorted(model.maps.provenance.items()))]
     return EventOutcome(event=event, configuration=config.name, model="vehicle",
                         fidelity=fidelity, axle="", data_hash=config.data_hash, metrics=metrics,
@@ -171,7 +176,8 @@ def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
         return ""
 
     trace = simulate(model, follower, speed, v["max_duration"], event="constant_radius_turn",
-                     initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=10,
+                     initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=6,
+                     h=TURN_STEP,
                      drive_front=v["drive_front"], brake_front=v["brake_front"], stop=stop,
                      progress=progress)
     channels = _channels(model, trace)
