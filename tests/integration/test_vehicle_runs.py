@@ -52,9 +52,12 @@ def test_embedded_step_steer_records_states_odometry_and_result(capsys, tmp_path
     assert last.pose.pose.position.x == pytest.approx(result["channels"]["x"]["values"][-1])
     assert last.twist.twist.angular.z == pytest.approx(
         result["channels"]["yaw_rate"]["values"][-1])
-    names = list(states[0].names)
-    assert states[-1].values[names.index("yaw_rate")] == pytest.approx(
-        result["channels"]["yaw_rate"]["values"][-1])
+    # typed states: the channels as named fields, one VehicleWheel per wheel
+    assert states[-1].yaw_rate == pytest.approx(result["channels"]["yaw_rate"]["values"][-1])
+    assert [s.step for s in states] == list(range(len(time)))
+    assert states[-1].front_right.load == pytest.approx(
+        result["channels"]["wheel_load_front_right"]["values"][-1])
+    assert states[-1].header.frame_id == "odom"
     # the report draws the thesis' figures from the bag
     report = tmp_path / "report"
     rc, _, err = _vd(capsys, "report", str(bag), "--out", str(report))
