@@ -16,7 +16,8 @@ from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
-from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
+from vd_interfaces.msg import (Configuration, DataStatus, EventResult, Provenance, Sample,
+                               VehicleState)
 
 from vd_events.bag import BagWriter
 from vd_solvers.solver_node import LATCHED, SAMPLES
@@ -39,7 +40,7 @@ TOPICS = {
     "/vd/kc/result": (EventResult, _STREAM),
     "/vd/kc/state": (Sample, _STREAM),
     "/vd/vehicle/result": (EventResult, _STREAM),
-    "/vd/vehicle/state": (Sample, _STREAM),
+    "/vd/vehicle/state": (VehicleState, _STREAM),
     ODOMETRY_TOPIC: (Odometry, _STREAM),
 }
 

@@ -58,6 +58,37 @@ def outcome_samples(outcome: EventOutcome, stamp=None) -> list[Sample]:
     return samples
 
 
+#: VehicleState field -> channel; the wheels' fields take the channel + _<wheel> suffix
+VEHICLE_FIELDS = ("time", "x", "y", "yaw", "roll", "pitch", "yaw_rate", "speed", "sideslip",
+                  "lateral_acceleration", "longitudinal_acceleration", "steering_wheel_angle",
+                  "wheel_torque")
+WHEEL_FIELDS = {"load": "wheel_load", "travel": "wheel_travel", "steer": "wheel_steer",
+                "slip_angle": "slip_angle", "slip_ratio": "slip_ratio",
+                "inclination": "inclination", "force_x": "tire_force_x",
+                "force_y": "tire_force_y", "aligning_moment": "aligning_moment"}
+
+
+def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
+    """vd_interfaces/VehicleState per step of a full-vehicle outcome, stamped ``stamp`` +
+    simulated time, frame ``odom``."""
+    from vd_interfaces.msg import VehicleState, VehicleWheel
+
+    ch = {k: c.values for k, c in outcome.channels.items()}
+    out = []
+    for i, t in enumerate(ch["time"]):
+        msg = VehicleState(event=outcome.event, configuration=outcome.configuration,
+                           model=outcome.model, step=i)
+        msg.header.stamp = _offset(stamp, float(t))
+        msg.header.frame_id = "odom"
+        for name in VEHICLE_FIELDS:
+            setattr(msg, name, float(ch[name][i]))
+        for wheel in ("front_left", "front_right", "rear_left", "rear_right"):
+            setattr(msg, wheel, VehicleWheel(**{f: float(ch[f"{c}_{wheel}"][i])
+                                                for f, c in WHEEL_FIELDS.items()}))
+        out.append(msg)
+    return out
+
+
 def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     """nav_msgs/Odometry per step of a full-vehicle outcome (channels x, y, yaw, roll,
     pitch, speed, sideslip, yaw_rate): frame ``odom``, child ``base_link`` (REP 105),

@@ -2,18 +2,20 @@
 
 Action ``/vd/vehicle/run_event`` (vd_interfaces/RunEvent; events constant_radius_turn and
 step_steer, goal.fidelity rigid|flexible passed to the K&C maps); results on
-``/vd/vehicle/result``, one ``Sample`` per recorded step on ``/vd/vehicle/state`` with
-header stamps on the simulation-time axis (run start + simulated time), and the body
+``/vd/vehicle/result``, one ``VehicleState`` per recorded step on ``/vd/vehicle/state``
+(named fields, four ``VehicleWheel``s) with header stamps on the simulation-time axis
+(run start + simulated time), and the body
 pose as ``nav_msgs/Odometry`` on ``/vd/vehicle/odom`` (frame ``odom``, child
 ``base_link``, REP 105), stamped alike.
 """
 from __future__ import annotations
 
 from nav_msgs.msg import Odometry
+from vd_interfaces.msg import VehicleState
 
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
-from vd_solvers.conversions import outcome_odometry
+from vd_solvers.conversions import outcome_odometry, outcome_vehicle_states
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SAMPLES, SolverNode
 from vd_solvers.vehicle.events import run_vehicle_event
@@ -27,6 +29,8 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
 
 
 class VehicleSolver(SolverNode):
+    STATE_TYPE = VehicleState
+
     def __init__(self, **kwargs) -> None:
         super().__init__("vehicle_solver", FAMILY, _run, **kwargs)
         self.odom_pub = self.create_publisher(Odometry, f"/vd/{FAMILY}/odom", SAMPLES)
@@ -37,6 +41,10 @@ class VehicleSolver(SolverNode):
         for msg in outcome_odometry(outcome, stamp):
             self.odom_pub.publish(msg)
         super().publish_outcome(outcome, config, changes, stamp=stamp)
+
+
+    def state_messages(self, outcome: EventOutcome, stamp) -> list:
+        return outcome_vehicle_states(outcome, stamp)
 
 
 def main(args=None) -> None:
