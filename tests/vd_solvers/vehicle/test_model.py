@@ -167,3 +167,15 @@ def test_the_step_converges_with_the_step_size(model):
     fine, coarse = results
     npt.assert_allclose(coarse[-1], fine[-1], rtol=1e-3)
     npt.assert_allclose(coarse.max(), fine.max(), rtol=0.015)
+
+
+@pytest.mark.parametrize("study", ["sedan", "hmmwv"])
+def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
+    """Body height and pitch of the start are those at which the tires carry the static
+    wheel loads (the wheel-centre heights of the data need not be the loaded radius)."""
+    config = load_study(STUDIES / f"{study}.yaml").configurations["baseline"]
+    vehicle = VehicleModel(config)
+    q, v = vehicle.initial_state(0.0)
+    _, wheel, _ = vehicle.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, 0.005)
+    front, rear = static_wheel_loads(config)
+    npt.assert_allclose(wheel.fz, [front, front, rear, rear], rtol=1e-6)

@@ -58,7 +58,7 @@ def bench_vehicle(config) -> dict[str, Any]:
     model = VehicleModel(config)
     build = time.perf_counter() - t0
     swa = 0.6  # rad, about 4 m/s^2 at 100 km/h on the sample sedan
-    _, r_e = model._radii(model._static_loads())
+    _, r_e = model.tire_radii(model.static_loads())
 
     def step_steer():
         steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + RAMP, DURATION],
@@ -99,7 +99,7 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
 
     def tires():
         model._tire(wheel.fz, wheel.kappa, wheel.alpha, wheel.gamma, vx)
-        model._radii(wheel.fz)
+        model.tire_radii(wheel.fz)
         model._relaxation(wheel.fz, wheel.gamma)
 
     def suspension_maps():

@@ -123,7 +123,7 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
 
 
 def _speed_controller(model: VehicleModel, reference: Callable[[float], float]) -> SpeedController:
-    _, r_e = model._radii(model._static_loads())
+    _, r_e = model.tire_radii(model.static_loads())
     return SpeedController(reference, model.total_mass, float(np.mean(r_e)))
 
 

@@ -52,6 +52,7 @@ import pinocchio as pin
 
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
+from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.analytical.params import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
@@ -150,7 +151,7 @@ class VehicleModel:
         self.model = self._build(mass)
         self.data = self.model.createData()
         self.total_mass = float(sum(i.mass for i in self.model.inertias))
-        self._static = self._static_loads()
+        self._static = self.static_loads()
         # slip stiffness for the implicit spin update, taken proportional to the load
         # (PKX1 Fz): only the stability of the update depends on it
         self._slip_stiffness_static = self._slip_stiffness(self._static)
@@ -187,30 +188,30 @@ class VehicleModel:
     def initial_state(self, speed: float, yaw_rate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """(q, v) at design height moving straight ahead at ``speed`` (m/s) with ``yaw_rate``."""
         q = pin.neutral(self.model)
-        fz_static = self._static_loads()
+        fz_static = self.static_loads()
         # body height and pitch at which the tires carry the static loads at zero travel
         sink = (self.r0 - fz_static / self.cz) - self.wheel_centres[:, 2]
         x_f, x_r = self.wheel_centres[0, 0], self.wheel_centres[2, 0]
-        pitch = (sink[2] - sink[0]) / (x_f - x_r) * -1.0
+        pitch = (sink[2] - sink[0]) / (x_f - x_r)  # ISO pitch: z = q_z - x pitch
         q[2] = sink[0] + pitch * x_f
         q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(0.0, pitch, 0.0)).coeffs()
         v = np.zeros(self.model.nv)
         v[0] = speed
         v[1] = yaw_rate * (-self.wheel_centres[:, 0].mean())  # the origin is ahead of the centre
         v[5] = yaw_rate
-        _, r_e = self._radii(fz_static)
+        _, r_e = self.tire_radii(fz_static)
         # wheel-centre speeds of a body yawing about its origin
         vx_wheel = speed - yaw_rate * self.wheel_centres[:, 1]
         v[7::2] = vx_wheel / r_e
         return q, v
 
-    def _static_loads(self) -> np.ndarray:
-        from vd_solvers.analytical.from_config import static_wheel_loads
-
+    def static_loads(self) -> np.ndarray:
+        """Static wheel loads FL FR RL RR, N (``static_wheel_loads`` of the configuration)."""
         front, rear = static_wheel_loads(self.config)
         return np.array([front, front, rear, rear])
 
-    def _radii(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def tire_radii(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(loaded, effective rolling) radii of the four tires at loads ``fz``, m."""
         if self._one_tire:
             return self.tires[0].radii(fz)
         lf, ef = self.tires[0].radii(fz[:2])
@@ -268,7 +269,7 @@ class VehicleModel:
             fz = np.where(height < self.r0, fz, 0.0)
         else:
             fz = np.zeros(4)
-        _, r_e = self._radii(fz)
+        _, r_e = self.tire_radii(fz)
         denom = np.maximum(np.abs(vx), self.vx_floor)
         kappa = (spin * r_e - vx) / denom
         alpha = np.arctan(vy / denom)
