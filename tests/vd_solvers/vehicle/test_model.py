@@ -179,3 +179,49 @@ def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
     _, wheel, _ = vehicle.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, 0.005)
     front, rear = static_wheel_loads(config)
     npt.assert_allclose(wheel.fz, [front, front, rear, rear], rtol=1e-6)
+
+
+def _suspension_potential(maps, z: np.ndarray) -> float:
+    """Sum over the wheels of the work of the wheel-force map from the grid start to z
+    (exact for the piecewise-linear map, with its linear extrapolation)."""
+    total = 0.0
+    for w in range(4):
+        force = maps.travel_table[0, w]
+        step = maps.travel_step[w]
+        work = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * step)])
+        u = (z[w] - maps.travel0[w]) / step
+        k = int(np.clip(np.floor(u), 0, force.size - 2))
+        dz = z[w] - (maps.travel0[w] + k * step)
+        slope = (force[k + 1] - force[k]) / step
+        total += work[k] + force[k] * dz + 0.5 * slope * dz * dz
+    return total
+
+
+def _energy_drift(vehicle, h: float) -> float:
+    q, v = vehicle.initial_state(15.0, yaw_rate=0.3)
+    q[7::2] = [0.03, -0.02, 0.025, -0.03]
+    v[3] = 0.1
+
+    def energy(q, v):
+        return vehicle.energy(q, v) + _suspension_potential(vehicle.maps, q[7::2])
+
+    e0 = energy(q, v)
+    worst = 0.0
+    for _ in range(int(round(0.5 / h))):
+        tau, _, _ = vehicle.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, h)
+        tau[7::2] = 0.0
+        q, v = vehicle.integrate(q, v, vehicle.acceleration(q, v, tau), h)
+        worst = max(worst, abs(energy(q, v) - e0))
+    return worst / e0
+
+
+def test_free_flight_without_dampers_conserves_energy():
+    """The HMMWV (no anti-roll bar: its suspension forces derive from the wheel-force
+    maps alone) in free flight without dampers, road and gravity: kinetic energy plus
+    the maps' potential stays constant but for the symplectic step's bounded O(h) error,
+    which halves with the step."""
+    config = load_study(STUDIES / "hmmwv.yaml").configurations["baseline"]
+    vehicle = VehicleModel(config, options=Options(road=False, gravity=False, dampers=False))
+    coarse, fine = _energy_drift(vehicle, 0.002), _energy_drift(vehicle, 0.001)
+    assert coarse < 1e-3
+    assert 1.6 < coarse / fine < 2.4
