@@ -186,7 +186,8 @@ class VehicleModel:
     # --- state -------------------------------------------------------------------------
 
     def initial_state(self, speed: float, yaw_rate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) at design height moving straight ahead at ``speed`` (m/s) with ``yaw_rate``."""
+        """(q, v) with the static loads on the tires, at ``speed`` (m/s, body x) and
+        ``yaw_rate`` (rad/s; zero: straight ahead)."""
         q = pin.neutral(self.model)
         fz_static = self.static_loads()
         # body height and pitch at which the tires carry the static loads at zero travel
@@ -197,7 +198,9 @@ class VehicleModel:
         q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(0.0, pitch, 0.0)).coeffs()
         v = np.zeros(self.model.nv)
         v[0] = speed
-        v[1] = yaw_rate * (-self.wheel_centres[:, 0].mean())  # the origin is ahead of the centre
+        # kinematic cornering (no rear slip): the rear axle moves along the heading, the
+        # origin ahead of it sideways at yaw_rate times the distance
+        v[1] = yaw_rate * (-self.wheel_centres[2:, 0].mean())
         v[5] = yaw_rate
         _, r_e = self.tire_radii(fz_static)
         # wheel-centre speeds of a body yawing about its origin
