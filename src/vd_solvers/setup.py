@@ -14,12 +14,13 @@ setup(
     zip_safe=True,
     maintainer='vd maintainers',
     maintainer_email='maintainers@vd-sim.org',
-    description='vd solvers: analytical and K&C models and their nodes',
+    description='vd solvers: analytical, K&C and full-vehicle models and their nodes',
     license='Apache-2.0',
     entry_points={
         'console_scripts': [
             'analytical_solver = vd_solvers.analytical_node:main',
             'kc_solver = vd_solvers.kc_node:main',
+            'vehicle_solver = vd_solvers.vehicle_node:main',
         ],
     },
 )

@@ -62,6 +62,9 @@ def run_bench() -> dict[str, Any]:
         lambda: run_event(config, "handling_diagram", "two_track"))
     results["flex"] = _bench_flex(config)
     results["capability_both_axles_s"] = _bench_capability(master)
+    from vd_solvers.vehicle.bench import bench_vehicle
+
+    results["vehicle"] = bench_vehicle(config)
     results["embedded_run"] = _bench_embedded(master)
     results["data_change_to_republish_s"] = _bench_data_change(master)
     results["bag_write"] = _bench_bag()
@@ -218,6 +221,26 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{results['data_change_to_republish_s']:.2f} s", "about 1 s"),
         ("bag write rate (Sample, 16 channels)",
          f"{results['bag_write']['messages_per_s']:.0f} msg/s", ""),
+    ]
+    vehicle = results["vehicle"]
+    ss, crt, cr, per = (vehicle["step_steer_10s"], vehicle["constant_radius_turn"],
+                        vehicle["commonroad"], vehicle["per_step"])
+    rows += [
+        ("full vehicle: K&C maps + model build", f"{vehicle['model_build_s']:.2f} s", ""),
+        (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
+         f"{vehicle['step_s'] * 1e3:g} ms)", f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         ""),
+        ("  per step", f"{ss['us_per_step']:.0f} us", ""),
+        ("    tires (MF, radii, relaxation; 4 wheels)", f"{per['tires_us']:.0f} us", ""),
+        ("    suspension maps", f"{per['suspension_maps_us']:.0f} us", ""),
+        ("    all forces (incl. the two above)", f"{per['forces_total_us']:.0f} us", ""),
+        ("    multibody (Pinocchio ABA + integration)", f"{per['multibody_us']:.0f} us", ""),
+        (f"full vehicle: constant radius turn ({crt['simulated_s']:.0f} s simulated)",
+         f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ""),
+        (f"CommonRoad MB ({cr['states']} states, odeint): 10 s step steer",
+         f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ""),
+        ("vd / CommonRoad real-time factor, step steer",
+         f"{vehicle['ratio_vs_commonroad']:.2f}", ">= 20"),
     ]
     for row in rows:
         table.add_row(*row)

@@ -17,7 +17,9 @@ HANDLERS: dict[str, Callable[[argparse.Namespace], int]] = {}
 #: metrics printed first, when a run has them
 HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh", "critical_speed_kmh",
             "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
-            "roll_gradient", "natural_frequency", "damping_ratio")
+            "roll_gradient", "natural_frequency", "damping_ratio", "max_lateral_acceleration",
+            "sideslip_gradient", "yaw_rate_response_time_90", "yaw_rate_overshoot",
+            "lateral_acceleration_response_time_90")
 
 
 def add_subcommands(sub: argparse._SubParsersAction) -> None:

@@ -31,10 +31,11 @@ def _embedded(master: Path) -> int:
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.kc_node import KCSolver
+    from vd_solvers.vehicle_node import VehicleSolver
 
     rclpy.init()
     nodes = [DataServer(parameter_overrides=[Parameter("master_file", value=str(master))]),
-             AnalyticalSolver(), KCSolver()]
+             AnalyticalSolver(), KCSolver(), VehicleSolver()]
     executor = MultiThreadedExecutor(num_threads=2)
     for node in nodes:
         executor.add_node(node)
@@ -56,7 +57,8 @@ def _distributed(master: Path) -> int:
     commands = [[_executable("vd_data_server", "data_server"), "--ros-args", "-p",
                  f"master_file:={master}"],
                 [_executable("vd_solvers", "analytical_solver")],
-                [_executable("vd_solvers", "kc_solver")]]
+                [_executable("vd_solvers", "kc_solver")],
+                [_executable("vd_solvers", "vehicle_solver")]]
     def stop(signum, frame):  # SIGTERM (and SIGINT where a shell ignores it) end the launch
         raise KeyboardInterrupt
 

@@ -14,8 +14,10 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
-from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance, Sample
+from vd_interfaces.msg import (Configuration, DataStatus, EventResult, Provenance, Sample,
+                               VehicleState)
 
 from vd_events.bag import BagWriter
 from vd_solvers.solver_node import LATCHED, SAMPLES
@@ -26,6 +28,8 @@ _STREAM = SAMPLES
 #: where the recorder says how many event results it has written completely (latched)
 RECORDED_TOPIC = "/vd/recorder/recorded"
 
+#: the full vehicle's pose, one message per recorded step
+ODOMETRY_TOPIC = "/vd/vehicle/odom"
 #: topic -> (type, QoS) recorded by default
 TOPICS = {
     "/vd/configuration": (Configuration, _LATCHED),
@@ -35,6 +39,9 @@ TOPICS = {
     "/vd/steady_state/state": (Sample, _STREAM),
     "/vd/kc/result": (EventResult, _STREAM),
     "/vd/kc/state": (Sample, _STREAM),
+    "/vd/vehicle/result": (EventResult, _STREAM),
+    "/vd/vehicle/state": (VehicleState, _STREAM),
+    ODOMETRY_TOPIC: (Odometry, _STREAM),
 }
 
 
@@ -69,7 +76,8 @@ class Recorder(Node):
         self.counts: dict[str, int] = {topic: 0 for topic in TOPICS}
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
-        self._pending: list[tuple[tuple[str, str, str], int]] = []
+        self._pending: list[tuple[tuple[str, str, str], int, int]] = []
+        self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
         self.complete = 0  # results written together with all their step samples
         self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
         for topic, (msg_type, qos) in TOPICS.items():
@@ -102,13 +110,19 @@ class Recorder(Node):
                 self._samples[key] = self._samples.get(key, 0) + 1
             elif topic.endswith("/result"):
                 steps = max((len(c.values) for c in msg.channels), default=0)
-                self._pending.append(((msg.configuration, msg.event, msg.model), steps))
+                if msg.model == "vehicle":
+                    self._odometry_needed += steps
+                self._pending.append(((msg.configuration, msg.event, msg.model), steps,
+                                      self._odometry_needed))
             self._publish_complete()
         return record
 
     def _publish_complete(self) -> None:
-        """Count the results whose every step sample is written too, and say so."""
-        done = [p for p in self._pending if self._samples.get(p[0], 0) >= p[1]]
+        """Count the results whose every step sample (and, for the full vehicle, every
+        odometry message) is written too, and say so."""
+        odometry = self.counts[ODOMETRY_TOPIC]
+        done = [p for p in self._pending
+                if self._samples.get(p[0], 0) >= p[1] and odometry >= p[2]]
         if done:
             self._pending = [p for p in self._pending if p not in done]
             self.complete += len(done)

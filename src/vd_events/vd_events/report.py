@@ -1,7 +1,8 @@
 """``vd report BAG...``: an HTML report with PNG plots from recorded bags.
 
 Per event and model, one plot per channel pair with every configuration
-overlaid (like the thesis' Figs. 4.1.1-4.1.2 and 4.2.x-4.3.x), a metrics table,
+overlaid (like the thesis' Figs. 4.1.1-4.1.2, 4.2.x-4.3.x and, for the full vehicle,
+4.4.1-4.4.3), a metrics table,
 and the configuration overview with the modified/unchanged feedback.
 """
 from __future__ import annotations
@@ -99,11 +100,33 @@ KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
          Axis("rack_force", "rack force [N]")),
     ),
 }
+_TIME = Axis("time", "time [s]")
+_AY = Axis("lateral_acceleration", "lateral acceleration [m/s²]")
+#: full-vehicle plots; over time: the thesis' Figs. 4.4.1-4.4.3 (lateral acceleration,
+#: roll and steering angle over time, configurations overlaid)
+VEHICLE_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
+    "constant_radius_turn": (
+        (_TIME, _AY),
+        (_TIME, Axis("roll", "roll angle [deg]", DEG)),
+        (_TIME, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
+        (_AY, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
+        (_AY, Axis("roll", "roll angle [deg]", DEG)),
+        (_AY, Axis("sideslip", "sideslip angle [deg]", DEG)),
+    ),
+    "step_steer": (
+        (_TIME, Axis("yaw_rate", "yaw rate [deg/s]", DEG)),
+        (_TIME, _AY),
+        (_TIME, Axis("roll", "roll angle [deg]", DEG)),
+        (_TIME, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
+    ),
+}
 HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh",
             "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
             "roll_gradient", "natural_frequency", "damping_ratio", "bump_steer", "camber_gain",
             "wheel_rate", "roll_centre_height_kinematic", "roll_stiffness", "roll_steer",
-            "lateral_compliance_steer", "lateral_compliance_camber", "steering_ratio")
+            "lateral_compliance_steer", "lateral_compliance_camber", "steering_ratio",
+            "sideslip_gradient", "yaw_rate_response_time_90", "yaw_rate_overshoot",
+            "lateral_acceleration_response_time_90", "yaw_rate_gain")
 
 
 @dataclass
@@ -176,7 +199,8 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
     for (event, axle, family), members in groups.items():
         images = []
-        plots = (KC_PLOTS if family == "kc" else PLOTS).get(event, _generic_plots(members[0]))
+        table = {"kc": KC_PLOTS, "vehicle": VEHICLE_PLOTS}.get(family, PLOTS)
+        plots = table.get(event, _generic_plots(members[0]))
         for i, (xa, ya) in enumerate(plots):
             usable = [r for r in members if xa.channel in r.channels and ya.channel in r.channels]
             if not usable:

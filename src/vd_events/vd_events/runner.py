@@ -29,11 +29,13 @@ from vd_solvers.analytical.events import EVENT_PARAMS as ANALYTICAL_PARAMS
 from vd_solvers.event_params import parse_params
 from vd_solvers.kc.from_config import EVENT_PARAMS as KC_PARAMS
 from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.events import EVENT_PARAMS as VEHICLE_PARAMS
 
 from .bag import BagError, check_bag_path
 
 #: model -> (solver family, events it runs)
-FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc"}
+FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc",
+            "vehicle": "vehicle"}
 ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_travel",
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
               "aligning_torque", "constant_radius_turn", "sine_with_dwell", "step_steer")
@@ -83,11 +85,17 @@ def events_for(model: str) -> tuple[str, ...]:
         return tuple(e for e, models in ANALYTICAL_EVENTS.items() if model in models)
     if model == "kc":
         return tuple(KC_PARAMS)
+    if model == "vehicle":
+        return tuple(VEHICLE_PARAMS)
     return ()
 
 
 def event_params(model: str, event: str):
-    return KC_PARAMS[event] if model == "kc" else ANALYTICAL_PARAMS[event]
+    if model == "kc":
+        return KC_PARAMS[event]
+    if model == "vehicle":
+        return VEHICLE_PARAMS[event]
+    return ANALYTICAL_PARAMS[event]
 
 
 def validate(study: Study, request: RunRequest) -> None:
@@ -104,9 +112,11 @@ def validate(study: Study, request: RunRequest) -> None:
                        f"(its events: {', '.join(events_for(request.model))})")
     if request.fidelity not in ("rigid", "flexible"):
         raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
-    if request.fidelity == "flexible" and request.model != "kc":
-        raise RunError(f"fidelity 'flexible' is available for model 'kc' only (model "
-                       f"'{request.model}' has no flexible components)")
+    # the K&C model has flexible components; the full vehicle passes the fidelity to its
+    # K&C maps (flexible K&C results when the configuration has flex data)
+    if request.fidelity == "flexible" and request.model not in ("kc", "vehicle"):
+        raise RunError(f"fidelity 'flexible' is available for models 'kc' and 'vehicle' only "
+                       f"(model '{request.model}' has no flexible components)")
     if request.model == "kc" and request.axle not in ("front", "rear"):
         raise RunError(f"K&C events need --axle front or rear (found '{request.axle}')")
     if request.model != "kc" and request.axle:
@@ -222,6 +232,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.kc_node import KCSolver
+    from vd_solvers.vehicle_node import VehicleSolver
 
     from .recorder_node import Recorder
 
@@ -233,13 +244,14 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     nodes = [DataServer(context=context, parameter_overrides=[
                  Parameter("master_file", value=str(master)), Parameter("watch_period",
                                                                         value=0.0)]),
-             AnalyticalSolver(context=context), KCSolver(context=context)]
+             AnalyticalSolver(context=context), KCSolver(context=context),
+             VehicleSolver(context=context)]
     client_node = Node("event_runner", context=context)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
     client = _Client(client_node)
-    solvers = nodes[1:3]
+    solvers = nodes[1:4]
     outcomes: list[RunOutcome] = []
     try:
         # a single-threaded executor: every solver must hold the configurations before

@@ -58,6 +58,9 @@ SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
 
 
 class SolverNode(Node):
+    #: message type of the per-step states on /vd/<family>/state
+    STATE_TYPE: type = Sample
+
     def __init__(self, name: str, family: str, run: RunFn, **kwargs) -> None:
         super().__init__(name, **kwargs)
         self.family = family
@@ -72,7 +75,7 @@ class SolverNode(Node):
                                             durability=DurabilityPolicy.TRANSIENT_LOCAL),
                                  callback_group=group)
         self.result_pub = self.create_publisher(EventResult, f"/vd/{family}/result", RESULTS)
-        self.sample_pub = self.create_publisher(Sample, f"/vd/{family}/state", SAMPLES)
+        self.sample_pub = self.create_publisher(self.STATE_TYPE, f"/vd/{family}/state", SAMPLES)
         self.provenance_pub = self.create_publisher(Provenance, "/vd/provenance", RESULTS)
         self.action = ActionServer(self, RunEvent, f"/vd/{family}/run_event", self._execute,
                                    goal_callback=lambda _: GoalResponse.ACCEPT,
@@ -146,9 +149,12 @@ class SolverNode(Node):
         return result
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
-                        changes: list) -> None:
-        """Publish provenance (with this goal's ``--set`` changes), samples and result."""
-        stamp = self.get_clock().now().to_msg()
+                        changes: list, stamp=None) -> None:
+        """Publish provenance (with this goal's ``--set`` changes), samples and result.
+
+        Samples of a time-domain event (a ``time`` channel) are stamped ``stamp`` +
+        simulated time, the others ``stamp``."""
+        stamp = stamp if stamp is not None else self.get_clock().now().to_msg()
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
                                 model=outcome.model, fidelity=outcome.fidelity,
@@ -158,10 +164,14 @@ class SolverNode(Node):
             provenance.groups = [changed.get(s.group, s) for s in self.status.status
                                  if s.configuration == config.name]
         self.provenance_pub.publish(provenance)
-        for sample in outcome_samples(outcome):
-            sample.header.stamp = stamp
+        for sample in self.state_messages(outcome, stamp):
             self.sample_pub.publish(sample)
         self.result_pub.publish(outcome_to_msg(outcome, stamp))
+
+
+    def state_messages(self, outcome: EventOutcome, stamp) -> list:
+        """The per-step messages of ``outcome`` (Sample: channel names and values)."""
+        return outcome_samples(outcome, stamp)
 
 
 def set_changes(base: Configuration, config: Configuration) -> list:

@@ -1,4 +1,4 @@
-"""PAC2002 (MF-Tyre 5.2) steady-state pure-slip Magic Formula.
+"""PAC2002 (MF-Tyre 5.2) Magic Formula: pure and combined slip, moments, radii, relaxation.
 
 Equations: Pacejka, "Tire and Vehicle Dynamics", 3rd ed., sec. 4.3.2,
 eqs. (4.E1)-(4.E30), in the PAC2002 / MF-Tyre 5.2 form used by Adams
@@ -23,7 +23,44 @@ eqs. (4.E1)-(4.E30), in the PAC2002 / MF-Tyre 5.2 form used by Adams
     SH = (PHX1 + PHX2 dfz) LHX
     SV = Fz (PVX1 + PVX2 dfz) LVX LMUX
 
-Coefficients absent from the file are 0 and scaling factors 1, as in MF-Tyre.
+Combined slip, aligning, overturning and rolling-resistance moments, radii and
+relaxation lengths (:meth:`MagicFormula.steady_state`, :meth:`~MagicFormula.radii`,
+:meth:`~MagicFormula.relaxation_lengths`), PAC2002 form of Pacejka sec. 4.3.2 and the
+MF-Tyre 5.2 equation manual (eq. numbers of Pacejka's 4.E list):
+
+    aligning moment, pure (4.E31-4.E49; gamma_z = gamma LGAZ)
+    SH_t = QHZ1 + QHZ2 dfz + (QHZ3 + QHZ4 dfz) gamma_z,   alpha_t = alpha + SH_t
+    B_t  = (QBZ1 + QBZ2 dfz + QBZ3 dfz^2)(1 + QBZ4 gamma_z + QBZ5 |gamma_z|) LKY / LMUY
+    C_t  = QCZ1
+    D_t  = Fz (QDZ1 + QDZ2 dfz)(1 + QDZ3 gamma_z + QDZ4 gamma_z^2)(R0 / Fz0') LTR
+    E_t  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2)(1 + (QEZ4 + QEZ5 gamma_z)(2/pi) atan(B_t C_t alpha_t)) <= 1
+    t    = D_t cos(C_t atan(B_t alpha_t - E_t (B_t alpha_t - atan(B_t alpha_t)))) cos(alpha)
+    alpha_r = alpha + SH_y + SV_y / K_y,   B_r = QBZ9 LKY / LMUY + QBZ10 B_y C_y
+    D_r  = Fz R0 ((QDZ6 + QDZ7 dfz) LRES + (QDZ8 + QDZ9 dfz) gamma_z) LMUY
+    M_zr = D_r cos(atan(B_r alpha_r)) cos(alpha),   M_z0 = -t F_y0 + M_zr
+
+    combined slip (4.E50-4.E67)
+    G_xa = cos(C_xa atan(B_xa a_s - E_xa (B_xa a_s - atan B_xa a_s))) / (same at a_s = SH_xa),
+           a_s = alpha + RHX1, B_xa = RBX1 cos(atan(RBX2 kappa)) LXAL, C_xa = RCX1,
+           E_xa = REX1 + REX2 dfz <= 1;                         F_x = G_xa F_x0
+    G_yk = the same with k_s = kappa + RHY1 + RHY2 dfz, B_yk = RBY1 cos(atan(RBY2 (alpha - RBY3))) LYKA,
+           C_yk = RCY1, E_yk = REY1 + REY2 dfz <= 1
+    SV_yk = mu_y Fz (RVY1 + RVY2 dfz + RVY3 gamma) cos(atan(RVY4 alpha)) sin(RVY5 atan(RVY6 kappa)) LVYKA
+                                                                F_y = G_yk F_y0 + SV_yk
+    aligning moment, combined (4.E71-4.E78): alpha_t,eq = atan(sqrt(tan^2 alpha_t + (K_x/K_y)^2 kappa^2)) sgn alpha_t,
+    the same for alpha_r, s = R0 (SSZ1 + SSZ2 F_y / Fz0' + (SSZ3 + SSZ4 dfz) gamma_z) LS,
+    M_z = -t (F_y - SV_yk) + M_zr + s F_x
+
+    overturning   M_x = Fz R0 (QSX1 LVMX - QSX2 gamma + QSX3 F_y / Fz0') LMX
+    rolling res.  M_y = -sgn(V_x) Fz R0 (QSY1 + QSY2 F_x / Fz0' + QSY3 |V_x / LONGVL| + QSY4 (V_x / LONGVL)^4) LMY
+    radii         R_l = R0 - Fz / C_z;  R_e = R0 - (FNOMIN / C_z)(DREFF atan(BREFF Fz / FNOMIN) + FREFF Fz / FNOMIN)
+                  (R_e = R_l when BREFF, DREFF, FREFF are all absent)
+    relaxation    sigma_kappa = Fz (PTX1 + PTX2 dfz) exp(-PTX3 dfz)(R0 / Fz0') LSGKP
+                  sigma_alpha = PTY1 sin(2 atan(Fz / (PTY2 Fz0'))) (1 - PKY3 |gamma|) R0 LFZO LSGAL
+
+Coefficients absent from the file are 0 and scaling factors 1, as in MF-Tyre: a file
+without the combined-slip block has G_xa = G_yk = 1 (no friction-ellipse coupling), one
+without PTX1/PTY1 has zero relaxation lengths (steady-state slip).
 Slip angle alpha and inclination gamma are plain angles in rad (PAC2002 does
 not use the tan(alpha) of MF 6.1); kappa is the longitudinal slip ratio.
 
@@ -60,7 +97,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Final
+from typing import Final, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -69,7 +106,7 @@ from vd_data_server.errors import DataError
 from vd_data_server.tir import TireProperties
 from vd_solvers.errors import SolverError
 
-__all__ = ["MagicFormula"]
+__all__ = ["MagicFormula", "TireForces"]
 
 # Formats whose pure-slip equations are the PAC2002 ones above.
 _SUPPORTED_FORMATS: Final[frozenset[str]] = frozenset({"PAC2002", "MF52"})
@@ -86,15 +123,59 @@ _COEFFICIENTS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
         ),
     }
 )  # fmt: skip
+# Combined slip, moments and transient coefficients (block, name); absent ones are 0.
+_MORE_COEFFICIENTS: Final[tuple[tuple[str, tuple[str, ...]], ...]] = (
+    ("LONGITUDINAL_COEFFICIENTS", ("RBX1", "RBX2", "RCX1", "REX1", "REX2", "RHX1",
+                                   "PTX1", "PTX2", "PTX3")),
+    ("LATERAL_COEFFICIENTS", ("RBY1", "RBY2", "RBY3", "RCY1", "REY1", "REY2", "RHY1", "RHY2",
+                              "RVY1", "RVY2", "RVY3", "RVY4", "RVY5", "RVY6", "PTY1", "PTY2")),
+    ("ALIGNING_COEFFICIENTS", ("QBZ1", "QBZ2", "QBZ3", "QBZ4", "QBZ5", "QBZ9", "QBZ10", "QCZ1",
+                               "QDZ1", "QDZ2", "QDZ3", "QDZ4", "QDZ6", "QDZ7", "QDZ8", "QDZ9",
+                               "QEZ1", "QEZ2", "QEZ3", "QEZ4", "QEZ5",
+                               "QHZ1", "QHZ2", "QHZ3", "QHZ4", "SSZ1", "SSZ2", "SSZ3", "SSZ4")),
+    ("OVERTURNING_COEFFICIENTS", ("QSX1", "QSX2", "QSX3")),
+    ("ROLLING_COEFFICIENTS", ("QSY1", "QSY2", "QSY3", "QSY4")),
+    ("VERTICAL", ("BREFF", "DREFF", "FREFF", "VERTICAL_DAMPING")),
+)  # fmt: skip
 # Scaling factors used here; absent ones are 1 (MF-Tyre default).
 _SCALING_FACTORS: Final[tuple[str, ...]] = (
     "LFZO", "LCX", "LMUX", "LEX", "LKX", "LHX", "LVX", "LGAX",
     "LCY", "LMUY", "LEY", "LKY", "LHY", "LVY", "LGAY",
+    "LTR", "LRES", "LGAZ", "LXAL", "LYKA", "LVYKA", "LS", "LSGKP", "LSGAL", "LMX", "LVMX", "LMY",
 )  # fmt: skip
 # E <= 1 (Pacejka 4.E14, 4.E24): beyond it B x - E (B x - atan B x) falls again
 # at large x and the curve loses its single peak.
 _MAX_CURVATURE: Final[float] = 1.0
 _SIDES: Final[tuple[str, ...]] = ("LEFT", "RIGHT")
+
+
+class TireForces(NamedTuple):
+    """Steady-state forces (N) and moments (N*m) on the tire, TYDEX W axes (file convention)."""
+
+    fx: np.ndarray
+    fy: np.ndarray
+    mx: np.ndarray  # overturning moment
+    my: np.ndarray  # rolling-resistance moment
+    mz: np.ndarray  # aligning moment
+
+
+@dataclass(frozen=True)
+class _Trail:
+    """Pneumatic-trail factors (QBZ, QCZ, QDZ, QEZ, QHZ): t = D cos(C atan(B a - E (B a - atan B a))) cos(alpha)."""
+
+    b: np.ndarray
+    c: float
+    d: np.ndarray
+    e_even: np.ndarray  # E_t without the sgn-like (2/pi) atan(B C a) factor
+    e_odd: np.ndarray   # QEZ4 + QEZ5 gamma_z
+    sh: np.ndarray
+
+    def trail(self, alpha_t: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+        """t at the (equivalent) trail slip angle alpha_t, m; cos(alpha) of the true slip angle."""
+        bx = self.b * alpha_t
+        e = np.minimum(self.e_even * (1.0 + self.e_odd * (2.0 / np.pi) * np.arctan(bx * self.c)),
+                       _MAX_CURVATURE)
+        return self.d * np.cos(self.c * np.arctan(bx - e * (bx - np.arctan(bx)))) * np.cos(alpha)
 
 
 @dataclass(frozen=True)
@@ -155,7 +236,13 @@ class MagicFormula:
         coefficients = {
             name: props.number(block, name, 0.0) for block, names in _COEFFICIENTS.items() for name in names
         }
+        coefficients.update({name: props.number(block, name, 0.0)
+                             for block, names in _MORE_COEFFICIENTS for name in names})
         coefficients.update({name: props.number("SCALING_COEFFICIENTS", name, 1.0) for name in _SCALING_FACTORS})
+        coefficients["R0"] = props.unloaded_radius
+        coefficients["FNOMIN"] = props.fnomin
+        coefficients["CZ"] = props.number("VERTICAL", "VERTICAL_STIFFNESS", 0.0)
+        coefficients["LONGVL"] = props.number("MODEL", "LONGVL", 0.0)
         if coefficients["LFZO"] <= 0.0:
             raise DataError(
                 f"key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, found {coefficients['LFZO']:g}",
@@ -228,7 +315,9 @@ class MagicFormula:
 
     def peak_lateral_friction(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """mu_y = D_y / Fz, -: the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1) per load."""
-        fz_, gamma_ = _arrays(fz, gamma)
+        return self._peak_friction(*_arrays(fz, gamma))
+
+    def _peak_friction(self, fz_: np.ndarray, gamma_: np.ndarray) -> np.ndarray:
         c = self._c
         dfz = (fz_ - c["FZ0_PRIME"]) / c["FZ0_PRIME"]
         gamma_y = gamma_ * c["LGAY"]
@@ -245,6 +334,131 @@ class MagicFormula:
         e_even, e_odd = self._lateral_curvature_terms(fz_, s * gamma_)
         return _curvature(e_even, e_odd, s * sign_)
 
+    def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0,
+                     vx: ArrayLike = 0.0, mirror: ArrayLike | None = None) -> TireForces:
+        """Combined-slip forces and moments (module doc), file (TYDEX) convention.
+
+        ``fz`` N, ``kappa`` -, ``alpha``/``gamma`` rad, ``vx`` m/s (rolling resistance
+        only). ``mirror`` (+1 as measured, -1 mirrored, per element) overrides the
+        mounting side given at construction, so the four wheels of a car are one call.
+        Off the ground (Fz <= 0) every output is 0.
+        """
+        fz_, kappa_, alpha_, gamma_, vx_ = _arrays(fz, kappa, alpha, gamma, vx)
+        s = np.broadcast_to(np.asarray(self._mirror if mirror is None else mirror, dtype=float),
+                            fz_.shape)
+        loaded, fz_e = self._loaded(fz_)
+        a, g = s * alpha_, s * gamma_
+        c = self._c
+        fz0 = c["FZ0_PRIME"]
+        dfz = (fz_e - fz0) / fz0
+        lat = self._lateral(fz_e, g)
+        lon = self._longitudinal(fz_e, g)
+        fy0 = lat.force(a)
+        fx0 = lon.force(kappa_)
+        # combined slip weighting (4.E50-4.E67)
+        b_xa = c["RBX1"] * np.cos(np.arctan(c["RBX2"] * kappa_)) * c["LXAL"]
+        g_xa = _weight(b_xa, c["RCX1"], np.minimum(c["REX1"] + c["REX2"] * dfz, _MAX_CURVATURE),
+                       a, np.full_like(a, c["RHX1"]))
+        b_yk = c["RBY1"] * np.cos(np.arctan(c["RBY2"] * (a - c["RBY3"]))) * c["LYKA"]
+        g_yk = _weight(b_yk, c["RCY1"], np.minimum(c["REY1"] + c["REY2"] * dfz, _MAX_CURVATURE),
+                       kappa_, c["RHY1"] + c["RHY2"] * dfz)
+        mu_y = lat.d / fz_e
+        sv_yk = (mu_y * fz_e * (c["RVY1"] + c["RVY2"] * dfz + c["RVY3"] * g) * np.cos(np.arctan(c["RVY4"] * a))
+                 * np.sin(c["RVY5"] * np.arctan(c["RVY6"] * kappa_)) * c["LVYKA"])  # fmt: skip
+        fx = g_xa * fx0
+        fy = g_yk * fy0 + sv_yk
+        # aligning moment with equivalent slip angles (4.E71-4.E78)
+        k_y = lat.b * lat.c * lat.d
+        k_x = lon.b * lon.c * lon.d
+        ratio = np.divide(k_x, k_y, out=np.zeros_like(k_x), where=k_y != 0.0)
+        trail = self._trail_factors(fz_e, g)
+        alpha_t = a + trail.sh
+        alpha_r = a + lat.sh + np.divide(lat.sv, k_y, out=np.zeros_like(k_y), where=k_y != 0.0)
+        t = trail.trail(_equivalent(alpha_t, ratio * kappa_), a)
+        gamma_z = g * c["LGAZ"]
+        b_r = c["QBZ9"] * c["LKY"] / c["LMUY"] + c["QBZ10"] * lat.b * lat.c
+        d_r = (fz_e * c["R0"] * ((c["QDZ6"] + c["QDZ7"] * dfz) * c["LRES"] + (c["QDZ8"] + c["QDZ9"] * dfz) * gamma_z)
+               * c["LMUY"])  # fmt: skip
+        m_zr = d_r * np.cos(np.arctan(b_r * _equivalent(alpha_r, ratio * kappa_))) * np.cos(a)
+        arm = c["R0"] * (c["SSZ1"] + c["SSZ2"] * fy / fz0 + (c["SSZ3"] + c["SSZ4"] * dfz) * gamma_z) * c["LS"]
+        mz = -t * (fy - sv_yk) + m_zr + arm * fx
+        mx = fz_e * c["R0"] * (c["QSX1"] * c["LVMX"] - c["QSX2"] * g + c["QSX3"] * fy / fz0) * c["LMX"]
+        v_rel = vx_ / c["LONGVL"] if c["LONGVL"] > 0.0 else np.zeros_like(vx_)
+        my = -np.sign(vx_) * fz_e * c["R0"] * (c["QSY1"] + c["QSY2"] * fx / fz0 + c["QSY3"] * np.abs(v_rel)
+                                               + c["QSY4"] * v_rel**4) * c["LMY"]  # fmt: skip
+        return TireForces(*(np.where(loaded, f, 0.0) for f in (fx, s * fy, s * mx, my, s * mz)))
+
+    def slip_stiffness(self, fz: ArrayLike) -> np.ndarray:
+        """Longitudinal slip stiffness K_x = B_x C_x D_x = dFx0/dkappa at kappa = -SH_x, N."""
+        fz_ = np.asarray(fz, dtype=float)
+        loaded, fz_e = self._loaded(fz_)
+        curve = self._longitudinal(fz_e, np.zeros_like(fz_e))
+        return np.where(loaded, curve.b * curve.c * curve.d, 0.0)
+
+    def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
+        """Pure side-slip aligning moment M_z0 = -t F_y0 + M_zr, N*m (file convention)."""
+        zero = np.zeros_like(np.asarray(fz, dtype=float))
+        return self.steady_state(fz, zero, alpha, gamma).mz
+
+    def radii(self, fz: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """(loaded radius R_l, effective rolling radius R_e), m, at load ``fz`` N (module doc)."""
+        c = self._c
+        if c["CZ"] <= 0.0:
+            raise DataError("key 'VERTICAL_STIFFNESS' in block [VERTICAL] must be > 0 for the "
+                            "tire radii", file=self.props.path, key="VERTICAL_STIFFNESS")
+        fz_ = np.maximum(np.asarray(fz, dtype=float), 0.0)
+        loaded = c["R0"] - fz_ / c["CZ"]
+        if c["BREFF"] == 0.0 and c["DREFF"] == 0.0 and c["FREFF"] == 0.0:
+            return loaded, loaded
+        rho = fz_ / c["FNOMIN"]
+        effective = c["R0"] - c["FNOMIN"] / c["CZ"] * (c["DREFF"] * np.arctan(c["BREFF"] * rho)
+                                                      + c["FREFF"] * rho)
+        return loaded, effective
+
+    def relaxation_lengths(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """(sigma_kappa, sigma_alpha), m: first-order transient slip lengths (module doc); 0 off the ground."""
+        fz_, gamma_ = _arrays(fz, gamma)
+        c = self._c
+        fz0 = c["FZ0_PRIME"]
+        loaded, fz_e = self._loaded(fz_)
+        dfz = (fz_e - fz0) / fz0
+        sigma_k = fz_e * (c["PTX1"] + c["PTX2"] * dfz) * np.exp(-c["PTX3"] * dfz) * c["R0"] / fz0 * c["LSGKP"]
+        sigma_a = (c["PTY1"] * np.sin(2.0 * np.arctan(fz_e / (c["PTY2"] * fz0))) if c["PTY2"] != 0.0
+                   else np.zeros_like(fz_e))
+        sigma_a = sigma_a * (1.0 - c["PKY3"] * np.abs(gamma_)) * c["R0"] * c["LFZO"] * c["LSGAL"]
+        return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
+
+    @property
+    def vertical_stiffness(self) -> float:
+        """C_z, N/m ([VERTICAL] VERTICAL_STIFFNESS; 0 when absent)."""
+        return self._c["CZ"]
+
+    @property
+    def vertical_damping(self) -> float:
+        """Tire vertical damping, N*s/m ([VERTICAL] VERTICAL_DAMPING; 0 when absent)."""
+        return self._c["VERTICAL_DAMPING"]
+
+    @property
+    def unloaded_radius(self) -> float:
+        """R0, m."""
+        return self._c["R0"]
+
+    def _trail_factors(self, fz: np.ndarray, gamma: np.ndarray) -> _Trail:
+        """Pneumatic-trail factors of PAC2002 (Pacejka 4.E35-4.E40), as measured (no mirroring)."""
+        c = self._c
+        fz0 = c["FZ0_PRIME"]
+        dfz = (fz - fz0) / fz0
+        gamma_z = gamma * c["LGAZ"]
+        return _Trail(
+            b=((c["QBZ1"] + c["QBZ2"] * dfz + c["QBZ3"] * dfz**2) * (1.0 + c["QBZ4"] * gamma_z + c["QBZ5"] * np.abs(gamma_z))
+               * c["LKY"] / c["LMUY"]),
+            c=c["QCZ1"],
+            d=fz * (c["QDZ1"] + c["QDZ2"] * dfz) * (1.0 + c["QDZ3"] * gamma_z + c["QDZ4"] * gamma_z**2) * c["R0"] / fz0 * c["LTR"],
+            e_even=c["QEZ1"] + c["QEZ2"] * dfz + c["QEZ3"] * dfz**2,
+            e_odd=c["QEZ4"] + c["QEZ5"] * gamma_z,
+            sh=c["QHZ1"] + c["QHZ2"] * dfz + (c["QHZ3"] + c["QHZ4"] * dfz) * gamma_z,
+        )  # fmt: skip
+
     def _loaded(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Mask of wheels on the ground, and loads safe to evaluate (no 0/0 off the ground)."""
         loaded = fz > 0.0
@@ -257,7 +471,7 @@ class MagicFormula:
         dfz = (fz - fz0) / fz0
         gamma_y = gamma * c["LGAY"]
         shape = c["PCY1"] * c["LCY"]
-        peak = self.peak_lateral_friction(fz, gamma) * fz
+        peak = self._peak_friction(fz, gamma) * fz
         stiffness = (
             c["PKY1"] * fz0 * np.sin(2.0 * np.arctan(fz / (c["PKY2"] * fz0)))
             * (1.0 - c["PKY3"] * np.abs(gamma_y)) * c["LKY"]
@@ -316,28 +530,25 @@ class MagicFormula:
         """
         fz_, gamma_ = _arrays(fz, gamma)
         loaded, fz_eval = self._loaded(fz_)
-        q = {name: self.props.number("ALIGNING_COEFFICIENTS", name, 0.0)
-             for name in ("QBZ1", "QBZ2", "QBZ3", "QBZ4", "QBZ5", "QCZ1", "QDZ1", "QDZ2", "QDZ3",
-                          "QDZ4", "QEZ1", "QEZ2", "QEZ3", "QEZ4", "QEZ5", "QHZ1", "QHZ2", "QHZ3",
-                          "QHZ4")}
-        scale = {name: self.props.number("SCALING_COEFFICIENTS", name, 1.0)
-                 for name in ("LGAZ", "LTR")}
-        c = self._c
-        fz0 = c["FZ0_PRIME"]
-        dfz = (fz_eval - fz0) / fz0
-        gamma_z = self._mirror * gamma_ * scale["LGAZ"]
-        at = q["QHZ1"] + q["QHZ2"] * dfz + (q["QHZ3"] + q["QHZ4"] * dfz) * gamma_z
-        bt = ((q["QBZ1"] + q["QBZ2"] * dfz + q["QBZ3"] * dfz**2)
-              * (1.0 + q["QBZ4"] * gamma_z + q["QBZ5"] * np.abs(gamma_z)) * c["LKY"] / c["LMUY"])
-        ct = q["QCZ1"]
-        dt = (fz_eval * (q["QDZ1"] + q["QDZ2"] * dfz) * (1.0 + q["QDZ3"] * gamma_z + q["QDZ4"] * gamma_z**2)
-              * (self.props.unloaded_radius / fz0) * scale["LTR"])
-        et = np.minimum((q["QEZ1"] + q["QEZ2"] * dfz + q["QEZ3"] * dfz**2)
-                        * (1.0 + (q["QEZ4"] + q["QEZ5"] * gamma_z) * (2.0 / np.pi) * np.arctan(bt * ct * at)),
-                        _MAX_CURVATURE)
-        bat = bt * at
-        trail = dt * np.cos(ct * np.arctan(bat - et * (bat - np.arctan(bat))))
+        # the same trail factors as the aligning moment (one implementation)
+        factors = self._trail_factors(fz_eval, self._mirror * gamma_)
+        trail = factors.trail(factors.sh, np.zeros_like(fz_eval))
         return np.where(loaded, trail, 0.0)
+
+
+def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray, sh: np.ndarray) -> np.ndarray:
+    """Combined-slip weighting G = cos(C atan(B x - E (B x - atan B x))) at x = slip + SH, over the same at x = SH."""
+
+    def shape(x: np.ndarray) -> np.ndarray:
+        bx = b * x
+        return np.cos(c * np.arctan(bx - e * (bx - np.arctan(bx))))
+
+    return shape(slip + sh) / shape(sh)
+
+
+def _equivalent(alpha: np.ndarray, kappa_term: np.ndarray) -> np.ndarray:
+    """Equivalent slip angle atan(sqrt(tan^2 alpha + (K_x/K_y kappa)^2)) sgn(alpha) (Pacejka 4.E78)."""
+    return np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term**2)) * np.where(alpha < 0.0, -1.0, 1.0)
 
 
 def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -346,5 +557,11 @@ def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarr
 
 
 def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
-    """Float arrays broadcast to one shape."""
+    """Float arrays broadcast to one shape (returned as they are when they already are:
+    the full vehicle calls this every step with four-wheel arrays)."""
+    first = values[0]
+    if isinstance(first, np.ndarray) and first.dtype == np.float64 and all(
+            isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == first.shape
+            for v in values):
+        return values  # type: ignore[return-value]
     return tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))

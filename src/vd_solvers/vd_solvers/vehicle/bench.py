@@ -1,0 +1,148 @@
+"""Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the CommonRoad peer.
+
+* ``step_steer_10s``: a 10 s step steer (100 km/h, steering-wheel ramp at 1 s to the
+  angle of 4 m/s^2) on the sedan baseline, the simulation alone (model built before).
+* ``constant_radius_turn``: the ISO 4138 event with its defaults (``run_vehicle_event``,
+  K&C maps cached), simulated time over wall time.
+* ``per_step``: microseconds per call, on a state in the middle of the step steer, of the
+  tire evaluation (four wheels: combined-slip Magic Formula, radii, relaxation lengths,
+  slip stiffness), the suspension maps (travel tables, anti-roll bar, steering), the
+  whole force evaluation, and the multibody step (Pinocchio ABA + integration).
+* ``commonroad``: the same 10 s step steer on CommonRoad's multibody model
+  (``vehiclemodels.vehicle_dynamics_mb``, 29 states, parameters_vehicle2, a BMW 320i),
+  integrated with ``scipy.integrate.odeint`` as in CommonRoad's examples, output at
+  100 Hz; the steer step is the same road-wheel angle over the same ramp.
+"""
+from __future__ import annotations
+
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .drivers import OpenLoopSteering, SpeedController
+from .events import run_vehicle_event
+from .model import STEP, VehicleModel
+from .simulation import simulate
+
+SPEED = 100.0 / 3.6
+DURATION = 10.0
+STEP_TIME = 1.0
+RAMP = 0.1
+REPEATS = 3
+MICRO_CALLS = 500
+
+
+def _median(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def _micro(fn: Callable[[], Any]) -> float:
+    """Microseconds per call."""
+    t0 = time.perf_counter()
+    for _ in range(MICRO_CALLS):
+        fn()
+    return (time.perf_counter() - t0) / MICRO_CALLS * 1e6
+
+
+def bench_vehicle(config) -> dict[str, Any]:
+    """The figures of the module doc for ``config``."""
+    t0 = time.perf_counter()
+    model = VehicleModel(config)
+    build = time.perf_counter() - t0
+    swa = 0.6  # rad, about 4 m/s^2 at 100 km/h on the sample sedan
+    _, r_e = model.tire_radii(model.static_loads())
+
+    def step_steer():
+        steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + RAMP, DURATION],
+                                    angles=[0.0, 0.0, swa, swa])
+        speed = SpeedController(lambda t: SPEED, model.total_mass, float(np.mean(r_e)))
+        return simulate(model, steering, speed, DURATION, event="step_steer",
+                        initial_speed=SPEED, record_every=2)
+
+    wall = _median(step_steer)
+    trace = step_steer()
+    out: dict[str, Any] = {
+        "step_s": STEP, "model_build_s": build,
+        "step_steer_10s": {"wall_s": wall, "real_time_factor": DURATION / wall,
+                           "steps": trace.steps,
+                           "us_per_step": wall / trace.steps * 1e6},
+    }
+    t0 = time.perf_counter()
+    crt = run_vehicle_event(config, "constant_radius_turn")
+    crt_wall = time.perf_counter() - t0
+    simulated = float(crt.channels["time"].values[-1])
+    out["constant_radius_turn"] = {"wall_s": crt_wall, "simulated_s": simulated,
+                                   "real_time_factor": simulated / crt_wall}
+    out["per_step"] = _per_step(model, swa)
+    road_wheel = float(np.mean(model.maps.road_wheel_angles(swa)))
+    out["commonroad"] = bench_commonroad(road_wheel)
+    out["ratio_vs_commonroad"] = (out["step_steer_10s"]["real_time_factor"]
+                                  / out["commonroad"]["real_time_factor"])
+    return out
+
+
+def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
+    """Per-call cost (us) on a cornering state (module doc)."""
+    q, v = model.initial_state(SPEED, yaw_rate=0.14)
+    slip = np.zeros((2, 4))
+    tau, wheel, _ = model.forces(q, v, swa, np.zeros(4), slip, None, STEP)
+    vx = np.full(4, SPEED)
+    maps = model.maps
+
+    def tires():
+        model._tire(wheel.fz, wheel.kappa, wheel.alpha, wheel.gamma, vx)
+        model.tire_radii(wheel.fz)
+        model._relaxation(wheel.fz, wheel.gamma)
+
+    def suspension_maps():
+        maps.travel(wheel.travel)
+        maps.arb(wheel.travel)
+        maps.road_wheel_angles(swa)
+
+    def multibody():
+        model.integrate(q, v, model.acceleration(q, v, tau), STEP)
+
+    return {"tires_us": _micro(tires), "suspension_maps_us": _micro(suspension_maps),
+            "forces_total_us": _micro(lambda: model.forces(q, v, swa, np.zeros(4), slip,
+                                                           wheel, STEP)),
+            "multibody_us": _micro(multibody)}
+
+
+def bench_commonroad(road_wheel_angle: float) -> dict[str, Any]:
+    """The 10 s step steer on CommonRoad's multibody model (module doc)."""
+    from scipy.integrate import odeint
+    from vehiclemodels.init_mb import init_mb
+    from vehiclemodels.parameters_vehicle2 import parameters_vehicle2
+    from vehiclemodels.vehicle_dynamics_mb import vehicle_dynamics_mb
+
+    p = parameters_vehicle2()
+    x0 = init_mb([0.0, 0.0, 0.0, SPEED, 0.0, 0.0, 0.0], p)
+    rate = road_wheel_angle / RAMP
+
+    def rhs(x, t):
+        steer_rate = rate if STEP_TIME <= t < STEP_TIME + RAMP else 0.0
+        return vehicle_dynamics_mb(x, [steer_rate, 0.0], p)
+
+    t = np.linspace(0.0, DURATION, int(DURATION * 100) + 1)
+    result: dict[str, Any] = {}
+
+    def run():
+        result["x"], result["info"] = odeint(rhs, x0, t, full_output=True, hmax=RAMP / 4)
+
+    wall = _median(run)
+    x = result["x"]
+    return {"wall_s": wall, "real_time_factor": DURATION / wall, "states": len(x0),
+            "rhs_evaluations": int(result["info"]["nfe"][-1]),
+            "steady_yaw_rate": float(x[-1, 5]), "integrator": "scipy.integrate.odeint (LSODA)",
+            "parameters": "parameters_vehicle2 (BMW 320i)"}
+
+
+__all__ = ["bench_vehicle", "bench_commonroad"]

@@ -1,0 +1,76 @@
+"""Driver models and the torque split (vd_solvers.vehicle.drivers)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.testing as npt
+import pytest
+
+from vd_solvers.errors import SolverError
+from vd_solvers.vehicle.drivers import (DRIVERS, CirclePathFollower, Observation,
+                                        OpenLoopSteering, ReplaySteering, SpeedController,
+                                        wheel_torques)
+
+
+def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
+    return Observation(t=t, x=x, y=y, yaw=yaw, speed=speed, course=yaw)
+
+
+def test_registry_names_every_driver():
+    assert DRIVERS == {"open_loop": OpenLoopSteering, "replay": ReplaySteering,
+                       "path_follower": CirclePathFollower, "speed": SpeedController}
+
+
+def test_open_loop_table_interpolates_and_holds_its_ends():
+    steer = OpenLoopSteering(times=[1.0, 2.0], angles=[0.0, 0.4])
+    assert [steer.steering_wheel_angle(_obs(t), 0.01) for t in (0.0, 1.5, 3.0)] == \
+        pytest.approx([0.0, 0.2, 0.4])
+
+
+@pytest.mark.parametrize("times, angles", [([0.0], [0.0]), ([0.0, 0.0], [0.0, 1.0]),
+                                           ([0.0, 1.0], [0.0, math.nan]), ([0.0, 1.0], [1.0])])
+def test_open_loop_table_is_checked(times, angles):
+    with pytest.raises(SolverError):
+        OpenLoopSteering(times=times, angles=angles)
+
+
+def test_replay_shifts_the_recorded_signal():
+    steer = ReplaySteering([0.0, 1.0], [0.0, 1.0], offset=2.0)
+    assert steer.steering_wheel_angle(_obs(2.5), 0.01) == pytest.approx(0.5)
+
+
+def test_path_follower_on_the_circle_steers_the_ackermann_angle():
+    """On the circle and tangent to it the preview point lies on it: no correction, the
+    steering-wheel angle is i_s L / R (after the lag has settled)."""
+    follower = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
+                                  max_angle=10.0)
+    phi = 0.3  # somewhere on the circle centred at (0, 40), heading along it
+    obs = _obs(x=40.0 * math.sin(phi), y=40.0 - 40.0 * math.cos(phi), yaw=phi)
+    for _ in range(200):
+        swa = follower.steering_wheel_angle(obs, 0.01)
+    assert swa == pytest.approx(16.0 * 2.8 / 40.0, rel=1e-9)
+
+
+def test_path_follower_steers_back_towards_the_circle_and_respects_the_lock():
+    outside = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
+                                 max_angle=10.0)
+    inside = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
+                                max_angle=10.0)
+    base = 16.0 * 2.8 / 40.0
+    assert outside.steering_wheel_angle(_obs(y=-1.0), 0.01) > base  # outside: more left
+    assert inside.steering_wheel_angle(_obs(y=1.0), 0.01) < base
+    tight = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0, max_angle=0.5)
+    assert tight.steering_wheel_angle(_obs(y=-20.0), 0.01) == 0.5
+
+
+def test_speed_controller_feeds_forward_the_reference_slope():
+    ctrl = SpeedController(lambda t: 10.0 + 0.5 * t, mass=1000.0, wheel_radius=0.3)
+    torque = ctrl.wheel_torque(_obs(t=0.0, speed=10.0), 0.01)
+    assert torque == pytest.approx(1000.0 * 0.3 * 0.5, rel=1e-9)  # on the reference: m a R
+
+
+def test_wheel_torques_split_drive_and_brake():
+    npt.assert_allclose(wheel_torques(100.0, 0.3, 0.65, np.full(4, 10.0)), [15, 15, 35, 35])
+    brake = wheel_torques(-100.0, 0.3, 0.6, np.array([50.0, 50.0, -50.0, 0.0]))
+    npt.assert_allclose(brake, [-30, -30, 20, 0], atol=1e-9)  # opposing the rotation
