@@ -93,8 +93,8 @@ def test_kc_bad_input(capsys, tmp_path, sedan_master):
     rc, _, err = _vd(capsys, "run", "steady_state_circular", "--model", "bicycle",
                      "--fidelity", "flexible", "--master", str(sedan_master))
     assert rc == 2
-    assert err.strip() == ("fidelity 'flexible' is available for model 'kc' only (model "
-                           "'bicycle' has no flexible components)")
+    assert err.strip() == ("fidelity 'flexible' is available for models 'kc' and 'vehicle' "
+                           "only (model 'bicycle' has no flexible components)")
     from vdtest import replace_once
 
     replace_once(sedan_master, "  front_flex: X\n", "")

@@ -103,14 +103,18 @@ def test_bad_vehicle_input_exits_2_and_writes_nothing(capsys, tmp_path, sedan_ma
     assert tree_snapshot(sedan_master.parents[1]) == before
 
 
-def test_flexible_fidelity_answers_with_the_kc_reason_and_no_bag(capsys, tmp_path, sedan_master):
+def test_flexible_fidelity_without_flex_data_is_refused_before_the_run(capsys, tmp_path,
+                                                                     sedan_master):
+    from vdtest import replace_once
+
+    replace_once(sedan_master, "  rear_flex: X\n", "")
     bag = tmp_path / "flex"
     rc, out, err = _vd(capsys, "run", "step_steer", "--model", "vehicle", "--fidelity",
                        "flexible", "--master", str(sedan_master), "--bag", str(bag), "--json")
     assert rc == 2
-    assert json.loads(out) == {"error": "configuration 'baseline', event 'step_steer': "
-                                        "configuration 'baseline', axle 'front': K&C fidelity "
-                                        "'flexible' is not available (available: rigid)"}
+    assert json.loads(out) == {"error": "configuration 'baseline' has no flexible components "
+                                        "on the rear axle (no rear_flex group in the master "
+                                        "file)"}
     assert not list(tmp_path.glob("flex*"))
 
 

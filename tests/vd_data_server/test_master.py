@@ -267,7 +267,7 @@ def test_a_coordinate_of_a_scalar_is_refused(sample_root: Path, sedan_master: Pa
 
 def test_every_broken_data_file_of_a_configuration_is_reported(sample_root: Path) -> None:
     master = sample_root / "studies" / "hmmwv.yaml"
-    replace_once(sample_root / "hmmwv/front_spring/X.yaml", "preload: 11740", "preload: -1")
+    replace_once(sample_root / "hmmwv/front_spring/X.yaml", "preload: 11975", "preload: -1")
     replace_once(sample_root / "hmmwv/rear_damper/X.yaml", "kind: damper", "kind: spring")
     front = sample_root / "hmmwv/front_spring/X.yaml"
     assert refused(sample_root, master) == [

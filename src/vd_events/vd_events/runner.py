@@ -130,11 +130,12 @@ def validate(study: Study, request: RunRequest) -> None:
             request.axle != "front" or "steering" not in config.groups):
         raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
                        f"'{request.configuration}' has no steering")
-    if request.model == "kc" and request.fidelity == "flexible":
-        axle_flex = f"{request.axle}_flex"
-        if axle_flex not in config.groups:
-            raise RunError(f"configuration '{request.configuration}' has no flexible components "
-                           f"on the {request.axle} axle (no {axle_flex} group in the master file)")
+    if request.fidelity == "flexible":
+        for axle in ([request.axle] if request.model == "kc" else ["front", "rear"]):
+            if f"{axle}_flex" not in config.groups:
+                raise RunError(f"configuration '{request.configuration}' has no flexible "
+                               f"components on the {axle} axle (no {axle}_flex group in the "
+                               "master file)")
     parse_params(request.event, event_params(request.model, request.event), request.parameters)
     if request.bag is not None:
         check_bag_path(request.bag)

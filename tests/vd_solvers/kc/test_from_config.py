@@ -39,7 +39,7 @@ def test_input_carries_the_data_in_si(sedan):
     # front_hardpoints/X.yaml writes lca_outer as [18.4, 706.0, 181.0] mm
     assert_allclose(inp.hardpoints["lca_outer"], [0.0184, 0.706, 0.181], atol=1e-12)
     assert inp.spring.rate == pytest.approx(30.0e3)  # 30 N/mm
-    assert inp.spring.preload == pytest.approx(4475.0)
+    assert inp.spring.preload == pytest.approx(4535.0)  # sedan/front_spring/X.yaml
     assert inp.tire_vertical_stiffness == pytest.approx(280835.2941)  # Sedan_Pac02Tire.tir
     assert inp.tire_radius == pytest.approx(0.329)  # design wheel-centre height
     assert inp.camber == pytest.approx(math.radians(-0.5))

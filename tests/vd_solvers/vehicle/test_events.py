@@ -15,10 +15,10 @@ import pytest
 from vd_data_server.errors import DataError
 from vd_data_server.study import load_study
 from vd_solvers.analytical import two_track
-from vd_solvers.analytical.from_config import (AxleSuspension, mass_properties,
+from vd_solvers.analytical.from_config import (mass_properties, static_wheel_loads,
                                                vehicle_params)
+from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.errors import SolverError
-from vd_solvers.kc.from_config import axle_roll_properties
 from vd_solvers.vehicle.events import LINEAR_RANGE, run_vehicle_event
 
 STUDIES = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "studies"
@@ -140,8 +140,7 @@ def test_maximum_lateral_acceleration_is_near_the_two_track_model(sedan, turns):
     its steady-state limit within 10 % of the full vehicle's (which loses the radius when
     the front axle saturates; the two-track has no compliance, camber or jacking)."""
     config = sedan["baseline"]
-    suspension = {axle: AxleSuspension(*axle_roll_properties(config, axle), "K&C")
-                  for axle in ("front", "rear")}
+    suspension = kc_inputs(config, static_wheel_loads(config)).suspension
     limit = two_track.handling_diagram(vehicle_params(config, suspension), 40.0, 41).limit
     assert _m(turns["baseline"], "max_lateral_acceleration") == pytest.approx(
         limit.lateral_acceleration, rel=0.10)
@@ -178,12 +177,14 @@ def test_a_step_beyond_the_steering_lock_is_an_error(sedan):
                               "beyond the lock (")
 
 
-def test_flexible_fidelity_is_refused_by_the_kc_model_with_its_reason(sedan):
-    with pytest.raises(SolverError) as err:
-        run_vehicle_event(sedan["baseline"], "step_steer", [], fidelity="flexible")
-    assert str(err.value) == ("configuration 'baseline', event 'step_steer': configuration "
-                              "'baseline', axle 'front': K&C fidelity 'flexible' is not "
-                              "available (available: rigid)")
+def test_flexible_fidelity_drives_on_the_flexible_kc_maps(sedan, step):
+    """The same configuration on its flexible K&C results: every suspension map says so,
+    and the more compliant suspension changes the response."""
+    flex = run_vehicle_event(sedan["baseline"], "step_steer", [], fidelity="flexible")
+    assert flex.fidelity == "flexible"
+    maps = [n for n in flex.notes if "data hash" in n]
+    assert maps and all("flexible" in n for n in maps if "K&C" in n)
+    assert _m(flex, "yaw_rate_gain") != pytest.approx(_m(step, "yaw_rate_gain"), rel=1e-3)
 
 
 def test_unknown_event_is_an_error(sedan):

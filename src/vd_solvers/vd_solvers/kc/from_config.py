@@ -139,6 +139,14 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = "rigid") 
     for name, (_, rigid_mass) in specs.items():
         if rigid_mass and name not in ("anti_roll_bar", "subframe"):
             masses[name] = rigid_mass
+    # The corner's unsprung mass (mass group) holds the parts: the wheel-centre lump is
+    # what the parts' own masses leave of it, so the axle's total mass stays the data's.
+    parts = sum(m for k, m in masses.items() if k != "wheel")
+    if parts >= unsprung:
+        raise SolverError(f"configuration '{config.name}': the {axle} parts' rigid_mass "
+                          f"({parts:.1f} kg, {flex_g.file if flex_g else ''}) must be below the "
+                          f"unsprung mass per corner ({unsprung:.1f} kg, mass group)")
+    masses["wheel"] = unsprung - parts
     if fidelity == "flexible":
         if not specs:
             raise SolverError(f"configuration '{config.name}': the {axle} axle has no flexible "
