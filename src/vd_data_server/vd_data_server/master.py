@@ -36,7 +36,7 @@ from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
 from .model import Configuration, GroupData, Value
 from .tir import read_tir
-from .tire_group import with_tire
+from .tire_group import tire_properties, with_tire
 from .yamlio import line_of, load_file
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
@@ -72,14 +72,16 @@ class MasterFile:
 
 
 def inside(root: Path, path: Path) -> bool:
-    """True if ``path`` lies under ``root`` once '..' and '.' are resolved.
+    """True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
 
-    The check is lexical: names such as ``../../etc/passwd`` are refused, while links
-    placed inside the data root by its owner (a symlink install) are trusted.
+    Names such as ``../../etc/passwd`` are refused, and so is a link inside the data
+    root that points out of it (checked before the file is opened, so its content is
+    never read or quoted). A symlink install of the whole data root is fine: the root
+    is resolved too.
     """
-    root_abs = os.path.normpath(os.path.abspath(root))
-    path_abs = os.path.normpath(os.path.abspath(path))
-    return os.path.commonpath([root_abs, path_abs]) == root_abs
+    root_real = os.path.realpath(root)
+    path_real = os.path.realpath(path)
+    return os.path.commonpath([root_real, path_real]) == root_real
 
 
 def load_master(path: str | Path, *, data_root: str | Path | None = None) -> MasterFile:
@@ -204,8 +206,8 @@ class GroupCache:
         if key not in self._cache:
             path, rel = self.variant_path(group, variant)
             if not inside(self.master.data_root, path):
-                raise DataError(f"path is outside the data root {self.master.data_root}",
-                                file=rel)
+                raise DataError(f"resolves outside the data root {self.master.data_root} "
+                                "(a symbolic link?): not read", file=rel)
             if not path.is_file():
                 available = self.available(group)
                 raise DataError(
@@ -233,9 +235,11 @@ class GroupCache:
 
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
-            extra_overrides: Mapping[str, Any] | None = None) -> Configuration:
+            extra_overrides: Mapping[str, Any] | None = None,
+            extra_source: str = "--set") -> Configuration:
     """Resolve one configuration: variants, then master overrides, then ``extra_overrides``
-    (``vd run --set``), each value keeping its source."""
+    (``vd run --set``, or edits over ROS: ``extra_source`` names them in messages and in
+    each value's source), each value keeping its source."""
     if name not in master.configurations:
         raise DataError(f"configuration '{name}' does not exist (available: "
                         f"{', '.join(master.configurations)})", file=master.display)
@@ -255,8 +259,11 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
     groups = apply_overrides(groups, spec.overrides, file=master.display,
                              where=f"configurations.{name}.overrides")
     if extra_overrides:
-        groups = apply_overrides(groups, extra_overrides, file="--set", where="")
+        groups = apply_overrides(groups, extra_overrides, file=extra_source, where="")
     check_geometry(groups, file=master.display, configuration=name)
+    for group in groups.values():
+        if group.kind == "tire":
+            tire_properties(group)  # the coefficients after overrides, as a solver reads them
     tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
     hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
     return Configuration(name=name, master_file=master.display, description=spec.description,
@@ -315,7 +322,7 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         raise DataError(f"override of unknown group '{group_name}' (groups: "
                         f"{', '.join(groups)}); write GROUP.KEY", file=file, key=label)
     group = groups[group_name]
-    source = f"master override {label}" if file != "--set" else f"--set {dotted}"
+    source = f"master override {label}" if label != dotted else f"{file} {dotted}"
     coord = None
     if key not in group.values and key[-2:] in (".x", ".y", ".z") and key[:-2] in group.values:
         key, coord = key[:-2], key[-1]
@@ -352,6 +359,9 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Confi
         return config
     groups = apply_overrides(config.groups, overrides, file="--set", where="")
     check_geometry(groups, file="--set", configuration=config.name)
+    for group in groups.values():
+        if group.kind == "tire":
+            tire_properties(group)
     return Configuration(name=config.name, master_file=config.master_file,
                          description=config.description, groups=groups,
                          flexible=config.flexible, flexible_components=config.flexible_components,

@@ -76,11 +76,13 @@ class Study:
 
 
 def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
-               extra_overrides: Mapping[str, Mapping[str, Any]] | None = None) -> Study:
+               extra_overrides: Mapping[str, Mapping[str, Any]] | None = None,
+               extra_source: str = "--set") -> Study:
     """Load and resolve everything; all problems of all configurations are collected.
 
     ``extra_overrides`` maps configuration name -> {group.key: value} (edits made
-    over ROS, ``--set``); they count as master-file modifications.
+    over ROS, ``--set``; ``extra_source`` names them); they count as master-file
+    modifications.
     """
     master = load_master(master_path, data_root=data_root)
     cache = GroupCache(master)
@@ -88,7 +90,8 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
     errors: list[DataError] = []
     for name in master.configurations:
         try:
-            configs[name] = resolve(master, name, cache, (extra_overrides or {}).get(name))
+            configs[name] = resolve(master, name, cache, (extra_overrides or {}).get(name),
+                                    extra_source)
         except DataErrors as err:
             errors += err.errors
         except DataError as err:

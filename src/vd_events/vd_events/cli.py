@@ -8,16 +8,19 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import sys
 from collections.abc import Callable, Sequence
 
 from vd_data_server.errors import DataError
 
 from .bag import BagError
-from .runner import RunError
+from .domain import DomainError
+from .runner import Interrupted, RunError
 
 EXIT_OK = 0
 EXIT_USAGE = 2
+EXIT_INTERRUPTED = 130
 
 
 class UsageError(Exception):
@@ -99,14 +102,29 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     handlers.update(commands.HANDLERS)
     want_json = bool(getattr(args, "json", False))
+    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         return handlers[args.command](args)
-    except (DataError, UsageError, RunError, BagError) as err:
+    except Interrupted as err:
         _report_error(str(err), want_json)
+        return EXIT_INTERRUPTED
+    except (DataError, UsageError, RunError, BagError, DomainError) as err:
+        _report_error(str(err), want_json)
+        return EXIT_USAGE
+    except OSError as err:  # a file or folder the input named cannot be used
+        where = f"{err.filename}: " if err.filename else ""
+        _report_error(f"{where}{err.strerror or err}", want_json)
         return EXIT_USAGE
     except KeyboardInterrupt:
         _report_error("interrupted", want_json)
-        return 130
+        return EXIT_INTERRUPTED
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _terminate(signum, frame) -> None:
+    """SIGTERM ends a run like Ctrl-C: its nodes stop, its partial bag is removed."""
+    raise KeyboardInterrupt
 
 
 def _report_error(message: str, want_json: bool) -> None:

@@ -92,14 +92,16 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     study = load_study(plan.master)
     requests = expand(plan, study.configuration_names, bags)
     seen = set()
+    checked = []
     for request in requests:
         try:
-            validate(study, request)
+            checked.append(validate(study, request))
         except (RunError, BagError) as err:
             raise DataError(f"{request.label}: {err}", file=str(plan.path)) from None
         if request.bag in seen:
             raise DataError(f"two runs write the same bag {request.bag}", file=str(plan.path))
         seen.add(request.bag)
+    requests = checked
     runner = run_distributed if distributed else run_embedded
     results = runner(plan.master, requests, progress)
     done = [r for r in results if r.error is None]

@@ -156,12 +156,8 @@ class MagicFormula:
             name: props.number(block, name, 0.0) for block, names in _COEFFICIENTS.items() for name in names
         }
         coefficients.update({name: props.number("SCALING_COEFFICIENTS", name, 1.0) for name in _SCALING_FACTORS})
-        if coefficients["LFZO"] <= 0.0:
-            raise DataError(
-                f"key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, found {coefficients['LFZO']:g}",
-                file=props.path,
-                key="LFZO",
-            )
+        # LFZO > 0 and the divisors != 0 are checked where the properties are read
+        # (vd_data_server.tir.check_values), so `vd data check` refuses what a run would
         coefficients["FZ0_PRIME"] = props.fnomin * coefficients["LFZO"]
         # Frozen dataclass: derived fields are set once, here.
         object.__setattr__(self, "_c", MappingProxyType(coefficients))
