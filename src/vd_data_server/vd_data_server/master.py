@@ -34,6 +34,7 @@ from typing import Any
 from . import schema
 from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
+from .plausibility import check_point
 from .model import Configuration, GroupData, Value
 from .tir import read_tir
 from .tire_group import tire_properties, with_tire
@@ -219,6 +220,10 @@ class GroupCache:
             self._cache[key] = data
         return self._cache[key]
 
+    def loaded(self) -> list[GroupData]:
+        """Every data file read so far, as read (before overrides)."""
+        return list(self._cache.values())
+
     def available(self, group: str) -> list[str]:
         folder = self.master.data_root / self.master.vehicle / group
         return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
@@ -337,6 +342,7 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         number = parse_override(raw, axis, file=file, key=label).si
         xyz = list(old.si)  # type: ignore[arg-type]
         xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
+        check_point((xyz[0], xyz[1], xyz[2]), file=file, key=label, raw=raw)
         new = Value(key, "point", tuple(xyz), "m", display_unit=old.display_unit, source=source)
     else:
         new = parse_override(raw, old, file=file, key=label).with_source(source)

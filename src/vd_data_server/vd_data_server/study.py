@@ -49,6 +49,8 @@ class Study:
     configurations: Mapping[str, Configuration]
     status: tuple[GroupStatus, ...]
     groups: tuple[str, ...]
+    #: unusual values of the data files read (plausibility warnings), once each
+    warnings: tuple[str, ...] = ()
 
     @property
     def configuration_names(self) -> list[str]:
@@ -100,9 +102,17 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
     errors = list({str(e): e for e in errors}.values())
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    for config in configs.values():
+        try:
+            config.data_hash  # noqa: B018 - computed here as a run computes it
+        except ValueError as err:
+            raise DataError(f"cannot compute the data hash: {err}", file=master.display,
+                            key=f"configurations.{config.name}") from None
     groups = _ordered_groups(configs.values())
     status = feedback(master, configs, cache, groups)
-    return Study(master=master, configurations=configs, status=status, groups=groups)
+    warnings = tuple(dict.fromkeys(w for g in cache.loaded() for w in g.warnings))
+    return Study(master=master, configurations=configs, status=status, groups=groups,
+                 warnings=warnings)
 
 
 def _ordered_groups(configs: Any) -> tuple[str, ...]:

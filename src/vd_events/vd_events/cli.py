@@ -88,8 +88,11 @@ def cmd_data(args: argparse.Namespace) -> int:
         message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "
                    f"{n_files} data files)")
         if args.json:
-            print(json.dumps({"ok": True, "message": message}))
+            print(json.dumps({"ok": True, "message": message, "warnings": list(study.warnings)}
+                             if study.warnings else {"ok": True, "message": message}))
         else:
+            for warning in study.warnings:
+                print(f"warning: {warning}", file=sys.stderr)
             print(message)
     return EXIT_OK
 
