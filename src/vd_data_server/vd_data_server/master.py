@@ -116,11 +116,13 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     vehicle = str(study.get("vehicle", ""))
     if vehicle and not _NAME.match(vehicle):
         err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
+    # real paths: a master file linked from elsewhere (a symlink install links every
+    # file) names its data root relative to where it really is
     if data_root is None:
-        root = Path(os.path.normpath(os.path.abspath(path.parent / str(study.get("data_root",
-                                                                                "..")))))
+        root = Path(os.path.realpath(Path(os.path.realpath(path)).parent /
+                                     str(study.get("data_root", ".."))))
     else:
-        root = Path(os.path.normpath(os.path.abspath(data_root)))
+        root = Path(os.path.realpath(data_root))
     defaults = raw.get("defaults") or {}
     if not isinstance(defaults, Mapping):
         err("defaults", "expected a mapping of group: variant", raw, "defaults")

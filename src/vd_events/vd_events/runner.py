@@ -294,15 +294,16 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                                           for n in solvers), SERVER_TIMEOUT)
         for request in requests:
             recorder = None
-            if request.bag is not None:
-                recorder = Recorder(context=context, bag=str(request.bag),
-                                    parameter_overrides=[Parameter(
-                                        "configurations", value=[request.configuration])])
-                executor.add_node(recorder)
-                # let the recorder's latched subscriptions catch up before the run
-                _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0, 5.0)
-            t0 = time.perf_counter()
             try:
+                if request.bag is not None:
+                    recorder = Recorder(context=context, bag=str(request.bag),
+                                        parameter_overrides=[Parameter(
+                                            "configurations", value=[request.configuration])])
+                    executor.add_node(recorder)
+                    # let the recorder's latched subscriptions catch up before the run
+                    _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0,
+                                5.0)
+                t0 = time.perf_counter()
                 outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
