@@ -240,3 +240,53 @@ def test_get_configuration_service(server):
                                    "stiff_rear, sport)")
     finally:
         client_node.destroy_node()
+
+
+def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
+    """Not only data errors: whatever a reload raises (here a RecursionError, as from a
+    pathological file), the node keeps serving and reports it on its status topic."""
+    from vdtest import spin_until
+
+    import vd_data_server.service as service
+
+    def broken(*args, **kwargs):
+        raise RecursionError("maximum recursion depth exceeded")
+
+    listener = _listener("reload_listener")
+    try:
+        assert spin_until([server, listener], lambda: len(listener.configs) == 3
+                          and listener.statuses)
+        before = server.service.study
+        monkeypatch.setattr(service, "load_study", broken)
+        server._publish_outcome(server.service.load())
+        expected = [f"{server.service.master_file}: cannot load: RecursionError: maximum "
+                    "recursion depth exceeded"]
+        assert spin_until([server, listener], lambda: listener.statuses[-1].errors == expected)
+        assert server.service.study is before
+        assert len(listener.statuses[-1].status) > 0  # the last good feedback is still served
+    finally:
+        listener.destroy_node()
+
+
+def test_edit_that_used_to_crash_the_server_is_answered(editable_server):
+    from rclpy.node import Node
+    from vd_interfaces.srv import GetConfiguration, SetOverride
+
+    server = editable_server
+    client_node = Node("override_client3")
+    try:
+        before = server.service.study.configurations["baseline"].data_hash
+        big = "9" * 400 + " N/mm"
+        for value, message in (("30 N/(mm*0)", "invalid unit 'N/(mm*0)'"),
+                               ("", "expected a number with a unit, found ''"),
+                               (big, f"value must be finite, found '{big}'")):
+            answer = _call(server, client_node, SetOverride, "/vd/set_override",
+                           SetOverride.Request(configuration="baseline",
+                                               key="front_spring.rate", value=value))
+            assert not answer.success
+            assert answer.message == f"ROS edit /vd/set_override: front_spring.rate: {message}"
+        alive = _call(server, client_node, GetConfiguration, "/vd/get_configuration",
+                      GetConfiguration.Request(name="baseline"))
+        assert alive.success and alive.configuration.data_hash == before
+    finally:
+        client_node.destroy_node()
