@@ -196,9 +196,17 @@ def _triple(node: Any, file: str, key: str) -> tuple[float, float, float]:
     if (not isinstance(node, (list, tuple)) or len(node) != 3
             or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in node)):
         raise DataError(f"expected [x, y, z] numbers, found {node!r}", file=file, key=key)
-    if not all(math.isfinite(c) for c in node):
+    if not all(_finite(c) for c in node):
         raise DataError(f"coordinates must be finite, found {node!r}", file=file, key=key)
     return (float(node[0]), float(node[1]), float(node[2]))
+
+
+def _finite(number: float) -> bool:
+    """A finite float, also for integers too large for one (400 digits)."""
+    try:
+        return math.isfinite(float(number))
+    except OverflowError:
+        return False
 
 
 def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
@@ -220,7 +228,7 @@ def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in seq)):
             raise DataError(f"curve {axis} must be a list of at least 2 numbers", file=file,
                             key=key)
-        if not all(math.isfinite(c) for c in seq):
+        if not all(_finite(c) for c in seq):
             raise DataError(f"curve {axis} values must be finite (no NaN)", file=file, key=key)
     if len(xs) != len(ys):
         raise DataError(f"curve x has {len(xs)} values but y has {len(ys)}", file=file, key=key)
@@ -281,6 +289,8 @@ def parse_override(value: Any, template: Value, *, file: str, key: str) -> Value
                 raise DataError(f"override {value!r} needs a unit (e.g. '{value} "
                                 f"{template.display_unit or SI_UNITS[quantity]}')",
                                 file=file, key=key)
+            if not _finite(value):
+                raise DataError(f"value must be finite, found {value!r}", file=file, key=key)
             number, unit = float(value), ""
         elif isinstance(value, str):
             number, unit = parse_quantity(value, quantity, file=file, key=key)

@@ -116,6 +116,9 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     vehicle = str(study.get("vehicle", ""))
     if vehicle and not _NAME.match(vehicle):
         err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
+    if not isinstance(study.get("data_root", ".."), str) or not study.get("data_root", ".."):
+        raise DataError(f"expected a folder path, found {study.get('data_root')!r}",
+                        file=display, key="study.data_root")
     # real paths: a master file linked from elsewhere (a symlink install links every
     # file) names its data root relative to where it really is
     if data_root is None:
@@ -123,6 +126,13 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
                                      str(study.get("data_root", ".."))))
     else:
         root = Path(os.path.realpath(data_root))
+    try:
+        root_is_dir = root.is_dir()
+    except OSError:  # a name too long, a loop of links
+        root_is_dir = False
+    if not root_is_dir:
+        raise DataError(f"the data root {root} is not a folder", file=display,
+                        key="study.data_root")
     defaults = raw.get("defaults") or {}
     if not isinstance(defaults, Mapping):
         err("defaults", "expected a mapping of group: variant", raw, "defaults")
@@ -211,7 +221,7 @@ class GroupCache:
             if not inside(self.master.data_root, path):
                 raise DataError(f"resolves outside the data root {self.master.data_root} "
                                 "(a symbolic link?): not read", file=rel)
-            if not path.is_file():
+            if not _is_file(path):
                 available = self.available(group)
                 raise DataError(
                     f"variant '{variant}' of group '{group}' does not exist (no file {rel}; "
@@ -239,6 +249,13 @@ class GroupCache:
         props = read_tir(path)
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
         return with_tire(data, props, rel)
+
+
+def _is_file(path: Path) -> bool:
+    try:
+        return path.is_file()
+    except OSError:  # a name too long for the file system
+        return False
 
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
