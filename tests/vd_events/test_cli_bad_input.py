@@ -231,3 +231,17 @@ def test_bag_under_proc_is_refused(capsys, sample_root, sedan_master):
     check(capsys, sample_root, sedan_master,
           "/proc/vd/bag: cannot write the bag: No such file or directory",
           "run", "handling_diagram", "--master", str(sedan_master), "--bag", "/proc/vd/bag")
+
+
+def test_tire_coefficients_that_overflow_together_fail_the_check(capsys, sample_root,
+                                                                 sedan_master):
+    """Each value is finite, but exp(PKX3 dfz) overflows over the load range: the check
+    builds the tire model a run builds and refuses it the same way."""
+    tir = sample_root / TIRE
+    lines = tir.read_text(encoding="latin-1").splitlines()
+    number = next(n for n, t in enumerate(lines) if t.split("=")[0].strip() == "PKX3")
+    lines[number] = "PKX3 = 2977.0"
+    tir.write_text("\n".join(lines) + "\n", encoding="latin-1")
+    check(capsys, sample_root, sedan_master, "\n".join(
+        f"sedan/{axle}_tire/X.yaml -> {TIRE}: the Magic Formula gives a non-finite Fx within "
+        "0.1..3 x the nominal load: coefficients out of range" for axle in ("front", "rear")))

@@ -84,6 +84,7 @@ def cmd_data(args: argparse.Namespace) -> int:
         else:
             print_configuration(config, term)
     else:
+        _check_models(study)
         n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
         message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "
                    f"{n_files} data files)")
@@ -95,6 +96,30 @@ def cmd_data(args: argparse.Namespace) -> int:
                 print(f"warning: {warning}", file=sys.stderr)
             print(message)
     return EXIT_OK
+
+
+def _check_models(study) -> None:
+    """What a run builds from the data beyond loading it: each configuration's tire models
+    (finite forces over the working range), so `vd data check` and a run agree."""
+    from vd_data_server.errors import DataErrors
+    from vd_data_server.tire_group import tire_properties
+    from vd_solvers.errors import SolverError
+    from vd_solvers.tire.magic_formula import MagicFormula
+
+    errors: dict[str, DataError] = {}
+    for config in study.configurations.values():
+        for group in config.groups.values():
+            if group.kind != "tire":
+                continue
+            try:
+                MagicFormula(tire_properties(group))
+            except DataError as err:
+                errors.setdefault(str(err), err)
+            except SolverError:  # a format the analytical models do not evaluate: not bad data
+                continue
+    if errors:
+        found = list(errors.values())
+        raise found[0] if len(found) == 1 else DataErrors(found)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
