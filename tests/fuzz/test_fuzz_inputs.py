@@ -166,3 +166,30 @@ def test_cli_arguments(argv, root, monkeypatch, capsys):
     out, err = capsys.readouterr()
     assert rc in (0, 1, 2), (rc, out, err)
     assert "Traceback" not in out + err
+
+
+PLAN = Path(__file__).resolve().parents[2] / "src" / "vd_events" / "plans" / "demo.yaml"
+_STUDY: dict = {}  # the sample study, loaded once per data copy
+
+
+@given(data=st.data())
+def test_mutated_study_plans(data, root):
+    """A plan is loaded, expanded and every run validated, as `vd study` does before it
+    starts anything."""
+    from vd_data_server.study import load_study
+    from vd_events.bag import BagError
+    from vd_events.runner import RunError, validate
+    from vd_events.study_plan import expand, load_plan
+
+    tree = yaml.safe_load(PLAN.read_text())
+    tree.pop("master", None)
+    plan_file = root / "fuzz_plan.yaml"
+    plan_file.write_text(yaml.safe_dump(mutate(data, tree), allow_unicode=True))
+    study = _STUDY.setdefault(root, load_study(root / "studies" / "sedan.yaml"))
+    with no_hang():
+        try:
+            plan = load_plan(plan_file)
+            for request in expand(plan, study.configuration_names, root / "bags"):
+                validate(study, request)
+        except (DataError, RunError, BagError) as err:
+            clean(err)

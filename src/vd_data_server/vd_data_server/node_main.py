@@ -36,6 +36,18 @@ def die_with_parent() -> None:
         os.kill(os.getpid(), signal.SIGTERM)
 
 
+def spin_guarded(executor, node: Node) -> None:
+    """Spin until shutdown; a callback that fails (a bug the input triggered) is logged
+    and the node keeps serving instead of dying with it."""
+    while rclpy.ok(context=executor.context):
+        try:
+            executor.spin_once(timeout_sec=0.5)
+        except (KeyboardInterrupt, ExternalShutdownException):
+            raise
+        except Exception as err:  # noqa: BLE001 - the node boundary
+            node.get_logger().error(f"a callback failed: {type(err).__name__}: {err}")
+
+
 def spin_node(factory: Callable[[], Node], args=None, threads: int = 2) -> None:
     """init, build the node, spin; a clean shutdown on Ctrl-C and SIGTERM."""
     die_with_parent()
@@ -45,7 +57,7 @@ def spin_node(factory: Callable[[], Node], args=None, threads: int = 2) -> None:
         node = factory()
         executor = MultiThreadedExecutor(num_threads=threads)
         executor.add_node(node)
-        executor.spin()
+        spin_guarded(executor, node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:

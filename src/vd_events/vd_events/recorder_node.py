@@ -87,10 +87,14 @@ class Recorder(Node):
         # in-process runs spin this node on a multi-threaded executor while the runner
         # stops it from its own thread: writes and close never overlap
         self._lock = threading.Lock()
-        self.create_service(Trigger, "~/finish", self._finish)
-        self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
-        for topic, (msg_type, qos) in TOPICS.items():
-            self.create_subscription(msg_type, topic, self._callback(topic), qos)
+        try:
+            self.create_service(Trigger, "~/finish", self._finish)
+            self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
+            for topic, (msg_type, qos) in TOPICS.items():
+                self.create_subscription(msg_type, topic, self._callback(topic), qos)
+        except BaseException:  # e.g. a SIGTERM that shut the context down meanwhile
+            self.writer.abort()
+            raise
         self.get_logger().info(f"recording to {path}")
 
     def _callback(self, topic: str):
@@ -165,6 +169,7 @@ def main(args=None) -> None:
     die_with_parent()
     rclpy.init(args=args)
     node = None
+    interrupted = False
     try:
         node = Recorder()
         while rclpy.ok() and not node.finished:
@@ -178,11 +183,14 @@ def main(args=None) -> None:
         print(f"recorder: {err}", flush=True)
         raise SystemExit(2) from None
     finally:
+        # first of all, whatever ended the recording: no unfinished bag may stay
+        if node is not None and not node.finished:
+            node.abort()
+            interrupted = True
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()
-    if node is not None and not node.finished:
-        node.abort()
+    if interrupted:
         print(f"recorder: interrupted before the recording was complete: no bag written "
               f"({node.writer.path}{'' if node.error else '.partial removed'})", flush=True)
         sys.exit(1)
