@@ -114,6 +114,9 @@ def test_mutated_tir_files(data):
     assert all(math.isfinite(v) for v in values), values
 
 
+_SERVICE: dict = {}  # one loaded data service per data copy, reset for each example
+
+
 @given(configuration=st.sampled_from(["baseline", "sport", "nope", "", "../x"]),
        key=st.one_of(st.sampled_from(["front_spring.rate", "mass.sprung_mass",
                                       "front_hardpoints.points.lca_outer.x",
@@ -125,8 +128,12 @@ def test_edit_requests(configuration, key, value, root):
     """What /vd/set_override hands the data server's core."""
     from vd_data_server.service import DataService
 
-    service = DataService(root / "studies" / "sedan.yaml")
-    assert service.load().errors == ()
+    if root not in _SERVICE:
+        _SERVICE[root] = DataService(root / "studies" / "sedan.yaml")
+        assert _SERVICE[root].load().errors == ()
+        _SERVICE[root].base = _SERVICE[root].study
+    service = _SERVICE[root]
+    service.edits, service.study = {}, service.base  # as freshly loaded
     before = service.study
     with no_hang():
         try:
