@@ -135,3 +135,24 @@ def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master,
     rates = [r["metrics"]["wheel_rate"]["value"] for r in results]
     assert rates[1] > rates[0] * 1.2
     assert results[0]["data_hash"] != results[1]["data_hash"]
+
+
+def test_a_full_disk_while_recording_is_an_error_and_leaves_no_bag(capsys, monkeypatch, tmp_path,
+                                                                   sedan_master):
+    import errno
+
+    from vd_events import bag as bag_module
+
+    def full(self, topic, msg, timestamp_ns):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(bag_module.BagWriter, "write", full)
+    bag = tmp_path / "bag"
+    before = tree_snapshot(sedan_master.parents[1])
+    rc, out, err = _vd(capsys, "run", "handling_diagram", "--master", str(sedan_master),
+                       "--param", "steps=5", "--bag", str(bag))
+    assert (rc, out) == (2, "")
+    assert err.strip() == ("configuration 'baseline', event 'handling_diagram', model "
+                           f"'two_track': {bag}: cannot write the bag: No space left on device")
+    assert not list(tmp_path.glob("bag*"))
+    assert tree_snapshot(sedan_master.parents[1]) == before

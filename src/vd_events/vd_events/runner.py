@@ -301,8 +301,8 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                                             "configurations", value=[request.configuration])])
                     executor.add_node(recorder)
                     # let the recorder's latched subscriptions catch up before the run
-                    _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0,
-                                5.0)
+                    _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0
+                                or recorder.error is not None, 5.0)
                 t0 = time.perf_counter()
                 outcome = _run_goal(executor, client, request, progress)
                 bag = None
