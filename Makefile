@@ -3,7 +3,7 @@
 SHELL := /bin/bash
 ENV := tools/env.sh
 
-.PHONY: setup demo test bench clean
+.PHONY: setup demo test fuzz bench clean
 
 setup:
 	@bash tools/setup.sh
@@ -13,6 +13,11 @@ demo: setup
 
 test: setup
 	@$(ENV) python -m pytest -q
+
+# the fuzz suite with many more examples (tests/fuzz; `make test` runs it briefly) and
+# the fault tests with SIGTERM and random signal times
+fuzz: setup
+	@HYPOTHESIS_PROFILE=fuzz $(ENV) python -m pytest -q tests/fuzz tests/integration/test_faults.py
 
 bench: setup
 	@$(ENV) python -m vd_events.cli bench

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import os
-import random
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
@@ -31,9 +30,14 @@ def ros_domain() -> Iterator[int]:
     """rclpy initialised once, in a private domain on loopback."""
     import rclpy
 
+    from vd_events.domain import claim_domain
+
     os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
-    domain = int(os.environ.get("VD_TEST_DOMAIN", random.randint(100, 200)))
-    os.environ["ROS_DOMAIN_ID"] = str(domain)
-    rclpy.init(domain_id=domain)
-    yield domain
+    # claimed like a run's domain, so the runs of this session (and of other sessions
+    # on the machine) never share it
+    claim = claim_domain()
+    os.environ["ROS_DOMAIN_ID"] = str(claim.domain)
+    rclpy.init(domain_id=claim.domain)
+    yield claim.domain
     rclpy.try_shutdown()
+    claim.release()

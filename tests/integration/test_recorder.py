@@ -1,5 +1,5 @@
-"""The recorder process closes its bag cleanly on SIGTERM and SIGINT: a finished bag with
-what it received, never a bag that only looks finished."""
+"""The recorder process: a bag becomes final only when its owner says the recording is
+complete (``~/finish``); SIGTERM and SIGINT remove the partial bag and say so."""
 from __future__ import annotations
 
 import os
@@ -13,17 +13,15 @@ from vdtest import spin_until
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
-def test_recorder_closes_the_bag_on_signal(ros_domain, tmp_path, sig):
+def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]:
+    """Start a recorder, publish three samples to it, then ``stop(node, proc)``."""
     from ament_index_python.packages import get_package_prefix
     from rclpy.node import Node
     from vd_interfaces.msg import Sample
 
-    from vd_events.bag import read_bag
     from vd_solvers.solver_node import SAMPLES
 
     exe = os.path.join(get_package_prefix("vd_events"), "lib", "vd_events", "recorder")
-    bag = tmp_path / "bag"
     env = dict(os.environ, ROS_DOMAIN_ID=str(ros_domain))
     proc = subprocess.Popen([exe, "--ros-args", "-p", f"bag:={bag}"], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -38,17 +36,47 @@ def test_recorder_closes_the_bag_on_signal(ros_domain, tmp_path, sig):
             msg.header.stamp = stamp
             pub.publish(msg)
         spin_until([node], lambda: False, timeout=1.0)
-        proc.send_signal(sig)
+        stop(node, proc)
         out, _ = proc.communicate(timeout=20)
     finally:
         node.destroy_node()
         if proc.poll() is None:
             proc.kill()
+    return proc, out
+
+
+def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
+    from std_srvs.srv import Trigger
+
+    from vd_events.bag import read_bag
+
+    bag = tmp_path / "bag"
+    answers = []
+
+    def finish(node, proc) -> None:
+        client = node.create_client(Trigger, "/recorder/finish")
+        assert spin_until([node], client.service_is_ready, timeout=10.0)
+        future = client.call_async(Trigger.Request())
+        assert spin_until([node], future.done, timeout=10.0)
+        answers.append(future.result())
+
+    proc, out = _record_three_samples(ros_domain, bag, finish)
+    assert (answers[0].success, answers[0].message) == (True, str(bag))
     assert proc.returncode == 0, out
     assert (bag / "metadata.yaml").is_file()
     assert not (tmp_path / "bag.partial").exists()
     steps = [m.msg.step for m in read_bag(bag) if m.topic == "/vd/kc/state"]
     assert steps == [0, 1, 2]
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_removes_the_partial_bag_and_says_so(ros_domain, tmp_path, sig):
+    bag = tmp_path / "bag"
+    proc, out = _record_three_samples(ros_domain, bag, lambda node, p: p.send_signal(sig))
+    assert proc.returncode == 1, out
+    assert out.splitlines()[-1] == (f"recorder: interrupted before the recording was complete: "
+                                    f"no bag written ({bag}.partial removed)")
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
 
 
 def test_recorder_refuses_an_existing_bag(ros_domain, tmp_path):

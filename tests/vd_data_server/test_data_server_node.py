@@ -167,26 +167,49 @@ def test_set_override_refused_without_allow_edits(server):
                        SetOverride.Request(configuration="baseline",
                                            key="front_alignment.camber", value="-2 deg"))
         assert not result.success
-        assert result.message == "edits are disabled (set parameter allow_edits to true)"
+        assert result.message == ("edits are disabled (start the data server with parameter "
+                                  "allow_edits:=true)")
         assert server.service.study.configurations["baseline"].data_hash == before
     finally:
         client_node.destroy_node()
 
 
-def test_set_override_with_allow_edits_validates_and_applies(server):
-    from rclpy.node import Node
+def test_allow_edits_cannot_be_switched_on_over_ros(server):
+    """Any participant on the domain may call set_parameters: allow_edits is read-only."""
     from rclpy.parameter import Parameter
+
+    (result,) = server.set_parameters([Parameter("allow_edits", value=True)])
+    assert not result.successful
+    assert result.reason == "Trying to set a read-only parameter: allow_edits."
+    assert server.get_parameter("allow_edits").value is False
+
+
+@pytest.fixture
+def editable_server(ros_domain, sedan_master: Path):
+    from rclpy.parameter import Parameter
+
+    from vd_data_server.data_server_node import DataServer
+
+    node = DataServer(parameter_overrides=[
+        Parameter("master_file", value=str(sedan_master)),
+        Parameter("watch_period", value=0.2), Parameter("allow_edits", value=True)])
+    yield node
+    node.destroy_node()
+
+
+def test_set_override_with_allow_edits_validates_and_applies(editable_server):
+    from rclpy.node import Node
     from vd_interfaces.srv import SetOverride
 
-    server.set_parameters([Parameter("allow_edits", value=True)])
+    server = editable_server
     client_node = Node("override_client2")
     try:
         bad = _call(server, client_node, SetOverride, "/vd/set_override",
                     SetOverride.Request(configuration="baseline",
                                         key="front_alignment.camber", value="-2 kg"))
         assert not bad.success
-        assert bad.message == ("--set: front_alignment.camber: unit 'kg' is not an angle unit "
-                               "(expected e.g. 'rad')")
+        assert bad.message == ("ROS edit /vd/set_override: front_alignment.camber: unit 'kg' is "
+                               "not an angle unit (expected e.g. 'rad')")
         good = _call(server, client_node, SetOverride, "/vd/set_override",
                      SetOverride.Request(configuration="baseline",
                                          key="front_alignment.camber", value="-2 deg"))
@@ -195,6 +218,9 @@ def test_set_override_with_allow_edits_validates_and_applies(server):
             "front_alignment").scalar("camber")
         assert camber == pytest.approx(-2.0 * 3.141592653589793 / 180.0)
         assert server.service.study.status_of("baseline", "front_alignment").state == "MODIFIED"
+        value = server.service.study.configurations["baseline"].group(
+            "front_alignment").values["camber"]
+        assert value.source == "ROS edit /vd/set_override front_alignment.camber"
     finally:
         client_node.destroy_node()
 
@@ -213,5 +239,55 @@ def test_get_configuration_service(server):
         assert not missing.success
         assert missing.message == ("configuration 'nope' does not exist (available: baseline, "
                                    "stiff_rear, sport)")
+    finally:
+        client_node.destroy_node()
+
+
+def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
+    """Not only data errors: whatever a reload raises (here a RecursionError, as from a
+    pathological file), the node keeps serving and reports it on its status topic."""
+    from vdtest import spin_until
+
+    import vd_data_server.service as service
+
+    def broken(*args, **kwargs):
+        raise RecursionError("maximum recursion depth exceeded")
+
+    listener = _listener("reload_listener")
+    try:
+        assert spin_until([server, listener], lambda: len(listener.configs) == 3
+                          and listener.statuses)
+        before = server.service.study
+        monkeypatch.setattr(service, "load_study", broken)
+        server._publish_outcome(server.service.load())
+        expected = [f"{server.service.master_file}: cannot load: RecursionError: maximum "
+                    "recursion depth exceeded"]
+        assert spin_until([server, listener], lambda: listener.statuses[-1].errors == expected)
+        assert server.service.study is before
+        assert len(listener.statuses[-1].status) > 0  # the last good feedback is still served
+    finally:
+        listener.destroy_node()
+
+
+def test_edit_that_used_to_crash_the_server_is_answered(editable_server):
+    from rclpy.node import Node
+    from vd_interfaces.srv import GetConfiguration, SetOverride
+
+    server = editable_server
+    client_node = Node("override_client3")
+    try:
+        before = server.service.study.configurations["baseline"].data_hash
+        big = "9" * 400 + " N/mm"
+        for value, message in (("30 N/(mm*0)", "invalid unit 'N/(mm*0)'"),
+                               ("", "expected a number with a unit, found ''"),
+                               (big, f"value must be finite, found '{big}'")):
+            answer = _call(server, client_node, SetOverride, "/vd/set_override",
+                           SetOverride.Request(configuration="baseline",
+                                               key="front_spring.rate", value=value))
+            assert not answer.success
+            assert answer.message == f"ROS edit /vd/set_override: front_spring.rate: {message}"
+        alive = _call(server, client_node, GetConfiguration, "/vd/get_configuration",
+                      GetConfiguration.Request(name="baseline"))
+        assert alive.success and alive.configuration.data_hash == before
     finally:
         client_node.destroy_node()

@@ -110,3 +110,46 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master)
         solver.wait(timeout=20)
         for node in reversed(nodes):
             node.destroy_node()
+
+
+def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan_master,
+                                                              monkeypatch, capfd):
+    import numpy as np
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+
+    import vd_solvers.analytical_node as analytical_node
+    from vd_data_server.data_server_node import DataServer
+    from vd_solvers.analytical_node import AnalyticalSolver
+    from vd_solvers.errors import SolverError
+
+    real = analytical_node.run_event
+
+    def overflowing(config, event, model, parameters, suspension=None):
+        np.exp(np.array([1000.0]))  # RuntimeWarning: overflow encountered in exp
+        if "steps=3" in parameters:
+            raise SolverError("the sweep diverged")
+        return real(config, event, model, parameters, suspension=suspension)
+
+    monkeypatch.setattr(analytical_node, "run_event", overflowing)
+    server = DataServer(parameter_overrides=[Parameter("master_file", value=str(sedan_master)),
+                                             Parameter("watch_period", value=0.0)])
+    solver = AnalyticalSolver()
+    client_node = Node("warning_client")
+    try:
+        assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
+        capfd.readouterr()
+        bad = _goal(client_node, solver, server, event="handling_diagram",
+                    configuration="baseline", model="two_track", parameters=["steps=3"])
+        assert not bad.success
+        assert bad.message == ("configuration 'baseline', event 'handling_diagram': the sweep "
+                               "diverged (numerical warnings: overflow encountered in exp)")
+        good = _goal(client_node, solver, server, event="handling_diagram",
+                     configuration="baseline", model="two_track", parameters=["steps=5"])
+        assert good.success, good.message
+        assert good.result.notes[-1] == ("numerical warnings during the run: overflow "
+                                         "encountered in exp")
+        assert "RuntimeWarning" not in capfd.readouterr().err  # not printed on its own
+    finally:
+        for node in (client_node, solver, server):
+            node.destroy_node()

@@ -4,11 +4,15 @@ Topics (reliable + transient_local, so late subscribers get everything):
   /vd/configuration  vd_interfaces/Configuration, one message per configuration
   /vd/data_status    vd_interfaces/DataStatus, the modified/unchanged feedback
 Services: /vd/get_configuration, /vd/set_override (only with allow_edits), /vd/reload.
-Parameters: master_file, allow_edits, watch_period (s; 0 disables watching).
+Parameters (all read-only once the node runs): master_file, allow_edits, watch_period
+(s; 0 disables watching). The trust model is in docs/ros-api.md.
+
+A bad file, edit or reload never stops the node: it keeps serving the last good
+data and reports the error on /vd/data_status.
 """
 from __future__ import annotations
 
-from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus
@@ -35,12 +39,12 @@ class DataServer(Node):
         super().__init__("data_server", **kwargs)
         self.declare_parameter("master_file", str(default_master()), ParameterDescriptor(
             description="master file (study) to serve", read_only=True))
+        # read-only: a participant on the domain must not switch edits on for itself
         self.declare_parameter("allow_edits", False, ParameterDescriptor(
-            description="accept /vd/set_override requests"))
+            description="accept /vd/set_override requests (fixed at start)", read_only=True))
         self.declare_parameter("watch_period", 0.5, ParameterDescriptor(
             description="seconds between checks of the data files (0: do not watch)",
             read_only=True))
-        self.add_on_set_parameters_callback(self._on_set_parameters)
         self.service = DataService(self.get_parameter("master_file").value)
         self.config_pub = self.create_publisher(ConfigurationMsg, "/vd/configuration",
                                                 latched(CONFIGURATION_DEPTH))
@@ -52,12 +56,6 @@ class DataServer(Node):
         period = float(self.get_parameter("watch_period").value)
         if period > 0.0:
             self.create_timer(period, self._poll)
-
-    def _on_set_parameters(self, params) -> SetParametersResult:
-        for p in params:
-            if p.name == "allow_edits" and not isinstance(p.value, bool):
-                return SetParametersResult(successful=False, reason="allow_edits is a bool")
-        return SetParametersResult(successful=True)
 
     def _poll(self) -> None:
         outcome = self.service.poll()
@@ -107,7 +105,8 @@ class DataServer(Node):
     def _set_override(self, request, response):
         if not self.get_parameter("allow_edits").value:
             response.success = False
-            response.message = "edits are disabled (set parameter allow_edits to true)"
+            response.message = ("edits are disabled (start the data server with parameter "
+                                "allow_edits:=true)")
             return response
         try:
             self.service.set_override(request.configuration, request.key, request.value)

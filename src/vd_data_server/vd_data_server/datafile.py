@@ -21,7 +21,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from . import schema
+from . import plausibility, schema
 from .errors import DataError, DataErrors
 from .model import GroupData, Value
 from .units import SI_UNITS, UnitSystem, parse_quantity, si_factor, to_si
@@ -34,6 +34,7 @@ class _Collector:
     def __init__(self, file: str) -> None:
         self.file = file
         self.errors: list[DataError] = []
+        self.warnings: list[str] = []
 
     def add(self, key: str, message: str, container: Any = None, name: str | None = None) -> None:
         line = line_of(container, name) if name is not None else None
@@ -95,7 +96,8 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
     source = display if variant == "" else f"{display} (variant {variant})"
     values = {k: v.with_source(source) for k, v in values.items()}
     return GroupData(group=group, kind=expected_kind, variant=variant, file=display,
-                     values=values, description=str(raw.get("description") or ""))
+                     values=values, description=str(raw.get("description") or ""),
+                     warnings=tuple(col.warnings))
 
 
 def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Collector,
@@ -131,12 +133,21 @@ def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Coll
         for sub, value in node.items():
             _walk(spec.value, value, _join(path, sub), units, col, out, node, sub)
         return
+    line = line_of(parent, name)
+    where = f" (line {line})" if line else ""
     try:
         out[key] = _leaf(spec, node, key, units)
     except DataError as err:
-        line = line_of(parent, name)
-        col.errors.append(DataError(err.detail + (f" (line {line})" if line else ""),
-                                    file=col.file, key=key))
+        col.errors.append(DataError(err.detail + where, file=col.file, key=key))
+        return
+    value = out[key]
+    warning = None
+    if isinstance(spec, schema.Scalar):
+        warning = plausibility.unusual_scalar(float(value.si), spec.quantity)
+    elif isinstance(spec, schema.Point):
+        warning = plausibility.unusual_point(value.si)  # type: ignore[arg-type]
+    if warning:
+        col.warnings.append(f"{col.file}: {key}: {warning}{where}")
 
 
 def _leaf(spec: schema.Spec, node: Any, key: str, units: UnitSystem) -> Value:
@@ -148,8 +159,9 @@ def _leaf(spec: schema.Spec, node: Any, key: str, units: UnitSystem) -> Value:
     if isinstance(spec, schema.Point):
         xyz = _triple(node, file, key)
         factor = si_factor(units.unit("length"), "length")
-        return Value(key, "point", tuple(c * factor for c in xyz), "m",
-                     display_unit=units.display("length"))
+        si_xyz = (xyz[0] * factor, xyz[1] * factor, xyz[2] * factor)
+        plausibility.check_point(si_xyz, file=file, key=key, raw=node)
+        return Value(key, "point", si_xyz, "m", display_unit=units.display("length"))
     if isinstance(spec, schema.Vector):
         xyz = _triple(node, file, key)
         norm = math.sqrt(sum(c * c for c in xyz))
@@ -174,6 +186,7 @@ def _scalar_value(key: str, si: float, quantity: str, units: UnitSystem) -> Valu
 
 
 def _check_range(si: float, spec: schema.Scalar, file: str, key: str, raw: Any) -> None:
+    plausibility.check_scalar(si, spec.quantity, file=file, key=key, raw=raw)
     if spec.positive and not si > 0.0:
         raise DataError(f"must be positive, found {raw!r}", file=file, key=key)
     if spec.minimum is not None and si < spec.minimum:
@@ -185,9 +198,17 @@ def _triple(node: Any, file: str, key: str) -> tuple[float, float, float]:
     if (not isinstance(node, (list, tuple)) or len(node) != 3
             or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in node)):
         raise DataError(f"expected [x, y, z] numbers, found {node!r}", file=file, key=key)
-    if not all(math.isfinite(c) for c in node):
+    if not all(_finite(c) for c in node):
         raise DataError(f"coordinates must be finite, found {node!r}", file=file, key=key)
     return (float(node[0]), float(node[1]), float(node[2]))
+
+
+def _finite(number: float) -> bool:
+    """A finite float, also for integers too large for one (400 digits)."""
+    try:
+        return math.isfinite(float(number))
+    except OverflowError:
+        return False
 
 
 def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
@@ -209,7 +230,7 @@ def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in seq)):
             raise DataError(f"curve {axis} must be a list of at least 2 numbers", file=file,
                             key=key)
-        if not all(math.isfinite(c) for c in seq):
+        if not all(_finite(c) for c in seq):
             raise DataError(f"curve {axis} values must be finite (no NaN)", file=file, key=key)
     if len(xs) != len(ys):
         raise DataError(f"curve x has {len(xs)} values but y has {len(ys)}", file=file, key=key)
@@ -219,9 +240,14 @@ def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
         raise DataError("curve y must not decrease (non-monotonic force curve)", file=file,
                         key=key)
     x_si = tuple(float(c) * fx for c in xs)
+    y_si = tuple(float(c) * fy for c in ys)
     if spec.x_minimum is not None and x_si[0] < spec.x_minimum:
         raise DataError(f"curve x must start at >= {spec.x_minimum:g}", file=file, key=key)
-    return Value(key, "curve", (x_si, tuple(float(c) * fy for c in ys)),
+    for axis, seq, quantity in (("x", x_si, spec.x_quantity), ("y", y_si, spec.y_quantity)):
+        extreme = max(seq, key=abs)
+        plausibility.check_scalar(extreme, quantity, file=file, key=f"{key}.{axis}",
+                                  raw=f"{extreme:g} {SI_UNITS[quantity]}")
+    return Value(key, "curve", (x_si, y_si),
                  SI_UNITS[spec.y_quantity], SI_UNITS[spec.x_quantity],
                  display_unit=_short(str(y_unit)), x_display_unit=_short(str(x_unit)))
 
@@ -320,6 +346,8 @@ def parse_override(value: Any, template: Value, *, file: str, key: str) -> Value
                 raise DataError(f"override {value!r} needs a unit (e.g. '{value} "
                                 f"{template.display_unit or SI_UNITS[quantity]}')",
                                 file=file, key=key)
+            if not _finite(value):
+                raise DataError(f"value must be finite, found {value!r}", file=file, key=key)
             number, unit = float(value), ""
         elif isinstance(value, str):
             number, unit = parse_quantity(value, quantity, file=file, key=key)

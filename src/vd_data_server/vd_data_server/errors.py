@@ -5,6 +5,17 @@ involved) so that a user can go straight to the line that is wrong.
 """
 from __future__ import annotations
 
+#: longest message of one problem (a quoted value can be a whole file), characters
+MAX_MESSAGE = 500
+#: most problems listed from one validation pass
+MAX_ERRORS = 50
+
+
+def _cut(text: str, limit: int = MAX_MESSAGE) -> str:
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}... (cut at the limit of {limit} characters)"
+
 
 class DataError(Exception):
     """Invalid vehicle data, master file, override or tire property file.
@@ -13,6 +24,8 @@ class DataError(Exception):
     """
 
     def __init__(self, message: str, *, file: str | None = None, key: str | None = None) -> None:
+        key = _cut(key, 200) if key else key
+        message = _cut(message)
         self.file = file
         self.key = key
         self.detail = message
@@ -25,7 +38,11 @@ class DataErrors(DataError):
 
     def __init__(self, errors: list[DataError]) -> None:
         self.errors = list(errors)
-        Exception.__init__(self, "\n".join(str(e) for e in self.errors))
+        lines = [str(e) for e in self.errors[:MAX_ERRORS]]
+        if len(self.errors) > MAX_ERRORS:
+            lines.append(f"... and {len(self.errors) - MAX_ERRORS} more problems (the limit is "
+                         f"{MAX_ERRORS} listed)")
+        Exception.__init__(self, "\n".join(lines))
         self.file = None
         self.key = None
         self.detail = str(self)

@@ -34,9 +34,10 @@ from typing import Any
 from . import schema
 from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
+from .plausibility import check_point
 from .model import Configuration, GroupData, Value
 from .tir import read_tir
-from .tire_group import with_tire
+from .tire_group import tire_properties, with_tire
 from .yamlio import line_of, load_file
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
@@ -72,14 +73,16 @@ class MasterFile:
 
 
 def inside(root: Path, path: Path) -> bool:
-    """True if ``path`` lies under ``root`` once '..' and '.' are resolved.
+    """True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
 
-    The check is lexical: names such as ``../../etc/passwd`` are refused, while links
-    placed inside the data root by its owner (a symlink install) are trusted.
+    Names such as ``../../etc/passwd`` are refused, and so is a link inside the data
+    root that points out of it (checked before the file is opened, so its content is
+    never read or quoted). A symlink install of the whole data root is fine: the root
+    is resolved too.
     """
-    root_abs = os.path.normpath(os.path.abspath(root))
-    path_abs = os.path.normpath(os.path.abspath(path))
-    return os.path.commonpath([root_abs, path_abs]) == root_abs
+    root_real = os.path.realpath(root)
+    path_real = os.path.realpath(path)
+    return os.path.commonpath([root_real, path_real]) == root_real
 
 
 def load_master(path: str | Path, *, data_root: str | Path | None = None) -> MasterFile:
@@ -113,11 +116,23 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     vehicle = str(study.get("vehicle", ""))
     if vehicle and not _NAME.match(vehicle):
         err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
+    if not isinstance(study.get("data_root", ".."), str) or not study.get("data_root", ".."):
+        raise DataError(f"expected a folder path, found {study.get('data_root')!r}",
+                        file=display, key="study.data_root")
+    # real paths: a master file linked from elsewhere (a symlink install links every
+    # file) names its data root relative to where it really is
     if data_root is None:
-        root = Path(os.path.normpath(os.path.abspath(path.parent / str(study.get("data_root",
-                                                                                "..")))))
+        root = Path(os.path.realpath(Path(os.path.realpath(path)).parent /
+                                     str(study.get("data_root", ".."))))
     else:
-        root = Path(os.path.normpath(os.path.abspath(data_root)))
+        root = Path(os.path.realpath(data_root))
+    try:
+        root_is_dir = root.is_dir()
+    except OSError:  # a name too long, a loop of links
+        root_is_dir = False
+    if not root_is_dir:
+        raise DataError(f"the data root {root} is not a folder", file=display,
+                        key="study.data_root")
     defaults = raw.get("defaults") or {}
     if not isinstance(defaults, Mapping):
         err("defaults", "expected a mapping of group: variant", raw, "defaults")
@@ -215,9 +230,9 @@ class GroupCache:
         if key not in self._cache:
             path, rel = self.variant_path(group, variant)
             if not inside(self.master.data_root, path):
-                raise DataError(f"path is outside the data root {self.master.data_root}",
-                                file=rel)
-            if not path.is_file():
+                raise DataError(f"resolves outside the data root {self.master.data_root} "
+                                "(a symbolic link?): not read", file=rel)
+            if not _is_file(path):
                 available = self.available(group)
                 raise DataError(
                     f"variant '{variant}' of group '{group}' does not exist (no file {rel}; "
@@ -229,6 +244,10 @@ class GroupCache:
                 data = self._with_imported(data)
             self._cache[key] = data
         return self._cache[key]
+
+    def loaded(self) -> list[GroupData]:
+        """Every data file read so far, as read (before overrides)."""
+        return list(self._cache.values())
 
     def available(self, group: str) -> list[str]:
         folder = self.master.data_root / self.master.vehicle / group
@@ -248,6 +267,13 @@ class GroupCache:
         return with_tire(data, props, rel)
 
 
+def _is_file(path: Path) -> bool:
+    try:
+        return path.is_file()
+    except OSError:  # a name too long for the file system
+        return False
+
+
 def _imported_keys(data: GroupData) -> list[str]:
     return sorted(k for k in data.values if k.startswith("components.")
                   and k.endswith(".imported.file"))
@@ -261,7 +287,7 @@ def _read_imported(cache: "GroupCache", data: GroupData) -> GroupData:
         if not inside(cache.master.data_root, path):
             raise DataError(f"'{rel}' is outside the data root {cache.master.data_root}",
                             file=data.file, key=key)
-        if not path.is_file():
+        if not _is_file(path):
             raise DataError(f"reduced stiffness file '{rel}' does not exist", file=data.file,
                             key=key)
         raw = path.read_bytes()
@@ -284,9 +310,11 @@ IMPORTED_MAX_BYTES = 20_000_000
 
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
-            extra_overrides: Mapping[str, Any] | None = None) -> Configuration:
+            extra_overrides: Mapping[str, Any] | None = None,
+            extra_source: str = "--set") -> Configuration:
     """Resolve one configuration: variants, then master overrides, then ``extra_overrides``
-    (``vd run --set``), each value keeping its source."""
+    (``vd run --set``, or edits over ROS: ``extra_source`` names them in messages and in
+    each value's source), each value keeping its source."""
     if name not in master.configurations:
         raise DataError(f"configuration '{name}' does not exist (available: "
                         f"{', '.join(master.configurations)})", file=master.display)
@@ -306,9 +334,12 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
     groups = apply_overrides(groups, spec.overrides, file=master.display,
                              where=f"configurations.{name}.overrides")
     if extra_overrides:
-        groups = apply_overrides(groups, extra_overrides, file="--set", where="")
+        groups = apply_overrides(groups, extra_overrides, file=extra_source, where="")
     check_geometry(groups, file=master.display, configuration=name)
     check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
+    for group in groups.values():
+        if group.kind == "tire":
+            tire_properties(group)  # the coefficients after overrides, as a solver reads them
     tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
     tire_files |= {g.text(k) for g in groups.values() if g.kind == "flex"
                    for k in _imported_keys(g)}
@@ -423,7 +454,7 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         raise DataError(f"override of unknown group '{group_name}' (groups: "
                         f"{', '.join(groups)}); write GROUP.KEY", file=file, key=label)
     group = groups[group_name]
-    source = f"master override {label}" if file != "--set" else f"--set {dotted}"
+    source = f"master override {label}" if label != dotted else f"{file} {dotted}"
     coord = None
     if key not in group.values and key[-2:] in (".x", ".y", ".z") and key[:-2] in group.values:
         key, coord = key[:-2], key[-1]
@@ -438,6 +469,7 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         number = parse_override(raw, axis, file=file, key=label).si
         xyz = list(old.si)  # type: ignore[arg-type]
         xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
+        check_point((xyz[0], xyz[1], xyz[2]), file=file, key=label, raw=raw)
         new = Value(key, "point", tuple(xyz), "m", display_unit=old.display_unit, source=source)
     else:
         new = parse_override(raw, old, file=file, key=label).with_source(source)
@@ -460,6 +492,9 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Confi
         return config
     groups = apply_overrides(config.groups, overrides, file="--set", where="")
     check_geometry(groups, file="--set", configuration=config.name)
+    for group in groups.values():
+        if group.kind == "tire":
+            tire_properties(group)
     return Configuration(name=config.name, master_file=config.master_file,
                          description=config.description, groups=groups,
                          flexible=config.flexible, flexible_components=config.flexible_components,

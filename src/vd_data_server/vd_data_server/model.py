@@ -67,6 +67,8 @@ class GroupData:
     file: str  # path relative to the data root
     values: Mapping[str, Value]
     description: str = ""
+    #: unusual (not impossible) values of the file, ``file: key: message`` (plausibility.py)
+    warnings: tuple[str, ...] = ()
 
     def scalar(self, key: str) -> float:
         value = self.values[key]

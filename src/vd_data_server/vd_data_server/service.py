@@ -15,6 +15,23 @@ from .master import load_master
 from .study import Study, load_study
 
 
+#: how edits made over ROS (/vd/set_override) are labelled in messages and value sources
+EDIT_SOURCE = "ROS edit /vd/set_override"
+
+
+def _load(master_file: Path, edits: Mapping[str, Mapping[str, Any]]) -> Study:
+    """load_study at the node boundary: any failure of the input is a DataError, so a
+    running data server keeps its last good data (RecursionError, MemoryError, a
+    bug triggered by odd input are reported like a bad value, never kill the node)."""
+    try:
+        return load_study(master_file, extra_overrides=edits, extra_source=EDIT_SOURCE)
+    except DataError:
+        raise
+    except Exception as err:  # noqa: BLE001 - the node boundary
+        raise DataError(f"cannot load: {type(err).__name__}: {err}",
+                        file=str(master_file)) from None
+
+
 @dataclass(frozen=True)
 class ReloadOutcome:
     changed: bool  # new data to publish
@@ -40,7 +57,7 @@ class DataService:
         """(Re)load everything now. On failure the previous study is kept."""
         signature = self._files_signature()
         try:
-            study = load_study(self.master_file, extra_overrides=self.edits)
+            study = _load(self.master_file, self.edits)
         except DataError as err:
             self._signature = signature
             self.errors = tuple(str(err).splitlines())
@@ -66,7 +83,7 @@ class DataService:
                             file=str(self.master_file))
         edits = {name: dict(values) for name, values in self.edits.items()}
         edits.setdefault(configuration, {})[key] = value
-        study = load_study(self.master_file, extra_overrides=edits)
+        study = _load(self.master_file, edits)
         self.edits = edits
         self.study = study
 
@@ -81,7 +98,9 @@ class DataService:
         for path in paths:
             entries.append(_stat(path))
         if root is not None and root.is_dir():
-            for folder, _, files in os.walk(root, followlinks=True):
+            # links to folders are not followed: a loop would never end, and files
+            # outside the data root are never read anyway (master.inside)
+            for folder, _, files in os.walk(root, followlinks=False):
                 for name in files:
                     entries.append(_stat(Path(folder) / name))
         return tuple(sorted(entries))

@@ -49,6 +49,8 @@ class Study:
     configurations: Mapping[str, Configuration]
     status: tuple[GroupStatus, ...]
     groups: tuple[str, ...]
+    #: unusual values of the data files read (plausibility warnings), once each
+    warnings: tuple[str, ...] = ()
 
     @property
     def configuration_names(self) -> list[str]:
@@ -85,11 +87,13 @@ class Study:
 
 
 def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
-               extra_overrides: Mapping[str, Mapping[str, Any]] | None = None) -> Study:
+               extra_overrides: Mapping[str, Mapping[str, Any]] | None = None,
+               extra_source: str = "--set") -> Study:
     """Load and resolve everything; all problems of all configurations are collected.
 
     ``extra_overrides`` maps configuration name -> {group.key: value} (edits made
-    over ROS, ``--set``); they count as master-file modifications.
+    over ROS, ``--set``; ``extra_source`` names them); they count as master-file
+    modifications.
     """
     master = load_master(master_path, data_root=data_root)
     cache = GroupCache(master)
@@ -97,7 +101,8 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
     errors: list[DataError] = []
     for name in master.configurations:
         try:
-            configs[name] = resolve(master, name, cache, (extra_overrides or {}).get(name))
+            configs[name] = resolve(master, name, cache, (extra_overrides or {}).get(name),
+                                    extra_source)
         except DataErrors as err:
             errors += err.errors
         except DataError as err:
@@ -106,9 +111,17 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
     errors = list({str(e): e for e in errors}.values())
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    for config in configs.values():
+        try:
+            config.data_hash  # noqa: B018 - computed here as a run computes it
+        except ValueError as err:
+            raise DataError(f"cannot compute the data hash: {err}", file=master.display,
+                            key=f"configurations.{config.name}") from None
     groups = _ordered_groups(configs.values())
     status = feedback(master, configs, cache, groups)
-    return Study(master=master, configurations=configs, status=status, groups=groups)
+    warnings = tuple(dict.fromkeys(w for g in cache.loaded() for w in g.warnings))
+    return Study(master=master, configurations=configs, status=status, groups=groups,
+                 warnings=warnings)
 
 
 def _ordered_groups(configs: Any) -> tuple[str, ...]:

@@ -37,6 +37,7 @@ camber in radians), so [UNITS] does not apply to them.
 from __future__ import annotations
 
 import enum
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -292,11 +293,16 @@ def read_tir(path: str | Path) -> TireProperties:
     Raises :class:`DataError` (or :class:`DataErrors` for several independent
     problems) naming the file, the key and, where known, the line.
     """
+    from vd_data_server.yamlio import MAX_FILE_BYTES
+
     file = Path(path)
     try:
-        data = file.read_bytes()
+        with file.open("rb") as stream:
+            data = stream.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise DataError(f"cannot read tire property file: {exc.strerror or exc}", file=str(file)) from exc
+    if len(data) > MAX_FILE_BYTES:
+        raise DataError(f"exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file", file=str(file))
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -540,23 +546,66 @@ def _to_si(block: str, key: str, value: float | str, factors: Mapping[str, float
     return value * factor
 
 
+#: (block, key) that must be > 0: the loads, lengths and scaling factors the Magic
+#: Formula divides by or normalises with (Pacejka 4.E1: dfz = (Fz - Fz0') / Fz0').
+POSITIVE_KEYS: Final[tuple[tuple[str, str], ...]] = (
+    ("VERTICAL", "FNOMIN"),
+    ("DIMENSION", "UNLOADED_RADIUS"),
+    ("SCALING_COEFFICIENTS", "LFZO"),
+)
+#: (block, key) that must not be 0: B = K / (C D) divides by the shape factors C and the
+#: peak factors D (and their scaling factors), and K_y by PKY2 (Pacejka 4.E25).
+NONZERO_KEYS: Final[tuple[tuple[str, str], ...]] = (
+    ("LATERAL_COEFFICIENTS", "PCY1"),
+    ("LATERAL_COEFFICIENTS", "PDY1"),
+    ("LATERAL_COEFFICIENTS", "PKY2"),
+    ("LONGITUDINAL_COEFFICIENTS", "PCX1"),
+    ("LONGITUDINAL_COEFFICIENTS", "PDX1"),
+    ("SCALING_COEFFICIENTS", "LCY"),
+    ("SCALING_COEFFICIENTS", "LMUY"),
+    ("SCALING_COEFFICIENTS", "LCX"),
+    ("SCALING_COEFFICIENTS", "LMUX"),
+)
+
+
+def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
+                 where: Mapping[tuple[str, str], tuple[str, str]] | None = None) -> list[DataError]:
+    """Values no tire can have: non-finite numbers (``1e999``), a non-positive nominal
+    load, free radius or LFZO, and a zero divisor of the Magic Formula.
+
+    ``where`` gives the ``line N: `` prefix and the text as written of a (block, key)
+    read from a file; the same check runs on the values of a tire group after
+    master-file overrides.
+    """
+    where = where or {}
+    errors = []
+
+    def bad(block: str, key: str, rule: str, value: float) -> None:
+        line, text = where.get((block, key), ("", f"{value:g}"))
+        errors.append(DataError(f"{line}key {key!r} in block [{block}] {rule}, found {text}",
+                                file=source, key=key))
+
+    for block, entries in sections.items():
+        for key, value in entries.items():
+            if isinstance(value, float) and not math.isfinite(value):
+                bad(block, key, "must be a finite number", value)
+    for block, key in POSITIVE_KEYS:
+        value = sections.get(block, {}).get(key)
+        if isinstance(value, float) and math.isfinite(value) and value <= 0.0:
+            bad(block, key, "must be > 0", value)
+    for block, key in NONZERO_KEYS:
+        value = sections.get(block, {}).get(key)
+        if isinstance(value, float) and value == 0.0:
+            bad(block, key, "must not be 0 (the Magic Formula divides by it)", value)
+    return errors
+
+
 def _check_physical(
     blocks: Mapping[str, Mapping[str, _Entry]], sections: Mapping[str, Mapping[str, float | str]], source: str
 ) -> list[DataError]:
-    """Values no tire can have: a non-positive nominal load or free radius."""
-    errors = []
-    for block, key in (("VERTICAL", "FNOMIN"), ("DIMENSION", "UNLOADED_RADIUS")):
-        value = sections[block][key]
-        if isinstance(value, float) and value <= 0.0:
-            entry = blocks[block][key]
-            errors.append(
-                DataError(
-                    f"line {entry.line}: key {key!r} in block [{block}] must be > 0, found {entry.text}",
-                    file=source,
-                    key=key,
-                )
-            )
-    return errors
+    where = {(block, key): (f"line {entry.line}: ", entry.text)
+             for block, entries in blocks.items() for key, entry in entries.items()}
+    return check_values(sections, source, where)
 
 
 def _raise_if_any(errors: list[DataError]) -> None:

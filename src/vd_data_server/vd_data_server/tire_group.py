@@ -13,7 +13,8 @@ from collections.abc import Mapping
 from types import MappingProxyType
 
 from .model import GroupData, Value
-from .tir import DIMENSIONAL_KEYS, TireProperties
+from .errors import DataErrors
+from .tir import DIMENSIONAL_KEYS, TireProperties, check_values
 
 PREFIX = "tir."
 FORMAT_KEY = "tir.FORMAT"
@@ -65,5 +66,8 @@ def tire_properties(group: GroupData) -> TireProperties:
         sections.setdefault(block, {})[key] = value.si  # type: ignore[assignment]
     frozen: Mapping[str, Mapping[str, float | str]] = MappingProxyType(
         {b: MappingProxyType(v) for b, v in sections.items()})
-    return TireProperties(path=f"{group.file} -> {group.text('file')}",
-                          file_format=group.text(FORMAT_KEY), sections=frozen)
+    path = f"{group.file} -> {group.text('file')}"
+    errors = check_values(frozen, path)
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    return TireProperties(path=path, file_format=group.text(FORMAT_KEY), sections=frozen)

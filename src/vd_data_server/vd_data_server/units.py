@@ -24,6 +24,9 @@ UREG = pint.UnitRegistry()
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
 _NUMBER_UNIT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$")
 
+#: largest integer read as a number (a float holds no more; 400 digits would overflow)
+_LARGEST_INT = 10**308
+
 #: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
 SI_UNITS: Mapping[str, str] = {
     "length": "m",
@@ -79,9 +82,11 @@ def parse_unit(text: str) -> pint.Unit:
     """Parse a unit string; raise ``ValueError`` with a readable message."""
     try:
         return UREG.parse_units(text)
-    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError,
-            TypeError, ValueError, AssertionError) as err:
+    except pint.errors.UndefinedUnitError as err:
         raise ValueError(f"unknown unit '{text}'") from err
+    except Exception as err:  # noqa: BLE001 - pint's parser fails in many ways on bad text
+        # (SyntaxError, ZeroDivisionError for 'N/(mm*0)', OverflowError, RecursionError...)
+        raise ValueError(f"invalid unit '{text}'") from err
 
 
 @lru_cache(maxsize=512)
@@ -99,9 +104,14 @@ def si_factor(unit: str, quantity: str) -> float:
     if _radian_power(src) != _radian_power(dst):
         raise wrong
     try:
-        return float(UREG.Quantity(1.0, src).to(dst).magnitude)
+        factor = float(UREG.Quantity(1.0, src).to(dst).magnitude)
     except pint.errors.DimensionalityError as err:
         raise wrong from err
+    except (ArithmeticError, ValueError) as err:  # 'mm*0' scales by zero, '1e999 m' by inf
+        raise ValueError(f"invalid unit '{unit}'") from err
+    if not math.isfinite(factor) or factor == 0.0:
+        raise ValueError(f"invalid unit '{unit}' (its size is {factor:g} {target or '-'})")
+    return factor
 
 
 def _radian_power(unit: pint.Unit) -> int:
@@ -159,6 +169,9 @@ def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float
     """
     if isinstance(value, bool):
         raise DataError(f"expected a number, found {value!r}", file=units.file, key=key)
+    if isinstance(value, int) and abs(value) > _LARGEST_INT:
+        raise DataError(f"number too large ({len(str(abs(value)))} digits)", file=units.file,
+                        key=key)
     if isinstance(value, (int, float)):
         number, unit = float(value), units.unit(quantity)
     elif isinstance(value, str) and _is_number(value):
@@ -183,9 +196,11 @@ def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> t
     match = _NUMBER_UNIT.match(text.strip())
     parts = [match.group(1), match.group(2)] if match and match.group(2) else text.strip().split(None, 1)
     try:
-        number = float(parts[0]) if parts else float("nan")
-    except ValueError:
+        number = float(parts[0])
+    except (ValueError, IndexError):
         raise DataError(f"expected a number with a unit, found {text!r}", file=file, key=key) from None
+    if not math.isfinite(number):
+        raise DataError(f"value must be finite, found {text!r}", file=file, key=key)
     if len(parts) == 1:
         if quantity != "dimensionless":
             raise DataError(

@@ -1,4 +1,11 @@
-"""Safe YAML loading that remembers line numbers, for precise error messages."""
+"""Safe YAML loading that remembers line numbers, for precise error messages.
+
+Every file is bounded before it is built into Python objects: its size
+(:data:`MAX_FILE_BYTES`), its nesting depth (:data:`MAX_DEPTH`) and the number
+of nodes it holds once aliases are expanded (:data:`MAX_NODES`, against
+"billion laughs" alias bombs). A file over a limit is refused with a message
+that names the limit.
+"""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,6 +14,13 @@ from typing import Any
 import yaml
 
 from .errors import DataError
+
+#: largest file read (data, master, plan, .tir), bytes; the sample files are < 20 kB
+MAX_FILE_BYTES = 1 << 20
+#: deepest nesting of mappings and sequences in a YAML file
+MAX_DEPTH = 64
+#: most nodes a YAML file may hold with its aliases expanded
+MAX_NODES = 100_000
 
 
 class LineDict(dict):
@@ -39,9 +53,44 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LineDict:
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
 
 
+def _check_size(text: str, file: str) -> None:
+    """Depth and alias-expanded node count from the event stream (no recursion, no
+    expansion): refuse a file over :data:`MAX_DEPTH` or :data:`MAX_NODES`."""
+    stack: list[int] = [0]  # expanded node count of each open collection
+    anchors: list[str | None] = [None]
+    sizes: dict[str, int] = {}
+    for event in yaml.parse(text, Loader=_Loader):  # noqa: S506 - parsing only
+        if isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+            if len(stack) > MAX_DEPTH:
+                mark = event.start_mark
+                raise DataError(f"exceeds the limit of {MAX_DEPTH} nesting levels (line "
+                                f"{mark.line + 1})", file=file)
+            stack.append(1)
+            anchors.append(event.anchor)
+            continue
+        if isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+            size, anchor = stack.pop(), anchors.pop()
+            if anchor is not None:
+                sizes[anchor] = size
+        elif isinstance(event, yaml.ScalarEvent):
+            size = 1
+            if event.anchor is not None:
+                sizes[event.anchor] = 1
+        elif isinstance(event, yaml.AliasEvent):
+            size = sizes.get(event.anchor, 1)
+        else:
+            continue
+        stack[-1] += size
+        if stack[-1] > MAX_NODES or sum(stack) > MAX_NODES:
+            mark = event.start_mark
+            raise DataError(f"exceeds the limit of {MAX_NODES} values with its aliases expanded "
+                            f"(line {mark.line + 1})", file=file)
+
+
 def loads(text: str, *, file: str) -> Any:
     """Parse YAML text; a syntax error becomes a ``DataError`` with the line."""
     try:
+        _check_size(text, file)
         return yaml.load(text, Loader=_Loader)  # noqa: S506 - _Loader derives from SafeLoader
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
@@ -51,13 +100,30 @@ def loads(text: str, *, file: str) -> Any:
         raise DataError(f"malformed YAML: {err}", file=file) from None
 
 
-def load_file(path: Path, *, display: str) -> Any:
+def read_bytes(path: Path, *, display: str) -> bytes:
+    """A file's bytes, refused above :data:`MAX_FILE_BYTES` (checked before reading)."""
     try:
-        text = path.read_text(encoding="utf-8")
+        with path.open("rb") as stream:
+            data = stream.read(MAX_FILE_BYTES + 1)
     except FileNotFoundError:
         raise DataError("file not found", file=display) from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise DataError(f"cannot read file: {err}", file=display) from None
+    except IsADirectoryError:
+        raise DataError("is a folder, not a file", file=display) from None
+    except OSError as err:
+        raise DataError(f"cannot read file: {err.strerror or err}", file=display) from None
+    if len(data) > MAX_FILE_BYTES:
+        raise DataError(f"exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file",
+                        file=display)
+    return data
+
+
+def load_file(path: Path, *, display: str) -> Any:
+    data = read_bytes(path, display=display)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise DataError(f"cannot read file: not UTF-8 text (byte {err.start})",
+                        file=display) from None
     return loads(text, file=display)
 
 

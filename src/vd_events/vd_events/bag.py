@@ -4,10 +4,14 @@ Messages are typed vd_interfaces messages with their definitions embedded, so
 Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. A bag
 is written under ``<name>.partial`` and renamed to ``<name>`` when closed: an
 interrupted run never leaves a bag that looks finished (and ``abort()`` removes
-the partial one).
+the partial one). The writer holds an exclusive lock on ``<name>.partial/writer.lock``
+for its life; a partial bag whose lock nobody holds is left by a process that was
+killed (``kill -9``) and is replaced by the next writer of the same bag.
 """
 from __future__ import annotations
 
+import fcntl
+import os
 import shutil
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
@@ -20,6 +24,7 @@ from rosbags.typesys import Stores, get_typestore, get_types_from_msg
 from rosbags.typesys.store import Typestore
 
 PARTIAL_SUFFIX = ".partial"
+LOCK_NAME = "writer.lock"
 BAG_VERSION = 9
 INTERFACES = "vd_interfaces"
 
@@ -47,8 +52,10 @@ def check_bag_path(path: Path) -> None:
     if path.exists():
         raise BagError(f"{path}: bag path already exists (choose another --bag)")
     partial = path.with_name(path.name + PARTIAL_SUFFIX)
-    if partial.exists():
-        raise BagError(f"{partial}: an interrupted bag is in the way (remove it)")
+    if partial.exists() and _partial_is_live(partial):
+        raise BagError(f"{partial}: another run is writing this bag")
+    if partial.exists() and not partial.is_dir():
+        raise BagError(f"{partial}: is in the way and is not a partial bag (remove it)")
     parent = path.parent
     probe = parent
     while not probe.exists():
@@ -58,9 +65,24 @@ def check_bag_path(path: Path) -> None:
 
 
 def _writable(folder: Path) -> bool:
-    import os
-
     return os.access(folder, os.W_OK | os.X_OK)
+
+
+def _partial_is_live(partial: Path) -> bool:
+    """True while a writer holds the partial bag's lock (a live run writes it)."""
+    try:
+        fd = os.open(partial / LOCK_NAME, os.O_RDONLY)
+    except FileNotFoundError:
+        return False
+    except OSError:
+        return True  # cannot tell: do not touch it
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return True
+    finally:
+        os.close(fd)
+    return False
 
 
 class BagWriter:
@@ -69,19 +91,34 @@ class BagWriter:
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
         self.path = Path(path)
         check_bag_path(self.path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
         # rosbags names the storage file after the bag folder, so the bag is built
         # with its final name inside a '<name>.partial' folder and moved out when done.
         self.partial = self.path.with_name(self.path.name + PARTIAL_SUFFIX)
-        self.partial.mkdir()
-        self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
-                              storage_plugin=StoragePlugin.MCAP)
-        for key, value in (custom_data or {}).items():
-            self._writer.set_custom_data(key, value)
-        self._writer.open()
+        self._lock = -1
+        self.closed = False
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.replaced_stale = self.partial.is_dir()
+            if self.replaced_stale:  # left by a killed run (check_bag_path saw no live writer)
+                shutil.rmtree(self.partial)
+            try:
+                self.partial.mkdir()
+            except FileExistsError:
+                raise BagError(f"{self.partial}: another run is writing this bag") from None
+            self._lock = os.open(self.partial / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
+            fcntl.flock(self._lock, fcntl.LOCK_EX)
+            self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
+                                  storage_plugin=StoragePlugin.MCAP)
+            for key, value in (custom_data or {}).items():
+                self._writer.set_custom_data(key, value)
+            self._writer.open()
+        except OSError as err:  # a full disk, a folder under /proc, a read-only mount
+            if self._lock >= 0:
+                shutil.rmtree(self.partial, ignore_errors=True)
+                self._unlock()
+            raise BagError(f"{self.path}: cannot write the bag: {err.strerror or err}") from None
         self._connections: dict[str, Any] = {}
         self.count = 0
-        self.closed = False
 
     def set_custom_data(self, key: str, value: str) -> None:
         self._writer.set_custom_data(key, value)
@@ -102,9 +139,16 @@ class BagWriter:
         if not self.closed:
             self._writer.close()
             (self.partial / self.path.name).rename(self.path)
+            (self.partial / LOCK_NAME).unlink()
+            self._unlock()
             self.partial.rmdir()
             self.closed = True
         return self.path
+
+    def _unlock(self) -> None:
+        if self._lock >= 0:
+            os.close(self._lock)
+            self._lock = -1
 
     def abort(self) -> None:
         """Drop an unfinished bag: nothing that looks like a result is left."""
@@ -113,6 +157,7 @@ class BagWriter:
                 self._writer.close()
             finally:
                 shutil.rmtree(self.partial, ignore_errors=True)
+                self._unlock()
                 self.closed = True
 
 

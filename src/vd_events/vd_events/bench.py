@@ -128,14 +128,15 @@ def _bench_data_change(master: Path) -> float:
 
     from vd_data_server.data_server_node import CONFIGURATION_DEPTH, DataServer, latched
 
-    from .runner import _private_domain, _ros_args, _spin_until
+    from .runner import _claim_domain, _ros_args, _spin_until
 
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp) / "data"
         shutil.copytree(master.parents[1], root)
         copy = root / master.relative_to(master.parents[1])
+        claim = _claim_domain()
         context = rclpy.Context()
-        rclpy.init(args=_ros_args(), context=context, domain_id=_private_domain(),
+        rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
                    signal_handler_options=None)
         executor = SingleThreadedExecutor(context=context)
         server = DataServer(context=context, parameter_overrides=[
@@ -161,6 +162,7 @@ def _bench_data_change(master: Path) -> float:
                 node.destroy_node()
             executor.shutdown()
             rclpy.try_shutdown(context=context)
+            claim.release()
     return elapsed
 
 

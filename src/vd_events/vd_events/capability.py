@@ -278,8 +278,7 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
                     axle=axle, parameters=tuple(parameters),
                     bag=out / "bags" / f"{event}_{axle}_kc_{configuration}_{fidelity}"))
     tables_bags = [out / f"capability_{configuration}_{axle}" for axle in axles]
-    for request in requests:
-        validate(study, request)
+    requests = [validate(study, request) for request in requests]
     for bag in tables_bags:
         check_bag_path(bag)
     results = run_embedded(Path(master), requests, progress)

@@ -8,16 +8,19 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import sys
 from collections.abc import Callable, Sequence
 
 from vd_data_server.errors import DataError
 
 from .bag import BagError
-from .runner import RunError
+from .domain import DomainError
+from .runner import Interrupted, RunError
 
 EXIT_OK = 0
 EXIT_USAGE = 2
+EXIT_INTERRUPTED = 130
 
 
 class UsageError(Exception):
@@ -81,14 +84,42 @@ def cmd_data(args: argparse.Namespace) -> int:
         else:
             print_configuration(config, term)
     else:
+        _check_models(study)
         n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
         message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "
                    f"{n_files} data files)")
         if args.json:
-            print(json.dumps({"ok": True, "message": message}))
+            print(json.dumps({"ok": True, "message": message, "warnings": list(study.warnings)}
+                             if study.warnings else {"ok": True, "message": message}))
         else:
+            for warning in study.warnings:
+                print(f"warning: {warning}", file=sys.stderr)
             print(message)
     return EXIT_OK
+
+
+def _check_models(study) -> None:
+    """What a run builds from the data beyond loading it: each configuration's tire models
+    (finite forces over the working range), so `vd data check` and a run agree."""
+    from vd_data_server.errors import DataErrors
+    from vd_data_server.tire_group import tire_properties
+    from vd_solvers.errors import SolverError
+    from vd_solvers.tire.magic_formula import MagicFormula
+
+    errors: dict[str, DataError] = {}
+    for config in study.configurations.values():
+        for group in config.groups.values():
+            if group.kind != "tire":
+                continue
+            try:
+                MagicFormula(tire_properties(group))
+            except DataError as err:
+                errors.setdefault(str(err), err)
+            except SolverError:  # a format the analytical models do not evaluate: not bad data
+                continue
+    if errors:
+        found = list(errors.values())
+        raise found[0] if len(found) == 1 else DataErrors(found)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -99,14 +130,29 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     handlers.update(commands.HANDLERS)
     want_json = bool(getattr(args, "json", False))
+    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         return handlers[args.command](args)
-    except (DataError, UsageError, RunError, BagError) as err:
+    except Interrupted as err:
         _report_error(str(err), want_json)
+        return EXIT_INTERRUPTED
+    except (DataError, UsageError, RunError, BagError, DomainError) as err:
+        _report_error(str(err), want_json)
+        return EXIT_USAGE
+    except OSError as err:  # a file or folder the input named cannot be used
+        where = f"{err.filename}: " if err.filename else ""
+        _report_error(f"{where}{err.strerror or err}", want_json)
         return EXIT_USAGE
     except KeyboardInterrupt:
         _report_error("interrupted", want_json)
-        return 130
+        return EXIT_INTERRUPTED
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _terminate(signum, frame) -> None:
+    """SIGTERM ends a run like Ctrl-C: its nodes stop, its partial bag is removed."""
+    raise KeyboardInterrupt
 
 
 def _report_error(message: str, want_json: bool) -> None:

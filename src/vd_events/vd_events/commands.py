@@ -121,7 +121,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                          overrides=tuple(args.overrides), parameters=tuple(args.parameters),
                          bag=Path(args.bag) if args.bag else None)
     try:
-        validate(study, request)
+        request = validate(study, request)
     except (RunError, BagError) as err:
         raise DataError(str(err)) from None
     runner = run_distributed if args.distributed else run_embedded

@@ -44,8 +44,7 @@ def main(args=None) -> None:
         study = load_study(plan.master)
         requests = [r for r in expand(plan, study.configuration_names, Path("."))]
         requests = [type(r)(**{**r.__dict__, "bag": None}) for r in requests]
-        for request in requests:
-            validate(study, request)
+        requests = [validate(study, request) for request in requests]
         executor = SingleThreadedExecutor()
         executor.add_node(node)
         for request in requests:

@@ -6,6 +6,7 @@ the nodes. Ctrl-C stops everything cleanly.
 """
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import time
@@ -29,6 +30,7 @@ def _embedded(master: Path) -> int:
     from rclpy.parameter import Parameter
 
     from vd_data_server.data_server_node import DataServer
+    from vd_data_server.node_main import spin_guarded
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.kc_node import KCSolver
     from vd_solvers.vehicle_node import VehicleSolver
@@ -41,7 +43,7 @@ def _embedded(master: Path) -> int:
         executor.add_node(node)
     print(f"vd nodes running in one process ({master}); Ctrl-C stops them")
     try:
-        executor.spin()
+        spin_guarded(executor, nodes[0])
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
@@ -63,7 +65,9 @@ def _distributed(master: Path) -> int:
         raise KeyboardInterrupt
 
     signal.signal(signal.SIGTERM, stop)
-    procs = [subprocess.Popen(cmd) for cmd in commands]
+    # the nodes end with the launch, even after kill -9 (node_main.die_with_parent)
+    env = dict(os.environ, VD_PARENT_PID=str(os.getpid()))
+    procs = [subprocess.Popen(cmd, env=env) for cmd in commands]
     print(f"vd nodes running as {len(procs)} processes ({master}); Ctrl-C stops them")
     try:
         while all(p.poll() is None for p in procs):

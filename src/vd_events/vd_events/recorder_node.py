@@ -2,11 +2,17 @@
 
 The role ``ros2 bag record`` plays (which pip-installed ROS lacks). Parameter
 ``bag``: the bag directory to create (refused if it exists). The bag is
-written under ``<bag>.partial`` and renamed when the node stops (Ctrl-C,
-SIGTERM or ``stop()``); the run's provenance goes into the bag's metadata.
+written under ``<bag>.partial`` and becomes ``<bag>`` only when its owner says
+the recording is complete: the service ``~/finish`` (std_srvs/Trigger, called by
+the runner once it has confirmed every result it asked for) or ``stop()``.
+Any other end (Ctrl-C, SIGTERM, the parent run dying) removes the partial bag
+and says so: an interrupted recording never looks finished. The run's
+provenance goes into the bag's metadata.
 """
 from __future__ import annotations
 
+import sys
+import threading
 import time
 
 import rclpy
@@ -16,10 +22,12 @@ from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from nav_msgs.msg import Odometry
 from std_msgs.msg import UInt32
+from std_srvs.srv import Trigger
 from vd_interfaces.msg import (Configuration, DataStatus, EventResult, Provenance, Sample,
                                VehicleState)
 
-from vd_events.bag import BagWriter
+from vd_data_server.node_main import die_with_parent
+from vd_events.bag import BagError, BagWriter
 from vd_solvers.solver_node import LATCHED, SAMPLES
 
 # the publishers' own profiles: latched data, results and samples kept for late joiners
@@ -30,6 +38,9 @@ RECORDED_TOPIC = "/vd/recorder/recorded"
 
 #: the full vehicle's pose, one message per recorded step
 ODOMETRY_TOPIC = "/vd/vehicle/odom"
+#: seconds the recorder process stays up after ~/finish, for its response to be delivered
+FINISH_LINGER = 0.3
+
 #: topic -> (type, QoS) recorded by default
 TOPICS = {
     "/vd/configuration": (Configuration, _LATCHED),
@@ -79,43 +90,62 @@ class Recorder(Node):
         self._pending: list[tuple[tuple[str, str, str], int, int]] = []
         self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
         self.complete = 0  # results written together with all their step samples
-        self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
-        for topic, (msg_type, qos) in TOPICS.items():
-            self.create_subscription(msg_type, topic, self._callback(topic), qos)
+        self.error: str | None = None  # a write failed (full disk...): the bag is dropped
+        self.finished = False
+        # in-process runs spin this node on a multi-threaded executor while the runner
+        # stops it from its own thread: writes and close never overlap
+        self._lock = threading.Lock()
+        try:
+            self.create_service(Trigger, "~/finish", self._finish)
+            self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
+            for topic, (msg_type, qos) in TOPICS.items():
+                self.create_subscription(msg_type, topic, self._callback(topic), qos)
+        except BaseException:  # e.g. a SIGTERM that shut the context down meanwhile
+            self.writer.abort()
+            raise
         self.get_logger().info(f"recording to {path}")
 
     def _callback(self, topic: str):
         def record(msg) -> None:
-            if self.writer.closed:
-                return
-            name = getattr(msg, "configuration", None)
-            if topic == "/vd/configuration":
-                name = msg.name
-            if self.only and name is not None and name not in self.only:
-                return
-            stamp = _stamp_ns(msg)
-            if stamp is not None and stamp < self.start:
-                return  # kept by a solver from an earlier run: not this recording's
-            if topic == "/vd/provenance":
-                for key in ("configuration", "data_hash", "model", "fidelity", "event",
-                            "master_file", "software_version"):
-                    self.writer.set_custom_data(f"vd.{key}", str(getattr(msg, key)))
-                self.writer.set_custom_data("vd.modified", "; ".join(
-                    f"{g.group}.{k.key}={k.master_value} {k.unit}".strip()
-                    for g in msg.groups for k in g.modified_keys) or "none")
-            self.writer.write(topic, msg, time.time_ns())
-            self.counts[topic] += 1
-            if topic.endswith("/state"):
-                key = (msg.configuration, msg.event, msg.model)
-                self._samples[key] = self._samples.get(key, 0) + 1
-            elif topic.endswith("/result"):
-                steps = max((len(c.values) for c in msg.channels), default=0)
-                if msg.model == "vehicle":
-                    self._odometry_needed += steps
-                self._pending.append(((msg.configuration, msg.event, msg.model), steps,
-                                      self._odometry_needed))
-            self._publish_complete()
+            with self._lock:
+                if self.writer.closed:
+                    return
+                try:
+                    self._record(topic, msg)
+                except OSError as err:
+                    self.error = f"{self.writer.path}: cannot write the bag: {err.strerror or err}"
+                    self.get_logger().error(self.error)
+                    self.writer.abort()
         return record
+
+    def _record(self, topic: str, msg) -> None:
+        name = getattr(msg, "configuration", None)
+        if topic == "/vd/configuration":
+            name = msg.name
+        if self.only and name is not None and name not in self.only:
+            return
+        stamp = _stamp_ns(msg)
+        if stamp is not None and stamp < self.start:
+            return  # kept by a solver from an earlier run: not this recording's
+        if topic == "/vd/provenance":
+            for key in ("configuration", "data_hash", "model", "fidelity", "event",
+                        "master_file", "software_version"):
+                self.writer.set_custom_data(f"vd.{key}", str(getattr(msg, key)))
+            self.writer.set_custom_data("vd.modified", "; ".join(
+                f"{g.group}.{k.key}={k.master_value} {k.unit}".strip()
+                for g in msg.groups for k in g.modified_keys) or "none")
+        self.writer.write(topic, msg, time.time_ns())
+        self.counts[topic] += 1
+        if topic.endswith("/state"):
+            key = (msg.configuration, msg.event, msg.model)
+            self._samples[key] = self._samples.get(key, 0) + 1
+        elif topic.endswith("/result"):
+            steps = max((len(c.values) for c in msg.channels), default=0)
+            if msg.model == "vehicle":
+                self._odometry_needed += steps
+            self._pending.append(((msg.configuration, msg.event, msg.model), steps,
+                                  self._odometry_needed))
+        self._publish_complete()
 
     def _publish_complete(self) -> None:
         """Count the results whose every step sample (and, for the full vehicle, every
@@ -130,28 +160,54 @@ class Recorder(Node):
 
     def stop(self):
         """Close the bag (renaming it to its final name) and return its path."""
-        return self.writer.close()
+        with self._lock:
+            if self.error is not None:
+                raise BagError(self.error)
+            self.finished = True
+            return self.writer.close()
 
     def abort(self) -> None:
-        self.writer.abort()
+        with self._lock:
+            self.writer.abort()
+
+    def _finish(self, request, response):
+        try:
+            response.message = str(self.stop())
+            response.success = True
+        except (BagError, OSError) as err:
+            response.success, response.message = False, str(err)
+        return response
 
 
 def main(args=None) -> None:
+    die_with_parent()
     rclpy.init(args=args)
     node = None
+    interrupted = False
     try:
         node = Recorder()
-        rclpy.spin(node)
+        while rclpy.ok() and not node.finished:
+            rclpy.spin_once(node, timeout_sec=0.1)
+        linger = time.monotonic() + FINISH_LINGER  # the finish response reaches the runner
+        while rclpy.ok() and time.monotonic() < linger:
+            rclpy.spin_once(node, timeout_sec=0.05)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as err:  # noqa: BLE001 - report a bad parameter without a traceback
-        print(f"recorder: {err}")
+        print(f"recorder: {err}", flush=True)
         raise SystemExit(2) from None
     finally:
+        # first of all, whatever ended the recording: no unfinished bag may stay
+        if node is not None and not node.finished:
+            node.abort()
+            interrupted = True
         if node is not None:
-            node.stop()
             node.destroy_node()
         rclpy.try_shutdown()
+    if interrupted:
+        print(f"recorder: interrupted before the recording was complete: no bag written "
+              f"({node.writer.path}{'' if node.error else '.partial removed'})", flush=True)
+        sys.exit(1)
 
 
 if __name__ == "__main__":

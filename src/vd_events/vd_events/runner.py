@@ -6,12 +6,16 @@ node is its own process (the executables ``ros2 run`` starts), talking DDS on
 loopback in a private domain; this process only sends the goals.
 
 Everything a run needs is validated before anything starts, so bad input
-leaves nothing behind.
+leaves nothing behind. Each run claims its ROS domain (domain.py) for its whole
+life, and every result is matched to its request (configuration, event, model,
+axle and the data hash of the configuration validated here) before it counts. A
+bag becomes final only once its result is confirmed; an interrupted or failed
+run removes its partial bag and says so.
 """
 from __future__ import annotations
 
+import dataclasses
 import os
-import random
 import shutil
 import signal
 import subprocess
@@ -31,7 +35,8 @@ from vd_solvers.kc.from_config import EVENT_PARAMS as KC_PARAMS
 from vd_solvers.results import EventOutcome
 from vd_solvers.vehicle.events import EVENT_PARAMS as VEHICLE_PARAMS
 
-from .bag import BagError, check_bag_path
+from .bag import PARTIAL_SUFFIX, BagError, check_bag_path
+from .domain import DomainError, claim_domain
 
 #: model -> (solver family, events it runs)
 FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc",
@@ -40,15 +45,21 @@ ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_trave
               "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
               "aligning_torque", "constant_radius_turn", "sine_with_dwell", "step_steer")
 MODELS = ("bicycle", "two_track", "kc", "vehicle")
-GOAL_TIMEOUT = 60.0  # s: a solver that does not answer by then has died or hung
+GOAL_TIMEOUT = 60.0  # s: a solver silent (no result, no feedback) this long has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
 ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again
 GOAL_ATTEMPTS = 3
 DISCOVERY_GRACE = 0.5  # s
+RECORD_TIMEOUT = 10.0  # s: for the recorder to confirm it wrote the result
+CANCEL_WAIT = 2.0  # s: for an interrupted goal to be cancelled before the nodes stop
 
 
 class RunError(Exception):
     """A run could not start or did not finish (message names configuration and event)."""
+
+
+class Interrupted(RunError):
+    """Ctrl-C or SIGTERM during a run: what was written is removed, and the message says so."""
 
 
 @dataclass(frozen=True)
@@ -61,6 +72,9 @@ class RunRequest:
     overrides: tuple[str, ...] = ()
     parameters: tuple[str, ...] = ()
     bag: Path | None = None
+    #: the data hash of the configuration (with ``overrides``) as validated; a result of
+    #: other data (another study on the same domain) is refused. "" = set by validate()
+    data_hash: str = ""
 
     @property
     def family(self) -> str:
@@ -98,8 +112,10 @@ def event_params(model: str, event: str):
     return ANALYTICAL_PARAMS[event]
 
 
-def validate(study: Study, request: RunRequest) -> None:
-    """Every check that can be made before starting: raises DataError / RunError / BagError."""
+def validate(study: Study, request: RunRequest) -> RunRequest:
+    """Every check that can be made before starting: raises DataError / RunError / BagError.
+
+    Returns the request with the data hash its result must carry."""
     if request.event not in ALL_EVENTS:
         raise RunError(f"unknown event '{request.event}' (events: {', '.join(ALL_EVENTS)})")
     if request.model not in MODELS:
@@ -139,6 +155,7 @@ def validate(study: Study, request: RunRequest) -> None:
     parse_params(request.event, event_params(request.model, request.event), request.parameters)
     if request.bag is not None:
         check_bag_path(request.bag)
+    return dataclasses.replace(request, data_hash=config.data_hash)
 
 
 def _ros_args() -> list[str]:
@@ -147,8 +164,11 @@ def _ros_args() -> list[str]:
     return [] if os.environ.get("VD_VERBOSE") else ["--ros-args", "--log-level", "fatal"]
 
 
-def _private_domain() -> int:
-    return int(os.environ.get("VD_DOMAIN_ID", random.randint(101, 215)))
+def _claim_domain():
+    try:
+        return claim_domain()
+    except DomainError as err:
+        raise RunError(str(err)) from None
 
 
 class _Client:
@@ -160,6 +180,7 @@ class _Client:
 
         self.node = node
         self.warm: set[str] = set()
+        self.running: list = []  # goal handles accepted and not finished (to cancel)
         self.clients = {family: ActionClient(node, RunEvent, f"/vd/{family}/run_event")
                         for family in set(FAMILIES.values())}
 
@@ -191,10 +212,14 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
         # client's response reader ("failed to send response"): give discovery a moment.
         _spin_until(executor, lambda: False, DISCOVERY_GRACE)
         client.warm.add(request.family)
+    last_news = [time.monotonic()]  # the latest feedback: a goal that reports is alive
+
+    def on_feedback(fb) -> None:
+        last_news[0] = time.monotonic()
+        progress(fb.feedback.progress, fb.feedback.stage)
+
     for _attempt in range(GOAL_ATTEMPTS):
-        send = action.send_goal_async(client.goal(request),
-                                      feedback_callback=lambda fb: progress(
-                                          fb.feedback.progress, fb.feedback.stage))
+        send = action.send_goal_async(client.goal(request), feedback_callback=on_feedback)
         if _spin_until(executor, send.done, ACCEPT_TIMEOUT):
             break
     else:
@@ -203,8 +228,14 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
     if not handle.accepted:
         raise RunError(f"{request.label}: goal rejected")
     result_future = handle.get_result_async()
-    if not _spin_until(executor, result_future.done, GOAL_TIMEOUT):
-        raise RunError(f"{request.label}: no result after {GOAL_TIMEOUT:.0f} s (solver died?)")
+    client.running.append(handle)
+    last_news[0] = time.monotonic()
+    # a long goal is fine as long as it reports progress; silence for GOAL_TIMEOUT is not
+    while not _spin_until(executor, result_future.done, GOAL_TIMEOUT / 10):
+        if time.monotonic() - last_news[0] > GOAL_TIMEOUT:
+            raise RunError(f"{request.label}: no result and no progress for "
+                           f"{GOAL_TIMEOUT:.0f} s (solver died?)")
+    client.running.remove(handle)
     result = result_future.result().result
     return result.success, result.message, result.result
 
@@ -218,15 +249,36 @@ def _run_goal(executor, client: _Client, request: RunRequest,
                                 lambda p, s: progress(request, p, s) if progress else None)
     if not ok:
         raise RunError(message)
+    check_result(request, result)
     return outcome_from_msg(result)
+
+
+def check_result(request: RunRequest, result) -> None:
+    """The result answers this request: its configuration, event, model, axle and data
+    hash are the ones asked for (a solver of another run on the same domain, or of
+    other data, answers with other values)."""
+    asked = (request.configuration, request.event, request.model, request.axle)
+    got = (result.configuration, result.event, result.model, result.axle)
+    if got != asked:
+        raise RunError(f"{request.label}: the result is for configuration '{got[0]}', event "
+                       f"'{got[1]}', model '{got[2]}' - another run answered; not used")
+    if request.data_hash and result.data_hash != request.data_hash:
+        raise RunError(f"{request.label}: the result was computed from other data (data hash "
+                       f"{result.data_hash or 'none'}, expected {request.data_hash}) - another "
+                       "study answered on this ROS domain; not used")
 
 
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  ) -> list[RunOutcome]:
-    """All nodes in this process on one executor; a recorder node per run with a bag."""
+    """All nodes in this process; a recorder node per run with a bag.
+
+    A multi-threaded executor: a solver's execute callback (a goal may take minutes)
+    runs in a worker thread while this thread keeps spinning the accept and result
+    futures, the feedback and the recorder.
+    """
     import rclpy
-    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.executors import MultiThreadedExecutor
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
@@ -238,10 +290,11 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     from .recorder_node import Recorder
 
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    claim = _claim_domain()
     context = rclpy.Context()
-    rclpy.init(args=_ros_args(), context=context, domain_id=_private_domain(),
+    rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
                signal_handler_options=None)
-    executor = SingleThreadedExecutor(context=context)
+    executor = MultiThreadedExecutor(num_threads=EMBEDDED_THREADS, context=context)
     nodes = [DataServer(context=context, parameter_overrides=[
                  Parameter("master_file", value=str(master)), Parameter("watch_period",
                                                                         value=0.0)]),
@@ -255,45 +308,69 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     solvers = nodes[1:4]
     outcomes: list[RunOutcome] = []
     try:
-        # a single-threaded executor: every solver must hold the configurations before
-        # a goal arrives (a solver waiting inside a goal would block the executor)
         _spin_until(executor, lambda: all(len(n.configurations) > 0 and n.status is not None
                                           for n in solvers), SERVER_TIMEOUT)
         for request in requests:
             recorder = None
-            if request.bag is not None:
-                recorder = Recorder(context=context, bag=str(request.bag),
-                                    parameter_overrides=[Parameter(
-                                        "configurations", value=[request.configuration])])
-                executor.add_node(recorder)
-                # let the recorder's latched subscriptions catch up before the run
-                _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0, 5.0)
-            t0 = time.perf_counter()
             try:
+                if request.bag is not None:
+                    recorder = Recorder(context=context, bag=str(request.bag),
+                                        parameter_overrides=[Parameter(
+                                            "configurations", value=[request.configuration])])
+                    executor.add_node(recorder)
+                    # let the recorder's latched subscriptions catch up before the run
+                    _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0
+                                or recorder.error is not None, 5.0)
+                t0 = time.perf_counter()
                 outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
-                    if not _spin_until(executor, lambda: recorder.complete >= 1, 10.0):
+                    if not _spin_until(executor, lambda: recorder.complete >= 1 or
+                                       recorder.error is not None, RECORD_TIMEOUT):
                         raise RunError(f"{request.label}: the recorder did not record the "
                                        "result")
-                    bag = recorder.stop()
+                    try:
+                        bag = recorder.stop()
+                    except BagError as err:
+                        raise RunError(f"{request.label}: {err}") from None
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={"run": time.perf_counter() - t0}))
             except RunError as err:
-                if recorder is not None:
-                    recorder.abort()
                 outcomes.append(RunOutcome(request, None, None, str(err)))
+            except KeyboardInterrupt:
+                _cancel_running(executor, client)
+                raise Interrupted(_interrupted(request)) from None
             finally:
                 if recorder is not None:
+                    recorder.abort()  # removes the partial bag unless stop() finished it
                     executor.remove_node(recorder)
                     recorder.destroy_node()
     finally:
         for node in nodes:
             executor.remove_node(node)
             node.destroy_node()
-        executor.shutdown()
+        executor.shutdown(timeout_sec=CANCEL_WAIT)
         rclpy.try_shutdown(context=context)
+        claim.release()
     return outcomes
+
+
+#: worker threads of an embedded run: a goal's execute callback + everything else
+EMBEDDED_THREADS = 4
+
+
+def _interrupted(request: RunRequest) -> str:
+    where = (f"; no bag written ({request.bag}{PARTIAL_SUFFIX} removed)"
+             if request.bag is not None else "")
+    return f"{request.label}: interrupted{where}"
+
+
+def _cancel_running(executor, client: _Client) -> None:
+    """Ask the solver to drop the goal in progress (it stops at its next step)."""
+    for handle in list(client.running):
+        future = handle.cancel_goal_async()
+        _spin_until(executor, future.done, CANCEL_WAIT)
+    client.running.clear()
 
 
 def _executable(package: str, name: str) -> str:
@@ -308,57 +385,71 @@ def _executable(package: str, name: str) -> str:
 def run_distributed(master: Path, requests: Sequence[RunRequest],
                     progress: Callable[[RunRequest, float, str], None] | None = None,
                     ) -> list[RunOutcome]:
-    """One process per node (as ``ros2 run`` starts them), DDS on loopback."""
+    """One process per node (as ``ros2 run`` starts them), DDS on loopback.
+
+    The nodes are this process's children in their own session (a Ctrl-C at the
+    terminal reaches only this process, which stops them in order) and end with
+    it however it ends (node_main.die_with_parent, also after ``kill -9``).
+    """
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
 
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import UInt32
+    from std_srvs.srv import Trigger
 
     from .bag import read_bag
     from .recorder_node import RECORDED_TOPIC
 
-    domain = _private_domain()
-    env = dict(os.environ, ROS_DOMAIN_ID=str(domain),
+    claim = _claim_domain()
+    env = dict(os.environ, ROS_DOMAIN_ID=str(claim.domain), VD_PARENT_PID=str(os.getpid()),
                ROS_AUTOMATIC_DISCOVERY_RANGE=os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE",
                                                             "LOCALHOST"))
     # the nodes' output goes to one log file, shown when a run fails
     logs = tempfile.TemporaryFile(mode="w+")
-    procs = [
-        subprocess.Popen([_executable("vd_data_server", "data_server"), "--ros-args",
-                          "--log-level", "warn", "-p",
-                          f"master_file:={master}", "-p", "watch_period:=0.0"], env=env,
-                         stdout=logs, stderr=subprocess.STDOUT),
-        *(subprocess.Popen([_executable("vd_solvers", exe), "--ros-args", "--log-level",
-                            "warn"], env=env, stdout=logs, stderr=subprocess.STDOUT)
-          for exe in sorted({f"{'analytical' if f == 'steady_state' else f}_solver"
-                             for f in {r.family for r in requests}})),
-    ]
-    context = rclpy.Context()
-    rclpy.init(context=context, domain_id=domain, signal_handler_options=None)
-    executor = SingleThreadedExecutor(context=context)
-    node = Node("event_runner", context=context)
-    executor.add_node(node)
-    client = _Client(node)
-    recorded = [0]  # results the current run's recorder says it has written
 
-    def on_recorded(msg) -> None:
-        recorded[0] = msg.data
+    def start(command: list[str]) -> subprocess.Popen:
+        return subprocess.Popen(command, env=env, stdout=logs, stderr=subprocess.STDOUT,
+                                stdin=subprocess.DEVNULL, start_new_session=True)
 
-    node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, QoSProfile(
-        depth=1, reliability=ReliabilityPolicy.RELIABLE,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL))
+    procs: list[subprocess.Popen] = []
+    context = None
+    node = None
+    executor = None
+    client = None
     outcomes: list[RunOutcome] = []
+    recorder = None
+    request = None
     try:
+        procs.append(start([_executable("vd_data_server", "data_server"), "--ros-args",
+                            "--log-level", "warn", "-p", f"master_file:={master}", "-p",
+                            "watch_period:=0.0"]))
+        procs.extend(start([_executable("vd_solvers", exe), "--ros-args", "--log-level",
+                            "warn"])
+                     for exe in sorted({f"{'analytical' if f == 'steady_state' else f}_solver"
+                                        for f in {r.family for r in requests}}))
+        context = rclpy.Context()
+        rclpy.init(context=context, domain_id=claim.domain, signal_handler_options=None)
+        executor = SingleThreadedExecutor(context=context)
+        node = Node("event_runner", context=context)
+        executor.add_node(node)
+        client = _Client(node)
+        finish = node.create_client(Trigger, "/recorder/finish")
+        recorded = [0]  # results the current run's recorder says it has written
+
+        def on_recorded(msg) -> None:
+            recorded[0] = msg.data
+
+        node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, QoSProfile(
+            depth=1, reliability=ReliabilityPolicy.RELIABLE,
+            durability=DurabilityPolicy.TRANSIENT_LOCAL))
         for request in requests:
-            recorder = None
             recorded[0] = 0
             if request.bag is not None:
-                recorder = subprocess.Popen(
-                    [_executable("vd_events", "recorder"), "--ros-args", "-p",
-                     f"bag:={request.bag}", "-p", f"configurations:=['{request.configuration}']"],
-                    env=env, stdout=logs, stderr=subprocess.STDOUT)
+                recorder = start([_executable("vd_events", "recorder"), "--ros-args", "-p",
+                                  f"bag:={request.bag}", "-p",
+                                  f"configurations:=['{request.configuration}']"])
             t0 = time.perf_counter()
             try:
                 if recorder is not None:
@@ -370,15 +461,13 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                 outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
-                    if not _spin_until(executor, lambda: recorded[0] >= 1, 10.0):
+                    if not _spin_until(executor, lambda: recorded[0] >= 1, RECORD_TIMEOUT):
                         raise RunError(f"{request.label}: the recorder did not record the result")
-                    recorder.send_signal(signal.SIGINT)
-                    recorder.wait(timeout=20)
+                    bag = _finish_recording(executor, finish, recorder, request)
                     recorder = None
-                    topics = {m.topic for m in read_bag(request.bag)}
+                    topics = {m.topic for m in read_bag(bag)}
                     if f"/vd/{request.family}/result" not in topics:
                         raise RunError(f"{request.label}: the recorder missed the result")
-                    bag = request.bag
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={"run": time.perf_counter() - t0}))
             except RunError as err:
@@ -386,41 +475,79 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                 tail = "".join(logs.readlines()[-5:]).strip()
                 outcomes.append(RunOutcome(request, None, None,
                                            f"{err}" + (f"\nnode output:\n{tail}" if tail else "")))
-                if recorder is not None:
-                    recorder.send_signal(signal.SIGINT)
-                    recorder.wait(timeout=20)
-                    recorder = None
-                if request.bag is not None:
-                    # the run failed: no bag may look like a result (validate() made sure
-                    # the path did not exist before, so this removes only our own files)
-                    shutil.rmtree(request.bag, ignore_errors=True)
-                    shutil.rmtree(request.bag.with_name(request.bag.name + ".partial"),
-                                  ignore_errors=True)
-            finally:
-                if recorder is not None:
-                    recorder.send_signal(signal.SIGINT)
-                    recorder.wait(timeout=20)
+                _drop_recording(recorder, request)
+                recorder = None
+        request = None
+    except KeyboardInterrupt:
+        if client is not None:
+            _cancel_running(executor, client)
+        raise Interrupted(_interrupted(request) if request is not None
+                          else "interrupted") from None
     finally:
-        executor.remove_node(node)
-        node.destroy_node()
-        executor.shutdown()
-        rclpy.try_shutdown(context=context)
+        if request is not None:
+            _drop_recording(recorder, request)
+        if node is not None:
+            executor.remove_node(node)
+            node.destroy_node()
+            executor.shutdown()
+        if context is not None:
+            rclpy.try_shutdown(context=context)
         stop_processes(procs)
+        claim.release()
     return outcomes
+
+
+def _finish_recording(executor, finish, recorder: subprocess.Popen, request: RunRequest) -> Path:
+    """The result is confirmed: the recorder closes the bag under its final name."""
+    assert request.bag is not None
+    if not _spin_until(executor, finish.service_is_ready, SERVER_TIMEOUT):
+        raise RunError(f"{request.label}: the recorder does not answer")
+    from std_srvs.srv import Trigger
+
+    future = finish.call_async(Trigger.Request())
+    if not _spin_until(executor, lambda: future.done() or recorder.poll() is not None,
+                       RECORD_TIMEOUT):
+        raise RunError(f"{request.label}: the recorder did not finish the bag")
+    if future.done() and not future.result().success:
+        raise RunError(f"{request.label}: {future.result().message}")
+    try:
+        recorder.wait(timeout=RECORD_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise RunError(f"{request.label}: the recorder did not stop") from None
+    if recorder.returncode != 0 or not (request.bag / "metadata.yaml").is_file():
+        raise RunError(f"{request.label}: the recorder did not finish the bag")
+    return request.bag
+
+
+def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> None:
+    """A failed or interrupted run: stop its recorder (which removes its partial bag)
+    and make sure nothing that looks like a result is left (validate() made sure the
+    paths did not exist before, so this removes only this run's files)."""
+    if recorder is not None:
+        stop_processes([recorder])
+    if request.bag is not None:
+        shutil.rmtree(request.bag, ignore_errors=True)
+        shutil.rmtree(request.bag.with_name(request.bag.name + PARTIAL_SUFFIX),
+                      ignore_errors=True)
 
 
 def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> None:
     """SIGINT (a node's clean shutdown) to every process still running, then wait;
-    kill what does not stop in time."""
+    kill what does not stop in time. A Ctrl-C during the wait does not cut it short."""
     for proc in procs:
         if proc.poll() is None:
             proc.send_signal(signal.SIGINT)
     for proc in procs:
-        try:
-            proc.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+        while True:
+            try:
+                proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+            except KeyboardInterrupt:
+                continue
+            break
 
 
-__all__ = ["RunRequest", "RunOutcome", "RunError", "BagError", "validate", "run_embedded",
-           "run_distributed", "events_for", "stop_processes"]
+__all__ = ["RunRequest", "RunOutcome", "RunError", "Interrupted", "BagError", "validate",
+           "check_result", "run_embedded", "run_distributed", "events_for", "stop_processes"]

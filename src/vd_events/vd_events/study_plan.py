@@ -53,6 +53,9 @@ def load_plan(path: Path) -> Plan:
     if not isinstance(name, str) or not _NAME.match(name):
         raise DataError("missing or invalid plan name (letters, digits, '_', '-', '.')",
                         file=file, key="name")
+    if raw.get("master") and not isinstance(raw["master"], str):
+        raise DataError(f"expected a file path, found {raw['master']!r}", file=file,
+                        key="master")
     master = Path(raw["master"]) if raw.get("master") else default_master()
     if raw.get("master") and not master.is_absolute():
         master = path.parent / master
@@ -66,7 +69,25 @@ def load_plan(path: Path) -> Plan:
             if key not in RUN_KEYS:
                 raise DataError(f"unknown key (expected one of: {', '.join(RUN_KEYS)})",
                                 file=file, key=f"runs[{i}].{key}")
+        _check_run_types(run, file, f"runs[{i}]")
     return Plan(path, name, master, tuple(runs))
+
+
+def _check_run_types(run: Mapping[str, Any], file: str, where: str) -> None:
+    """Texts where texts belong and lists of texts where lists do (``configurations``
+    may also be ``all``), before anything iterates over them."""
+    for key in ("event", "axle"):
+        if key in run and not isinstance(run[key], str):
+            raise DataError(f"expected a text, found {run[key]!r}", file=file,
+                            key=f"{where}.{key}")
+    for key in ("models", "configurations", "parameters", "overrides"):
+        if key not in run or (key == "configurations" and run[key] == "all"):
+            continue
+        value = run[key]
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            expected = "'all' or a list of names" if key == "configurations" else "a list of texts"
+            raise DataError(f"expected {expected}, found {value!r}", file=file,
+                            key=f"{where}.{key}")
 
 
 def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
@@ -96,14 +117,16 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     study = load_study(plan.master)
     requests = expand(plan, study.configuration_names, bags)
     seen = set()
+    checked = []
     for request in requests:
         try:
-            validate(study, request)
+            checked.append(validate(study, request))
         except (RunError, BagError) as err:
             raise DataError(f"{request.label}: {err}", file=str(plan.path)) from None
         if request.bag in seen:
             raise DataError(f"two runs write the same bag {request.bag}", file=str(plan.path))
         seen.add(request.bag)
+    requests = checked
     runner = run_distributed if distributed else run_embedded
     results = runner(plan.master, requests, progress)
     done = [r for r in results if r.error is None]

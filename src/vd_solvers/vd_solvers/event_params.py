@@ -1,6 +1,7 @@
 """Event parameters ``NAME=VALUE`` with units, validated against an event's spec."""
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -33,12 +34,15 @@ def parse_params(event: str, spec: Mapping[str, Param], items: Sequence[str]) ->
         if p.quantity == "integer":
             try:
                 value = float(int(text.strip()))
-            except ValueError:
+            except (ValueError, OverflowError):
                 raise DataError(f"expected a whole number, found {text.strip()!r}",
                                 file=f"event {event}", key=name) from None
         else:
             number, unit = parse_quantity(text, p.quantity, file=f"event {event}", key=name)
             value = number * si_factor(unit, p.quantity)
+            if not math.isfinite(value):
+                raise DataError(f"value must be finite, found {text.strip()!r}",
+                                file=f"event {event}", key=name)
         if (p.minimum is not None and value < p.minimum) or (
                 p.maximum is not None and value > p.maximum):
             low = "-inf" if p.minimum is None else f"{p.minimum:g}"

@@ -10,7 +10,9 @@ configuration and event; the node keeps serving.
 """
 from __future__ import annotations
 
+import dataclasses
 import time
+import warnings
 from collections.abc import Callable
 
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
@@ -101,6 +103,10 @@ class SolverNode(Node):
         result = RunEvent.Result()
         label = f"configuration '{goal.configuration}', event '{goal.event}'"
         feedback = RunEvent.Feedback()
+        # numpy / LAPACK warnings (overflow, a singular matrix) are not printed on their
+        # own: they become part of the error they explain, or a note of the result.
+        # (catch_warnings is process-wide; goals of one runner come one at a time.)
+        caught: list[warnings.WarningMessage] = []
         try:
             config = self._wait_for_configuration(goal.configuration)
             if config is None:
@@ -120,7 +126,9 @@ class SolverNode(Node):
                     goal_handle.publish_feedback(feedback)
 
             progress(0.0, "solving")
-            outcome = self._run(config, goal, progress)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                outcome = self._run(config, goal, progress)
             if goal_handle.is_cancel_requested:
                 raise Cancelled
         except Cancelled:
@@ -129,16 +137,22 @@ class SolverNode(Node):
             return result
         except (DataError, SolverError) as err:
             message = str(err) if goal.configuration in str(err) else f"{label}: {err}"
+            message += _warnings_text(caught)
             self.get_logger().error(message)
             goal_handle.abort()
             result.success, result.message = False, message
             return result
         except Exception as err:  # noqa: BLE001 - a solver bug must not kill the node
-            message = f"{label}: internal solver error {type(err).__name__}: {err}"
+            message = (f"{label}: internal solver error {type(err).__name__}: {err}"
+                       f"{_warnings_text(caught)}")
             self.get_logger().error(message)
             goal_handle.abort()
             result.success, result.message = False, message
             return result
+        if caught:
+            outcome = dataclasses.replace(outcome, notes=(
+                *outcome.notes, "numerical warnings during the run: " +
+                "; ".join(_warning_messages(caught))))
         self.publish_outcome(outcome, config, set_changes(base, config))
         feedback.progress, feedback.stage = 1.0, "done"
         goal_handle.publish_feedback(feedback)
@@ -172,6 +186,17 @@ class SolverNode(Node):
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
         """The per-step messages of ``outcome`` (Sample: channel names and values)."""
         return outcome_samples(outcome, stamp)
+
+
+def _warning_messages(caught) -> list[str]:
+    """The caught warnings' messages, each once, at most five."""
+    return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
+
+
+def _warnings_text(caught) -> str:
+    """`` (numerical warnings: overflow encountered in exp; ...)``, or ""."""
+    texts = _warning_messages(caught)
+    return f" (numerical warnings: {'; '.join(texts)})" if texts else ""
 
 
 def set_changes(base: Configuration, config: Configuration) -> list:

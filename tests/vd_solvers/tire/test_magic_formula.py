@@ -362,11 +362,14 @@ def test_unknown_tyreside_is_refused() -> None:
 
 
 def test_non_positive_lfzo_is_refused() -> None:
-    props = parse_tir_text(tir_text(SYMMETRIC_LATERAL, scaling={"LFZO": 0.0}), "x.tir")
+    """Refused when the file is read, before any model is built from it."""
+    text = tir_text(SYMMETRIC_LATERAL, scaling={"LFZO": 0.0})
+    line = next(n for n, t in enumerate(text.splitlines(), start=1) if t.startswith("LFZO"))
     with pytest.raises(DataError) as info:
-        MagicFormula(props)
+        parse_tir_text(text, "x.tir")
     assert (str(info.value), info.value.key) == (
-        "x.tir: LFZO: key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, found 0",
+        f"x.tir: LFZO: line {line}: key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, "
+        "found 0.0",
         "LFZO",
     )
 

@@ -147,6 +147,9 @@ _SCALING_FACTORS: Final[tuple[str, ...]] = (
 # at large x and the curve loses its single peak.
 _MAX_CURVATURE: Final[float] = 1.0
 _SIDES: Final[tuple[str, ...]] = ("LEFT", "RIGHT")
+# Loads (x the scaled nominal load) and slips at which a tire must give finite forces.
+_CHECK_LOADS: Final[tuple[float, ...]] = (0.1, 0.5, 1.0, 2.0, 3.0)
+_CHECK_SLIPS: Final[tuple[float, ...]] = (-0.5, -0.05, 0.0, 0.05, 0.5)
 
 
 class TireForces(NamedTuple):
@@ -243,16 +246,28 @@ class MagicFormula:
         coefficients["FNOMIN"] = props.fnomin
         coefficients["CZ"] = props.number("VERTICAL", "VERTICAL_STIFFNESS", 0.0)
         coefficients["LONGVL"] = props.number("MODEL", "LONGVL", 0.0)
-        if coefficients["LFZO"] <= 0.0:
-            raise DataError(
-                f"key 'LFZO' in block [SCALING_COEFFICIENTS] must be > 0, found {coefficients['LFZO']:g}",
-                file=props.path,
-                key="LFZO",
-            )
+        # LFZO > 0 and the divisors != 0 are checked where the properties are read
+        # (vd_data_server.tir.check_values), so `vd data check` refuses what a run would
         coefficients["FZ0_PRIME"] = props.fnomin * coefficients["LFZO"]
         # Frozen dataclass: derived fields are set once, here.
         object.__setattr__(self, "_c", MappingProxyType(coefficients))
         object.__setattr__(self, "_mirror", -1.0 if self._mirrored() else 1.0)
+        self._check_finite()
+
+    def _check_finite(self) -> None:
+        """Forces and stiffness must be finite over the working range: coefficients that
+        are finite one by one can still overflow together (PKX3 = 3000 in exp(PKX3 dfz))."""
+        fz = self.nominal_load * np.array(_CHECK_LOADS)
+        slip = np.array(_CHECK_SLIPS)[:, None]
+        with np.errstate(all="ignore"):
+            values = (self.fy(fz, slip), self.fx(fz, slip), self.cornering_stiffness(fz))
+        for name, value in zip(("Fy", "Fx", "cornering stiffness"), values):
+            if not np.all(np.isfinite(value)):
+                raise DataError(
+                    f"the Magic Formula gives a non-finite {name} within {_CHECK_LOADS[0]:g}.."
+                    f"{_CHECK_LOADS[-1]:g} x the nominal load: coefficients out of range",
+                    file=self.props.path,
+                )
 
     def _mirrored(self) -> bool:
         """True if the tire is mounted on the side opposite to TYRESIDE."""

@@ -1,0 +1,104 @@
+"""Private ROS domains for runs: claimed with an exclusive lock, never shared silently.
+
+Every ``vd run`` / ``vd study`` starts its own ROS graph in a domain of its own
+(:data:`DOMAINS`, or ``VD_DOMAIN_ID``). A domain is claimed by an exclusive
+``flock`` on ``<runtime dir>/vd/domain-<id>.lock`` (``$XDG_RUNTIME_DIR``, else the
+temporary folder per user), held for the run's life: the kernel drops the lock
+when the process ends, however it ends (``kill -9`` included), so a claim never
+goes stale. A run never starts in a domain another live run holds.
+"""
+from __future__ import annotations
+
+import fcntl
+import os
+import random
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+#: domains drawn for runs (clear of the default 0 and of what ROS tools tend to use)
+DOMAINS = range(101, 216)
+#: the highest domain id ROS 2 accepts with the default port layout
+MAX_DOMAIN_ID = 232
+ENV = "VD_DOMAIN_ID"
+
+
+class DomainError(Exception):
+    """No domain could be claimed (message says which and why)."""
+
+
+def lock_dir() -> Path:
+    base = os.environ.get("XDG_RUNTIME_DIR") or os.path.join(tempfile.gettempdir(),
+                                                              f"vd-{os.getuid()}")
+    return Path(base) / "vd"
+
+
+@dataclass
+class DomainClaim:
+    domain: int
+    _fd: int
+
+    def release(self) -> None:
+        if self._fd >= 0:
+            os.close(self._fd)  # closing drops the flock
+            self._fd = -1
+
+
+def _try_lock(domain: int) -> DomainClaim | None:
+    folder = lock_dir()
+    folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+    fd = os.open(folder / f"domain-{domain}.lock", os.O_RDWR | os.O_CREAT, 0o600)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        return None
+    os.ftruncate(fd, 0)
+    os.write(fd, f"{os.getpid()}\n".encode())
+    return DomainClaim(domain, fd)
+
+
+def holder(domain: int) -> str:
+    """The pid written by the run holding ``domain`` (for messages)."""
+    try:
+        return (lock_dir() / f"domain-{domain}.lock").read_text().strip() or "?"
+    except OSError:
+        return "?"
+
+
+def requested_domain() -> int | None:
+    """``VD_DOMAIN_ID`` as a domain id, None if unset; DomainError if it is not one."""
+    text = os.environ.get(ENV)
+    if text is None or text.strip() == "":
+        return None
+    try:
+        domain = int(text.strip())
+    except ValueError:
+        domain = -1
+    if not 0 <= domain <= MAX_DOMAIN_ID:
+        raise DomainError(f"{ENV}: expected a ROS domain id 0..{MAX_DOMAIN_ID}, found "
+                          f"{text[:40]!r}")
+    return domain
+
+
+def claim_domain() -> DomainClaim:
+    """Claim ``VD_DOMAIN_ID`` if set, else a free domain of :data:`DOMAINS` at random."""
+    try:
+        wanted = requested_domain()
+        if wanted is not None:
+            claim = _try_lock(wanted)
+            if claim is None:
+                raise DomainError(f"{ENV}: ROS domain {wanted} is in use by another vd run "
+                                  f"(pid {holder(wanted)}); unset {ENV} or choose another")
+            return claim
+        candidates = list(DOMAINS)
+        random.shuffle(candidates)
+        for domain in candidates:
+            claim = _try_lock(domain)
+            if claim is not None:
+                return claim
+    except OSError as err:
+        raise DomainError(f"cannot claim a ROS domain under {lock_dir()}: "
+                          f"{err.strerror or err}") from None
+    raise DomainError(f"every ROS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use by "
+                      "another vd run")
