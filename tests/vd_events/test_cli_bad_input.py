@@ -149,14 +149,14 @@ def test_a_link_loop_in_the_data_root_does_not_hang(capsys, sample_root, sedan_m
     assert service.load().errors == ()
     assert service.poll() is None  # walks the root once; the loop is not followed
     rc, out, _ = run(capsys, "data", "check", "--master", str(sedan_master))
-    assert rc == 0 and out.endswith("OK (3 configurations, 26 data files)\n")
+    assert rc == 0 and out.endswith("OK (3 configurations, 28 data files)\n")
 
 
 @pytest.mark.parametrize(("old", "new", "key", "message"), [
     ("sprung_mass: 1550", "sprung_mass: 1.0e+300", "sprung_mass",
-     "1e+300 is implausible: its size must be from 1 to 100000 kg (plausibility bound)"),
+     "1e+300 is implausible: its size must be from 0.01 to 100000 kg (plausibility bound)"),
     ("sprung_mass: 1550", "sprung_mass: 0.001", "sprung_mass",
-     "0.001 is implausible: its size must be from 1 to 100000 kg (plausibility bound)"),
+     "0.001 is implausible: its size must be from 0.01 to 100000 kg (plausibility bound)"),
 ])
 def test_impossible_masses_are_errors(capsys, sample_root, sedan_master, old, new, key,
                                       message):
@@ -168,9 +168,9 @@ def test_impossible_masses_are_errors(capsys, sample_root, sedan_master, old, ne
 
 def test_hard_point_ten_metres_away_is_an_error(capsys, sample_root, sedan_master):
     hard = sample_root / "sedan/front_hardpoints/X.yaml"
-    replace_once(hard, "[18.4, 620.6, 181.0]", "[10018.4, 620.6, 181.0]")
+    replace_once(hard, "[18.4, 706.0, 181.0]", "[10018.4, 706.0, 181.0]")
     check(capsys, sample_root, sedan_master,
-          "sedan/front_hardpoints/X.yaml: points.lca_outer: [10018.4, 620.6, 181.0] is "
+          "sedan/front_hardpoints/X.yaml: points.lca_outer: [10018.4, 706.0, 181.0] is "
           "implausible: every coordinate must be within 8 m of the origin (plausibility bound) "
           f"(line {line_no(hard, '    lca_outer:')})")
 
@@ -183,7 +183,7 @@ def test_unusual_values_are_warnings_and_check_passes(capsys, sample_root, sedan
     before = tree_snapshot(sample_root)
     rc, out, err = run(capsys, "data", "check", "--master", str(sedan_master))
     assert rc == 0
-    assert out.endswith("OK (3 configurations, 26 data files)\n")
+    assert out.endswith("OK (3 configurations, 28 data files)\n")
     assert err == (f"warning: sedan/front_alignment/X.yaml: camber: 0.20944 rad is unusual for "
                    f"a car (usual: -0.174533 to 0.174533) (line {line_no(align, '  camber:')})\n")
     assert tree_snapshot(sample_root) == before
@@ -194,7 +194,7 @@ def test_unusual_values_are_warnings_and_check_passes(capsys, sample_root, sedan
     ("--set=front_spring.rate=1e999 N/mm",
      "--set: front_spring.rate: value must be finite, found '1e999 N/mm'"),
     ("--set=mass.sprung_mass=1e300 kg", "--set: mass.sprung_mass: '1e300 kg' is implausible: "
-     "its size must be from 1 to 100000 kg (plausibility bound)"),
+     "its size must be from 0.01 to 100000 kg (plausibility bound)"),
     ("--set=front_hardpoints.points.lca_outer.x=10 m",
      "--set: front_hardpoints.points.lca_outer.x: '10 m' is implausible: every coordinate must "
      "be within 8 m of the origin (plausibility bound)"),

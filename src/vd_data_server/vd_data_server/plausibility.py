@@ -24,7 +24,7 @@ LIMITS: Mapping[str, tuple[float, float]] = {
     "length": (0.0, 20.0),
     "angle": (0.0, math.pi),
     "force": (0.0, 1e7),
-    "mass": (1.0, 1e5),
+    "mass": (0.01, 1e5),  # a drop link or tie rod weighs under 1 kg
     "time": (0.0, 1e6),
     "velocity": (0.0, 1e3),
     "stiffness": (0.0, 1e10),
@@ -45,7 +45,7 @@ POINT_LIMIT = 8.0
 #: quantity -> (lowest, highest) usual value for a car, SI; outside: a warning
 USUAL: Mapping[str, tuple[float, float]] = {
     "angle": (-math.radians(10.0), math.radians(10.0)),
-    "mass": (5.0, 2e4),
+    "mass": (0.1, 2e4),
 }
 #: usual largest coordinate of a hard point, m
 POINT_USUAL = 4.0
