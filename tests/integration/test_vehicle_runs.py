@@ -50,6 +50,13 @@ def test_embedded_step_steer_records_states_odometry_and_result(capsys, tmp_path
     last = odom[-1]
     assert (last.header.frame_id, last.child_frame_id) == ("odom", "base_link")
     assert last.pose.pose.position.x == pytest.approx(result["channels"]["x"]["values"][-1])
+    # TF (REP 105): the same pose as odom -> base_link, one transform per step
+    tf = msgs["/tf"]
+    assert len(tf) == len(time)
+    (moved,) = tf[-1].transforms
+    assert (moved.header.frame_id, moved.child_frame_id) == ("odom", "base_link")
+    assert moved.transform.translation.y == pytest.approx(last.pose.pose.position.y)
+    assert moved.transform.rotation.z == pytest.approx(last.pose.pose.orientation.z)
     assert last.twist.twist.angular.z == pytest.approx(
         result["channels"]["yaw_rate"]["values"][-1])
     # typed states: the channels as named fields, one VehicleWheel per wheel

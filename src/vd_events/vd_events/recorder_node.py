@@ -21,6 +21,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from nav_msgs.msg import Odometry
+from tf2_msgs.msg import TFMessage
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 from vd_interfaces.msg import (Configuration, DataStatus, EventResult, Provenance, Sample,
@@ -36,8 +37,9 @@ _STREAM = SAMPLES
 #: where the recorder says how many event results it has written completely (latched)
 RECORDED_TOPIC = "/vd/recorder/recorded"
 
-#: the full vehicle's pose, one message per recorded step
+#: the full vehicle's pose, one message per recorded step (odometry and TF)
 ODOMETRY_TOPIC = "/vd/vehicle/odom"
+TF_TOPIC = "/tf"
 #: seconds the recorder process stays up after ~/finish, for its response to be delivered
 FINISH_LINGER = 0.3
 
@@ -53,6 +55,7 @@ TOPICS = {
     "/vd/vehicle/result": (EventResult, _STREAM),
     "/vd/vehicle/state": (VehicleState, _STREAM),
     ODOMETRY_TOPIC: (Odometry, _STREAM),
+    TF_TOPIC: (TFMessage, _STREAM),
 }
 
 
@@ -150,7 +153,7 @@ class Recorder(Node):
     def _publish_complete(self) -> None:
         """Count the results whose every step sample (and, for the full vehicle, every
         odometry message) is written too, and say so."""
-        odometry = self.counts[ODOMETRY_TOPIC]
+        odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending
                 if self._samples.get(p[0], 0) >= p[1] and odometry >= p[2]]
         if done:

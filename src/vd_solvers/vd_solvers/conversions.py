@@ -89,6 +89,24 @@ def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
     return out
 
 
+def outcome_transforms(outcome: EventOutcome, stamp) -> list:
+    """tf2_msgs/TFMessage per step of a full-vehicle outcome: the transform ``odom`` ->
+    ``base_link`` (REP 105), the same pose as :func:`outcome_odometry`."""
+    from geometry_msgs.msg import TransformStamped
+    from tf2_msgs.msg import TFMessage
+
+    out = []
+    for odom in outcome_odometry(outcome, stamp):
+        t = TransformStamped()
+        t.header = odom.header
+        t.child_frame_id = odom.child_frame_id
+        p = odom.pose.pose.position
+        t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = p.x, p.y, p.z
+        t.transform.rotation = odom.pose.pose.orientation
+        out.append(TFMessage(transforms=[t]))
+    return out
+
+
 def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     """nav_msgs/Odometry per step of a full-vehicle outcome (channels x, y, yaw, roll,
     pitch, speed, sideslip, yaw_rate): frame ``odom``, child ``base_link`` (REP 105),
