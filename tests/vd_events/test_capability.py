@@ -106,10 +106,15 @@ def test_vd_capability_end_to_end(tmp_path):
     assert len(table["cells"]) == 5 * len(QUANTITIES)
     assert {c["verdict"] for c in table["cells"]} <= {"Rigid", "Flexible"}
     assert "trailing_link" in table["flexible_components"]
-    (msg,) = [m.msg for m in read_bag(out / "capability_baseline_rear")]
+    messages = list(read_bag(out / "capability_baseline"))
+    (msg,) = [m.msg for m in messages if m.topic == "/vd/capability/table"]
     assert [c.verdict for c in msg.cells] == [c["verdict"] for c in table["cells"]]
-    bags = sorted(p.name for p in (out / "bags").iterdir())
-    assert len(bags) == 10 and sum(b.endswith("_flexible") for b in bags) == 5
+    results = [m.msg for m in messages if m.topic == "/vd/kc/result"]
+    assert sorted((r.event, r.fidelity) for r in results) == sorted(
+        (e, f) for e in events for f in ("rigid", "flexible"))
+    samples = [m for m in messages if m.topic == "/vd/kc/state"]
+    assert len(samples) == 10 * 7  # every step of every run
+    assert all(b.timestamp > a.timestamp for a, b in zip(messages, messages[1:]))
 
 
 @pytest.mark.ros

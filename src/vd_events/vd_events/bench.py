@@ -207,7 +207,7 @@ def print_bench(results: dict[str, Any]) -> None:
         ("flexible K&C 101-step parallel travel, rear",
          f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
          "within 3x rigid"),
-        ("capability study, both axles (22 runs via ROS, bags)",
+        ("capability study, both axles (22 runs via ROS, one bag)",
          f"{results['capability_both_axles_s']:.1f} s", "under 20 s"),
         ("load + resolve the sample study", f"{results['load_study_s']:.3f} s", ""),
         ("bicycle steady state, K&C inputs computed (empty cache)",

@@ -250,12 +250,19 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
               parameters: Sequence[str] = (), tolerances: Mapping[str, float] | None = None,
               progress=None) -> list[Table]:
     """Run every K&C event rigid and flexible on ``axles`` through the ROS graph
-    (embedded), record each run to a bag under ``out/bags`` and each axle's table to
-    ``out/capability_<configuration>_<axle>``; return the tables."""
+    (embedded) and record both runs of every event -- their EventResults and per-step
+    Samples as the solver answered the goals -- and each axle's table to one bag,
+    ``out/capability_<configuration>``; return the tables.
+
+    One bag for the study: a recorder per run would cost more than the runs themselves."""
+    import time
     from pathlib import Path
+
+    from builtin_interfaces.msg import Time
 
     from vd_data_server.errors import DataError
     from vd_data_server.master import flex_components
+    from vd_solvers.conversions import outcome_samples, outcome_to_msg
 
     from .bag import BagWriter, check_bag_path
     from .runner import RunError, RunRequest, run_embedded, validate
@@ -275,37 +282,43 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
             for fidelity in ("rigid", "flexible"):
                 requests.append(RunRequest(
                     event=event, configuration=configuration, model="kc", fidelity=fidelity,
-                    axle=axle, parameters=tuple(parameters),
-                    bag=out / "bags" / f"{event}_{axle}_kc_{configuration}_{fidelity}"))
-    tables_bags = [out / f"capability_{configuration}_{axle}" for axle in axles]
+                    axle=axle, parameters=tuple(parameters)))
+    bag = out / f"capability_{configuration}"
     requests = [validate(study, request) for request in requests]
-    for bag in tables_bags:
-        check_bag_path(bag)
+    check_bag_path(bag)
     results = run_embedded(Path(master), requests, progress)
     errors = [r.error for r in results if r.error]
     if errors:
         raise RunError("; ".join(errors))
     tables = []
-    for axle, bag in zip(axles, tables_bags):
+    for axle in axles:
         mine = [r for r in results if r.request.axle == axle]
         pairs = [(a.outcome, b.outcome) for a, b in zip(mine[0::2], mine[1::2])]
         chosen = [c for c in config.flexible_components if c in defined[axle]]
-        table = build_table(pairs, chosen or defined[axle], tolerances)  # type: ignore[arg-type]
-        writer = BagWriter(bag, {"vd.configuration": configuration,
-                                 "vd.data_hash": table.data_hash, "vd.axle": axle,
-                                 "vd.kind": "capability table",
-                                 "vd.runs": " ".join(str(r.bag) for r in mine)})
-        try:
-            import time as _time
+        tables.append(build_table(pairs, chosen or defined[axle], tolerances))  # type: ignore[arg-type]
+    writer = BagWriter(bag, {"vd.configuration": configuration,
+                             "vd.data_hash": tables[0].data_hash,
+                             "vd.master_file": str(master), "vd.model": "kc",
+                             "vd.fidelity": "rigid and flexible",
+                             "vd.kind": "capability study", "vd.axles": " ".join(axles)})
+    try:
+        clock = time.time_ns()
 
-            stamp_ns = _time.time_ns()
-            from builtin_interfaces.msg import Time
+        def stamp() -> Time:
+            nonlocal clock
+            clock += 1000  # strictly increasing log times, 1 us apart
+            return Time(sec=clock // 1_000_000_000, nanosec=clock % 1_000_000_000)
 
-            writer.write(TOPIC, to_msg(table, Time(sec=stamp_ns // 1_000_000_000,
-                                                   nanosec=stamp_ns % 1_000_000_000)), stamp_ns)
-            writer.close()
-        except BaseException:
-            writer.abort()
-            raise
-        tables.append(table)
+        for result in results:
+            assert result.outcome is not None
+            for sample in outcome_samples(result.outcome):
+                sample.header.stamp = stamp()
+                writer.write("/vd/kc/state", sample, clock)
+            writer.write("/vd/kc/result", outcome_to_msg(result.outcome, stamp()), clock)
+        for table in tables:
+            writer.write(TOPIC, to_msg(table, stamp()), clock)
+        writer.close()
+    except BaseException:
+        writer.abort()
+        raise
     return tables

@@ -65,8 +65,8 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     cap.add_argument("--config", default=None, help="configuration (default: the first)")
     cap.add_argument("--axle", default="", help="front | rear (default: both)")
     cap.add_argument("--master", help="master file (default: the bundled sample study)")
-    cap.add_argument("--out", default=None, help="folder for the bags and tables "
-                     "(default: out/capability/<configuration>; must not hold them yet)")
+    cap.add_argument("--out", default=None, help="folder for the bag of the runs and tables "
+                     "(default: out/capability/<configuration>; must not hold it yet)")
     cap.add_argument("--param", dest="parameters", action="append", default=[],
                      metavar="NAME=VALUE", help="event parameter for every event, e.g. steps=41")
     cap.add_argument("--json", action="store_true")
@@ -245,5 +245,5 @@ def cmd_capability(args: argparse.Namespace) -> int:
         term.print(table)
         for note in t.notes:
             term.print(note)
-    term.print(f"bags and tables: {out}")
+    term.print(f"bag (both runs of every event and the tables): {out}/capability_{name}")
     return 0

@@ -75,8 +75,7 @@ def main() -> int:
         term.print(f"  baseline    {table.axle:<5} flexible ({', '.join(table.components)}) "
                    f"needed for: {', '.join(needs) or 'none'}")
     bags = [Path(r["bag"]) for r in summary["runs"] if r["bag"]]
-    bags += sorted(p for p in (OUT / "capability").glob("capability_*"))
-    bags += sorted((OUT / "capability" / "bags").iterdir())
+    bags += sorted((OUT / "capability").glob("capability_*"))
     summary["report"] = str(build_report(bags, OUT))
     for run in summary["runs"]:
         m = run["metrics"]
