@@ -10,20 +10,11 @@ import platform
 import statistics
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-REPEATS = 3
+from vd_solvers.timing import REPEATS, median_time
 
-
-def _median(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def machine() -> dict[str, Any]:
@@ -43,7 +34,7 @@ def run_bench() -> dict[str, Any]:
 
     results: dict[str, Any] = {"machine": machine()}
     master = default_master()
-    results["load_study_s"] = _median(lambda: load_study(master))
+    results["load_study_s"] = median_time(lambda: load_study(master))
     study = load_study(master)
     config = study.configurations["baseline"]
     front, rear = suspension_input(config, "front"), suspension_input(config, "rear")
@@ -55,10 +46,10 @@ def run_bench() -> dict[str, Any]:
         cache.clear()
         run_event(config, "steady_state_circular", "bicycle")
 
-    results["bicycle_cold_kc_s"] = _median(cold)
-    results["bicycle_steady_state_s"] = _median(
+    results["bicycle_cold_kc_s"] = median_time(cold)
+    results["bicycle_steady_state_s"] = median_time(
         lambda: run_event(config, "steady_state_circular", "bicycle"))
-    results["two_track_handling_diagram_s"] = _median(
+    results["two_track_handling_diagram_s"] = median_time(
         lambda: run_event(config, "handling_diagram", "two_track"))
     results["flex"] = _bench_flex(config)
     results["capability_both_axles_s"] = _bench_capability(master)
@@ -81,7 +72,7 @@ def _bench_flex(config) -> dict[str, float]:
     for axle in ("front", "rear"):
         for fidelity in ("rigid", "flexible"):
             model = KCModel(suspension_input(config, axle, fidelity))
-            out[f"{axle}_{fidelity}_s"] = _median(lambda: model.run("parallel_wheel_travel"))
+            out[f"{axle}_{fidelity}_s"] = median_time(lambda: model.run("parallel_wheel_travel"))
         out[f"{axle}_ratio"] = out[f"{axle}_flexible_s"] / out[f"{axle}_rigid_s"]
     return out
 

@@ -15,12 +15,13 @@
 """
 from __future__ import annotations
 
-import statistics
 import time
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+
+from vd_solvers.timing import median_time
 
 from .drivers import OpenLoopSteering, SpeedController
 from .events import run_vehicle_event
@@ -31,17 +32,7 @@ SPEED = 100.0 / 3.6
 DURATION = 10.0
 STEP_TIME = 1.0
 RAMP = 0.1
-REPEATS = 3
 MICRO_CALLS = 500
-
-
-def _median(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def _micro(fn: Callable[[], Any]) -> float:
@@ -67,7 +58,7 @@ def bench_vehicle(config) -> dict[str, Any]:
         return simulate(model, steering, speed, DURATION, event="step_steer",
                         initial_speed=SPEED, record_every=2)
 
-    wall = _median(step_steer)
+    wall = median_time(step_steer)
     trace = step_steer()
     out: dict[str, Any] = {
         "step_s": STEP, "model_build_s": build,
@@ -145,7 +136,7 @@ def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
     probe = 0.005  # rad
     run(probe)
     angle = probe * yaw_rate / float(result["x"][-1, 5])
-    wall = _median(lambda: run(angle))
+    wall = median_time(lambda: run(angle))
     x = result["x"]
     if not np.all(np.isfinite(x)):
         raise RuntimeError("the CommonRoad peer run diverged; its timing would be meaningless")

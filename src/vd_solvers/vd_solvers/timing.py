@@ -1,0 +1,20 @@
+"""Wall-clock timing for the benchmark suite (``vd bench``), never for pass/fail tests."""
+from __future__ import annotations
+
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+#: repetitions of a timed call; the median is reported
+REPEATS = 3
+
+
+def median_time(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
+    """Median wall-clock seconds of ``repeats`` calls of ``fn``."""
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
