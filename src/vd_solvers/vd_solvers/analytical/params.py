@@ -68,14 +68,8 @@ class AxleCompliance:
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, (int, float)) and not math.isfinite(value):
-                raise ValueError(f"{f.name} must be finite, got {value!r}")
-        known = {f.name for f in fields(self)} - {"sources"}
-        for key in self.sources:
-            _require(key in known, "sources", f"names unknown field {key!r}", key)
-        object.__setattr__(self, "sources", MappingProxyType(dict(self.sources)))
+        _check_finite(self)
+        _freeze_sources(self)
 
     @property
     def is_rigid(self) -> bool:
@@ -144,10 +138,7 @@ class VehicleParams:
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, (int, float)) and not math.isfinite(value):
-                raise ValueError(f"{f.name} must be finite, got {value!r}")
+        _check_finite(self)
         _require(self.mass > 0.0, "mass", "must be positive", self.mass)
         _require(self.wheelbase > 0.0, "wheelbase", "must be positive", self.wheelbase)
         _require(
@@ -184,11 +175,8 @@ class VehicleParams:
                                  f"got {type(getattr(self, name)).__name__}")
         _check_tire("tire_front", self.tire_front, self.axle_load_front / 2.0)
         _check_tire("tire_rear", self.tire_rear, self.axle_load_rear / 2.0)
-        known = {f.name for f in fields(self)} - {"sources"}
-        for key in self.sources:
-            _require(key in known, "sources", f"names unknown field {key!r}", key)
         # Freeze the provenance too, so the whole parameter set is immutable.
-        object.__setattr__(self, "sources", MappingProxyType(dict(self.sources)))
+        _freeze_sources(self)
 
     @property
     def cog_to_rear_axle(self) -> float:
@@ -214,6 +202,22 @@ class VehicleParams:
     def roll_stiffness(self) -> float:
         """Total suspension roll stiffness K_phi = K_phi_f + K_phi_r, N*m/rad."""
         return self.roll_stiffness_front + self.roll_stiffness_rear
+
+
+def _check_finite(params: object) -> None:
+    """Every numeric field of the dataclass ``params`` must be finite."""
+    for f in fields(params):  # type: ignore[arg-type]
+        value = getattr(params, f.name)
+        if isinstance(value, (int, float)) and not math.isfinite(value):
+            raise ValueError(f"{f.name} must be finite, got {value!r}")
+
+
+def _freeze_sources(params: object) -> None:
+    """``params.sources`` may name only its fields; frozen to a read-only mapping."""
+    known = {f.name for f in fields(params)} - {"sources"}  # type: ignore[arg-type]
+    for key in params.sources:  # type: ignore[attr-defined]
+        _require(key in known, "sources", f"names unknown field {key!r}", key)
+    object.__setattr__(params, "sources", MappingProxyType(dict(params.sources)))  # type: ignore[attr-defined]
 
 
 def _require(ok: bool, name: str, message: str, value: object) -> None:

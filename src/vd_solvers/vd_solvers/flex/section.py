@@ -63,14 +63,9 @@ class Section:
     shape: str = "general"
 
     def __post_init__(self) -> None:
-        for name in ("area", "iy", "iz", "j"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0.0):
-                raise SolverError(f"{self.shape} section: {name} must be positive, got {value!r}")
-        for name in ("shear_area_y", "shear_area_z"):
-            value = getattr(self, name)
-            if value is not None and not (math.isfinite(value) and value > 0.0):
-                raise SolverError(f"{self.shape} section: {name} must be positive, got {value!r}")
+        given = {n: getattr(self, n) for n in ("area", "iy", "iz", "j", "shear_area_y",
+                                               "shear_area_z") if getattr(self, n) is not None}
+        _positive(self.shape, **given)
 
 
 def _positive(shape: str, **values: float) -> None:
