@@ -1,42 +1,42 @@
 """Shared fixtures: sample data copies and a private ROS graph for node tests."""
 from __future__ import annotations
 
-import os
-import shutil
 from collections.abc import Iterator
+import os
 from pathlib import Path
+import shutil
 
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
-SAMPLE_DATA = REPO / "src" / "vd_data_server" / "data"
+SAMPLE_DATA = REPO / 'src' / 'vd_data_server' / 'data'
 
 
 @pytest.fixture
 def sample_root(tmp_path: Path) -> Path:
     """A writable copy of the bundled data root (tests edit it)."""
-    root = tmp_path / "data"
+    root = tmp_path / 'data'
     shutil.copytree(SAMPLE_DATA, root)
     return root
 
 
 @pytest.fixture
 def sedan_master(sample_root: Path) -> Path:
-    return sample_root / "studies" / "sedan.yaml"
+    return sample_root / 'studies' / 'sedan.yaml'
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def ros_domain() -> Iterator[int]:
-    """rclpy initialised once, in a private domain on loopback."""
+    """Rclpy initialised once, in a private domain on loopback."""
     import rclpy
 
     from vd_events.domain import claim_domain
 
-    os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     # claimed like a run's domain, so the runs of this session (and of other sessions
     # on the machine) never share it
     claim = claim_domain()
-    os.environ["ROS_DOMAIN_ID"] = str(claim.domain)
+    os.environ['ROS_DOMAIN_ID'] = str(claim.domain)
     rclpy.init(domain_id=claim.domain)
     yield claim.domain
     rclpy.try_shutdown()

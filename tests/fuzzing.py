@@ -1,10 +1,12 @@
-"""Strategies and the property shared by the fuzz tests: either a clean error or a valid
-result - never a traceback (an exception of another type), a hang or a huge message."""
+"""
+Strategies and the property shared by the fuzz tests: either a clean error or a valid
+result - never a traceback (an exception of another type), a hang or a huge message.
+"""
 from __future__ import annotations
 
+from collections.abc import Iterator
 import contextlib
 import signal
-from collections.abc import Iterator
 from typing import Any
 
 from hypothesis import strategies as st
@@ -22,7 +24,7 @@ class Hang(Exception):
 @contextlib.contextmanager
 def no_hang(seconds: float = HANG) -> Iterator[None]:
     def alarm(signum, frame):
-        raise Hang(f"no answer after {seconds:g} s")
+        raise Hang(f'no answer after {seconds:g} s')
 
     previous = signal.signal(signal.SIGALRM, alarm)
     signal.setitimer(signal.ITIMER_REAL, seconds)
@@ -36,21 +38,21 @@ def no_hang(seconds: float = HANG) -> Iterator[None]:
 def clean(err: Exception) -> None:
     """A clean error: one or more readable lines, bounded."""
     text = str(err)
-    assert text, f"empty message from {type(err).__name__}"
+    assert text, f'empty message from {type(err).__name__}'
     assert len(text) <= MAX_MESSAGE, len(text)
-    assert "Traceback" not in text
+    assert 'Traceback' not in text
 
 
-UNITS = ["", "mm", "m", "N/mm", "N", "kN", "deg", "rad", "kg", "g", "N*m/deg", "N/(mm*0)",
-         "1/0", "mm**99999", "(", "%", "furlong", "N/mm/mm", "m/s", "Pa", "bar", "e", "*",
-         "N*s/mm", "kg*m^2", "inf", "nan"]
+UNITS = ['', 'mm', 'm', 'N/mm', 'N', 'kN', 'deg', 'rad', 'kg', 'g', 'N*m/deg', 'N/(mm*0)',
+         '1/0', 'mm**99999', '(', '%', 'furlong', 'N/mm/mm', 'm/s', 'Pa', 'bar', 'e', '*',
+         'N*s/mm', 'kg*m^2', 'inf', 'nan']
 NUMBER_TEXTS = st.one_of(
     st.integers(min_value=-10**500, max_value=10**500).map(str),
     st.floats(allow_nan=True, allow_infinity=True).map(repr),
-    st.sampled_from(["", "-", ".", "1e", "1e999", "-0", "0", "1e-400", "nan", "inf", "1_000",
-                     "0x10", "+.5", "9" * 400]),
+    st.sampled_from(['', '-', '.', '1e', '1e999', '-0', '0', '1e-400', 'nan', 'inf', '1_000',
+                     '0x10', '+.5', '9' * 400]),
 )
-QUANTITIES = st.builds(lambda n, sep, u: f"{n}{sep}{u}", NUMBER_TEXTS, st.sampled_from(["", " "]),
+QUANTITIES = st.builds(lambda n, sep, u: f'{n}{sep}{u}', NUMBER_TEXTS, st.sampled_from(['', ' ']),
                        st.sampled_from(UNITS))
 SCALARS = st.one_of(
     st.none(), st.booleans(),
@@ -83,18 +85,18 @@ def mutate(data: st.DataObject, tree: Any, rounds: int = 3) -> Any:
     tree = copy.deepcopy(tree)
     for _ in range(data.draw(st.integers(1, rounds))):
         where = data.draw(st.sampled_from(paths(tree)))
-        action = data.draw(st.sampled_from(["replace", "delete", "add"]))
+        action = data.draw(st.sampled_from(['replace', 'delete', 'add']))
         if not where:
-            if action == "replace":
+            if action == 'replace':
                 tree = data.draw(VALUES)
             continue
         parent = tree
         for step in where[:-1]:
             parent = parent[step]
         last = where[-1]
-        if action == "replace":
+        if action == 'replace':
             parent[last] = data.draw(VALUES)
-        elif action == "delete":
+        elif action == 'delete':
             del parent[last]
         elif isinstance(parent, dict):
             parent[data.draw(st.text(max_size=10))] = data.draw(VALUES)

@@ -1,14 +1,14 @@
 """Helpers shared by the tests (import as `vdtest`)."""
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
 from pathlib import Path
+import time
 
 
 def tree_snapshot(root: Path) -> dict[str, bytes]:
     """Every file under ``root`` with its bytes: to prove nothing was written."""
-    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*"))
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob('*'))
             if p.is_file()}
 
 
@@ -34,13 +34,13 @@ def spin_until(nodes, predicate: Callable[[], bool], timeout: float = 10.0) -> b
 
 def replace_once(path: Path, old: str, new: str) -> None:
     """Edit a test's copy of a data file: ``old`` must occur exactly once."""
-    text = path.read_text(encoding="utf-8")
+    text = path.read_text(encoding='utf-8')
     assert text.count(old) == 1, old
-    path.write_text(text.replace(old, new), encoding="utf-8")
+    path.write_text(text.replace(old, new), encoding='utf-8')
 
 
 
 def line_no(path: Path, start: str) -> int:
     """1-based number of the first line of ``path`` that starts with ``start``."""
-    lines = path.read_text(encoding="utf-8").splitlines()
+    lines = path.read_text(encoding='utf-8').splitlines()
     return next(n for n, line in enumerate(lines, start=1) if line.startswith(start))

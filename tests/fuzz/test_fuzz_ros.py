@@ -1,26 +1,28 @@
-"""Fuzzed service requests and action goals to live nodes: every request gets an answer
-(success or a clean message) and the node keeps serving - never a dead node (issue 10)."""
+"""
+Fuzzed service requests and action goals to live nodes: every request gets an answer
+(success or a clean message) and the node keeps serving - never a dead node (issue 10).
+"""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
+import shutil
 
-import pytest
-from fuzzing import QUANTITIES
 from hypothesis import given, settings
 from hypothesis import strategies as st
+import pytest
 
+from fuzzing import QUANTITIES
 from vdtest import spin_until
 
 pytestmark = pytest.mark.ros
 
-SAMPLE = Path(__file__).resolve().parents[2] / "src" / "vd_data_server" / "data"
+SAMPLE = Path(__file__).resolve().parents[2] / 'src' / 'vd_data_server' / 'data'
 #: a fifth of the profile's examples: each one is a round trip through DDS
 FEW = max(5, settings.default.max_examples // 5)
 TEXTS = st.one_of(st.text(max_size=40), QUANTITIES)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def graph(ros_domain, tmp_path_factory):
     from rclpy.node import Node
     from rclpy.parameter import Parameter
@@ -28,13 +30,13 @@ def graph(ros_domain, tmp_path_factory):
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
 
-    root = tmp_path_factory.mktemp("fuzz_ros") / "data"
+    root = tmp_path_factory.mktemp('fuzz_ros') / 'data'
     shutil.copytree(SAMPLE, root)
     server = DataServer(parameter_overrides=[
-        Parameter("master_file", value=str(root / "studies" / "sedan.yaml")),
-        Parameter("watch_period", value=0.0), Parameter("allow_edits", value=True)])
+        Parameter('master_file', value=str(root / 'studies' / 'sedan.yaml')),
+        Parameter('watch_period', value=0.0), Parameter('allow_edits', value=True)])
     solver = AnalyticalSolver()
-    client = Node("fuzz_client")
+    client = Node('fuzz_client')
     nodes = [server, solver, client]
     assert spin_until(nodes, lambda: len(solver.configurations) == 3)
     yield nodes
@@ -47,7 +49,7 @@ def _call(nodes, srv_type, name, request):
     try:
         assert spin_until(nodes, client.service_is_ready, timeout=5.0)
         future = client.call_async(request)
-        assert spin_until(nodes, future.done, timeout=10.0), f"{name}: no answer"
+        assert spin_until(nodes, future.done, timeout=10.0), f'{name}: no answer'
         return future.result()
     finally:
         nodes[2].destroy_client(client)
@@ -56,42 +58,43 @@ def _call(nodes, srv_type, name, request):
 def _alive(nodes) -> None:
     from vd_interfaces.srv import GetConfiguration
 
-    answer = _call(nodes, GetConfiguration, "/vd/get_configuration",
-                   GetConfiguration.Request(name="baseline"))
+    answer = _call(nodes, GetConfiguration, '/vd/get_configuration',
+                   GetConfiguration.Request(name='baseline'))
     assert answer.success
 
 
 @settings(max_examples=FEW)
-@given(configuration=st.one_of(st.sampled_from(["baseline", "sport"]), st.text(max_size=20)),
-       key=st.one_of(st.sampled_from(["front_spring.rate", "mass.sprung_mass",
-                                      "front_tire.tir.LATERAL_COEFFICIENTS.PKY2"]),
+@given(configuration=st.one_of(st.sampled_from(['baseline', 'sport']), st.text(max_size=20)),
+       key=st.one_of(st.sampled_from(['front_spring.rate', 'mass.sprung_mass',
+                                      'front_tire.tir.LATERAL_COEFFICIENTS.PKY2']),
                      st.text(max_size=30)),
        value=TEXTS)
 def test_set_override_requests(graph, configuration, key, value):
     from vd_interfaces.srv import SetOverride
 
-    answer = _call(graph, SetOverride, "/vd/set_override",
+    answer = _call(graph, SetOverride, '/vd/set_override',
                    SetOverride.Request(configuration=configuration, key=key, value=value))
     assert answer.message
-    assert "Traceback" not in answer.message
+    assert 'Traceback' not in answer.message
     _alive(graph)
 
 
 @settings(max_examples=FEW)
-@given(event=st.one_of(st.sampled_from(["handling_diagram", "steady_state_circular",
-                                        "step_steer"]), st.text(max_size=20)),
-       configuration=st.one_of(st.just("baseline"), st.text(max_size=10)),
-       model=st.sampled_from(["two_track", "bicycle", "", "kc", "x"]),
-       overrides=st.lists(st.builds(lambda k, v: f"{k}={v}", st.sampled_from(
-           ["front_spring.rate", "mass.sprung_mass", "targets.roll_stiffness_front", "x"]),
+@given(event=st.one_of(st.sampled_from(['handling_diagram', 'steady_state_circular',
+                                        'step_steer']), st.text(max_size=20)),
+       configuration=st.one_of(st.just('baseline'), st.text(max_size=10)),
+       model=st.sampled_from(['two_track', 'bicycle', '', 'kc', 'x']),
+       overrides=st.lists(st.builds(lambda k, v: f'{k}={v}', st.sampled_from(
+           ['front_spring.rate', 'mass.sprung_mass', 'targets.roll_stiffness_front', 'x']),
            TEXTS), max_size=2),
-       parameters=st.lists(st.builds(lambda k, v: f"{k}={v}", st.sampled_from(
-           ["radius", "steps", "speed", "x"]), TEXTS), max_size=2))
+       parameters=st.lists(st.builds(lambda k, v: f'{k}={v}', st.sampled_from(
+           ['radius', 'steps', 'speed', 'x']), TEXTS), max_size=2))
 def test_run_event_goals(graph, event, configuration, model, overrides, parameters):
     from rclpy.action import ActionClient
+
     from vd_interfaces.action import RunEvent
 
-    action = ActionClient(graph[2], RunEvent, "/vd/steady_state/run_event")
+    action = ActionClient(graph[2], RunEvent, '/vd/steady_state/run_event')
     try:
         assert spin_until(graph, action.server_is_ready, timeout=5.0)
         send = action.send_goal_async(RunEvent.Goal(
@@ -99,9 +102,9 @@ def test_run_event_goals(graph, event, configuration, model, overrides, paramete
             parameters=parameters))
         assert spin_until(graph, send.done, timeout=10.0)
         result = send.result().get_result_async()
-        assert spin_until(graph, result.done, timeout=30.0), "no answer to the goal"
+        assert spin_until(graph, result.done, timeout=30.0), 'no answer to the goal'
         answer = result.result().result
-        assert answer.message and "Traceback" not in answer.message
+        assert answer.message and 'Traceback' not in answer.message
     finally:
         action.destroy()
     _alive(graph)

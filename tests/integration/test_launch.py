@@ -1,14 +1,16 @@
-"""`vd launch --distributed` keeps the nodes up; `ros2 run vd_events event_runner` drives
-a plan against them; SIGTERM stops everything."""
+"""
+`vd launch --distributed` keeps the nodes up; `ros2 run vd_events event_runner` drives
+a plan against them; SIGTERM stops everything.
+"""
 from __future__ import annotations
 
 import os
+from pathlib import Path
 import random
 import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 
@@ -19,8 +21,8 @@ def test_launch_and_event_runner(tmp_path, sedan_master):
     from ament_index_python.packages import get_package_prefix
 
     env = dict(os.environ, ROS_DOMAIN_ID=str(random.randint(216, 232)),
-               ROS_AUTOMATIC_DISCOVERY_RANGE="LOCALHOST")
-    plan = tmp_path / "plan.yaml"
+               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    plan = tmp_path / 'plan.yaml'
     plan.write_text(f"""name: er
 master: {sedan_master}
 runs:
@@ -34,12 +36,12 @@ runs:
     configurations: [sport]
     parameters: [steps=11]
 """)
-    launcher = subprocess.Popen([sys.executable, "-m", "vd_events.cli", "launch",
-                                 "--distributed", "--master", str(sedan_master)], env=env,
+    launcher = subprocess.Popen([sys.executable, '-m', 'vd_events.cli', 'launch',
+                                 '--distributed', '--master', str(sedan_master)], env=env,
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
-        runner = Path(get_package_prefix("vd_events")) / "lib" / "vd_events" / "event_runner"
-        done = subprocess.run([str(runner), "--ros-args", "-p", f"plan:={plan}"], env=env,
+        runner = Path(get_package_prefix('vd_events')) / 'lib' / 'vd_events' / 'event_runner'
+        done = subprocess.run([str(runner), '--ros-args', '-p', f'plan:={plan}'], env=env,
                               capture_output=True, text=True, timeout=120)
         assert done.returncode == 0, done.stdout + done.stderr
         log = done.stdout + done.stderr
@@ -50,6 +52,6 @@ runs:
         out, _ = launcher.communicate(timeout=30)
     assert launcher.returncode == 0, out
     time.sleep(0.5)
-    leftover = subprocess.run(["pgrep", "-f", f"master_file:={sedan_master}"],
+    leftover = subprocess.run(['pgrep', '-f', f'master_file:={sedan_master}'],
                               capture_output=True, text=True)
-    assert leftover.stdout == ""
+    assert leftover.stdout == ''

@@ -1,5 +1,7 @@
-"""The recorder process: a bag becomes final only when its owner says the recording is
-complete (``~/finish``); SIGTERM and SIGINT remove the partial bag and say so."""
+"""
+The recorder process: a bag becomes final only when its owner says the recording is
+complete (``~/finish``); SIGTERM and SIGINT remove the partial bag and say so.
+"""
 from __future__ import annotations
 
 import os
@@ -17,21 +19,21 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]
     """Start a recorder, publish three samples to it, then ``stop(node, proc)``."""
     from ament_index_python.packages import get_package_prefix
     from rclpy.node import Node
-    from vd_interfaces.msg import Sample
 
+    from vd_interfaces.msg import Sample
     from vd_solvers.solver_node import SAMPLES
 
-    exe = os.path.join(get_package_prefix("vd_events"), "lib", "vd_events", "recorder")
+    exe = os.path.join(get_package_prefix('vd_events'), 'lib', 'vd_events', 'recorder')
     env = dict(os.environ, ROS_DOMAIN_ID=str(ros_domain))
-    proc = subprocess.Popen([exe, "--ros-args", "-p", f"bag:={bag}"], env=env,
+    proc = subprocess.Popen([exe, '--ros-args', '-p', f'bag:={bag}'], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    node = Node("sample_publisher")
+    node = Node('sample_publisher')
     try:
-        pub = node.create_publisher(Sample, "/vd/kc/state", SAMPLES)
+        pub = node.create_publisher(Sample, '/vd/kc/state', SAMPLES)
         assert spin_until([node], lambda: pub.get_subscription_count() >= 1, timeout=20.0)
         stamp = node.get_clock().now().to_msg()
         for step in range(3):
-            msg = Sample(event="e", configuration="c", model="kc", step=step, names=["x"],
+            msg = Sample(event='e', configuration='c', model='kc', step=step, names=['x'],
                          values=[float(step)])
             msg.header.stamp = stamp
             pub.publish(msg)
@@ -50,11 +52,11 @@ def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
 
     from vd_events.bag import read_bag
 
-    bag = tmp_path / "bag"
+    bag = tmp_path / 'bag'
     answers = []
 
     def finish(node, proc) -> None:
-        client = node.create_client(Trigger, "/recorder/finish")
+        client = node.create_client(Trigger, '/recorder/finish')
         assert spin_until([node], client.service_is_ready, timeout=10.0)
         future = client.call_async(Trigger.Request())
         assert spin_until([node], future.done, timeout=10.0)
@@ -63,31 +65,31 @@ def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
     proc, out = _record_three_samples(ros_domain, bag, finish)
     assert (answers[0].success, answers[0].message) == (True, str(bag))
     assert proc.returncode == 0, out
-    assert (bag / "metadata.yaml").is_file()
-    assert not (tmp_path / "bag.partial").exists()
-    steps = [m.msg.step for m in read_bag(bag) if m.topic == "/vd/kc/state"]
+    assert (bag / 'metadata.yaml').is_file()
+    assert not (tmp_path / 'bag.partial').exists()
+    steps = [m.msg.step for m in read_bag(bag) if m.topic == '/vd/kc/state']
     assert steps == [0, 1, 2]
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+@pytest.mark.parametrize('sig', [signal.SIGTERM, signal.SIGINT])
 def test_a_signal_removes_the_partial_bag_and_says_so(ros_domain, tmp_path, sig):
-    bag = tmp_path / "bag"
+    bag = tmp_path / 'bag'
     proc, out = _record_three_samples(ros_domain, bag, lambda node, p: p.send_signal(sig))
     assert proc.returncode == 1, out
-    assert out.splitlines()[-1] == (f"recorder: interrupted before the recording was complete: "
-                                    f"no bag written ({bag}.partial removed)")
+    assert out.splitlines()[-1] == (f'recorder: interrupted before the recording was complete: '
+                                    f'no bag written ({bag}.partial removed)')
     assert sorted(p.name for p in tmp_path.iterdir()) == []
 
 
 def test_recorder_refuses_an_existing_bag(ros_domain, tmp_path):
     from ament_index_python.packages import get_package_prefix
 
-    exe = os.path.join(get_package_prefix("vd_events"), "lib", "vd_events", "recorder")
-    bag = tmp_path / "bag"
+    exe = os.path.join(get_package_prefix('vd_events'), 'lib', 'vd_events', 'recorder')
+    bag = tmp_path / 'bag'
     bag.mkdir()
-    done = subprocess.run([exe, "--ros-args", "-p", f"bag:={bag}"], capture_output=True,
+    done = subprocess.run([exe, '--ros-args', '-p', f'bag:={bag}'], capture_output=True,
                           text=True, timeout=30,
                           env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)))
     assert done.returncode == 2
-    assert f"recorder: {bag}: bag path already exists (choose another --bag)" in done.stdout
+    assert f'recorder: {bag}: bag path already exists (choose another --bag)' in done.stdout
     assert list(bag.iterdir()) == []

@@ -1,5 +1,7 @@
-"""Runs never share a ROS domain silently, every result is matched to its request, and
-long goals are not mistaken for lost ones (issue 10, causes 2 and 5)."""
+"""
+Runs never share a ROS domain silently, every result is matched to its request, and
+long goals are not mistaken for lost ones (issue 10, causes 2 and 5).
+"""
 from __future__ import annotations
 
 import dataclasses
@@ -27,53 +29,54 @@ def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch,
 
     held = claim_domain()  # what a live run holds for its whole life
     try:
-        monkeypatch.setenv("VD_DOMAIN_ID", str(held.domain))
-        bag = tmp_path / "bag"
+        monkeypatch.setenv('VD_DOMAIN_ID', str(held.domain))
+        bag = tmp_path / 'bag'
         before = tree_snapshot(sedan_master.parents[1])
-        rc, out, err = _vd(capsys, "run", "handling_diagram", "--master", str(sedan_master),
-                           "--bag", str(bag))
-        assert (rc, out) == (2, "")
+        rc, out, err = _vd(capsys, 'run', 'handling_diagram', '--master', str(sedan_master),
+                           '--bag', str(bag))
+        assert (rc, out) == (2, '')
         assert err.strip() == (f"VD_DOMAIN_ID: ROS domain {held.domain} is in use by another "
                                f"vd run (pid {__import__('os').getpid()}); unset VD_DOMAIN_ID "
                                "or choose another")
-        assert not list(tmp_path.glob("bag*"))
+        assert not list(tmp_path.glob('bag*'))
         assert tree_snapshot(sedan_master.parents[1]) == before
     finally:
         held.release()
 
 
 def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_master):
-    """What another study on the same domain would answer: the configuration of the same
-    name, computed from other data (its data hash differs)."""
+    """
+    What another study on the same domain would answer: the configuration of the same
+    name, computed from other data (its data hash differs).
+    """
     from vd_data_server.study import load_study
     from vd_events.runner import RunRequest, run_embedded, validate
 
-    bag = tmp_path / "bag"
+    bag = tmp_path / 'bag'
     request = validate(load_study(sedan_master), RunRequest(
-        event="handling_diagram", configuration="baseline", model="two_track",
-        parameters=("steps=5",), bag=bag))
-    other = dataclasses.replace(request, data_hash="0123456789abcdef")
+        event='handling_diagram', configuration='baseline', model='two_track',
+        parameters=('steps=5',), bag=bag))
+    other = dataclasses.replace(request, data_hash='0123456789abcdef')
     (outcome,) = run_embedded(sedan_master, [other])
     assert outcome.outcome is None and outcome.bag is None
     assert outcome.error == (
         "configuration 'baseline', event 'handling_diagram', model 'two_track': the result was "
         f"computed from other data (data hash {request.data_hash}, expected 0123456789abcdef) "
         "- another study answered on this ROS domain; not used")
-    assert not list(tmp_path.glob("bag*"))
+    assert not list(tmp_path.glob('bag*'))
 
 
 def test_check_result_refuses_an_answer_to_another_request():
+    from vd_events.runner import RunError, RunRequest, check_result
     from vd_interfaces.msg import EventResult
 
-    from vd_events.runner import RunError, RunRequest, check_result
-
-    request = RunRequest(event="handling_diagram", configuration="baseline", model="two_track",
-                         data_hash="aaaa")
-    check_result(request, EventResult(event="handling_diagram", configuration="baseline",
-                                      model="two_track", data_hash="aaaa"))
+    request = RunRequest(event='handling_diagram', configuration='baseline', model='two_track',
+                         data_hash='aaaa')
+    check_result(request, EventResult(event='handling_diagram', configuration='baseline',
+                                      model='two_track', data_hash='aaaa'))
     with pytest.raises(RunError) as info:
-        check_result(request, EventResult(event="handling_diagram", configuration="sport",
-                                          model="two_track", data_hash="aaaa"))
+        check_result(request, EventResult(event='handling_diagram', configuration='sport',
+                                          model='two_track', data_hash='aaaa'))
     assert str(info.value) == (
         "configuration 'baseline', event 'handling_diagram', model 'two_track': the result is "
         "for configuration 'sport', event 'handling_diagram', model 'two_track' - another run "
@@ -81,13 +84,15 @@ def test_check_result_refuses_an_answer_to_another_request():
 
 
 def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sedan_master):
-    """The accept wait and the solver's execute callback no longer share one thread: a goal
-    that takes several accept timeouts is accepted once and finishes."""
-    import vd_solvers.analytical_node as analytical_node
+    """
+    The accept wait and the solver's execute callback no longer share one thread: a goal
+    that takes several accept timeouts is accepted once and finishes.
+    """
     from vd_data_server.study import load_study
     from vd_events import runner
+    import vd_solvers.analytical_node as analytical_node
 
-    monkeypatch.setattr(runner, "ACCEPT_TIMEOUT", 0.3)
+    monkeypatch.setattr(runner, 'ACCEPT_TIMEOUT', 0.3)
     calls = []
     real = analytical_node.run_event
 
@@ -96,35 +101,37 @@ def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sed
         time.sleep(4 * runner.ACCEPT_TIMEOUT * runner.GOAL_ATTEMPTS / 3)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(analytical_node, "run_event", slow)
+    monkeypatch.setattr(analytical_node, 'run_event', slow)
     request = runner.validate(load_study(sedan_master), runner.RunRequest(
-        event="handling_diagram", configuration="baseline", model="two_track",
-        parameters=("steps=5",), bag=tmp_path / "bag"))
+        event='handling_diagram', configuration='baseline', model='two_track',
+        parameters=('steps=5',), bag=tmp_path / 'bag'))
     t0 = time.monotonic()
     (outcome,) = runner.run_embedded(sedan_master, [request])
     assert outcome.error is None, outcome.error
     assert len(calls) == 1  # accepted at the first attempt, never sent again
     assert time.monotonic() - t0 > 4 * runner.ACCEPT_TIMEOUT
     assert outcome.outcome.data_hash == request.data_hash
-    assert (tmp_path / "bag" / "metadata.yaml").is_file()
+    assert (tmp_path / 'bag' / 'metadata.yaml').is_file()
 
 
 def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master, sample_root):
-    """Two studies whose configurations share a name, run at the same moment: each gets
-    the wheel rate of its own data."""
+    """
+    Two studies whose configurations share a name, run at the same moment: each gets
+    the wheel rate of its own data.
+    """
     import subprocess
     import sys
 
     from vdtest import replace_once
 
-    other_root = tmp_path / "other"
+    other_root = tmp_path / 'other'
     import shutil
 
     shutil.copytree(sample_root, other_root)
-    replace_once(other_root / "sedan/front_spring/X.yaml", "rate: 30.0", "rate: 45.0")
-    argv = ["run", "parallel_wheel_travel", "--axle", "front", "--param", "steps=5", "--json"]
-    procs = [subprocess.Popen([sys.executable, "-m", "vd_events.cli", *argv, "--master",
-                               str(root / "studies" / "sedan.yaml")], stdout=subprocess.PIPE,
+    replace_once(other_root / 'sedan/front_spring/X.yaml', 'rate: 30.0', 'rate: 45.0')
+    argv = ['run', 'parallel_wheel_travel', '--axle', 'front', '--param', 'steps=5', '--json']
+    procs = [subprocess.Popen([sys.executable, '-m', 'vd_events.cli', *argv, '--master',
+                               str(root / 'studies' / 'sedan.yaml')], stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True)
              for root in (sample_root, other_root)]
     results = []
@@ -132,9 +139,9 @@ def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master,
         out, err = proc.communicate(timeout=120)
         assert proc.returncode == 0, err
         results.append(json.loads(out))
-    rates = [r["metrics"]["wheel_rate"]["value"] for r in results]
+    rates = [r['metrics']['wheel_rate']['value'] for r in results]
     assert rates[1] > rates[0] * 1.2
-    assert results[0]["data_hash"] != results[1]["data_hash"]
+    assert results[0]['data_hash'] != results[1]['data_hash']
 
 
 def test_a_full_disk_while_recording_is_an_error_and_leaves_no_bag(capsys, monkeypatch, tmp_path,
@@ -144,15 +151,15 @@ def test_a_full_disk_while_recording_is_an_error_and_leaves_no_bag(capsys, monke
     from vd_events import bag as bag_module
 
     def full(self, topic, msg, timestamp_ns):
-        raise OSError(errno.ENOSPC, "No space left on device")
+        raise OSError(errno.ENOSPC, 'No space left on device')
 
-    monkeypatch.setattr(bag_module.BagWriter, "write", full)
-    bag = tmp_path / "bag"
+    monkeypatch.setattr(bag_module.BagWriter, 'write', full)
+    bag = tmp_path / 'bag'
     before = tree_snapshot(sedan_master.parents[1])
-    rc, out, err = _vd(capsys, "run", "handling_diagram", "--master", str(sedan_master),
-                       "--param", "steps=5", "--bag", str(bag))
-    assert (rc, out) == (2, "")
+    rc, out, err = _vd(capsys, 'run', 'handling_diagram', '--master', str(sedan_master),
+                       '--param', 'steps=5', '--bag', str(bag))
+    assert (rc, out) == (2, '')
     assert err.strip() == ("configuration 'baseline', event 'handling_diagram', model "
                            f"'two_track': {bag}: cannot write the bag: No space left on device")
-    assert not list(tmp_path.glob("bag*"))
+    assert not list(tmp_path.glob('bag*'))
     assert tree_snapshot(sedan_master.parents[1]) == before

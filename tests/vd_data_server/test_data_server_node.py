@@ -1,8 +1,8 @@
 """The data_server node in a private ROS domain: latched topics, services, file watching."""
 from __future__ import annotations
 
-import time
 from pathlib import Path
+import time
 
 import pytest
 
@@ -16,8 +16,8 @@ def server(ros_domain, sedan_master: Path):
     from vd_data_server.data_server_node import DataServer
 
     node = DataServer(parameter_overrides=[
-        Parameter("master_file", value=str(sedan_master)),
-        Parameter("watch_period", value=0.2),
+        Parameter('master_file', value=str(sedan_master)),
+        Parameter('watch_period', value=0.2),
     ])
     yield node
     node.destroy_node()
@@ -25,17 +25,17 @@ def server(ros_domain, sedan_master: Path):
 
 def _listener(name: str):
     from rclpy.node import Node
-    from vd_interfaces.msg import Configuration, DataStatus
 
     from vd_data_server.data_server_node import CONFIGURATION_DEPTH, latched
+    from vd_interfaces.msg import Configuration, DataStatus
 
     node = Node(name)
     node.configs = {}
     node.statuses = []
-    node.create_subscription(Configuration, "/vd/configuration",
+    node.create_subscription(Configuration, '/vd/configuration',
                              lambda m: node.configs.__setitem__(m.name, m),
                              latched(CONFIGURATION_DEPTH))
-    node.create_subscription(DataStatus, "/vd/data_status", node.statuses.append, latched(1))
+    node.create_subscription(DataStatus, '/vd/data_status', node.statuses.append, latched(1))
     return node
 
 
@@ -43,15 +43,15 @@ def test_late_subscriber_receives_every_configuration(server):
     from vdtest import spin_until
 
     spin_until([server], lambda: False, timeout=0.3)  # the server has published by now
-    listener = _listener("late_listener")
+    listener = _listener('late_listener')
     try:
         assert spin_until([server, listener], lambda: len(listener.configs) == 3 and
                           listener.statuses)
-        assert set(listener.configs) == {"baseline", "stiff_rear", "sport"}
+        assert set(listener.configs) == {'baseline', 'stiff_rear', 'sport'}
         status = listener.statuses[-1]
         modified = {(s.configuration, s.group) for s in status.status if s.state == s.MODIFIED}
-        assert modified == {("sport", "front_hardpoints"), ("sport", "front_damper"),
-                            ("sport", "front_alignment")}
+        assert modified == {('sport', 'front_hardpoints'), ('sport', 'front_damper'),
+                            ('sport', 'front_alignment')}
     finally:
         listener.destroy_node()
 
@@ -59,7 +59,7 @@ def test_late_subscriber_receives_every_configuration(server):
 def test_configuration_message_round_trips_losslessly(server):
     from vd_data_server.conversions import configuration_from_msg
 
-    listener = _listener("roundtrip_listener")
+    listener = _listener('roundtrip_listener')
     from vdtest import spin_until
 
     try:
@@ -74,26 +74,26 @@ def test_configuration_message_round_trips_losslessly(server):
 def test_editing_a_data_file_republishes_new_values_and_feedback(server, sample_root: Path):
     from vdtest import spin_until
 
-    listener = _listener("edit_listener")
+    listener = _listener('edit_listener')
     try:
         assert spin_until([server, listener], lambda: len(listener.configs) == 3)
-        old_hash = listener.configs["baseline"].data_hash
-        spring = sample_root / "sedan" / "front_spring" / "X.yaml"
+        old_hash = listener.configs['baseline'].data_hash
+        spring = sample_root / 'sedan' / 'front_spring' / 'X.yaml'
         time.sleep(0.01)
-        spring.write_text(spring.read_text().replace("rate: 30.0", "rate: 33.0"))
+        spring.write_text(spring.read_text().replace('rate: 30.0', 'rate: 33.0'))
 
         def updated() -> bool:
-            msg = listener.configs.get("baseline")
+            msg = listener.configs.get('baseline')
             return msg is not None and msg.data_hash != old_hash
 
         assert spin_until([server, listener], updated, timeout=5.0)
-        group = next(g for g in listener.configs["baseline"].groups if g.name == "front_spring")
-        rate = next(s for s in group.scalars if s.name == "rate")
+        group = next(g for g in listener.configs['baseline'].groups if g.name == 'front_spring')
+        rate = next(s for s in group.scalars if s.name == 'rate')
         assert rate.value == pytest.approx(33000.0)
         # X changed for every configuration that uses it; sport uses Y: front_spring now
         # differs between... it already did (Y). front_alignment of sport stays MODIFIED.
         status = listener.statuses[-1]
-        spring_rows = [s for s in status.status if s.group == "front_spring"]
+        spring_rows = [s for s in status.status if s.group == 'front_spring']
         assert all(s.state == s.UNCHANGED for s in spring_rows)
         assert {s.consistency for s in spring_rows} == {spring_rows[0].DIFFERS}
     finally:
@@ -103,25 +103,25 @@ def test_editing_a_data_file_republishes_new_values_and_feedback(server, sample_
 def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: Path):
     from vdtest import spin_until
 
-    listener = _listener("master_listener")
+    listener = _listener('master_listener')
     try:
         assert spin_until([server, listener], lambda: listener.statuses)
         text = sedan_master.read_text().replace(
-            "  baseline:\n    description: Reference car, all shared data unchanged.\n",
-            "  baseline:\n    description: Reference car.\n    overrides:\n"
-            "      rear_alignment.toe: 0.25 deg\n")
+            '  baseline:\n    description: Reference car, all shared data unchanged.\n',
+            '  baseline:\n    description: Reference car.\n    overrides:\n'
+            '      rear_alignment.toe: 0.25 deg\n')
         time.sleep(0.01)
         sedan_master.write_text(text)
 
         def flipped() -> bool:
-            return any(s.configuration == "baseline" and s.group == "rear_alignment"
+            return any(s.configuration == 'baseline' and s.group == 'rear_alignment'
                        and s.state == s.MODIFIED for s in listener.statuses[-1].status)
 
         assert spin_until([server, listener], flipped, timeout=5.0)
         row = next(s for s in listener.statuses[-1].status
-                   if s.configuration == "baseline" and s.group == "rear_alignment")
+                   if s.configuration == 'baseline' and s.group == 'rear_alignment')
         assert [(k.key, k.data_value, k.master_value, k.unit) for k in row.modified_keys] == [
-            ("toe", "0.15", "0.25", "deg")]
+            ('toe', '0.15', '0.25', 'deg')]
     finally:
         listener.destroy_node()
 
@@ -129,14 +129,14 @@ def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: P
 def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: Path):
     from vdtest import line_no, spin_until
 
-    listener = _listener("broken_listener")
+    listener = _listener('broken_listener')
     try:
         assert spin_until([server, listener], lambda: len(listener.configs) == 3
                           and listener.statuses)
         before = {n: m.data_hash for n, m in listener.configs.items()}
-        spring = sample_root / "sedan" / "front_spring" / "X.yaml"
+        spring = sample_root / 'sedan' / 'front_spring' / 'X.yaml'
         time.sleep(0.01)
-        spring.write_text(spring.read_text().replace("rate: 30.0", "rate: -30.0"))
+        spring.write_text(spring.read_text().replace('rate: 30.0', 'rate: -30.0'))
         assert spin_until([server, listener], lambda: listener.statuses[-1].errors, timeout=5.0)
         assert listener.statuses[-1].errors == [
             "sedan/front_spring/X.yaml: rate: must be positive, found -30.0 "
@@ -158,18 +158,19 @@ def _call(server, client_node, srv_type, name, request):
 
 def test_set_override_refused_without_allow_edits(server):
     from rclpy.node import Node
+
     from vd_interfaces.srv import SetOverride
 
-    client_node = Node("override_client")
+    client_node = Node('override_client')
     try:
-        before = server.service.study.configurations["baseline"].data_hash
-        result = _call(server, client_node, SetOverride, "/vd/set_override",
-                       SetOverride.Request(configuration="baseline",
-                                           key="front_alignment.camber", value="-2 deg"))
+        before = server.service.study.configurations['baseline'].data_hash
+        result = _call(server, client_node, SetOverride, '/vd/set_override',
+                       SetOverride.Request(configuration='baseline',
+                                           key='front_alignment.camber', value='-2 deg'))
         assert not result.success
-        assert result.message == ("edits are disabled (start the data server with parameter "
-                                  "allow_edits:=true)")
-        assert server.service.study.configurations["baseline"].data_hash == before
+        assert result.message == ('edits are disabled (start the data server with parameter '
+                                  'allow_edits:=true)')
+        assert server.service.study.configurations['baseline'].data_hash == before
     finally:
         client_node.destroy_node()
 
@@ -178,10 +179,10 @@ def test_allow_edits_cannot_be_switched_on_over_ros(server):
     """Any participant on the domain may call set_parameters: allow_edits is read-only."""
     from rclpy.parameter import Parameter
 
-    (result,) = server.set_parameters([Parameter("allow_edits", value=True)])
+    (result,) = server.set_parameters([Parameter('allow_edits', value=True)])
     assert not result.successful
-    assert result.reason == "Trying to set a read-only parameter: allow_edits."
-    assert server.get_parameter("allow_edits").value is False
+    assert result.reason == 'Trying to set a read-only parameter: allow_edits.'
+    assert server.get_parameter('allow_edits').value is False
 
 
 @pytest.fixture
@@ -191,51 +192,53 @@ def editable_server(ros_domain, sedan_master: Path):
     from vd_data_server.data_server_node import DataServer
 
     node = DataServer(parameter_overrides=[
-        Parameter("master_file", value=str(sedan_master)),
-        Parameter("watch_period", value=0.2), Parameter("allow_edits", value=True)])
+        Parameter('master_file', value=str(sedan_master)),
+        Parameter('watch_period', value=0.2), Parameter('allow_edits', value=True)])
     yield node
     node.destroy_node()
 
 
 def test_set_override_with_allow_edits_validates_and_applies(editable_server):
     from rclpy.node import Node
+
     from vd_interfaces.srv import SetOverride
 
     server = editable_server
-    client_node = Node("override_client2")
+    client_node = Node('override_client2')
     try:
-        bad = _call(server, client_node, SetOverride, "/vd/set_override",
-                    SetOverride.Request(configuration="baseline",
-                                        key="front_alignment.camber", value="-2 kg"))
+        bad = _call(server, client_node, SetOverride, '/vd/set_override',
+                    SetOverride.Request(configuration='baseline',
+                                        key='front_alignment.camber', value='-2 kg'))
         assert not bad.success
         assert bad.message == ("ROS edit /vd/set_override: front_alignment.camber: unit 'kg' is "
                                "not an angle unit (expected e.g. 'rad')")
-        good = _call(server, client_node, SetOverride, "/vd/set_override",
-                     SetOverride.Request(configuration="baseline",
-                                         key="front_alignment.camber", value="-2 deg"))
+        good = _call(server, client_node, SetOverride, '/vd/set_override',
+                     SetOverride.Request(configuration='baseline',
+                                         key='front_alignment.camber', value='-2 deg'))
         assert good.success, good.message
-        camber = server.service.study.configurations["baseline"].group(
-            "front_alignment").scalar("camber")
+        camber = server.service.study.configurations['baseline'].group(
+            'front_alignment').scalar('camber')
         assert camber == pytest.approx(-2.0 * 3.141592653589793 / 180.0)
-        assert server.service.study.status_of("baseline", "front_alignment").state == "MODIFIED"
-        value = server.service.study.configurations["baseline"].group(
-            "front_alignment").values["camber"]
-        assert value.source == "ROS edit /vd/set_override front_alignment.camber"
+        assert server.service.study.status_of('baseline', 'front_alignment').state == 'MODIFIED'
+        value = server.service.study.configurations['baseline'].group(
+            'front_alignment').values['camber']
+        assert value.source == 'ROS edit /vd/set_override front_alignment.camber'
     finally:
         client_node.destroy_node()
 
 
 def test_get_configuration_service(server):
     from rclpy.node import Node
+
     from vd_interfaces.srv import GetConfiguration
 
-    client_node = Node("get_client")
+    client_node = Node('get_client')
     try:
-        ok = _call(server, client_node, GetConfiguration, "/vd/get_configuration",
-                   GetConfiguration.Request(name="sport"))
-        assert ok.success and ok.configuration.name == "sport"
-        missing = _call(server, client_node, GetConfiguration, "/vd/get_configuration",
-                        GetConfiguration.Request(name="nope"))
+        ok = _call(server, client_node, GetConfiguration, '/vd/get_configuration',
+                   GetConfiguration.Request(name='sport'))
+        assert ok.success and ok.configuration.name == 'sport'
+        missing = _call(server, client_node, GetConfiguration, '/vd/get_configuration',
+                        GetConfiguration.Request(name='nope'))
         assert not missing.success
         assert missing.message == ("configuration 'nope' does not exist (available: baseline, "
                                    "stiff_rear, sport)")
@@ -244,24 +247,25 @@ def test_get_configuration_service(server):
 
 
 def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
-    """Not only data errors: whatever a reload raises (here a RecursionError, as from a
-    pathological file), the node keeps serving and reports it on its status topic."""
+    """
+    Not only data errors: whatever a reload raises (here a RecursionError, as from a
+    pathological file), the node keeps serving and reports it on its status topic.
+    """
+    import vd_data_server.service as service
     from vdtest import spin_until
 
-    import vd_data_server.service as service
-
     def broken(*args, **kwargs):
-        raise RecursionError("maximum recursion depth exceeded")
+        raise RecursionError('maximum recursion depth exceeded')
 
-    listener = _listener("reload_listener")
+    listener = _listener('reload_listener')
     try:
         assert spin_until([server, listener], lambda: len(listener.configs) == 3
                           and listener.statuses)
         before = server.service.study
-        monkeypatch.setattr(service, "load_study", broken)
+        monkeypatch.setattr(service, 'load_study', broken)
         server._publish_outcome(server.service.load())
-        expected = [f"{server.service.master_file}: cannot load: RecursionError: maximum "
-                    "recursion depth exceeded"]
+        expected = [f'{server.service.master_file}: cannot load: RecursionError: maximum '
+                    'recursion depth exceeded']
         assert spin_until([server, listener], lambda: listener.statuses[-1].errors == expected)
         assert server.service.study is before
         assert len(listener.statuses[-1].status) > 0  # the last good feedback is still served
@@ -271,23 +275,24 @@ def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
 
 def test_edit_that_used_to_crash_the_server_is_answered(editable_server):
     from rclpy.node import Node
+
     from vd_interfaces.srv import GetConfiguration, SetOverride
 
     server = editable_server
-    client_node = Node("override_client3")
+    client_node = Node('override_client3')
     try:
-        before = server.service.study.configurations["baseline"].data_hash
-        big = "9" * 400 + " N/mm"
-        for value, message in (("30 N/(mm*0)", "invalid unit 'N/(mm*0)'"),
-                               ("", "expected a number with a unit, found ''"),
+        before = server.service.study.configurations['baseline'].data_hash
+        big = '9' * 400 + ' N/mm'
+        for value, message in (('30 N/(mm*0)', "invalid unit 'N/(mm*0)'"),
+                               ('', "expected a number with a unit, found ''"),
                                (big, f"value must be finite, found '{big}'")):
-            answer = _call(server, client_node, SetOverride, "/vd/set_override",
-                           SetOverride.Request(configuration="baseline",
-                                               key="front_spring.rate", value=value))
+            answer = _call(server, client_node, SetOverride, '/vd/set_override',
+                           SetOverride.Request(configuration='baseline',
+                                               key='front_spring.rate', value=value))
             assert not answer.success
-            assert answer.message == f"ROS edit /vd/set_override: front_spring.rate: {message}"
-        alive = _call(server, client_node, GetConfiguration, "/vd/get_configuration",
-                      GetConfiguration.Request(name="baseline"))
+            assert answer.message == f'ROS edit /vd/set_override: front_spring.rate: {message}'
+        alive = _call(server, client_node, GetConfiguration, '/vd/get_configuration',
+                      GetConfiguration.Request(name='baseline'))
         assert alive.success and alive.configuration.data_hash == before
     finally:
         client_node.destroy_node()

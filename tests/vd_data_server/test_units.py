@@ -1,4 +1,5 @@
-"""Units at the file boundary: every value read from a data file ends up in SI.
+"""
+Units at the file boundary: every value read from a data file ends up in SI.
 
 Expected numbers come from the unit definitions (1 mm = 1e-3 m, 1 deg = pi/180 rad,
 1 revolution = 2 pi rad), never from the code under test.
@@ -6,89 +7,89 @@ Expected numbers come from the unit definitions (1 mm = 1e-3 m, 1 deg = pi/180 r
 from __future__ import annotations
 
 import math
-import textwrap
 from pathlib import Path
+import textwrap
 
-import pytest
 from numpy.testing import assert_allclose
-from vdtest import tree_snapshot
+import pytest
 
 from vd_data_server.datafile import load_group_file
 from vd_data_server.errors import DataError
 from vd_data_server.model import GroupData
+from vdtest import tree_snapshot
 
 RTOL = 1e-12
-SHOWN = "sedan/front_spring/X.yaml"  # the path a user sees in messages
+SHOWN = 'sedan/front_spring/X.yaml'  # the path a user sees in messages
 
 
 def load(tmp_path: Path, group: str, text: str) -> GroupData:
-    path = tmp_path / "X.yaml"
-    path.write_text(textwrap.dedent(text), encoding="utf-8")
-    return load_group_file(path, display=SHOWN, group=group, variant="X")
+    path = tmp_path / 'X.yaml'
+    path.write_text(textwrap.dedent(text), encoding='utf-8')
+    return load_group_file(path, display=SHOWN, group=group, variant='X')
 
 
 def refused(tmp_path: Path, group: str, text: str) -> str:
     """The error message of a bad file; the loader must not write anything."""
-    path = tmp_path / "X.yaml"
-    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    path = tmp_path / 'X.yaml'
+    path.write_text(textwrap.dedent(text), encoding='utf-8')
     before = tree_snapshot(tmp_path)
     with pytest.raises(DataError) as info:
-        load_group_file(path, display=SHOWN, group=group, variant="X")
+        load_group_file(path, display=SHOWN, group=group, variant='X')
     assert tree_snapshot(tmp_path) == before
     return str(info.value)
 
 
 def test_length_in_mm_is_converted_to_metres(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data: {rate: 30, free_length: 306}
         """)
-    assert_allclose(spring.scalar("free_length"), 0.306, rtol=RTOL)
-    assert spring.values["free_length"].unit == "m"
+    assert_allclose(spring.scalar('free_length'), 0.306, rtol=RTOL)
+    assert spring.values['free_length'].unit == 'm'
 
 
 def test_stiffness_unit_follows_from_length_and_force(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data: {rate: 36.9, free_length: 306}
         """)
-    assert_allclose(spring.scalar("rate"), 36.9e3, rtol=RTOL)  # N/mm -> N/m
-    assert spring.values["rate"].unit == "N/m"
+    assert_allclose(spring.scalar('rate'), 36.9e3, rtol=RTOL)  # N/mm -> N/m
+    assert spring.values['rate'].unit == 'N/m'
 
 
 def test_stiffness_follows_from_a_kilonewton_force_unit(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: kN}
         data: {rate: 0.0369, free_length: 306}
         """)
-    assert_allclose(spring.scalar("rate"), 36.9e3, rtol=RTOL)
+    assert_allclose(spring.scalar('rate'), 36.9e3, rtol=RTOL)
 
 
 def test_a_units_block_may_name_a_derived_unit_itself(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N, stiffness: N/m}
         data: {rate: 36900, free_length: 306}
         """)
-    assert_allclose(spring.scalar("rate"), 36.9e3, rtol=RTOL)
-    assert_allclose(spring.scalar("free_length"), 0.306, rtol=RTOL)
+    assert_allclose(spring.scalar('rate'), 36.9e3, rtol=RTOL)
+    assert_allclose(spring.scalar('free_length'), 0.306, rtol=RTOL)
 
 
 def test_angle_in_degrees_is_converted_to_radians(tmp_path: Path) -> None:
-    alignment = load(tmp_path, "front_alignment", """\
+    alignment = load(tmp_path, 'front_alignment', """\
         kind: alignment
         units: {angle: deg}
         data: {camber: -0.5, toe: 0.05}
         """)
-    assert_allclose(alignment.scalar("camber"), -0.5 * math.pi / 180, rtol=RTOL)
-    assert_allclose(alignment.scalar("toe"), 0.05 * math.pi / 180, rtol=RTOL)
+    assert_allclose(alignment.scalar('camber'), -0.5 * math.pi / 180, rtol=RTOL)
+    assert_allclose(alignment.scalar('toe'), 0.05 * math.pi / 180, rtol=RTOL)
 
 
 def test_torsional_stiffness_follows_from_force_length_and_angle(tmp_path: Path) -> None:
-    targets = load(tmp_path, "targets", """\
+    targets = load(tmp_path, 'targets', """\
         kind: targets
         units: {length: mm, force: N, angle: deg}
         data:
@@ -98,11 +99,11 @@ def test_torsional_stiffness_follows_from_force_length_and_angle(tmp_path: Path)
           roll_centre_height_rear: 110
         """)
     # 900000 N*mm/deg = 900 N*m per (pi/180) rad
-    assert_allclose(targets.scalar("roll_stiffness_front"), 900.0 * 180 / math.pi, rtol=RTOL)
+    assert_allclose(targets.scalar('roll_stiffness_front'), 900.0 * 180 / math.pi, rtol=RTOL)
 
 
 def test_damping_follows_from_force_time_and_length(tmp_path: Path) -> None:
-    bushings = load(tmp_path, "front_bushings", """\
+    bushings = load(tmp_path, 'front_bushings', """\
         kind: bushings
         units: {length: mm, force: N, angle: deg, time: s}
         data:
@@ -111,13 +112,13 @@ def test_damping_follows_from_force_time_and_length(tmp_path: Path) -> None:
               stiffness: {x: 8000, y: 8000, z: 1500, rx: 4000, ry: 4000, rz: 500}
               damping: {x: 2.0}
         """)
-    assert_allclose(bushings.scalar("connections.lca_front.damping.x"), 2.0e3, rtol=RTOL)
+    assert_allclose(bushings.scalar('connections.lca_front.damping.x'), 2.0e3, rtol=RTOL)
     # damping not given defaults to zero
-    assert bushings.scalar("connections.lca_front.damping.rz") == 0.0
+    assert bushings.scalar('connections.lca_front.damping.rz') == 0.0
 
 
 def test_inertia_follows_from_mass_and_length(tmp_path: Path) -> None:
-    mass = load(tmp_path, "mass", """\
+    mass = load(tmp_path, 'mass', """\
         kind: mass
         units: {length: m, mass: kg}
         data:
@@ -127,24 +128,24 @@ def test_inertia_follows_from_mass_and_length(tmp_path: Path) -> None:
           unsprung_mass_front: 45
           unsprung_mass_rear: 40
         """)
-    assert_allclose(mass.scalar("sprung_inertia.izz"), 2600.0, rtol=RTOL)
-    assert mass.values["sprung_inertia.izz"].unit == "kg*m^2"
+    assert_allclose(mass.scalar('sprung_inertia.izz'), 2600.0, rtol=RTOL)
+    assert mass.values['sprung_inertia.izz'].unit == 'kg*m^2'
 
 
 def test_rack_ratio_in_mm_per_revolution(tmp_path: Path) -> None:
-    steering = load(tmp_path, "steering", """\
+    steering = load(tmp_path, 'steering', """\
         kind: steering
         units: {length: mm}
         data:
           rack_ratio: 50 mm/revolution
           rack_travel_limit: 76
         """)
-    assert_allclose(steering.scalar("rack_ratio"), 0.050 / (2 * math.pi), rtol=RTOL)
-    assert steering.values["rack_ratio"].unit == "m/rad"
+    assert_allclose(steering.scalar('rack_ratio'), 0.050 / (2 * math.pi), rtol=RTOL)
+    assert steering.values['rack_ratio'].unit == 'm/rad'
 
 
 def test_pressure_in_newton_per_square_millimetre(tmp_path: Path) -> None:
-    bar = load(tmp_path, "front_stabilizer", """\
+    bar = load(tmp_path, 'front_stabilizer', """\
         kind: stabilizer
         units: {length: mm, force: N}
         data:
@@ -152,43 +153,43 @@ def test_pressure_in_newton_per_square_millimetre(tmp_path: Path) -> None:
           torsion_length: 800
           shear_modulus: 79300 N/mm^2
         """)
-    assert_allclose(bar.scalar("shear_modulus"), 79300 * 1e6, rtol=RTOL)  # 1 N/mm^2 = 1 MPa
+    assert_allclose(bar.scalar('shear_modulus'), 79300 * 1e6, rtol=RTOL)  # 1 N/mm^2 = 1 MPa
 
 
 def test_inline_unit_wins_over_the_units_block(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: m, force: N}
         data: {rate: 36.9 N/mm, free_length: 0.306}
         """)
-    assert_allclose(spring.scalar("rate"), 36.9e3, rtol=RTOL)
+    assert_allclose(spring.scalar('rate'), 36.9e3, rtol=RTOL)
 
 
 def test_percent_is_a_dimensionless_unit(tmp_path: Path) -> None:
-    damper = load(tmp_path, "front_damper", """\
+    damper = load(tmp_path, 'front_damper', """\
         kind: damper
         data:
           curve: {x: [-1, 0, 1], y: [-2000, 0, 1000]}
           scale: 120 %
         """)
-    assert_allclose(damper.scalar("scale"), 1.2, rtol=RTOL)
+    assert_allclose(damper.scalar('scale'), 1.2, rtol=RTOL)
 
 
 def test_curve_may_give_its_own_axis_units(tmp_path: Path) -> None:
-    damper = load(tmp_path, "front_damper", """\
+    damper = load(tmp_path, 'front_damper', """\
         kind: damper
         units: {length: m, force: N}
         data:
           curve: {x: [-1000, 0, 1000], y: [-2, 0, 1], x_unit: mm/s, y_unit: kN}
         """)
-    xs, ys = damper.curve("curve")
+    xs, ys = damper.curve('curve')
     assert_allclose(xs, [-1.0, 0.0, 1.0], rtol=RTOL)
     assert_allclose(ys, [-2000.0, 0.0, 1000.0], rtol=RTOL)
 
 
 def test_yaml_1_1_exponent_without_sign_is_read_as_a_number(tmp_path: Path) -> None:
     # YAML 1.1 (PyYAML) reads 7.0e7 as the string '7.0e7'; it is a number to us.
-    bushings = load(tmp_path, "front_bushings", """\
+    bushings = load(tmp_path, 'front_bushings', """\
         kind: bushings
         units: {length: m, force: N, angle: rad}
         data:
@@ -196,21 +197,21 @@ def test_yaml_1_1_exponent_without_sign_is_read_as_a_number(tmp_path: Path) -> N
             uca_front:
               stiffness: {x: 7.0e7, y: 7.0e7, z: 7.0e7, rx: 1.0e5, ry: 1.0e5, rz: 1.0e5}
         """)
-    assert_allclose(bushings.scalar("connections.uca_front.stiffness.x"), 7.0e7, rtol=RTOL)
-    assert_allclose(bushings.scalar("connections.uca_front.stiffness.rx"), 1.0e5, rtol=RTOL)
+    assert_allclose(bushings.scalar('connections.uca_front.stiffness.x'), 7.0e7, rtol=RTOL)
+    assert_allclose(bushings.scalar('connections.uca_front.stiffness.rx'), 1.0e5, rtol=RTOL)
 
 
 def test_without_a_units_block_values_are_si(tmp_path: Path) -> None:
-    spring = load(tmp_path, "front_spring", """\
+    spring = load(tmp_path, 'front_spring', """\
         kind: spring
         data: {rate: 36900, free_length: 0.306}
         """)
-    assert_allclose(spring.scalar("rate"), 36900.0, rtol=RTOL)
-    assert_allclose(spring.scalar("free_length"), 0.306, rtol=RTOL)
+    assert_allclose(spring.scalar('rate'), 36900.0, rtol=RTOL)
+    assert_allclose(spring.scalar('free_length'), 0.306, rtol=RTOL)
 
 
 def test_unknown_unit_name_in_the_units_block_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: furlongz, force: N}
         data: {rate: 30, free_length: 306}
@@ -219,7 +220,7 @@ def test_unknown_unit_name_in_the_units_block_is_refused(tmp_path: Path) -> None
 
 
 def test_unit_of_the_wrong_dimension_in_the_units_block_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: kg, force: N}
         data: {rate: 30, free_length: 306}
@@ -229,7 +230,7 @@ def test_unit_of_the_wrong_dimension_in_the_units_block_is_refused(tmp_path: Pat
 
 def test_a_ratio_is_not_an_angle_unit(tmp_path: Path) -> None:
     # pint counts angles as dimensionless; '%' must still not pass for an angle
-    message = refused(tmp_path, "front_alignment", """\
+    message = refused(tmp_path, 'front_alignment', """\
         kind: alignment
         units: {angle: percent}
         data: {camber: -0.5, toe: 0.05}
@@ -239,7 +240,7 @@ def test_a_ratio_is_not_an_angle_unit(tmp_path: Path) -> None:
 
 
 def test_an_angle_is_not_a_dimensionless_unit(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_damper", """\
+    message = refused(tmp_path, 'front_damper', """\
         kind: damper
         data:
           curve: {x: [-1, 0, 1], y: [-2000, 0, 1000]}
@@ -250,35 +251,35 @@ def test_an_angle_is_not_a_dimensionless_unit(tmp_path: Path) -> None:
 
 
 def test_unknown_quantity_in_the_units_block_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {lenght: mm, force: N}
         data: {rate: 30, free_length: 306}
         """)
     assert message.startswith(f"{SHOWN}: units.lenght: unknown quantity 'lenght' (known: ")
-    assert "length" in message.split("(known: ", 1)[1]
+    assert 'length' in message.split('(known: ', 1)[1]
 
 
 def test_units_block_must_be_a_mapping(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: mm
         data: {rate: 30, free_length: 306}
         """)
-    assert message == f"{SHOWN}: units: expected a mapping of quantity: unit"
+    assert message == f'{SHOWN}: units: expected a mapping of quantity: unit'
 
 
 def test_unit_in_the_units_block_must_be_text(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: 5}
         data: {rate: 30, free_length: 306}
         """)
-    assert message == f"{SHOWN}: units.length: unit must be a string, found 5"
+    assert message == f'{SHOWN}: units.length: unit must be a string, found 5'
 
 
 def test_inline_unit_of_the_wrong_dimension_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data:
@@ -290,7 +291,7 @@ def test_inline_unit_of_the_wrong_dimension_is_refused(tmp_path: Path) -> None:
 
 
 def test_inline_unknown_unit_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data:
@@ -301,7 +302,7 @@ def test_inline_unknown_unit_is_refused(tmp_path: Path) -> None:
 
 
 def test_curve_axis_unit_of_the_wrong_dimension_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_damper", """\
+    message = refused(tmp_path, 'front_damper', """\
         kind: damper
         data:
           curve: {x: [-1, 0, 1], y: [-2000, 0, 1000], x_unit: mm}
@@ -311,7 +312,7 @@ def test_curve_axis_unit_of_the_wrong_dimension_is_refused(tmp_path: Path) -> No
 
 
 def test_text_that_is_not_a_number_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data:
@@ -323,7 +324,7 @@ def test_text_that_is_not_a_number_is_refused(tmp_path: Path) -> None:
 
 
 def test_overflow_to_infinity_is_refused(tmp_path: Path) -> None:
-    message = refused(tmp_path, "front_spring", """\
+    message = refused(tmp_path, 'front_spring', """\
         kind: spring
         units: {length: mm, force: N}
         data:

@@ -1,12 +1,14 @@
-"""The rigid-vs-flexible capability criterion on constructed outcomes with known
-differences, and `vd capability` end to end through the ROS graph."""
+"""
+The rigid-vs-flexible capability criterion on constructed outcomes with known
+differences, and `vd capability` end to end through the ROS graph.
+"""
 from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,19 +21,19 @@ N = 11
 DEG = math.pi / 180.0
 
 
-def _outcome(event="lateral_force", **changes) -> EventOutcome:
+def _outcome(event='lateral_force', **changes) -> EventOutcome:
     force = np.linspace(-4000.0, 4000.0, N)
-    ch = {"applied_force": Channel("N", force)}
+    ch = {'applied_force': Channel('N', force)}
     for _, (names, unit, _tol) in QUANTITIES.items():
         for name in names:
             ch[name] = Channel(unit, np.zeros(N))
-    ch["pad_force_left"] = Channel("N", np.full(N, 4000.0))
-    ch["pad_force_right"] = Channel("N", np.full(N, 4000.0))
-    ch["bump_stop_force_left"] = Channel("N", np.zeros(N))
+    ch['pad_force_left'] = Channel('N', np.full(N, 4000.0))
+    ch['pad_force_right'] = Channel('N', np.full(N, 4000.0))
+    ch['bump_stop_force_left'] = Channel('N', np.zeros(N))
     for name, values in changes.items():
         ch[name] = Channel(ch[name].unit, np.asarray(values, dtype=float))
-    return EventOutcome(event, "c", "kc", "rigid", "front", "h",
-                        {"lateral_stiffness": Metric(1000.0, "N/mm")}, ch)
+    return EventOutcome(event, 'c', 'kc', 'rigid', 'front', 'h',
+                        {'lateral_stiffness': Metric(1000.0, 'N/mm')}, ch)
 
 
 def _cell(cells, quantity):
@@ -42,17 +44,17 @@ def test_a_known_toe_difference_is_found_and_judged():
     toe = np.zeros(N)
     toe[-1] = 0.1 * DEG  # flexible departs by 0.1 deg at the last step only
     cells, _ = compare(_outcome(), _outcome(toe_left=toe))
-    cell = _cell(cells, "toe")
+    cell = _cell(cells, 'toe')
     assert cell.max_difference == pytest.approx(0.1 * DEG, rel=1e-12)
-    assert cell.verdict == "Flexible" and cell.tolerance == pytest.approx(0.05 * DEG)
-    assert _cell(cells, "camber").verdict == "Rigid" and _cell(cells, "camber").max_difference == 0
+    assert cell.verdict == 'Flexible' and cell.tolerance == pytest.approx(0.05 * DEG)
+    assert _cell(cells, 'camber').verdict == 'Rigid' and _cell(cells, 'camber').max_difference == 0
 
 
 def test_a_static_offset_is_reported_not_judged():
     """Thesis 5.1: the FE masses shift the wheel load by a constant; the shape is the same."""
     cells, _ = compare(_outcome(), _outcome(pad_force_left=np.full(N, 4030.0)))
-    cell = _cell(cells, "wheel_load")
-    assert cell.verdict == "Rigid" and cell.max_difference == 0.0
+    cell = _cell(cells, 'wheel_load')
+    assert cell.verdict == 'Rigid' and cell.max_difference == 0.0
     assert cell.design_offset == pytest.approx(30.0)
     assert cell.tolerance == pytest.approx(40.0)  # 1 % of the design wheel load
 
@@ -64,8 +66,8 @@ def test_a_difference_only_with_the_bump_stop_engaged_gets_the_asterisk():
     toe[-2:] = 0.2 * DEG
     rigid = _outcome(bump_stop_force_left=stop)
     cells, _ = compare(rigid, _outcome(toe_left=toe, bump_stop_force_left=stop))
-    cell = _cell(cells, "toe")
-    assert cell.verdict == "Rigid" and cell.stop_needs_flexible and cell.label == "Rigid*"
+    cell = _cell(cells, 'toe')
+    assert cell.verdict == 'Rigid' and cell.stop_needs_flexible and cell.label == 'Rigid*'
     assert cell.stop_difference == pytest.approx(0.2 * DEG)
 
 
@@ -73,21 +75,21 @@ def test_relative_tolerance_follows_the_quantity_range():
     track = np.linspace(-0.02, 0.02, N)  # 40 mm range: 5 % of it is 2 mm
     flex = track * 1.04  # 0.8 mm worst difference: above 0.5 mm, below 2 mm
     cells, _ = compare(_outcome(track=track), _outcome(track=flex))
-    cell = _cell(cells, "track")
+    cell = _cell(cells, 'track')
     assert cell.tolerance == pytest.approx(RELATIVE * 0.04)
-    assert cell.max_difference == pytest.approx(0.0008) and cell.verdict == "Rigid"
+    assert cell.max_difference == pytest.approx(0.0008) and cell.verdict == 'Rigid'
 
 
 def test_metrics_are_judged_relative_to_the_rigid_value():
     a, b = _outcome(), _outcome()
-    b = EventOutcome(**{**b.__dict__, "metrics": {"lateral_stiffness": Metric(900.0, "N/mm")}})
+    b = EventOutcome(**{**b.__dict__, 'metrics': {'lateral_stiffness': Metric(900.0, 'N/mm')}})
     _, metrics = compare(a, b)
     (cell,) = metrics
-    assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1000.0, 900.0, "Flexible")
+    assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1000.0, 900.0, 'Flexible')
 
 
 def _vd(*args, timeout=240):
-    return subprocess.run([sys.executable, "-m", "vd_events.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, '-m', 'vd_events.cli', *args], capture_output=True,
                           text=True, timeout=timeout, cwd=REPO)
 
 
@@ -96,23 +98,23 @@ def _vd(*args, timeout=240):
 def test_vd_capability_end_to_end(tmp_path):
     from vd_events.bag import read_bag
 
-    out = tmp_path / "cap"
-    proc = _vd("capability", "--axle", "rear", "--param", "steps=7", "--json", "--out", str(out))
+    out = tmp_path / 'cap'
+    proc = _vd('capability', '--axle', 'rear', '--param', 'steps=7', '--json', '--out', str(out))
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    (table,) = json.loads(proc.stdout)["tables"]
-    events = {c["event"] for c in table["cells"]}
-    assert events == {"parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-                      "longitudinal_force", "aligning_torque"}
-    assert len(table["cells"]) == 5 * len(QUANTITIES)
-    assert {c["verdict"] for c in table["cells"]} <= {"Rigid", "Flexible"}
-    assert "trailing_link" in table["flexible_components"]
-    messages = list(read_bag(out / "capability_baseline"))
-    (msg,) = [m.msg for m in messages if m.topic == "/vd/capability/table"]
-    assert [c.verdict for c in msg.cells] == [c["verdict"] for c in table["cells"]]
-    results = [m.msg for m in messages if m.topic == "/vd/kc/result"]
+    (table,) = json.loads(proc.stdout)['tables']
+    events = {c['event'] for c in table['cells']}
+    assert events == {'parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
+                      'longitudinal_force', 'aligning_torque'}
+    assert len(table['cells']) == 5 * len(QUANTITIES)
+    assert {c['verdict'] for c in table['cells']} <= {'Rigid', 'Flexible'}
+    assert 'trailing_link' in table['flexible_components']
+    messages = list(read_bag(out / 'capability_baseline'))
+    (msg,) = [m.msg for m in messages if m.topic == '/vd/capability/table']
+    assert [c.verdict for c in msg.cells] == [c['verdict'] for c in table['cells']]
+    results = [m.msg for m in messages if m.topic == '/vd/kc/result']
     assert sorted((r.event, r.fidelity) for r in results) == sorted(
-        (e, f) for e in events for f in ("rigid", "flexible"))
-    samples = [m for m in messages if m.topic == "/vd/kc/state"]
+        (e, f) for e in events for f in ('rigid', 'flexible'))
+    samples = [m for m in messages if m.topic == '/vd/kc/state']
     assert len(samples) == 10 * 7  # every step of every run
     assert all(b.timestamp > a.timestamp for a, b in zip(messages, messages[1:]))
 
@@ -121,11 +123,11 @@ def test_vd_capability_end_to_end(tmp_path):
 def test_vd_capability_refuses_an_axle_without_flex_data(tmp_path, sample_root):
     from vdtest import replace_once, tree_snapshot
 
-    master = sample_root / "studies" / "sedan.yaml"
-    replace_once(master, "  rear_flex: X\n", "")
+    master = sample_root / 'studies' / 'sedan.yaml'
+    replace_once(master, '  rear_flex: X\n', '')
     before = tree_snapshot(sample_root)
-    out = tmp_path / "cap"
-    proc = _vd("capability", "--master", str(master), "--axle", "rear", "--out", str(out))
+    out = tmp_path / 'cap'
+    proc = _vd('capability', '--master', str(master), '--axle', 'rear', '--out', str(out))
     assert proc.returncode == 2
     assert proc.stderr.strip() == (f"{master}: configuration 'baseline' has no flexible "
                                    "components on the rear axle (no rear_flex group): nothing "

@@ -1,6 +1,8 @@
-"""Sine-with-dwell processing (FMVSS 126) on synthetic signals whose answers are known
+"""
+Sine-with-dwell processing (FMVSS 126) on synthetic signals whose answers are known
 in closed form: a filtered pure sine, the analytic steering profile, a first-order yaw
-decay, a smooth lateral acceleration with an exact double integral, a linear SIS."""
+decay, a smooth lateral acceleration with an exact double integral, a linear SIS.
+"""
 from __future__ import annotations
 
 import math
@@ -18,7 +20,7 @@ PERIOD = 1.0 / FREQ
 
 
 def test_the_filter_is_phaseless_with_the_butterworth_gain():
-    """sosfiltfilt of a 6-pole Butterworth: |H|^2 = 1 / (1 + (f/fc)^12), zero phase."""
+    """Sosfiltfilt of a 6-pole Butterworth: |H|^2 = 1 / (1 + (f/fc)^12), zero phase."""
     x = np.sin(2 * math.pi * 5.0 * T)
     y = f.lowpass(T, x, 6.0)
     gain = 1.0 / (1.0 + (5.0 / 6.0) ** 12)
@@ -27,9 +29,11 @@ def test_the_filter_is_phaseless_with_the_butterworth_gain():
 
 
 def test_bos_and_cos_of_the_analytic_steer():
-    """BOS from the sine's own closed form; COS where the filtered steer returns to zero:
+    """
+    BOS from the sine's own closed form; COS where the filtered steer returns to zero:
     the 10 Hz filter rounds the corner at the end of the steer (rate A w -> 0), which
-    moves the crossing by 1/(2 pi 10 Hz) at most (16 ms)."""
+    moves the crossing by 1/(2 pi 10 Hz) at most (16 ms).
+    """
     a = 100.0 * DEG
     steer = f.sine_with_dwell(T, a, 1, START, FREQ, DWELL)
     w = 2 * math.pi * FREQ
@@ -45,9 +49,11 @@ def _bump(t, centre, width):
 
 
 def test_yaw_rate_ratios_of_a_first_order_decay():
-    """A smooth yaw response (Gaussian bumps: +R1 with the first steer, -P after the
+    """
+    A smooth yaw response (Gaussian bumps: +R1 with the first steer, -P after the
     reversal) that decays as r(COS) exp(-(t - COS)/tau) once the steer is complete: the
-    first local peak after the reversal is -P, and the ratios are known in closed form."""
+    first local peak after the reversal is -P, and the ratios are known in closed form.
+    """
     a, big_p, tau = 120.0 * DEG, 0.5, 0.8
     steer = f.sine_with_dwell(T, a, -1, START, FREQ, DWELL)  # first steer to the right
     cos = START + PERIOD + DWELL
@@ -64,8 +70,10 @@ def test_yaw_rate_ratios_of_a_first_order_decay():
 
 
 def test_lateral_displacement_is_the_double_integral_from_bos():
-    """a_y = a0 (1 - cos(W (t - start))), smooth at the start: its double integral from BOS
-    has a closed form."""
+    """
+    a_y = a0 (1 - cos(W (t - start))), smooth at the start: its double integral from BOS
+    has a closed form.
+    """
     a, a0, big_w = 150.0 * DEG, 6.0, 3.0
     steer = f.sine_with_dwell(T, a, 1, START, FREQ, DWELL)
     tau = np.clip(T - START, 0.0, None)
@@ -95,7 +103,7 @@ def test_a_from_linear_sis_runs_is_rounded_to_a_tenth_of_a_degree():
     assert f.amplitude_from_sis(runs) == pytest.approx(round(expected, 1) * DEG, abs=1e-12)
 
 
-@pytest.mark.parametrize("a_deg, first, last, count", [
+@pytest.mark.parametrize('a_deg, first, last, count', [
     (40.0, 60.0, 270.0, 12),   # 6.5A = 260 < 270: the series ends at 270 deg
     (50.0, 75.0, 300.0, 10),   # 6.5A = 325: capped at 300 deg
     (20.0, 30.0, 270.0, 25),
@@ -106,11 +114,11 @@ def test_amplitude_series(a_deg, first, last, count):
     assert len(series) == count and np.all(np.diff(series) > 0)
 
 
-@pytest.mark.parametrize("t, x, message", [
-    (np.arange(10.0), np.zeros(10), "need at least 30 samples of equal-length time and signal"),
+@pytest.mark.parametrize('t, x, message', [
+    (np.arange(10.0), np.zeros(10), 'need at least 30 samples of equal-length time and signal'),
     (np.r_[np.arange(20.0), np.arange(20.0)], np.zeros(40),
-     "time must be strictly increasing with a uniform step"),
-    (np.arange(0, 10, 0.1), np.zeros(100), "sample rate 10.0 Hz is too low for a 10 Hz filter"),
+     'time must be strictly increasing with a uniform step'),
+    (np.arange(0, 10, 0.1), np.zeros(100), 'sample rate 10.0 Hz is too low for a 10 Hz filter'),
 ])
 def test_bad_signals_are_refused(t, x, message):
     with pytest.raises(f.ProcessingError) as err:
@@ -122,7 +130,7 @@ def test_a_short_record_is_refused():
     short = T[T < START + PERIOD + DWELL + 1.0]
     steer = f.sine_with_dwell(short, 100 * DEG, 1, START, FREQ, DWELL)
     yaw = 0.3 * f.sine_with_dwell(short - 0.1, 1.0, 1, START, FREQ, DWELL)
-    with pytest.raises(f.ProcessingError, match="the rule needs 1.75 s"):
+    with pytest.raises(f.ProcessingError, match='the rule needs 1.75 s'):
         f.grade_run(short, steer, yaw, yaw, a_reference=20 * DEG)
 
 
@@ -130,4 +138,4 @@ def test_no_steer_is_refused():
     zero = np.zeros_like(T)
     with pytest.raises(f.ProcessingError) as err:
         f.grade_run(T, zero, zero, zero, a_reference=20 * DEG)
-    assert str(err.value) == "the steering-wheel rate never exceeds 75 deg/s for 200 ms"
+    assert str(err.value) == 'the steering-wheel rate never exceeds 75 deg/s for 200 ms'

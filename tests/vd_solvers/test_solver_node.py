@@ -10,9 +10,10 @@ pytestmark = pytest.mark.ros
 
 def _goal(client_node, solver, server, **fields):
     from rclpy.action import ActionClient
+
     from vd_interfaces.action import RunEvent
 
-    client = ActionClient(client_node, RunEvent, "/vd/steady_state/run_event")
+    client = ActionClient(client_node, RunEvent, '/vd/steady_state/run_event')
     nodes = [server, solver, client_node]
     assert spin_until(nodes, client.server_is_ready)
     send = client.send_goal_async(RunEvent.Goal(**fields))
@@ -30,33 +31,35 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
     from vd_data_server.data_server_node import DataServer
     from vd_solvers.analytical_node import AnalyticalSolver
 
-    server = DataServer(parameter_overrides=[Parameter("master_file", value=str(sedan_master)),
-                                             Parameter("watch_period", value=0.0)])
+    server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
+                                             Parameter('watch_period', value=0.0)])
     solver = AnalyticalSolver()
-    client_node = Node("goal_client")
+    client_node = Node('goal_client')
     try:
         assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
-        bad = _goal(client_node, solver, server, event="handling_diagram",
-                    configuration="baseline", model="two_track",
-                    overrides=["mass.sprung_cog.z=20000 mm"])
+        bad = _goal(client_node, solver, server, event='handling_diagram',
+                    configuration='baseline', model='two_track',
+                    overrides=['mass.sprung_cog.z=20000 mm'])
         assert not bad.success
         # a 20 m centre of gravity is refused at the boundary (plausibility bound)
         assert bad.message == ("configuration 'baseline', event 'handling_diagram': --set: "
                                "mass.sprung_cog.z: '20000 mm' is implausible: every coordinate "
                                "must be within 8 m of the origin (plausibility bound)")
-        good = _goal(client_node, solver, server, event="handling_diagram",
-                     configuration="baseline", model="two_track", parameters=["steps=5"])
+        good = _goal(client_node, solver, server, event='handling_diagram',
+                     configuration='baseline', model='two_track', parameters=['steps=5'])
         assert good.success, good.message
         assert len(next(c for c in good.result.channels
-                        if c.name == "lateral_acceleration").values) == 5
+                        if c.name == 'lateral_acceleration').values) == 5
     finally:
         for node in (client_node, solver, server):
             node.destroy_node()
 
 
 def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master):
-    """The real kc_solver process (multi-threaded, as ros2 run starts it): feedback rises to
-    1 during a run, and a cancel request stops a long sweep between two steps."""
+    """
+    The real kc_solver process (multi-threaded, as ros2 run starts it): feedback rises to
+    1 during a run, and a cancel request stops a long sweep between two steps.
+    """
     import os
     import signal
     import subprocess
@@ -66,25 +69,25 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master)
     from rclpy.action import ActionClient
     from rclpy.node import Node
     from rclpy.parameter import Parameter
-    from vd_interfaces.action import RunEvent
 
     from vd_data_server.data_server_node import DataServer
+    from vd_interfaces.action import RunEvent
 
-    server = DataServer(parameter_overrides=[Parameter("master_file", value=str(sedan_master)),
-                                             Parameter("watch_period", value=0.0)])
-    exe = os.path.join(get_package_prefix("vd_solvers"), "lib", "vd_solvers", "kc_solver")
+    server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
+                                             Parameter('watch_period', value=0.0)])
+    exe = os.path.join(get_package_prefix('vd_solvers'), 'lib', 'vd_solvers', 'kc_solver')
     solver = subprocess.Popen([exe], env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)),
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    client_node = Node("cancel_client")
+    client_node = Node('cancel_client')
     nodes = [server, client_node]
     try:
-        client = ActionClient(client_node, RunEvent, "/vd/kc/run_event")
+        client = ActionClient(client_node, RunEvent, '/vd/kc/run_event')
         assert spin_until(nodes, client.server_is_ready, timeout=30)
         spin_until(nodes, lambda: False, timeout=1.0)  # discovery of the response readers
         seen: list[float] = []
         send = client.send_goal_async(
-            RunEvent.Goal(event="parallel_wheel_travel", configuration="baseline", model="kc",
-                          axle="front", parameters=["steps=401"]),
+            RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
+                          axle='front', parameters=['steps=401']),
             feedback_callback=lambda fb: seen.append(fb.feedback.progress))
         assert spin_until(nodes, send.done, timeout=30)
         done = send.result().get_result_async()
@@ -94,8 +97,8 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master)
         assert spin_until(nodes, lambda: seen and seen[-1] == 1.0, timeout=5)
         assert seen == sorted(seen) and len(seen) >= 3
         send = client.send_goal_async(
-            RunEvent.Goal(event="parallel_wheel_travel", configuration="baseline", model="kc",
-                          axle="front", parameters=["steps=2001"]))
+            RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
+                          axle='front', parameters=['steps=2001']))
         assert spin_until(nodes, send.done, timeout=30)
         handle = send.result()
         spin_until(nodes, lambda: False, timeout=0.3)
@@ -119,8 +122,8 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    import vd_solvers.analytical_node as analytical_node
     from vd_data_server.data_server_node import DataServer
+    import vd_solvers.analytical_node as analytical_node
     from vd_solvers.analytical_node import AnalyticalSolver
     from vd_solvers.errors import SolverError
 
@@ -128,29 +131,29 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
 
     def overflowing(config, event, model, parameters):
         np.exp(np.array([1000.0]))  # RuntimeWarning: overflow encountered in exp
-        if "steps=3" in parameters:
-            raise SolverError("the sweep diverged")
+        if 'steps=3' in parameters:
+            raise SolverError('the sweep diverged')
         return real(config, event, model, parameters)
 
-    monkeypatch.setattr(analytical_node, "run_event", overflowing)
-    server = DataServer(parameter_overrides=[Parameter("master_file", value=str(sedan_master)),
-                                             Parameter("watch_period", value=0.0)])
+    monkeypatch.setattr(analytical_node, 'run_event', overflowing)
+    server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
+                                             Parameter('watch_period', value=0.0)])
     solver = AnalyticalSolver()
-    client_node = Node("warning_client")
+    client_node = Node('warning_client')
     try:
         assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
         capfd.readouterr()
-        bad = _goal(client_node, solver, server, event="handling_diagram",
-                    configuration="baseline", model="two_track", parameters=["steps=3"])
+        bad = _goal(client_node, solver, server, event='handling_diagram',
+                    configuration='baseline', model='two_track', parameters=['steps=3'])
         assert not bad.success
         assert bad.message == ("configuration 'baseline', event 'handling_diagram': the sweep "
                                "diverged (numerical warnings: overflow encountered in exp)")
-        good = _goal(client_node, solver, server, event="handling_diagram",
-                     configuration="baseline", model="two_track", parameters=["steps=5"])
+        good = _goal(client_node, solver, server, event='handling_diagram',
+                     configuration='baseline', model='two_track', parameters=['steps=5'])
         assert good.success, good.message
-        assert good.result.notes[-1] == ("numerical warnings during the run: overflow "
-                                         "encountered in exp")
-        assert "RuntimeWarning" not in capfd.readouterr().err  # not printed on its own
+        assert good.result.notes[-1] == ('numerical warnings during the run: overflow '
+                                         'encountered in exp')
+        assert 'RuntimeWarning' not in capfd.readouterr().err  # not printed on its own
     finally:
         for node in (client_node, solver, server):
             node.destroy_node()

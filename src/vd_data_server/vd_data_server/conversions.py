@@ -1,4 +1,5 @@
-"""Conversions between the ROS-free data model and vd_interfaces messages.
+"""
+Conversions between the ROS-free data model and vd_interfaces messages.
 
 ``configuration_from_msg(configuration_to_msg(c)) == c`` for every resolved
 configuration: values, units, display units and sources survive unchanged.
@@ -7,26 +8,34 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from vd_interfaces.msg import (Configuration as ConfigurationMsg, DataStatus, GroupStatus as
-                               GroupStatusMsg, InputGroup, ModifiedKey as ModifiedKeyMsg,
-                               NamedCurve, NamedPoint, NamedScalar, NamedText)
+from vd_interfaces.msg import Configuration as ConfigurationMsg
+from vd_interfaces.msg import (
+    DataStatus,
+    InputGroup,
+    NamedCurve,
+    NamedPoint,
+    NamedScalar,
+    NamedText,
+)
+from vd_interfaces.msg import GroupStatus as GroupStatusMsg
+from vd_interfaces.msg import ModifiedKey as ModifiedKeyMsg
 
 from .model import Configuration, GroupData, Value
 from .study import GroupStatus, Study
 
 
 def value_to_fields(value: Value) -> NamedScalar | NamedCurve | NamedPoint | NamedText:
-    if value.type == "scalar":
+    if value.type == 'scalar':
         return NamedScalar(name=value.key, value=float(value.si), unit=value.unit,  # type: ignore[arg-type]
                            display_unit=value.display_unit, source=value.source)
-    if value.type == "curve":
+    if value.type == 'curve':
         xs, ys = value.si  # type: ignore[misc]
         return NamedCurve(name=value.key, x=list(xs), y=list(ys), x_unit=value.x_unit,
                           y_unit=value.unit, x_display_unit=value.x_display_unit,
                           y_display_unit=value.display_unit, source=value.source)
-    if value.type in ("point", "vector"):
+    if value.type in ('point', 'vector'):
         x, y, z = value.si  # type: ignore[misc]
-        return NamedPoint(name=value.key, kind=NamedPoint.POINT if value.type == "point"
+        return NamedPoint(name=value.key, kind=NamedPoint.POINT if value.type == 'point'
                           else NamedPoint.VECTOR, x=x, y=y, z=z, display_unit=value.display_unit,
                           source=value.source)
     return NamedText(name=value.key, value=str(value.si), source=value.source)
@@ -58,19 +67,19 @@ def configuration_to_msg(config: Configuration, stamp=None) -> ConfigurationMsg:
 def group_from_msg(msg: InputGroup) -> GroupData:
     values: dict[str, Value] = {}
     for s in msg.scalars:
-        values[s.name] = Value(s.name, "scalar", float(s.value), s.unit,
+        values[s.name] = Value(s.name, 'scalar', float(s.value), s.unit,
                                display_unit=s.display_unit, source=s.source)
     for c in msg.curves:
-        values[c.name] = Value(c.name, "curve", (tuple(float(v) for v in c.x),
+        values[c.name] = Value(c.name, 'curve', (tuple(float(v) for v in c.x),
                                                   tuple(float(v) for v in c.y)), c.y_unit,
                                c.x_unit, c.y_display_unit, c.x_display_unit, c.source)
     for p in msg.points:
-        kind = "point" if p.kind == NamedPoint.POINT else "vector"
+        kind = 'point' if p.kind == NamedPoint.POINT else 'vector'
         values[p.name] = Value(p.name, kind, (float(p.x), float(p.y), float(p.z)),
-                               "m" if kind == "point" else "", display_unit=p.display_unit,
+                               'm' if kind == 'point' else '', display_unit=p.display_unit,
                                source=p.source)
     for t in msg.texts:
-        values[t.name] = Value(t.name, "text", t.value, source=t.source)
+        values[t.name] = Value(t.name, 'text', t.value, source=t.source)
     return GroupData(group=msg.name, kind=msg.kind, variant=msg.variant, file=msg.file,
                      values=values, description=msg.description)
 
@@ -85,9 +94,9 @@ def configuration_from_msg(msg: ConfigurationMsg) -> Configuration:
 
 def status_to_msg(entries: Iterable[GroupStatus]) -> list[GroupStatusMsg]:
     return [GroupStatusMsg(configuration=s.configuration, group=s.group, variant=s.variant,
-                           state=GroupStatusMsg.MODIFIED if s.state == "MODIFIED"
+                           state=GroupStatusMsg.MODIFIED if s.state == 'MODIFIED'
                            else GroupStatusMsg.UNCHANGED,
-                           consistency=GroupStatusMsg.DIFFERS if s.consistency == "DIFFERS"
+                           consistency=GroupStatusMsg.DIFFERS if s.consistency == 'DIFFERS'
                            else GroupStatusMsg.SAME,
                            modified_keys=[ModifiedKeyMsg(key=m.key, data_value=m.data_value,
                                                          master_value=m.master_value,

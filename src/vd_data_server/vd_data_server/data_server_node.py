@@ -1,4 +1,5 @@
-"""``ros2 run vd_data_server data_server``: publishes the master file's data.
+"""
+``ros2 run vd_data_server data_server``: publishes the master file's data.
 
 Topics (reliable + transient_local, so late subscribers get everything):
   /vd/configuration  vd_interfaces/Configuration, one message per configuration
@@ -15,7 +16,9 @@ from __future__ import annotations
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
-from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus
+
+from vd_interfaces.msg import Configuration as ConfigurationMsg
+from vd_interfaces.msg import DataStatus
 from vd_interfaces.srv import GetConfiguration, Reload, SetOverride
 
 from .conversions import configuration_to_msg, study_to_status_msg
@@ -36,24 +39,24 @@ def latched(depth: int) -> QoSProfile:
 
 class DataServer(Node):
     def __init__(self, **kwargs) -> None:
-        super().__init__("data_server", **kwargs)
-        self.declare_parameter("master_file", str(default_master()), ParameterDescriptor(
-            description="master file (study) to serve", read_only=True))
+        super().__init__('data_server', **kwargs)
+        self.declare_parameter('master_file', str(default_master()), ParameterDescriptor(
+            description='master file (study) to serve', read_only=True))
         # read-only: a participant on the domain must not switch edits on for itself
-        self.declare_parameter("allow_edits", False, ParameterDescriptor(
-            description="accept /vd/set_override requests (fixed at start)", read_only=True))
-        self.declare_parameter("watch_period", 0.5, ParameterDescriptor(
-            description="seconds between checks of the data files (0: do not watch)",
+        self.declare_parameter('allow_edits', False, ParameterDescriptor(
+            description='accept /vd/set_override requests (fixed at start)', read_only=True))
+        self.declare_parameter('watch_period', 0.5, ParameterDescriptor(
+            description='seconds between checks of the data files (0: do not watch)',
             read_only=True))
-        self.service = DataService(self.get_parameter("master_file").value)
-        self.config_pub = self.create_publisher(ConfigurationMsg, "/vd/configuration",
+        self.service = DataService(self.get_parameter('master_file').value)
+        self.config_pub = self.create_publisher(ConfigurationMsg, '/vd/configuration',
                                                 latched(CONFIGURATION_DEPTH))
-        self.status_pub = self.create_publisher(DataStatus, "/vd/data_status", latched(1))
-        self.create_service(GetConfiguration, "/vd/get_configuration", self._get_configuration)
-        self.create_service(SetOverride, "/vd/set_override", self._set_override)
-        self.create_service(Reload, "/vd/reload", self._reload)
+        self.status_pub = self.create_publisher(DataStatus, '/vd/data_status', latched(1))
+        self.create_service(GetConfiguration, '/vd/get_configuration', self._get_configuration)
+        self.create_service(SetOverride, '/vd/set_override', self._set_override)
+        self.create_service(Reload, '/vd/reload', self._reload)
         self._publish_outcome(self.service.load())
-        period = float(self.get_parameter("watch_period").value)
+        period = float(self.get_parameter('watch_period').value)
         if period > 0.0:
             self.create_timer(period, self._poll)
 
@@ -81,8 +84,8 @@ class DataServer(Node):
         for config in study.configurations.values():
             self.config_pub.publish(configuration_to_msg(config, stamp))
         self._publish_status()
-        self.get_logger().info(f"published {len(study.configurations)} configurations of "
-                               f"{study.master.path}")
+        self.get_logger().info(f'published {len(study.configurations)} configurations of '
+                               f'{study.master.path}')
 
     def _publish_status(self) -> None:
         study = self.service.study
@@ -103,10 +106,10 @@ class DataServer(Node):
         return response
 
     def _set_override(self, request, response):
-        if not self.get_parameter("allow_edits").value:
+        if not self.get_parameter('allow_edits').value:
             response.success = False
-            response.message = ("edits are disabled (start the data server with parameter "
-                                "allow_edits:=true)")
+            response.message = ('edits are disabled (start the data server with parameter '
+                                'allow_edits:=true)')
             return response
         try:
             self.service.set_override(request.configuration, request.key, request.value)
@@ -116,14 +119,14 @@ class DataServer(Node):
             return response
         self.publish_all()
         response.success = True
-        response.message = f"{request.configuration}: {request.key} = {request.value}"
+        response.message = f'{request.configuration}: {request.key} = {request.value}'
         return response
 
     def _reload(self, request, response):
         outcome = self.service.load()
         self._publish_outcome(outcome)
         response.success = not outcome.errors
-        response.message = "\n".join(outcome.errors) or "reloaded"
+        response.message = '\n'.join(outcome.errors) or 'reloaded'
         return response
 
 
@@ -131,5 +134,5 @@ def main(args=None) -> None:
     spin_node(DataServer, args, threads=1)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     main()

@@ -1,4 +1,5 @@
-"""Precise error types of the data side.
+"""
+Precise error types of the data side.
 
 Every message names the file and the key (and the configuration where one is
 involved) so that a user can go straight to the line that is wrong.
@@ -14,11 +15,12 @@ MAX_ERRORS = 50
 def _cut(text: str, limit: int = MAX_MESSAGE) -> str:
     if len(text) <= limit:
         return text
-    return f"{text[:limit]}... (cut at the limit of {limit} characters)"
+    return f'{text[:limit]}... (cut at the limit of {limit} characters)'
 
 
 class DataError(Exception):
-    """Invalid vehicle data, master file, override or tire property file.
+    """
+    Invalid vehicle data, master file, override or tire property file.
 
     ``str(err)`` is one or more lines of the form ``file: key: message``.
     """
@@ -30,7 +32,7 @@ class DataError(Exception):
         self.key = key
         self.detail = message
         parts = [p for p in (file, key) if p]
-        super().__init__(": ".join([*parts, message]))
+        super().__init__(': '.join([*parts, message]))
 
 
 class DataErrors(DataError):
@@ -40,9 +42,9 @@ class DataErrors(DataError):
         self.errors = list(errors)
         lines = [str(e) for e in self.errors[:MAX_ERRORS]]
         if len(self.errors) > MAX_ERRORS:
-            lines.append(f"... and {len(self.errors) - MAX_ERRORS} more problems (the limit is "
-                         f"{MAX_ERRORS} listed)")
-        Exception.__init__(self, "\n".join(lines))
+            lines.append(f'... and {len(self.errors) - MAX_ERRORS} more problems (the limit is '
+                         f'{MAX_ERRORS} listed)')
+        Exception.__init__(self, '\n'.join(lines))
         self.file = None
         self.key = None
         self.detail = str(self)

@@ -1,4 +1,5 @@
-"""Master files (studies): configurations that pick variants and override values.
+"""
+Master files (studies): configurations that pick variants and override values.
 
 Layout::
 
@@ -23,28 +24,28 @@ Only files under the data root are ever read.
 """
 from __future__ import annotations
 
-import hashlib
-import os
-import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+import hashlib
+import os
 from pathlib import Path
+import re
 from typing import Any
 
 from . import schema
 from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
-from .plausibility import check_point
 from .model import Configuration, GroupData, Value
+from .plausibility import check_point
 from .tir import read_tir
 from .tire_group import tire_properties, with_tire
 from .yamlio import line_of, load_file
 
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
-MASTER_TOP = ("study", "defaults", "configurations")
-STUDY_KEYS = ("name", "description", "vehicle", "data_root")
-CONFIG_KEYS = ("description", "variants", "overrides", "flexible", "flexible_components")
-COORDS = {"x": 0, "y": 1, "z": 2}
+_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_.-]*$')
+MASTER_TOP = ('study', 'defaults', 'configurations')
+STUDY_KEYS = ('name', 'description', 'vehicle', 'data_root')
+CONFIG_KEYS = ('description', 'variants', 'overrides', 'flexible', 'flexible_components')
+COORDS = {'x': 0, 'y': 1, 'z': 2}
 
 
 @dataclass(frozen=True)
@@ -73,7 +74,8 @@ class MasterFile:
 
 
 def inside(root: Path, path: Path) -> bool:
-    """True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
+    """
+    True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
 
     Names such as ``../../etc/passwd`` are refused, and so is a link inside the data
     root that points out of it (checked before the file is opened, so its content is
@@ -93,7 +95,7 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
 
     def err(key: str, message: str, container: Any = None, name: str | None = None) -> None:
         line = line_of(container, name) if name is not None else None
-        errors.append(DataError(message + (f" (line {line})" if line else ""), file=display,
+        errors.append(DataError(message + (f' (line {line})' if line else ''), file=display,
                                 key=key or None))
 
     if not isinstance(raw, Mapping):
@@ -102,28 +104,28 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     for key in raw:
         if key not in MASTER_TOP:
             err(key, f"unknown key (expected one of: {', '.join(MASTER_TOP)})", raw, key)
-    study = raw.get("study")
+    study = raw.get('study')
     if not isinstance(study, Mapping):
         raise DataError("missing required mapping 'study' (name, vehicle)", file=display,
-                        key="study")
+                        key='study')
     for key in study:
         if key not in STUDY_KEYS:
-            err(f"study.{key}", f"unknown key (expected one of: {', '.join(STUDY_KEYS)})",
+            err(f'study.{key}', f"unknown key (expected one of: {', '.join(STUDY_KEYS)})",
                 study, key)
-    for key in ("name", "vehicle"):
+    for key in ('name', 'vehicle'):
         if not isinstance(study.get(key), str) or not study.get(key):
-            err(f"study.{key}", "missing required text", raw, "study")
-    vehicle = str(study.get("vehicle", ""))
+            err(f'study.{key}', 'missing required text', raw, 'study')
+    vehicle = str(study.get('vehicle', ''))
     if vehicle and not _NAME.match(vehicle):
-        err("study.vehicle", f"'{vehicle}' is not a plain folder name", study, "vehicle")
-    if not isinstance(study.get("data_root", ".."), str) or not study.get("data_root", ".."):
+        err('study.vehicle', f"'{vehicle}' is not a plain folder name", study, 'vehicle')
+    if not isinstance(study.get('data_root', '..'), str) or not study.get('data_root', '..'):
         raise DataError(f"expected a folder path, found {study.get('data_root')!r}",
-                        file=display, key="study.data_root")
+                        file=display, key='study.data_root')
     # real paths: a master file linked from elsewhere (a symlink install links every
     # file) names its data root relative to where it really is
     if data_root is None:
         root = Path(os.path.realpath(Path(os.path.realpath(path)).parent /
-                                     str(study.get("data_root", ".."))))
+                                     str(study.get('data_root', '..'))))
     else:
         root = Path(os.path.realpath(data_root))
     try:
@@ -131,76 +133,76 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     except OSError:  # a name too long, a loop of links
         root_is_dir = False
     if not root_is_dir:
-        raise DataError(f"the data root {root} is not a folder", file=display,
-                        key="study.data_root")
-    defaults = raw.get("defaults") or {}
+        raise DataError(f'the data root {root} is not a folder', file=display,
+                        key='study.data_root')
+    defaults = raw.get('defaults') or {}
     if not isinstance(defaults, Mapping):
-        err("defaults", "expected a mapping of group: variant", raw, "defaults")
+        err('defaults', 'expected a mapping of group: variant', raw, 'defaults')
         defaults = {}
-    _check_variants(defaults, "defaults", err)
-    configs_raw = raw.get("configurations")
+    _check_variants(defaults, 'defaults', err)
+    configs_raw = raw.get('configurations')
     if not isinstance(configs_raw, Mapping) or not configs_raw:
-        err("configurations", "expected a non-empty mapping of configuration names", raw,
-            "configurations")
+        err('configurations', 'expected a non-empty mapping of configuration names', raw,
+            'configurations')
         configs_raw = {}
     configs: dict[str, ConfigurationSpec] = {}
     for name, body in configs_raw.items():
-        where = f"configurations.{name}"
+        where = f'configurations.{name}'
         if not _NAME.match(name):
             err(where, "configuration names may hold letters, digits, '_', '-' and '.'",
                 configs_raw, name)
             continue
         body = body or {}
         if not isinstance(body, Mapping):
-            err(where, "expected a mapping", configs_raw, name)
+            err(where, 'expected a mapping', configs_raw, name)
             continue
         for key in body:
             if key not in CONFIG_KEYS:
-                err(f"{where}.{key}", f"unknown key (expected one of: {', '.join(CONFIG_KEYS)})",
+                err(f'{where}.{key}', f"unknown key (expected one of: {', '.join(CONFIG_KEYS)})",
                     body, key)
-        variants = body.get("variants") or {}
-        overrides = body.get("overrides") or {}
+        variants = body.get('variants') or {}
+        overrides = body.get('overrides') or {}
         if not isinstance(variants, Mapping):
-            err(f"{where}.variants", "expected a mapping of group: variant", body, "variants")
+            err(f'{where}.variants', 'expected a mapping of group: variant', body, 'variants')
             variants = {}
         if not isinstance(overrides, Mapping):
-            err(f"{where}.overrides", "expected a mapping of group.key: value", body, "overrides")
+            err(f'{where}.overrides', 'expected a mapping of group.key: value', body, 'overrides')
             overrides = {}
-        _check_variants(variants, f"{where}.variants", err)
+        _check_variants(variants, f'{where}.variants', err)
         merged = {**defaults, **variants}
         for group in schema.REQUIRED_GROUPS:
             if group not in merged:
-                err(f"{where}.variants.{group}", "no variant chosen (neither in 'defaults' nor "
+                err(f'{where}.variants.{group}', "no variant chosen (neither in 'defaults' nor "
                     "in the configuration)", configs_raw, name)
-        flexible, components = _flexible(body.get("flexible", False), f"{where}.flexible", err)
-        if "flexible_components" in body:
-            chosen = body["flexible_components"]
+        flexible, components = _flexible(body.get('flexible', False), f'{where}.flexible', err)
+        if 'flexible_components' in body:
+            chosen = body['flexible_components']
             if not (isinstance(chosen, list) and chosen
                     and all(isinstance(c, str) and c for c in chosen)):
-                err(f"{where}.flexible_components", "expected a non-empty list of component "
-                    f"names, found {chosen!r}", body, "flexible_components")
+                err(f'{where}.flexible_components', 'expected a non-empty list of component '
+                    f'names, found {chosen!r}', body, 'flexible_components')
             elif components:
-                err(f"{where}.flexible_components", "give the components either as the "
-                    "'flexible' list or here, not both", body, "flexible_components")
+                err(f'{where}.flexible_components', "give the components either as the "
+                    "'flexible' list or here, not both", body, 'flexible_components')
             else:
                 flexible, components = True, tuple(chosen)
-        configs[name] = ConfigurationSpec(name, str(body.get("description") or ""),
+        configs[name] = ConfigurationSpec(name, str(body.get('description') or ''),
                                           {str(k): str(v) for k, v in merged.items()},
                                           dict(overrides), flexible, components)
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
-    return MasterFile(path=path, name=str(study["name"]), description=str(study.get(
-        "description") or ""), vehicle=vehicle, data_root=root, configurations=configs)
+    return MasterFile(path=path, name=str(study['name']), description=str(study.get(
+        'description') or ''), vehicle=vehicle, data_root=root, configurations=configs)
 
 
 def _check_variants(variants: Mapping[str, Any], where: str, err: Any) -> None:
     names = schema.all_group_names()
     for group, variant in variants.items():
         if group not in names:
-            err(f"{where}.{group}", f"unknown input group (expected one of: {', '.join(names)})",
+            err(f'{where}.{group}', f"unknown input group (expected one of: {', '.join(names)})",
                 variants, group)
         elif not isinstance(variant, (str, int)) or not _NAME.match(str(variant)):
-            err(f"{where}.{group}", f"variant must be a plain name, found {variant!r}", variants,
+            err(f'{where}.{group}', f'variant must be a plain name, found {variant!r}', variants,
                 group)
 
 
@@ -209,7 +211,7 @@ def _flexible(raw: Any, where: str, err: Any) -> tuple[bool, tuple[str, ...]]:
         return raw, ()
     if isinstance(raw, list) and all(isinstance(c, str) for c in raw):
         return bool(raw), tuple(raw)
-    err(where, f"expected true, false or a list of component names, found {raw!r}")
+    err(where, f'expected true, false or a list of component names, found {raw!r}')
     return False, ()
 
 
@@ -222,7 +224,7 @@ class GroupCache:
         self.extra_hashes: dict[str, str] = {}
 
     def variant_path(self, group: str, variant: str) -> tuple[Path, str]:
-        rel = f"{self.master.vehicle}/{group}/{variant}.yaml"
+        rel = f'{self.master.vehicle}/{group}/{variant}.yaml'
         return self.master.data_root / rel, rel
 
     def get(self, group: str, variant: str) -> GroupData:
@@ -230,17 +232,17 @@ class GroupCache:
         if key not in self._cache:
             path, rel = self.variant_path(group, variant)
             if not inside(self.master.data_root, path):
-                raise DataError(f"resolves outside the data root {self.master.data_root} "
-                                "(a symbolic link?): not read", file=rel)
+                raise DataError(f'resolves outside the data root {self.master.data_root} '
+                                '(a symbolic link?): not read', file=rel)
             if not _is_file(path):
                 available = self.available(group)
                 raise DataError(
                     f"variant '{variant}' of group '{group}' does not exist (no file {rel}; "
                     f"available: {', '.join(available) or 'none'})", file=self.master.display)
             data = load_group_file(path, display=rel, group=group, variant=variant)
-            if data.kind == "tire":
+            if data.kind == 'tire':
                 data = self._with_tire(data)
-            elif data.kind == "flex":
+            elif data.kind == 'flex':
                 data = self._with_imported(data)
             self._cache[key] = data
         return self._cache[key]
@@ -251,17 +253,17 @@ class GroupCache:
 
     def available(self, group: str) -> list[str]:
         folder = self.master.data_root / self.master.vehicle / group
-        return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
+        return sorted(p.stem for p in folder.glob('*.yaml')) if folder.is_dir() else []
 
     def _with_imported(self, data: GroupData) -> GroupData:
         return _read_imported(self, data) if _imported_keys(data) else data
 
     def _with_tire(self, data: GroupData) -> GroupData:
-        rel = data.text("file")
+        rel = data.text('file')
         path = self.master.data_root / rel
         if not inside(self.master.data_root, path):
             raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
-                            file=data.file, key="file")
+                            file=data.file, key='file')
         props = read_tir(path)
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
         return with_tire(data, props, rel)
@@ -275,8 +277,8 @@ def _is_file(path: Path) -> bool:
 
 
 def _imported_keys(data: GroupData) -> list[str]:
-    return sorted(k for k in data.values if k.startswith("components.")
-                  and k.endswith(".imported.file"))
+    return sorted(k for k in data.values if k.startswith('components.')
+                  and k.endswith('.imported.file'))
 
 
 def _read_imported(cache: "GroupCache", data: GroupData) -> GroupData:
@@ -295,13 +297,13 @@ def _read_imported(cache: "GroupCache", data: GroupData) -> GroupData:
             raise DataError(f"reduced stiffness file '{rel}' is larger than "
                             f"{IMPORTED_MAX_BYTES // 1_000_000} MB", file=data.file, key=key)
         try:
-            text = raw.decode("utf-8")
+            text = raw.decode('utf-8')
         except UnicodeDecodeError:
             raise DataError(f"reduced stiffness file '{rel}' is not UTF-8 text", file=data.file,
                             key=key) from None
         cache.extra_hashes[rel] = hashlib.sha256(raw).hexdigest()[:16]
-        content = key[: -len("file")] + "content"
-        values[content] = Value(content, "text", text, source=rel)
+        content = key[: -len('file')] + 'content'
+        values[content] = Value(content, 'text', text, source=rel)
     return GroupData(data.group, data.kind, data.variant, data.file, values, data.description)
 
 
@@ -311,10 +313,12 @@ IMPORTED_MAX_BYTES = 20_000_000
 
 def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
             extra_overrides: Mapping[str, Any] | None = None,
-            extra_source: str = "--set") -> Configuration:
-    """Resolve one configuration: variants, then master overrides, then ``extra_overrides``
+            extra_source: str = '--set') -> Configuration:
+    """
+    Resolve one configuration: variants, then master overrides, then ``extra_overrides``
     (``vd run --set``, or edits over ROS: ``extra_source`` names them in messages and in
-    each value's source), each value keeping its source."""
+    each value's source), each value keeping its source.
+    """
     if name not in master.configurations:
         raise DataError(f"configuration '{name}' does not exist (available: "
                         f"{', '.join(master.configurations)})", file=master.display)
@@ -332,16 +336,16 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
     if errors:  # every broken file of the configuration, not only the first
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
     groups = apply_overrides(groups, spec.overrides, file=master.display,
-                             where=f"configurations.{name}.overrides")
+                             where=f'configurations.{name}.overrides')
     if extra_overrides:
-        groups = apply_overrides(groups, extra_overrides, file=extra_source, where="")
+        groups = apply_overrides(groups, extra_overrides, file=extra_source, where='')
     check_geometry(groups, file=master.display, configuration=name)
     check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
     for group in groups.values():
-        if group.kind == "tire":
+        if group.kind == 'tire':
             tire_properties(group)  # the coefficients after overrides, as a solver reads them
-    tire_files = {g.text("file") for g in groups.values() if g.kind == "tire"}
-    tire_files |= {g.text(k) for g in groups.values() if g.kind == "flex"
+    tire_files = {g.text('file') for g in groups.values() if g.kind == 'tire'}
+    tire_files |= {g.text(k) for g in groups.values() if g.kind == 'flex'
                    for k in _imported_keys(g)}
     hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
     return Configuration(name=name, master_file=master.display, description=spec.description,
@@ -354,25 +358,26 @@ GEOMETRY_TOLERANCE = 0.001
 
 
 def check_geometry(groups: Mapping[str, GroupData], *, file: str, configuration: str) -> None:
-    """Wheelbase and tracks must describe the car the hard points describe.
+    """
+    Wheelbase and tracks must describe the car the hard points describe.
 
     The geometry group states them for the models that do not read hard points; a
     designer who moves a wheel centre (or edits the geometry) must keep both in step.
     """
-    geo = groups.get("geometry")
-    front, rear = groups.get("front_hardpoints"), groups.get("rear_hardpoints")
+    geo = groups.get('geometry')
+    front, rear = groups.get('front_hardpoints'), groups.get('rear_hardpoints')
     if geo is None or front is None or rear is None:
         return
-    wc_f, wc_r = front.point("points.wheel_centre"), rear.point("points.wheel_centre")
-    checks = (("wheelbase", wc_f[0] - wc_r[0], "the x distance of the front and rear wheel "
-               "centres"),
-              ("track_front", 2.0 * wc_f[1], "twice the front wheel-centre y"),
-              ("track_rear", 2.0 * wc_r[1], "twice the rear wheel-centre y"))
+    wc_f, wc_r = front.point('points.wheel_centre'), rear.point('points.wheel_centre')
+    checks = (('wheelbase', wc_f[0] - wc_r[0], 'the x distance of the front and rear wheel '
+               'centres'),
+              ('track_front', 2.0 * wc_f[1], 'twice the front wheel-centre y'),
+              ('track_rear', 2.0 * wc_r[1], 'twice the rear wheel-centre y'))
     errors = [
-        DataError(f"{key} = {geo.scalar(key) * 1e3:.1f} mm but {what} is {value * 1e3:.1f} mm "
-                  f"(hard points {front.file}, {rear.file}); keep them within "
-                  f"{GEOMETRY_TOLERANCE * 1e3:g} mm", file=file,
-                  key=f"configurations.{configuration}: geometry.{key}")
+        DataError(f'{key} = {geo.scalar(key) * 1e3:.1f} mm but {what} is {value * 1e3:.1f} mm '
+                  f'(hard points {front.file}, {rear.file}); keep them within '
+                  f'{GEOMETRY_TOLERANCE * 1e3:g} mm', file=file,
+                  key=f'configurations.{configuration}: geometry.{key}')
         for key, value, what in checks if abs(geo.scalar(key) - value) > GEOMETRY_TOLERANCE]
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
@@ -382,28 +387,30 @@ def flex_components(groups: Mapping[str, GroupData]) -> dict[str, tuple[str, ...
     """Flexible components defined per axle (from the ``<axle>_flex`` groups)."""
     out = {}
     for axle in schema.AXLES:
-        g = groups.get(f"{axle}_flex")
+        g = groups.get(f'{axle}_flex')
         if g is not None:
-            out[axle] = tuple(sorted({k.split(".")[1] for k in g.values
-                                      if k.startswith("components.")}))
+            out[axle] = tuple(sorted({k.split('.')[1] for k in g.values
+                                      if k.startswith('components.')}))
     return out
 
 
 def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, file: str,
                    configuration: str) -> None:
-    """Flex components must exist in the axle's template, and a configuration's
-    chosen ``flexible_components`` in its flex groups."""
+    """
+    Flex components must exist in the axle's template, and a configuration's
+    chosen ``flexible_components`` in its flex groups.
+    """
     errors = []
     defined = flex_components(groups)
     for axle, names in defined.items():
-        hp = groups.get(f"{axle}_hardpoints")
+        hp = groups.get(f'{axle}_hardpoints')
         if hp is None:
             continue
-        template = hp.text("template")
+        template = hp.text('template')
         known = schema.TEMPLATE_COMPONENTS[template]
-        with_bar = f"{axle}_stabilizer" in groups
-        flex = groups[f"{axle}_flex"]
-        points = {k.split(".", 1)[1] for k in hp.values if k.startswith("points.")}
+        with_bar = f'{axle}_stabilizer' in groups
+        flex = groups[f'{axle}_flex']
+        points = {k.split('.', 1)[1] for k in hp.values if k.startswith('points.')}
         for name in names:
             if name == schema.SUBFRAME_COMPONENT:
                 missing = [p for p in schema.SUBFRAME_POINTS if p not in points]
@@ -411,23 +418,23 @@ def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, fi
                     errors.append(DataError(
                         f"a flexible subframe needs its body mounts: hard point(s) "
                         f"{', '.join(missing)} missing in {hp.file}", file=flex.file,
-                        key=f"components.{name}"))
+                        key=f'components.{name}'))
             elif name == schema.BAR_COMPONENT and not with_bar:
-                errors.append(DataError(f"the {axle} axle has no anti-roll bar "
-                                        f"({axle}_stabilizer) to make flexible", file=flex.file,
-                                        key=f"components.{name}"))
+                errors.append(DataError(f'the {axle} axle has no anti-roll bar '
+                                        f'({axle}_stabilizer) to make flexible', file=flex.file,
+                                        key=f'components.{name}'))
             elif name != schema.BAR_COMPONENT and name not in known:
                 errors.append(DataError(
                     f"template '{template}' has no component '{name}' (components: "
                     f"{', '.join(known + ((schema.BAR_COMPONENT,) if with_bar else ()) + (schema.SUBFRAME_COMPONENT,))})",
-                    file=flex.file, key=f"components.{name}"))
+                    file=flex.file, key=f'components.{name}'))
     every = {n for names in defined.values() for n in names}
     for name in chosen:
         if name not in every:
             errors.append(DataError(
                 f"flexible component '{name}' is not defined in the configuration's flex "
                 f"data (defined: {', '.join(sorted(every)) or 'none'})", file=file,
-                key=f"configurations.{configuration}.flexible_components"))
+                key=f'configurations.{configuration}.flexible_components'))
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
 
@@ -437,7 +444,7 @@ def apply_overrides(groups: Mapping[str, GroupData], overrides: Mapping[str, Any
     out = dict(groups)
     errors: list[DataError] = []
     for dotted, raw in overrides.items():
-        key_label = f"{where}.{dotted}" if where else str(dotted)
+        key_label = f'{where}.{dotted}' if where else str(dotted)
         try:
             out = _apply_one(out, str(dotted), raw, file=file, label=key_label)
         except DataError as err:
@@ -449,28 +456,28 @@ def apply_overrides(groups: Mapping[str, GroupData], overrides: Mapping[str, Any
 
 def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str,
                label: str) -> dict[str, GroupData]:
-    group_name, _, key = dotted.partition(".")
+    group_name, _, key = dotted.partition('.')
     if group_name not in groups or not key:
         raise DataError(f"override of unknown group '{group_name}' (groups: "
                         f"{', '.join(groups)}); write GROUP.KEY", file=file, key=label)
     group = groups[group_name]
-    source = f"master override {label}" if label != dotted else f"{file} {dotted}"
+    source = f'master override {label}' if label != dotted else f'{file} {dotted}'
     coord = None
-    if key not in group.values and key[-2:] in (".x", ".y", ".z") and key[:-2] in group.values:
+    if key not in group.values and key[-2:] in ('.x', '.y', '.z') and key[:-2] in group.values:
         key, coord = key[:-2], key[-1]
     if key not in group.values:
         raise DataError(f"key '{key}' does not exist in group '{group_name}' ({group.file}); "
                         f"keys: {', '.join(sorted(group.values))}", file=file, key=label)
     old = group.values[key]
     if coord is not None:
-        if old.type != "point":
+        if old.type != 'point':
             raise DataError(f"'{key}' is a {old.type}, not a point", file=file, key=label)
-        axis = Value(key, "scalar", 0.0, "m", display_unit=old.display_unit)
+        axis = Value(key, 'scalar', 0.0, 'm', display_unit=old.display_unit)
         number = parse_override(raw, axis, file=file, key=label).si
         xyz = list(old.si)  # type: ignore[arg-type]
         xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
         check_point((xyz[0], xyz[1], xyz[2]), file=file, key=label, raw=raw)
-        new = Value(key, "point", tuple(xyz), "m", display_unit=old.display_unit, source=source)
+        new = Value(key, 'point', tuple(xyz), 'm', display_unit=old.display_unit, source=source)
     else:
         new = parse_override(raw, old, file=file, key=label).with_source(source)
         spec = schema.leaf_spec(group.kind, key)
@@ -490,10 +497,10 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Confi
     """``config`` with temporary overrides (``vd run --set``, action goals) applied."""
     if not overrides:
         return config
-    groups = apply_overrides(config.groups, overrides, file="--set", where="")
-    check_geometry(groups, file="--set", configuration=config.name)
+    groups = apply_overrides(config.groups, overrides, file='--set', where='')
+    check_geometry(groups, file='--set', configuration=config.name)
     for group in groups.values():
-        if group.kind == "tire":
+        if group.kind == 'tire':
             tire_properties(group)
     return Configuration(name=config.name, master_file=config.master_file,
                          description=config.description, groups=groups,
@@ -505,8 +512,8 @@ def parse_set(items: Sequence[str]) -> dict[str, str]:
     """``["front_alignment.camber=-1 deg"]`` -> ``{"front_alignment.camber": "-1 deg"}``."""
     out: dict[str, str] = {}
     for item in items:
-        key, sep, value = item.partition("=")
+        key, sep, value = item.partition('=')
         if not sep or not key.strip() or not value.strip():
-            raise DataError(f"expected GROUP.KEY=VALUE, found {item!r}", file="--set")
+            raise DataError(f'expected GROUP.KEY=VALUE, found {item!r}', file='--set')
         out[key.strip()] = value.strip()
     return out

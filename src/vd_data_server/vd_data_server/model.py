@@ -1,4 +1,5 @@
-"""The resolved vehicle data: flat, SI, every value with its unit and source.
+"""
+The resolved vehicle data: flat, SI, every value with its unit and source.
 
 A group's values are keyed by their path inside the data file's ``data:``
 block (``rate``, ``points.lca_outer``, ``connections.lca_front.stiffness.x``).
@@ -7,20 +8,21 @@ compares, what the ROS messages carry, and what the solvers read.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 import hashlib
 import json
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Literal, Union
 
-ValueType = Literal["scalar", "curve", "point", "vector", "text"]
+ValueType = Literal['scalar', 'curve', 'point', 'vector', 'text']
 SI = Union[float, str, tuple[float, ...], tuple[tuple[float, ...], tuple[float, ...]]]
 
 
 @dataclass(frozen=True)
 class Value:
-    """One resolved value in SI.
+    """
+    One resolved value in SI.
 
     ``si`` is a float (scalar), a 3-tuple (point, vector), a pair of tuples
     ``(x, y)`` (curve) or a string (text). ``unit`` is the SI unit of the value
@@ -32,11 +34,11 @@ class Value:
     key: str
     type: ValueType
     si: SI
-    unit: str = ""
-    x_unit: str = ""
-    display_unit: str = ""
-    x_display_unit: str = ""
-    source: str = ""
+    unit: str = ''
+    x_unit: str = ''
+    display_unit: str = ''
+    x_display_unit: str = ''
+    source: str = ''
 
     def same_data(self, other: "Value") -> bool:
         """Equal content (the source is not compared)."""
@@ -66,13 +68,13 @@ class GroupData:
     variant: str
     file: str  # path relative to the data root
     values: Mapping[str, Value]
-    description: str = ""
+    description: str = ''
     #: unusual (not impossible) values of the file, ``file: key: message`` (plausibility.py)
     warnings: tuple[str, ...] = ()
 
     def scalar(self, key: str) -> float:
         value = self.values[key]
-        assert value.type == "scalar", key
+        assert value.type == 'scalar', key
         return float(value.si)  # type: ignore[arg-type]
 
     def get_scalar(self, key: str, default: float | None = None) -> float | None:
@@ -120,13 +122,13 @@ def _canonical(value: Value) -> object:
 
 def configuration_hash(config: Configuration) -> str:
     payload = {
-        "groups": {
-            name: {"kind": g.kind, "values": [_canonical(v) for _, v in sorted(g.values.items())]}
+        'groups': {
+            name: {'kind': g.kind, 'values': [_canonical(v) for _, v in sorted(g.values.items())]}
             for name, g in sorted(config.groups.items())
         },
-        "flexible": config.flexible,
-        "flexible_components": list(config.flexible_components),
-        "files": dict(sorted(config.extra_hashes.items())),
+        'flexible': config.flexible,
+        'flexible_components': list(config.flexible_components),
+        'files': dict(sorted(config.extra_hashes.items())),
     }
-    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    text = json.dumps(payload, sort_keys=True, separators=(',', ':'), allow_nan=False)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -1,21 +1,21 @@
 """The standard ``main()`` of a vd node (ros2/examples style), shared by the packages."""
 from __future__ import annotations
 
+from collections.abc import Callable
 import os
 import signal
-from collections.abc import Callable
 
 import rclpy
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 
-
 #: set by a parent that starts nodes as its children (``vd run --distributed``): its pid
-PARENT_ENV = "VD_PARENT_PID"
+PARENT_ENV = 'VD_PARENT_PID'
 
 
 def die_with_parent() -> None:
-    """A child node of a ``vd`` run ends with its parent, even after ``kill -9``.
+    """
+    A child node of a ``vd`` run ends with its parent, even after ``kill -9``.
 
     Linux delivers SIGTERM to this process when the parent dies (prctl
     PR_SET_PDEATHSIG); SIGTERM is a node's clean shutdown. A parent that died
@@ -37,15 +37,17 @@ def die_with_parent() -> None:
 
 
 def spin_guarded(executor, node: Node) -> None:
-    """Spin until shutdown; a callback that fails (a bug the input triggered) is logged
-    and the node keeps serving instead of dying with it."""
+    """
+    Spin until shutdown; a callback that fails (a bug the input triggered) is logged
+    and the node keeps serving instead of dying with it.
+    """
     while rclpy.ok(context=executor.context):
         try:
             executor.spin_once(timeout_sec=0.5)
         except (KeyboardInterrupt, ExternalShutdownException):
             raise
         except Exception as err:  # noqa: BLE001 - the node boundary
-            node.get_logger().error(f"a callback failed: {type(err).__name__}: {err}")
+            node.get_logger().error(f'a callback failed: {type(err).__name__}: {err}')
 
 
 def spin_node(factory: Callable[[], Node], args=None, threads: int = 2) -> None:

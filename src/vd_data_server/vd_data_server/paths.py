@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-PACKAGE = "vd_data_server"
-SAMPLE_STUDY = "studies/sedan.yaml"
+PACKAGE = 'vd_data_server'
+SAMPLE_STUDY = 'studies/sedan.yaml'
 
 
 def sample_data_root() -> Path:
@@ -14,14 +14,14 @@ def sample_data_root() -> Path:
     except ImportError:  # a plain Python environment without ROS
         return _source_root()
     try:
-        installed = Path(get_package_share_directory(PACKAGE)) / "data"
+        installed = Path(get_package_share_directory(PACKAGE)) / 'data'
     except (PackageNotFoundError, OSError):  # OSError: no AMENT_PREFIX_PATH at all
         return _source_root()
     return installed if installed.is_dir() else _source_root()
 
 
 def _source_root() -> Path:
-    return Path(__file__).resolve().parents[1] / "data"
+    return Path(__file__).resolve().parents[1] / 'data'
 
 
 def default_master() -> Path:

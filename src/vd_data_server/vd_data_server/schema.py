@@ -1,4 +1,5 @@
-"""What each kind of vehicle data file holds: keys, quantities, ranges.
+"""
+What each kind of vehicle data file holds: keys, quantities, ranges.
 
 The schema is data (specs below), read by :mod:`vd_data_server.datafile` to
 validate and convert files and by ``docs/data-format.md`` (generated check in
@@ -59,8 +60,8 @@ class Text:
 
 @dataclass(frozen=True)
 class Section:
-    fields: Mapping[str, "Spec"]
-    doc: str = ""
+    fields: Mapping[str, 'Spec']
+    doc: str = ''
     required: bool = True
     #: groups of keys of which exactly one must be given
     one_of: tuple[tuple[str, ...], ...] = ()
@@ -77,51 +78,51 @@ class MapOf:
 
 Spec = Union[Scalar, Curve, Point, Vector, Text, Section, MapOf]
 
-AXLES = ("front", "rear")
+AXLES = ('front', 'rear')
 
 # --- suspension templates: the hard points each one needs (left side) ---
 TEMPLATE_POINTS: Mapping[str, tuple[str, ...]] = {
-    "macpherson": ("lca_front", "lca_rear", "lca_outer", "tierod_inner", "tierod_outer",
-                   "strut_top", "strut_lower", "wheel_centre"),
-    "double_wishbone": ("uca_front", "uca_rear", "uca_outer", "lca_front", "lca_rear",
-                        "lca_outer", "tierod_inner", "tierod_outer", "spring_upper",
-                        "spring_lower", "damper_upper", "damper_lower", "wheel_centre"),
-    "multilink": ("upper_front", "upper_rear", "upper_outer", "lateral_inner", "lateral_outer",
-                  "trailing_inner", "trailing_outer", "tierod_inner", "tierod_outer",
-                  "spring_upper", "spring_lower", "damper_upper", "damper_lower",
-                  "wheel_centre"),
+    'macpherson': ('lca_front', 'lca_rear', 'lca_outer', 'tierod_inner', 'tierod_outer',
+                   'strut_top', 'strut_lower', 'wheel_centre'),
+    'double_wishbone': ('uca_front', 'uca_rear', 'uca_outer', 'lca_front', 'lca_rear',
+                        'lca_outer', 'tierod_inner', 'tierod_outer', 'spring_upper',
+                        'spring_lower', 'damper_upper', 'damper_lower', 'wheel_centre'),
+    'multilink': ('upper_front', 'upper_rear', 'upper_outer', 'lateral_inner', 'lateral_outer',
+                  'trailing_inner', 'trailing_outer', 'tierod_inner', 'tierod_outer',
+                  'spring_upper', 'spring_lower', 'damper_upper', 'damper_lower',
+                  'wheel_centre'),
 }
 #: parts and links of each template that may be made flexible (the K&C templates'
 #: ``Topology.flexible_components``; a test keeps the two equal), plus the bar
 TEMPLATE_COMPONENTS: Mapping[str, tuple[str, ...]] = {
-    "macpherson": ("upright", "lca", "strut", "tierod"),
-    "double_wishbone": ("upright", "lca", "uca", "tierod"),
-    "multilink": ("upright", "upper_arm", "trailing_link", "lateral_link", "tierod"),
+    'macpherson': ('upright', 'lca', 'strut', 'tierod'),
+    'double_wishbone': ('upright', 'lca', 'uca', 'tierod'),
+    'multilink': ('upright', 'upper_arm', 'trailing_link', 'lateral_link', 'tierod'),
 }
-BAR_COMPONENT = "anti_roll_bar"
+BAR_COMPONENT = 'anti_roll_bar'
 SECTION_SHAPES: Mapping[str, tuple[str, ...]] = {
-    "solid_round": ("diameter",),
-    "tube": ("outer_diameter", "wall"),
-    "rectangle": ("width", "height"),
-    "i_beam": ("height", "flange_width", "flange_thickness", "web_thickness"),
-    "general": ("area", "iy", "iz", "torsion_constant"),
+    'solid_round': ('diameter',),
+    'tube': ('outer_diameter', 'wall'),
+    'rectangle': ('width', 'height'),
+    'i_beam': ('height', 'flange_width', 'flange_thickness', 'web_thickness'),
+    'general': ('area', 'iy', 'iz', 'torsion_constant'),
 }
 
 #: optional points every template understands (anti-roll bar drop link and pivot, and
 #: the body mounts of a flexible subframe)
-OPTIONAL_POINTS = ("arb_link_lower", "arb_link_upper", "arb_pivot", "subframe_front",
-                   "subframe_rear")
-SUBFRAME_COMPONENT = "subframe"
-SUBFRAME_POINTS = ("subframe_front", "subframe_rear")
+OPTIONAL_POINTS = ('arb_link_lower', 'arb_link_upper', 'arb_pivot', 'subframe_front',
+                   'subframe_rear')
+SUBFRAME_COMPONENT = 'subframe'
+SUBFRAME_POINTS = ('subframe_front', 'subframe_rear')
 
 _STOP = Section({
-    "clearance": Scalar("length", "travel of the spring/damper from design length before the "
-                        "stop touches", minimum=0.0),
-    "curve": Curve("length", "force", "stop force versus compression beyond the clearance",
+    'clearance': Scalar('length', 'travel of the spring/damper from design length before the '
+                        'stop touches', minimum=0.0),
+    'curve': Curve('length', 'force', 'stop force versus compression beyond the clearance',
                    x_minimum=0.0),
 })
 
-_SIX = ("x", "y", "z", "rx", "ry", "rz")
+_SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 
 def _six(trans: str, rot: str, what: str, required: bool) -> Section:
@@ -134,181 +135,181 @@ def _six(trans: str, rot: str, what: str, required: bool) -> Section:
 
 
 KINDS: Mapping[str, Section] = {
-    "hardpoints": Section({
-        "template": Text("suspension template", choices=tuple(TEMPLATE_POINTS)),
-        "points": MapOf(Point("hard point, left side, vehicle frame (origin on the ground under "
-                              "the front axle centre, x forward, y left, z up)"),
-                        "hard points by name; the template fixes which are required"),
+    'hardpoints': Section({
+        'template': Text('suspension template', choices=tuple(TEMPLATE_POINTS)),
+        'points': MapOf(Point('hard point, left side, vehicle frame (origin on the ground under '
+                              'the front axle centre, x forward, y left, z up)'),
+                        'hard points by name; the template fixes which are required'),
     }),
-    "spring": Section({
-        "rate": Scalar("stiffness", "linear coil-spring rate along its axis", required=False,
+    'spring': Section({
+        'rate': Scalar('stiffness', 'linear coil-spring rate along its axis', required=False,
                        positive=True),
-        "curve": Curve("length", "force", "spring force versus compression from the free length "
-                       "(extension negative)", required=False),
-        "free_length": Scalar("length", "unloaded length", required=False, positive=True),
-        "preload": Scalar("force", "force at the design (hard-point) length; the free length "
-                          "follows from it and the rate or curve", required=False, minimum=0.0),
-    }, one_of=(("rate", "curve"), ("free_length", "preload"))),
-    "damper": Section({
-        "curve": Curve("velocity", "force", "damper force versus compression velocity "
-                       "(rebound negative)"),
-        "scale": Scalar("dimensionless", "damping scale factor (the thesis' 'damping %')",
+        'curve': Curve('length', 'force', 'spring force versus compression from the free length '
+                       '(extension negative)', required=False),
+        'free_length': Scalar('length', 'unloaded length', required=False, positive=True),
+        'preload': Scalar('force', 'force at the design (hard-point) length; the free length '
+                          'follows from it and the rate or curve', required=False, minimum=0.0),
+    }, one_of=(('rate', 'curve'), ('free_length', 'preload'))),
+    'damper': Section({
+        'curve': Curve('velocity', 'force', 'damper force versus compression velocity '
+                       '(rebound negative)'),
+        'scale': Scalar('dimensionless', "damping scale factor (the thesis' 'damping %')",
                         required=False, default=1.0, positive=True),
     }),
-    "bump_stop": _STOP,
-    "rebound_stop": _STOP,
-    "bushings": Section({
-        "connections": MapOf(Section({
-            "stiffness": _six("stiffness", "torsional_stiffness", "linear stiffness", True),
-            "damping": _six("damping", "torsional_damping", "linear damping", False),
-            "axis": Vector("bushing axial (z) direction in the vehicle frame; default vehicle z",
+    'bump_stop': _STOP,
+    'rebound_stop': _STOP,
+    'bushings': Section({
+        'connections': MapOf(Section({
+            'stiffness': _six('stiffness', 'torsional_stiffness', 'linear stiffness', True),
+            'damping': _six('damping', 'torsional_damping', 'linear damping', False),
+            'axis': Vector('bushing axial (z) direction in the vehicle frame; default vehicle z',
                            required=False),
-        }), "bushings by the hard point of the connection they make compliant"),
+        }), 'bushings by the hard point of the connection they make compliant'),
     }),
-    "stabilizer": Section({
-        "torsional_stiffness": Scalar("torsional_stiffness", "bar twist stiffness (left arm "
-                                      "relative to right)", required=False, positive=True),
-        "bar_radius": Scalar("length", "bar radius (solid round bar)", required=False,
+    'stabilizer': Section({
+        'torsional_stiffness': Scalar('torsional_stiffness', 'bar twist stiffness (left arm '
+                                      'relative to right)', required=False, positive=True),
+        'bar_radius': Scalar('length', 'bar radius (solid round bar)', required=False,
                              positive=True),
-        "torsion_length": Scalar("length", "length of the bar's straight torsion part",
+        'torsion_length': Scalar('length', "length of the bar's straight torsion part",
                                  required=False, positive=True),
-        "shear_modulus": Scalar("pressure", "bar material shear modulus", required=False,
+        'shear_modulus': Scalar('pressure', 'bar material shear modulus', required=False,
                                 default=79.3e9, positive=True),
-    }, one_of=(("torsional_stiffness", "bar_radius"),)),
-    "steering": Section({
-        "rack_ratio": Scalar("rack_ratio", "rack travel per steering-wheel angle (c-factor)",
+    }, one_of=(('torsional_stiffness', 'bar_radius'),)),
+    'steering': Section({
+        'rack_ratio': Scalar('rack_ratio', 'rack travel per steering-wheel angle (c-factor)',
                              positive=True),
-        "rack_travel_limit": Scalar("length", "rack travel from centre to either stop",
+        'rack_travel_limit': Scalar('length', 'rack travel from centre to either stop',
                                     positive=True),
-        "rack_stiffness": Scalar("stiffness", "rack housing mounting stiffness along y",
+        'rack_stiffness': Scalar('stiffness', 'rack housing mounting stiffness along y',
                                  required=False, positive=True),
-        "column_stiffness": Scalar("torsional_stiffness", "steering column torsional stiffness",
+        'column_stiffness': Scalar('torsional_stiffness', 'steering column torsional stiffness',
                                    required=False, positive=True),
     }),
-    "alignment": Section({
-        "camber": Scalar("angle", "static camber at design (negative: top of wheel inward)"),
-        "toe": Scalar("angle", "static toe per wheel at design (positive: toe-in)"),
+    'alignment': Section({
+        'camber': Scalar('angle', 'static camber at design (negative: top of wheel inward)'),
+        'toe': Scalar('angle', 'static toe per wheel at design (positive: toe-in)'),
     }),
-    "tire": Section({
-        "file": Text("TeimOrbit .tir property file, path relative to the data root"),
+    'tire': Section({
+        'file': Text('TeimOrbit .tir property file, path relative to the data root'),
     }),
-    "mass": Section({
-        "sprung_mass": Scalar("mass", "sprung (body) mass", positive=True),
-        "sprung_cog": Point("sprung-mass centre of gravity, vehicle frame"),
-        "sprung_inertia": Section({
-            "ixx": Scalar("inertia", "roll moment of inertia about the sprung COG", positive=True),
-            "iyy": Scalar("inertia", "pitch moment of inertia about the sprung COG", positive=True),
-            "izz": Scalar("inertia", "yaw moment of inertia about the sprung COG", positive=True),
-            "ixy": Scalar("inertia", "product of inertia", required=False, default=0.0),
-            "ixz": Scalar("inertia", "product of inertia", required=False, default=0.0),
-            "iyz": Scalar("inertia", "product of inertia", required=False, default=0.0),
+    'mass': Section({
+        'sprung_mass': Scalar('mass', 'sprung (body) mass', positive=True),
+        'sprung_cog': Point('sprung-mass centre of gravity, vehicle frame'),
+        'sprung_inertia': Section({
+            'ixx': Scalar('inertia', 'roll moment of inertia about the sprung COG', positive=True),
+            'iyy': Scalar('inertia', 'pitch moment of inertia about the sprung COG', positive=True),
+            'izz': Scalar('inertia', 'yaw moment of inertia about the sprung COG', positive=True),
+            'ixy': Scalar('inertia', 'product of inertia', required=False, default=0.0),
+            'ixz': Scalar('inertia', 'product of inertia', required=False, default=0.0),
+            'iyz': Scalar('inertia', 'product of inertia', required=False, default=0.0),
         }),
-        "unsprung_mass_front": Scalar("mass", "unsprung mass per front corner", positive=True),
-        "unsprung_mass_rear": Scalar("mass", "unsprung mass per rear corner", positive=True),
+        'unsprung_mass_front': Scalar('mass', 'unsprung mass per front corner', positive=True),
+        'unsprung_mass_rear': Scalar('mass', 'unsprung mass per rear corner', positive=True),
     }),
-    "flex": Section({
-        "materials": MapOf(Section({
-            "youngs_modulus": Scalar("pressure", "Young's modulus E", positive=True),
-            "poissons_ratio": Scalar("dimensionless", "Poisson's ratio (G = E / (2 (1 + nu)))",
+    'flex': Section({
+        'materials': MapOf(Section({
+            'youngs_modulus': Scalar('pressure', "Young's modulus E", positive=True),
+            'poissons_ratio': Scalar('dimensionless', "Poisson's ratio (G = E / (2 (1 + nu)))",
                                      required=False),
-            "shear_modulus": Scalar("pressure", "shear modulus G", required=False,
+            'shear_modulus': Scalar('pressure', 'shear modulus G', required=False,
                                     positive=True),
-            "density": Scalar("density", "density (0: a massless model)", minimum=0.0),
-        }, one_of=(("poissons_ratio", "shear_modulus"),)), "materials by name"),
-        "sections": MapOf(Section({
-            "shape": Text("cross-section shape", choices=("solid_round", "tube", "rectangle",
-                                                          "i_beam", "general")),
-            "diameter": Scalar("length", "solid_round: diameter", required=False,
+            'density': Scalar('density', 'density (0: a massless model)', minimum=0.0),
+        }, one_of=(('poissons_ratio', 'shear_modulus'),)), 'materials by name'),
+        'sections': MapOf(Section({
+            'shape': Text('cross-section shape', choices=('solid_round', 'tube', 'rectangle',
+                                                          'i_beam', 'general')),
+            'diameter': Scalar('length', 'solid_round: diameter', required=False,
                                positive=True),
-            "outer_diameter": Scalar("length", "tube: outer diameter", required=False,
+            'outer_diameter': Scalar('length', 'tube: outer diameter', required=False,
                                      positive=True),
-            "wall": Scalar("length", "tube: wall thickness", required=False, positive=True),
-            "width": Scalar("length", "rectangle: width along the beam's local y (horizontal)",
+            'wall': Scalar('length', 'tube: wall thickness', required=False, positive=True),
+            'width': Scalar('length', "rectangle: width along the beam's local y (horizontal)",
                             required=False, positive=True),
-            "height": Scalar("length", "rectangle, i_beam: height along the beam's local z "
+            'height': Scalar('length', "rectangle, i_beam: height along the beam's local z "
                              "(vertical)", required=False, positive=True),
-            "flange_width": Scalar("length", "i_beam: flange width", required=False,
+            'flange_width': Scalar('length', 'i_beam: flange width', required=False,
                                    positive=True),
-            "flange_thickness": Scalar("length", "i_beam: flange thickness", required=False,
+            'flange_thickness': Scalar('length', 'i_beam: flange thickness', required=False,
                                        positive=True),
-            "web_thickness": Scalar("length", "i_beam: web thickness", required=False,
+            'web_thickness': Scalar('length', 'i_beam: web thickness', required=False,
                                     positive=True),
-            "area": Scalar("area", "general: cross-section area", required=False,
+            'area': Scalar('area', 'general: cross-section area', required=False,
                            positive=True),
-            "iy": Scalar("area_moment", "general: second moment of area about local y "
-                         "(vertical bending)", required=False, positive=True),
-            "iz": Scalar("area_moment", "general: second moment of area about local z",
+            'iy': Scalar('area_moment', 'general: second moment of area about local y '
+                         '(vertical bending)', required=False, positive=True),
+            'iz': Scalar('area_moment', 'general: second moment of area about local z',
                          required=False, positive=True),
-            "torsion_constant": Scalar("area_moment", "general: torsion constant J",
+            'torsion_constant': Scalar('area_moment', 'general: torsion constant J',
                                        required=False, positive=True),
-            "shear_area_y": Scalar("area", "general: shear area along local y (omit both "
-                                   "for Euler-Bernoulli)", required=False, positive=True),
-            "shear_area_z": Scalar("area", "general: shear area along local z",
+            'shear_area_y': Scalar('area', 'general: shear area along local y (omit both '
+                                   'for Euler-Bernoulli)', required=False, positive=True),
+            'shear_area_z': Scalar('area', 'general: shear area along local z',
                                    required=False, positive=True),
-        }), "cross-sections by name"),
-        "components": MapOf(Section({
-            "material": Text("material name (beam frame)", required=False),
-            "section": Text("section name (beam frame)", required=False),
-            "arm_section": Text("anti_roll_bar only: section of the two arms (default: "
-                                "section)", required=False),
-            "elements_per_member": Scalar("dimensionless", "beam elements per straight "
-                                          "piece of a member (1..50)", required=False,
+        }), 'cross-sections by name'),
+        'components': MapOf(Section({
+            'material': Text('material name (beam frame)', required=False),
+            'section': Text('section name (beam frame)', required=False),
+            'arm_section': Text('anti_roll_bar only: section of the two arms (default: '
+                                'section)', required=False),
+            'elements_per_member': Scalar('dimensionless', 'beam elements per straight '
+                                          'piece of a member (1..50)', required=False,
                                           default=1.0, positive=True),
-            "rigid_mass": Scalar("mass", "the part's mass in the rigid K&C model (at the "
+            'rigid_mass': Scalar('mass', "the part's mass in the rigid K&C model (at the "
                                  "centroid of its hard points, thesis 5.1)", required=False,
                                  minimum=0.0),
-            "shape_points": MapOf(Section({
-                "from": Text("member start point (hard point name)"),
-                "to": Text("member end point (hard point name)"),
-                "fraction": Scalar("dimensionless", "position along the member, 0..1"),
-                "offset": Point("offset from that position (left side)", required=False),
-            }), "bends of a member, defined relative to its hard points", required=False),
-            "imported": Section({
-                "file": Text("reduced stiffness file, path relative to the data root"),
-                "format": Text("file format", choices=("plain", "dmig")),
-                "matrix": Text("dmig: the DMIG matrix name (e.g. KAAX)", required=False),
-                "grids": MapOf(Text("hard point the GRID is attached to"),
-                               "dmig: GRID id -> hard point", required=False),
-                "length_unit": Text("dmig: length unit of the FE model (default m)",
+            'shape_points': MapOf(Section({
+                'from': Text('member start point (hard point name)'),
+                'to': Text('member end point (hard point name)'),
+                'fraction': Scalar('dimensionless', 'position along the member, 0..1'),
+                'offset': Point('offset from that position (left side)', required=False),
+            }), 'bends of a member, defined relative to its hard points', required=False),
+            'imported': Section({
+                'file': Text('reduced stiffness file, path relative to the data root'),
+                'format': Text('file format', choices=('plain', 'dmig')),
+                'matrix': Text('dmig: the DMIG matrix name (e.g. KAAX)', required=False),
+                'grids': MapOf(Text('hard point the GRID is attached to'),
+                               'dmig: GRID id -> hard point', required=False),
+                'length_unit': Text('dmig: length unit of the FE model (default m)',
                                     required=False),
-                "force_unit": Text("dmig: force unit of the FE model (default N)",
+                'force_unit': Text('dmig: force unit of the FE model (default N)',
                                    required=False),
             }, required=False),
-        }), "flexible components by name (template parts and links, anti_roll_bar)"),
+        }), 'flexible components by name (template parts and links, anti_roll_bar)'),
     }),
-    "geometry": Section({
-        "wheelbase": Scalar("length", "front to rear axle distance at design", positive=True),
-        "track_front": Scalar("length", "front wheel-centre track at design", positive=True),
-        "track_rear": Scalar("length", "rear wheel-centre track at design", positive=True),
+    'geometry': Section({
+        'wheelbase': Scalar('length', 'front to rear axle distance at design', positive=True),
+        'track_front': Scalar('length', 'front wheel-centre track at design', positive=True),
+        'track_rear': Scalar('length', 'rear wheel-centre track at design', positive=True),
     }),
-    "targets": Section({
-        "roll_stiffness_front": Scalar("torsional_stiffness", "front suspension roll stiffness "
-                                       "(incl. anti-roll bar), design target", positive=True),
-        "roll_stiffness_rear": Scalar("torsional_stiffness", "rear suspension roll stiffness "
-                                      "(incl. anti-roll bar), design target", positive=True),
-        "roll_centre_height_front": Scalar("length", "front roll-centre height above ground, "
-                                           "design target"),
-        "roll_centre_height_rear": Scalar("length", "rear roll-centre height above ground, "
-                                          "design target"),
+    'targets': Section({
+        'roll_stiffness_front': Scalar('torsional_stiffness', 'front suspension roll stiffness '
+                                       '(incl. anti-roll bar), design target', positive=True),
+        'roll_stiffness_rear': Scalar('torsional_stiffness', 'rear suspension roll stiffness '
+                                      '(incl. anti-roll bar), design target', positive=True),
+        'roll_centre_height_front': Scalar('length', 'front roll-centre height above ground, '
+                                           'design target'),
+        'roll_centre_height_rear': Scalar('length', 'rear roll-centre height above ground, '
+                                          'design target'),
     }),
 }
 
 #: vehicle-level groups (no axle prefix)
-VEHICLE_KINDS = ("mass", "geometry", "targets", "steering")
+VEHICLE_KINDS = ('mass', 'geometry', 'targets', 'steering')
 #: per-axle groups are named ``front_<kind>`` / ``rear_<kind>``
-AXLE_KINDS = ("hardpoints", "spring", "damper", "bump_stop", "rebound_stop", "bushings",
-              "stabilizer", "alignment", "tire", "flex")
+AXLE_KINDS = ('hardpoints', 'spring', 'damper', 'bump_stop', 'rebound_stop', 'bushings',
+              'stabilizer', 'alignment', 'tire', 'flex')
 #: groups a configuration must pick a variant for
-REQUIRED_GROUPS = ("mass", "geometry", "targets",
-                   *(f"{a}_{k}" for a in AXLES for k in
-                     ("hardpoints", "spring", "damper", "bump_stop", "rebound_stop",
-                      "alignment", "tire")))
+REQUIRED_GROUPS = ('mass', 'geometry', 'targets',
+                   *(f'{a}_{k}' for a in AXLES for k in
+                     ('hardpoints', 'spring', 'damper', 'bump_stop', 'rebound_stop',
+                      'alignment', 'tire')))
 
 
 def group_kind(group: str) -> str:
     """Kind of an input group name (``front_spring`` -> ``spring``)."""
     for axle in AXLES:
-        prefix = f"{axle}_"
+        prefix = f'{axle}_'
         if group.startswith(prefix) and group[len(prefix):] in AXLE_KINDS:
             return group[len(prefix):]
     if group in VEHICLE_KINDS:
@@ -318,7 +319,7 @@ def group_kind(group: str) -> str:
 
 def all_group_names() -> tuple[str, ...]:
     names = list(VEHICLE_KINDS)
-    names += [f"{a}_{k}" for a in AXLES for k in AXLE_KINDS]
+    names += [f'{a}_{k}' for a in AXLES for k in AXLE_KINDS]
     return tuple(names)
 
 
@@ -331,32 +332,32 @@ class FieldDoc:
     doc: str
 
 
-def describe(spec: Spec, prefix: str = "") -> list[FieldDoc]:
+def describe(spec: Spec, prefix: str = '') -> list[FieldDoc]:
     """Flat documentation rows of a spec (used to check docs/data-format.md)."""
     rows: list[FieldDoc] = []
     if isinstance(spec, Section):
         for name, sub in spec.fields.items():
-            rows += describe(sub, f"{prefix}{name}" if not prefix else f"{prefix}.{name}")
+            rows += describe(sub, f'{prefix}{name}' if not prefix else f'{prefix}.{name}')
         return rows
     if isinstance(spec, MapOf):
-        return describe(spec.value, f"{prefix}.<name>")
-    quantity = {Scalar: lambda s: s.quantity, Curve: lambda s: f"{s.x_quantity} -> {s.y_quantity}",
-                Point: lambda s: "length", Vector: lambda s: "dimensionless",
-                Text: lambda s: "text"}[type(spec)](spec)
+        return describe(spec.value, f'{prefix}.<name>')
+    quantity = {Scalar: lambda s: s.quantity, Curve: lambda s: f'{s.x_quantity} -> {s.y_quantity}',
+                Point: lambda s: 'length', Vector: lambda s: 'dimensionless',
+                Text: lambda s: 'text'}[type(spec)](spec)
     rows.append(FieldDoc(prefix, type(spec).__name__.lower(), quantity, spec.required, spec.doc))
     return rows
 
 
-__all__ = ["AXLES", "KINDS", "TEMPLATE_POINTS", "OPTIONAL_POINTS", "REQUIRED_GROUPS",
-           "TEMPLATE_COMPONENTS", "BAR_COMPONENT", "SUBFRAME_COMPONENT", "SECTION_SHAPES",
-           "Scalar", "Curve", "Point", "Vector", "Text", "Section", "MapOf", "group_kind",
-           "all_group_names", "describe"]
+__all__ = ['AXLES', 'KINDS', 'TEMPLATE_POINTS', 'OPTIONAL_POINTS', 'REQUIRED_GROUPS',
+           'TEMPLATE_COMPONENTS', 'BAR_COMPONENT', 'SUBFRAME_COMPONENT', 'SECTION_SHAPES',
+           'Scalar', 'Curve', 'Point', 'Vector', 'Text', 'Section', 'MapOf', 'group_kind',
+           'all_group_names', 'describe']
 
 
 def leaf_spec(kind: str, key: str) -> Spec | None:
     """The leaf spec a flat key of a group of ``kind`` refers to (None if unknown)."""
     spec: Spec = KINDS[kind]
-    for part in key.split("."):
+    for part in key.split('.'):
         if isinstance(spec, MapOf):
             spec = spec.value
             continue

@@ -1,12 +1,13 @@
-"""The data server's ROS-free core: load, watch, edit, reload.
+"""
+The data server's ROS-free core: load, watch, edit, reload.
 
 The node (``data_server_node.py``) only turns this into topics and services.
 """
 from __future__ import annotations
 
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass
+import os
 from pathlib import Path
 from typing import Any
 
@@ -14,21 +15,22 @@ from .errors import DataError
 from .master import load_master
 from .study import Study, load_study
 
-
 #: how edits made over ROS (/vd/set_override) are labelled in messages and value sources
-EDIT_SOURCE = "ROS edit /vd/set_override"
+EDIT_SOURCE = 'ROS edit /vd/set_override'
 
 
 def _load(master_file: Path, edits: Mapping[str, Mapping[str, Any]]) -> Study:
-    """load_study at the node boundary: any failure of the input is a DataError, so a
+    """
+    load_study at the node boundary: any failure of the input is a DataError, so a
     running data server keeps its last good data (RecursionError, MemoryError, a
-    bug triggered by odd input are reported like a bad value, never kill the node)."""
+    bug triggered by odd input are reported like a bad value, never kill the node).
+    """
     try:
         return load_study(master_file, extra_overrides=edits, extra_source=EDIT_SOURCE)
     except DataError:
         raise
     except Exception as err:  # noqa: BLE001 - the node boundary
-        raise DataError(f"cannot load: {type(err).__name__}: {err}",
+        raise DataError(f'cannot load: {type(err).__name__}: {err}',
                         file=str(master_file)) from None
 
 
@@ -39,8 +41,10 @@ class ReloadOutcome:
 
 
 class DataService:
-    """Holds the current study; reloads when a file under the data root or the
-    master file changes; applies validated temporary overrides."""
+    """
+    Holds the current study; reloads when a file under the data root or the
+    master file changes; applies validated temporary overrides.
+    """
 
     def __init__(self, master_file: str | Path) -> None:
         self.master_file = Path(master_file)
@@ -76,7 +80,7 @@ class DataService:
     def set_override(self, configuration: str, key: str, value: str) -> None:
         """Apply a temporary override; raises DataError (and changes nothing) if invalid."""
         if self.study is None:
-            raise DataError("no valid data loaded", file=str(self.master_file))
+            raise DataError('no valid data loaded', file=str(self.master_file))
         if configuration not in self.study.configurations:
             raise DataError(f"configuration '{configuration}' does not exist (available: "
                             f"{', '.join(self.study.configuration_names)})",

@@ -1,4 +1,5 @@
-"""A loaded study: master file + every resolved configuration + the feedback.
+"""
+A loaded study: master file + every resolved configuration + the feedback.
 
 The feedback is the thesis' overview tab (§2.3, Figs. 2.3.1-2.3.3): per
 configuration and input group, the variant, whether the data fed to the models
@@ -17,12 +18,12 @@ from . import schema
 from .errors import DataError, DataErrors
 from .master import GroupCache, MasterFile, load_master, resolve
 from .model import Configuration, Value
-from .units import si_factor, SI_UNITS
+from .units import SI_UNITS, si_factor
 
-State = Literal["UNCHANGED", "MODIFIED"]
+State = Literal['UNCHANGED', 'MODIFIED']
 #: the variant shown for an optional group a configuration does not use
-NOT_USED = ""
-Consistency = Literal["SAME", "DIFFERS"]
+NOT_USED = ''
+Consistency = Literal['SAME', 'DIFFERS']
 
 
 @dataclass(frozen=True)
@@ -70,17 +71,17 @@ class Study:
     def to_json(self) -> dict[str, Any]:
         """The ``vd data status --json`` contract (ARCHITECTURE §5)."""
         switches = self.flexible_switches()
-        consistency = "SAME" if len(set(switches.values())) == 1 else "DIFFERS"
+        consistency = 'SAME' if len(set(switches.values())) == 1 else 'DIFFERS'
         return {
-            "flexible": [{"configuration": n, "flexible": on, "components": list(comps),
-                          "consistency": consistency} for n, (on, comps) in switches.items()],
-            "master": str(self.master.path),
-            "configurations": self.configuration_names,
-            "groups": list(self.groups),
-            "status": [
-                {"configuration": s.configuration, "group": s.group, "variant": s.variant,
-                 "state": s.state, "consistency": s.consistency,
-                 "modified_keys": [vars(m) for m in s.modified_keys]}
+            'flexible': [{'configuration': n, 'flexible': on, 'components': list(comps),
+                          'consistency': consistency} for n, (on, comps) in switches.items()],
+            'master': str(self.master.path),
+            'configurations': self.configuration_names,
+            'groups': list(self.groups),
+            'status': [
+                {'configuration': s.configuration, 'group': s.group, 'variant': s.variant,
+                 'state': s.state, 'consistency': s.consistency,
+                 'modified_keys': [vars(m) for m in s.modified_keys]}
                 for s in self.status
             ],
         }
@@ -88,8 +89,9 @@ class Study:
 
 def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
                extra_overrides: Mapping[str, Mapping[str, Any]] | None = None,
-               extra_source: str = "--set") -> Study:
-    """Load and resolve everything; all problems of all configurations are collected.
+               extra_source: str = '--set') -> Study:
+    """
+    Load and resolve everything; all problems of all configurations are collected.
 
     ``extra_overrides`` maps configuration name -> {group.key: value} (edits made
     over ROS, ``--set``; ``extra_source`` names them); they count as master-file
@@ -115,8 +117,8 @@ def load_study(master_path: str | Path, *, data_root: str | Path | None = None,
         try:
             config.data_hash  # noqa: B018 - computed here as a run computes it
         except ValueError as err:
-            raise DataError(f"cannot compute the data hash: {err}", file=master.display,
-                            key=f"configurations.{config.name}") from None
+            raise DataError(f'cannot compute the data hash: {err}', file=master.display,
+                            key=f'configurations.{config.name}') from None
     groups = _ordered_groups(configs.values())
     status = feedback(master, configs, cache, groups)
     warnings = tuple(dict.fromkeys(w for g in cache.loaded() for w in g.warnings))
@@ -140,14 +142,14 @@ def feedback(master: MasterFile, configs: Mapping[str, Configuration], cache: Gr
         for config in configs.values():
             if group not in config.groups:
                 # the group is optional and this configuration does without it
-                rows.append(GroupStatus(config.name, group, NOT_USED, "UNCHANGED", "DIFFERS", ()))
+                rows.append(GroupStatus(config.name, group, NOT_USED, 'UNCHANGED', 'DIFFERS', ()))
                 continue
             data = config.groups[group]
             shared = cache.get(group, data.variant)
             modified = tuple(modified_keys(shared.values, data.values))
             rows.append(GroupStatus(config.name, group, data.variant,
-                                    "MODIFIED" if modified else "UNCHANGED",
-                                    "SAME" if same else "DIFFERS", modified))
+                                    'MODIFIED' if modified else 'UNCHANGED',
+                                    'SAME' if same else 'DIFFERS', modified))
     return tuple(rows)
 
 
@@ -162,7 +164,7 @@ def modified_keys(shared: Mapping[str, Value], fed: Mapping[str, Value]) -> list
         if ref is not None and ref.same_data(value):
             continue
         unit = value.display_unit or SI_UNITS_DISPLAY.get(value.unit, value.unit)
-        out.append(ModifiedKey(key, format_value(ref, unit) if ref else "-",
+        out.append(ModifiedKey(key, format_value(ref, unit) if ref else '-',
                                format_value(value, unit), unit))
     return out
 
@@ -172,11 +174,11 @@ SI_UNITS_DISPLAY = {u: u for u in SI_UNITS.values()}
 
 def format_value(value: Value, unit: str) -> str:
     """A value in a display unit, as a short text for tables."""
-    if value.type == "text":
+    if value.type == 'text':
         return str(value.si)
-    if value.type == "curve":
+    if value.type == 'curve':
         xs, ys = value.si  # type: ignore[misc]
-        return f"curve of {len(xs)} points, y {min(ys):.6g}..{max(ys):.6g} {value.unit}"
+        return f'curve of {len(xs)} points, y {min(ys):.6g}..{max(ys):.6g} {value.unit}'
     quantity = _quantity_of(value.unit)
     factor = 1.0
     if unit and quantity is not None:
@@ -184,9 +186,9 @@ def format_value(value: Value, unit: str) -> str:
             factor = si_factor(unit, quantity)
         except ValueError:
             factor = 1.0
-    if value.type in ("point", "vector"):
-        return "[" + ", ".join(f"{c / factor:.6g}" for c in value.si) + "]"  # type: ignore[union-attr]
-    return f"{float(value.si) / factor:.6g}"  # type: ignore[arg-type]
+    if value.type in ('point', 'vector'):
+        return '[' + ', '.join(f'{c / factor:.6g}' for c in value.si) + ']'  # type: ignore[union-attr]
+    return f'{float(value.si) / factor:.6g}'  # type: ignore[arg-type]
 
 
 def _quantity_of(unit: str) -> str | None:

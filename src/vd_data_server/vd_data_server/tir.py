@@ -1,4 +1,5 @@
-"""Reader for TeimOrbit tire property files (.tir): PAC2002, MF-Tyre 5.2, 6.1, 6.2.
+"""
+Reader for TeimOrbit tire property files (.tir): PAC2002, MF-Tyre 5.2, 6.1, 6.2.
 
 The files tire suppliers deliver for MF-Tyre and Adams/Tire are line based
 (TeimOrbit format; Pacejka, "Tire and Vehicle Dynamics", 3rd ed., ch. 4 and
@@ -36,12 +37,12 @@ camber in radians), so [UNITS] does not apply to them.
 
 from __future__ import annotations
 
-import enum
-import math
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+import enum
+import math
 from pathlib import Path
+import re
 from types import MappingProxyType
 from typing import Final
 
@@ -50,34 +51,34 @@ import pint
 from vd_data_server.errors import DataError, DataErrors
 
 __all__ = [
-    "DIMENSIONAL_KEYS",
-    "REQUIRED_BLOCKS",
-    "REQUIRED_KEYS",
-    "TireProperties",
-    "TireTable",
-    "parse_tir_text",
-    "read_tir",
+    'DIMENSIONAL_KEYS',
+    'REQUIRED_BLOCKS',
+    'REQUIRED_KEYS',
+    'TireProperties',
+    'TireTable',
+    'parse_tir_text',
+    'read_tir',
 ]
 
 #: Blocks every supported file must contain, in the order problems are reported.
 REQUIRED_BLOCKS: Final[tuple[str, ...]] = (
-    "UNITS",
-    "MODEL",
-    "DIMENSION",
-    "VERTICAL",
-    "SCALING_COEFFICIENTS",
-    "LONGITUDINAL_COEFFICIENTS",
-    "LATERAL_COEFFICIENTS",
+    'UNITS',
+    'MODEL',
+    'DIMENSION',
+    'VERTICAL',
+    'SCALING_COEFFICIENTS',
+    'LONGITUDINAL_COEFFICIENTS',
+    'LATERAL_COEFFICIENTS',
 )
 
 #: Keys without which no steady-state force can be computed. Other Magic
 #: Formula coefficients default to 0 and scaling factors to 1, as in MF-Tyre.
 REQUIRED_KEYS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
     {
-        "DIMENSION": ("UNLOADED_RADIUS",),
-        "VERTICAL": ("FNOMIN",),
-        "LONGITUDINAL_COEFFICIENTS": ("PCX1", "PDX1", "PKX1"),
-        "LATERAL_COEFFICIENTS": ("PCY1", "PDY1", "PKY1", "PKY2"),
+        'DIMENSION': ('UNLOADED_RADIUS',),
+        'VERTICAL': ('FNOMIN',),
+        'LONGITUDINAL_COEFFICIENTS': ('PCX1', 'PDX1', 'PKX1'),
+        'LATERAL_COEFFICIENTS': ('PCY1', 'PDY1', 'PKY1', 'PKY2'),
     }
 )
 
@@ -86,104 +87,104 @@ REQUIRED_KEYS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
 DIMENSIONAL_KEYS: Final[Mapping[str, tuple[tuple[str, int], ...]]] = MappingProxyType(
     {
         # [MODEL]: measurement speed and the speed below which forces fade out, m/s
-        "LONGVL": (("LENGTH", 1), ("TIME", -1)),
-        "VXLOW": (("LENGTH", 1), ("TIME", -1)),
+        'LONGVL': (('LENGTH', 1), ('TIME', -1)),
+        'VXLOW': (('LENGTH', 1), ('TIME', -1)),
         # [DIMENSION], m
-        "UNLOADED_RADIUS": (("LENGTH", 1),),
-        "WIDTH": (("LENGTH", 1),),
-        "RIM_RADIUS": (("LENGTH", 1),),
-        "RIM_WIDTH": (("LENGTH", 1),),
-        "BOTTOMING_RADIUS": (("LENGTH", 1),),
+        'UNLOADED_RADIUS': (('LENGTH', 1),),
+        'WIDTH': (('LENGTH', 1),),
+        'RIM_RADIUS': (('LENGTH', 1),),
+        'RIM_WIDTH': (('LENGTH', 1),),
+        'BOTTOMING_RADIUS': (('LENGTH', 1),),
         # [VERTICAL]: N, N/m, N s/m, m
-        "FNOMIN": (("FORCE", 1),),
-        "VERTICAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
-        "VERTICAL_DAMPING": (("FORCE", 1), ("TIME", 1), ("LENGTH", -1)),
-        "BOTTOM_OFFST": (("LENGTH", 1),),
-        "BOTTOM_STIFF": (("FORCE", 1), ("LENGTH", -1)),
+        'FNOMIN': (('FORCE', 1),),
+        'VERTICAL_STIFFNESS': (('FORCE', 1), ('LENGTH', -1)),
+        'VERTICAL_DAMPING': (('FORCE', 1), ('TIME', 1), ('LENGTH', -1)),
+        'BOTTOM_OFFST': (('LENGTH', 1),),
+        'BOTTOM_STIFF': (('FORCE', 1), ('LENGTH', -1)),
         # [VERTICAL_FORCE_RANGE], N
-        "FZMIN": (("FORCE", 1),),
-        "FZMAX": (("FORCE", 1),),
+        'FZMIN': (('FORCE', 1),),
+        'FZMAX': (('FORCE', 1),),
         # [SLIP_ANGLE_RANGE], [INCLINATION_ANGLE_RANGE], rad
-        "ALPMIN": (("ANGLE", 1),),
-        "ALPMAX": (("ANGLE", 1),),
-        "CAMMIN": (("ANGLE", 1),),
-        "CAMMAX": (("ANGLE", 1),),
+        'ALPMIN': (('ANGLE', 1),),
+        'ALPMAX': (('ANGLE', 1),),
+        'CAMMIN': (('ANGLE', 1),),
+        'CAMMAX': (('ANGLE', 1),),
         # PAC2002 [TIRE_CONDITIONS], MF 6.x [OPERATING_CONDITIONS] and
         # [INFLATION_PRESSURE_RANGE], Pa
-        "IP": (("PRESSURE", 1),),
-        "IP_NOM": (("PRESSURE", 1),),
-        "INFLPRES": (("PRESSURE", 1),),
-        "NOMPRES": (("PRESSURE", 1),),
-        "PRESMIN": (("PRESSURE", 1),),
-        "PRESMAX": (("PRESSURE", 1),),
+        'IP': (('PRESSURE', 1),),
+        'IP_NOM': (('PRESSURE', 1),),
+        'INFLPRES': (('PRESSURE', 1),),
+        'NOMPRES': (('PRESSURE', 1),),
+        'PRESMIN': (('PRESSURE', 1),),
+        'PRESMAX': (('PRESSURE', 1),),
         # PAC2002 belt mass in [ALIGNING_COEFFICIENTS]; MF 6.x [INERTIA]: kg, kg m^2, m/s^2
-        "MBELT": (("MASS", 1),),
-        "MASS": (("MASS", 1),),
-        "IXX": (("MASS", 1), ("LENGTH", 2)),
-        "IYY": (("MASS", 1), ("LENGTH", 2)),
-        "BELT_MASS": (("MASS", 1),),
-        "BELT_IXX": (("MASS", 1), ("LENGTH", 2)),
-        "BELT_IYY": (("MASS", 1), ("LENGTH", 2)),
-        "GRAVITY": (("LENGTH", 1), ("TIME", -2)),
+        'MBELT': (('MASS', 1),),
+        'MASS': (('MASS', 1),),
+        'IXX': (('MASS', 1), ('LENGTH', 2)),
+        'IYY': (('MASS', 1), ('LENGTH', 2)),
+        'BELT_MASS': (('MASS', 1),),
+        'BELT_IXX': (('MASS', 1), ('LENGTH', 2)),
+        'BELT_IYY': (('MASS', 1), ('LENGTH', 2)),
+        'GRAVITY': (('LENGTH', 1), ('TIME', -2)),
         # MF 6.x [STRUCTURAL]: N/m, N m/rad, Hz
-        "LONGITUDINAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
-        "LATERAL_STIFFNESS": (("FORCE", 1), ("LENGTH", -1)),
-        "YAW_STIFFNESS": (("FORCE", 1), ("LENGTH", 1), ("ANGLE", -1)),
-        "FREQ_LONG": (("TIME", -1),),
-        "FREQ_LAT": (("TIME", -1),),
-        "FREQ_YAW": (("TIME", -1),),
-        "FREQ_WINDUP": (("TIME", -1),),
+        'LONGITUDINAL_STIFFNESS': (('FORCE', 1), ('LENGTH', -1)),
+        'LATERAL_STIFFNESS': (('FORCE', 1), ('LENGTH', -1)),
+        'YAW_STIFFNESS': (('FORCE', 1), ('LENGTH', 1), ('ANGLE', -1)),
+        'FREQ_LONG': (('TIME', -1),),
+        'FREQ_LAT': (('TIME', -1),),
+        'FREQ_YAW': (('TIME', -1),),
+        'FREQ_WINDUP': (('TIME', -1),),
     }
 )
 
 # SI unit each [UNITS] quantity is converted to, and the word used in messages.
 _SI_UNITS: Final[Mapping[str, str]] = MappingProxyType(
     {
-        "LENGTH": "meter",
-        "FORCE": "newton",
-        "ANGLE": "radian",
-        "MASS": "kilogram",
-        "TIME": "second",
-        "PRESSURE": "pascal",
+        'LENGTH': 'meter',
+        'FORCE': 'newton',
+        'ANGLE': 'radian',
+        'MASS': 'kilogram',
+        'TIME': 'second',
+        'PRESSURE': 'pascal',
     }
 )
 _QUANTITY_WORDS: Final[Mapping[str, str]] = MappingProxyType(
     {
-        "LENGTH": "length",
-        "FORCE": "force",
-        "ANGLE": "angle",
-        "MASS": "mass",
-        "TIME": "time",
-        "PRESSURE": "pressure",
+        'LENGTH': 'length',
+        'FORCE': 'force',
+        'ANGLE': 'angle',
+        'MASS': 'mass',
+        'TIME': 'time',
+        'PRESSURE': 'pressure',
     }
 )
 # pint treats angles as dimensionless, so a dimension check would let
 # 'percent' through as an ANGLE; only these (pint's canonical names) are angles.
-_ANGLE_UNITS: Final[frozenset[str]] = frozenset({"radian", "degree"})
+_ANGLE_UNITS: Final[frozenset[str]] = frozenset({'radian', 'degree'})
 
 # PROPERTY_FILE_FORMAT values naming one version. 'MF_05' is TNO's MF-Tyre 5.x
 # format, whose steady-state equations are those of MF 5.2 / PAC2002.
 _FORMAT_NAMES: Final[Mapping[str, str]] = MappingProxyType(
-    {"PAC2002": "PAC2002", "MF_05": "MF52", "MF52": "MF52", "MF61": "MF61", "MF62": "MF62"}
+    {'PAC2002': 'PAC2002', 'MF_05': 'MF52', 'MF52': 'MF52', 'MF61': 'MF61', 'MF62': 'MF62'}
 )
 # PROPERTY_FILE_FORMAT values that leave the version to FITTYP.
-_GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({"MF-TYRE", "MF_TYRE"})
+_GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({'MF-TYRE', 'MF_TYRE'})
 # FITTYP (MF-Tyre "Magic Formula version number"): 6 and 21 are MF 5.2.
-_FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType({6: "MF52", 21: "MF52", 61: "MF61", 62: "MF62"})
+_FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType({6: 'MF52', 21: 'MF52', 61: 'MF61', 62: 'MF62'})
 
 # Blocks in which every value must be a number.
-_NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset({"DIMENSION", "VERTICAL"})
-_NUMERIC_BLOCK_SUFFIXES: Final[tuple[str, ...]] = ("_COEFFICIENTS", "_RANGE")
+_NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset({'DIMENSION', 'VERTICAL'})
+_NUMERIC_BLOCK_SUFFIXES: Final[tuple[str, ...]] = ('_COEFFICIENTS', '_RANGE')
 
-_COMMENT_CHARS: Final[str] = "$!"
+_COMMENT_CHARS: Final[str] = '$!'
 _QUOTE_CHARS: Final[str] = "'\""
 # No inf/nan: they are not numbers a supplier writes, float() would accept them.
-_NUMBER_RE: Final = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-_BLOCK_RE: Final = re.compile(r"\[\s*([A-Za-z][A-Za-z0-9_]*)\s*\]")
-_KEY_RE: Final = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_TABLE_HEADER_RE: Final = re.compile(r"\{([^{}]*)\}")
+_NUMBER_RE: Final = re.compile(r'[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?')
+_BLOCK_RE: Final = re.compile(r'\[\s*([A-Za-z][A-Za-z0-9_]*)\s*\]')
+_KEY_RE: Final = re.compile(r'[A-Za-z_][A-Za-z0-9_]*')
+_TABLE_HEADER_RE: Final = re.compile(r'\{([^{}]*)\}')
 # A unit is one name; pint's expression parser would accept 'm,' or 'm=1'.
-_UNIT_NAME_RE: Final = re.compile(r"[A-Za-z][A-Za-z_]*")
+_UNIT_NAME_RE: Final = re.compile(r'[A-Za-z][A-Za-z_]*')
 
 _UREG: Final[pint.UnitRegistry[float]] = pint.UnitRegistry()
 
@@ -207,7 +208,8 @@ class TireTable:
 
 @dataclass(frozen=True)
 class TireProperties:
-    """Contents of one .tir file, dimensional values in SI (see module doc).
+    """
+    Contents of one .tir file, dimensional values in SI (see module doc).
 
     ``sections`` maps upper-case block names to upper-case keys and values
     (``float`` for numbers, ``str`` for quoted strings and bare words).
@@ -219,7 +221,8 @@ class TireProperties:
     tables: Mapping[str, TireTable] = field(default_factory=lambda: MappingProxyType({}))
 
     def get(self, section: str, key: str, default: float | str | _Required = _REQUIRED) -> float | str:
-        """Value of ``key`` in block ``section`` (names case-insensitive).
+        """
+        Value of ``key`` in block ``section`` (names case-insensitive).
 
         Without ``default`` a missing block or key raises :class:`DataError`.
         """
@@ -227,7 +230,7 @@ class TireProperties:
         block = self.sections.get(block_name)
         if block is None:
             if isinstance(default, _Required):
-                raise DataError(f"missing block [{block_name}]", file=self.path)
+                raise DataError(f'missing block [{block_name}]', file=self.path)
             return default
         if key_name not in block:
             if isinstance(default, _Required):
@@ -240,7 +243,7 @@ class TireProperties:
         value = self.get(section, key, default)
         if isinstance(value, str):
             raise DataError(
-                f"key {key.upper()!r} in block [{section.upper()}] is not a number: {value!r}",
+                f'key {key.upper()!r} in block [{section.upper()}] is not a number: {value!r}',
                 file=self.path,
                 key=key.upper(),
             )
@@ -249,17 +252,17 @@ class TireProperties:
     @property
     def unloaded_radius(self) -> float:
         """Free tire radius R0, m."""
-        return self.number("DIMENSION", "UNLOADED_RADIUS")
+        return self.number('DIMENSION', 'UNLOADED_RADIUS')
 
     @property
     def fnomin(self) -> float:
         """Nominal wheel load Fz0 (before the LFZO scaling), N."""
-        return self.number("VERTICAL", "FNOMIN")
+        return self.number('VERTICAL', 'FNOMIN')
 
     @property
     def vertical_stiffness(self) -> float:
         """Vertical tire stiffness, N/m."""
-        return self.number("VERTICAL", "VERTICAL_STIFFNESS")
+        return self.number('VERTICAL', 'VERTICAL_STIFFNESS')
 
 
 @dataclass(frozen=True)
@@ -288,7 +291,8 @@ class _RawFile:
 
 
 def read_tir(path: str | Path) -> TireProperties:
-    """Read a .tir file; see the module doc for syntax, units and checks.
+    """
+    Read a .tir file; see the module doc for syntax, units and checks.
 
     Raises :class:`DataError` (or :class:`DataErrors` for several independent
     problems) naming the file, the key and, where known, the line.
@@ -297,16 +301,16 @@ def read_tir(path: str | Path) -> TireProperties:
 
     file = Path(path)
     try:
-        with file.open("rb") as stream:
+        with file.open('rb') as stream:
             data = stream.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
-        raise DataError(f"cannot read tire property file: {exc.strerror or exc}", file=str(file)) from exc
+        raise DataError(f'cannot read tire property file: {exc.strerror or exc}', file=str(file)) from exc
     if len(data) > MAX_FILE_BYTES:
-        raise DataError(f"exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file", file=str(file))
+        raise DataError(f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file', file=str(file))
     try:
-        text = data.decode("utf-8-sig")
+        text = data.decode('utf-8-sig')
     except UnicodeDecodeError:
-        text = data.decode("latin-1")
+        text = data.decode('latin-1')
     return parse_tir_text(text, str(file))
 
 
@@ -314,8 +318,8 @@ def parse_tir_text(text: str, source: str) -> TireProperties:
     """Parse the text of a .tir file; ``source`` names it in messages and ``path``."""
     raw = _read_lines(text, source)
     _raise_if_any(_check_structure(raw.blocks, source))
-    file_format = _file_format(raw.blocks["MODEL"], source)
-    factors = _unit_factors(raw.blocks["UNITS"], source)
+    file_format = _file_format(raw.blocks['MODEL'], source)
+    factors = _unit_factors(raw.blocks['UNITS'], source)
     sections = {
         block: {key: _to_si(block, key, entry.value, factors) for key, entry in entries.items()}
         for block, entries in raw.blocks.items()
@@ -343,7 +347,7 @@ def _read_lines(text: str, source: str) -> _RawFile:
         code, quote_closed = _strip_comment(line)
         code = code.strip()
         if not quote_closed:
-            errors.append(DataError(f"line {number}: unterminated quoted string in {code!r}", file=source))
+            errors.append(DataError(f'line {number}: unterminated quoted string in {code!r}', file=source))
             continue
         if not code:
             continue
@@ -351,7 +355,7 @@ def _read_lines(text: str, source: str) -> _RawFile:
             block = match[1].upper()
             if block in raw.blocks:
                 errors.append(
-                    DataError(f"line {number}: block [{block}] repeats line {block_lines[block]}", file=source)
+                    DataError(f'line {number}: block [{block}] repeats line {block_lines[block]}', file=source)
                 )
                 entries = {}
             else:
@@ -359,8 +363,8 @@ def _read_lines(text: str, source: str) -> _RawFile:
                 block_lines[block] = number
             continue
         if block is None:
-            errors.append(DataError(f"line {number}: {code!r} comes before the first [BLOCK]", file=source))
-        elif "=" in code:
+            errors.append(DataError(f'line {number}: {code!r} comes before the first [BLOCK]', file=source))
+        elif '=' in code:
             error = _read_key_line(code, number, block, entries, source)
             if error is not None:
                 errors.append(error)
@@ -388,15 +392,15 @@ def _strip_comment(line: str) -> tuple[str, bool]:
 
 def _read_key_line(code: str, number: int, block: str, entries: dict[str, _Entry], source: str) -> DataError | None:
     """Store one ``KEY = value`` line in ``entries``; return the problem if any."""
-    key_text, _, value_text = code.partition("=")
+    key_text, _, value_text = code.partition('=')
     key, value_text = key_text.strip().upper(), value_text.strip()
     if not _KEY_RE.fullmatch(key):
-        return DataError(f"line {number}: {key_text.strip()!r} is not a key name", file=source)
+        return DataError(f'line {number}: {key_text.strip()!r} is not a key name', file=source)
     if not value_text:
-        return DataError(f"line {number}: key {key!r} in block [{block}] has no value", file=source, key=key)
+        return DataError(f'line {number}: key {key!r} in block [{block}] has no value', file=source, key=key)
     if key in entries:
         return DataError(
-            f"line {number}: key {key!r} repeats line {entries[key].line} in block [{block}]",
+            f'line {number}: key {key!r} repeats line {entries[key].line} in block [{block}]',
             file=source,
             key=key,
         )
@@ -419,17 +423,17 @@ def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawT
     if match := _TABLE_HEADER_RE.fullmatch(code):
         table.columns = tuple(match[1].split())
         return None
-    cells = code.replace(",", " ").split()
+    cells = code.replace(',', ' ').split()
     if not all(_NUMBER_RE.fullmatch(cell) for cell in cells):
         return DataError(
-            f"line {number}: cannot read {code!r} in block [{block}]: "
-            "expected KEY = value, a {column header} or a row of numbers",
+            f'line {number}: cannot read {code!r} in block [{block}]: '
+            'expected KEY = value, a {column header} or a row of numbers',
             file=source,
         )
     width = len(table.columns) if table.columns else len(table.rows[0]) if table.rows else len(cells)
     if len(cells) != width:
         return DataError(
-            f"line {number}: table row in block [{block}] has {len(cells)} values, expected {width}",
+            f'line {number}: table row in block [{block}] has {len(cells)} values, expected {width}',
             file=source,
         )
     table.rows.append(tuple(float(cell) for cell in cells))
@@ -438,7 +442,7 @@ def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawT
 
 def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) -> list[DataError]:
     """Missing blocks or keys and non-numbers where numbers are needed."""
-    errors = [DataError(f"missing block [{name}]", file=source) for name in REQUIRED_BLOCKS if name not in blocks]
+    errors = [DataError(f'missing block [{name}]', file=source) for name in REQUIRED_BLOCKS if name not in blocks]
     for block, keys in REQUIRED_KEYS.items():
         if block in blocks:
             errors.extend(
@@ -449,11 +453,11 @@ def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) ->
     for block, entries in blocks.items():
         numeric_block = block in _NUMERIC_BLOCKS or block.endswith(_NUMERIC_BLOCK_SUFFIXES)
         for key, entry in entries.items():
-            needs_number = numeric_block or (key in DIMENSIONAL_KEYS and block != "UNITS")
+            needs_number = numeric_block or (key in DIMENSIONAL_KEYS and block != 'UNITS')
             if needs_number and isinstance(entry.value, str):
                 errors.append(
                     DataError(
-                        f"line {entry.line}: key {key!r} in block [{block}] is not a number: {entry.text}",
+                        f'line {entry.line}: key {key!r} in block [{block}] is not a number: {entry.text}',
                         file=source,
                         key=key,
                     )
@@ -462,37 +466,37 @@ def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) ->
 
 
 def _missing_key_message(key: str, block: str) -> str:
-    return f"key {key!r} missing in block [{block}]"
+    return f'key {key!r} missing in block [{block}]'
 
 
 def _file_format(model: Mapping[str, _Entry], source: str) -> str:
     """Version from PROPERTY_FILE_FORMAT, or from FITTYP where that is absent or generic."""
-    declared = model.get("PROPERTY_FILE_FORMAT")
+    declared = model.get('PROPERTY_FILE_FORMAT')
     if declared is not None:
         name = str(declared.value).upper()
         if name in _FORMAT_NAMES:
             return _FORMAT_NAMES[name]
         if name not in _GENERIC_FORMAT_NAMES:
-            known = ", ".join(repr(n) for n in sorted({*_FORMAT_NAMES, *_GENERIC_FORMAT_NAMES}))
+            known = ', '.join(repr(n) for n in sorted({*_FORMAT_NAMES, *_GENERIC_FORMAT_NAMES}))
             raise DataError(
-                f"line {declared.line}: unknown PROPERTY_FILE_FORMAT {declared.value!r} (known: {known})",
+                f'line {declared.line}: unknown PROPERTY_FILE_FORMAT {declared.value!r} (known: {known})',
                 file=source,
-                key="PROPERTY_FILE_FORMAT",
+                key='PROPERTY_FILE_FORMAT',
             )
-    fittyp = model.get("FITTYP")
+    fittyp = model.get('FITTYP')
     if fittyp is None:
         if declared is None:
-            raise DataError("block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP", file=source)
+            raise DataError('block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP', file=source)
         raise DataError(
-            f"line {declared.line}: PROPERTY_FILE_FORMAT {declared.value!r} needs FITTYP in block [MODEL]",
+            f'line {declared.line}: PROPERTY_FILE_FORMAT {declared.value!r} needs FITTYP in block [MODEL]',
             file=source,
-            key="FITTYP",
+            key='FITTYP',
         )
     value = fittyp.value
     if isinstance(value, float) and value.is_integer() and int(value) in _FITTYP_FORMATS:
         return _FITTYP_FORMATS[int(value)]
-    known = ", ".join(str(n) for n in _FITTYP_FORMATS)
-    raise DataError(f"line {fittyp.line}: unknown FITTYP {fittyp.text} (known: {known})", file=source, key="FITTYP")
+    known = ', '.join(str(n) for n in _FITTYP_FORMATS)
+    raise DataError(f'line {fittyp.line}: unknown FITTYP {fittyp.text} (known: {known})', file=source, key='FITTYP')
 
 
 def _unit_factors(units: Mapping[str, _Entry], source: str) -> dict[str, float]:
@@ -508,7 +512,7 @@ def _unit_factors(units: Mapping[str, _Entry], source: str) -> dict[str, float]:
         if factor is None:
             errors.append(
                 DataError(
-                    f"line {entry.line}: {entry.text} is not a known unit of {_QUANTITY_WORDS[quantity]}",
+                    f'line {entry.line}: {entry.text} is not a known unit of {_QUANTITY_WORDS[quantity]}',
                     file=source,
                     key=quantity,
                 )
@@ -529,7 +533,7 @@ def _unit_factor(quantity: str, name: str, si_unit: str) -> float | None:
             unit = _UREG.Unit(candidate)
         except pint.errors.UndefinedUnitError:
             continue
-        if quantity == "ANGLE" and str(unit) not in _ANGLE_UNITS:
+        if quantity == 'ANGLE' and str(unit) not in _ANGLE_UNITS:
             continue
         if unit.is_compatible_with(si_unit):
             return float(_UREG.Quantity(1.0, unit).to(si_unit).magnitude)
@@ -538,7 +542,7 @@ def _unit_factor(quantity: str, name: str, si_unit: str) -> float | None:
 
 def _to_si(block: str, key: str, value: float | str, factors: Mapping[str, float]) -> float | str:
     """``value`` in SI if ``key`` carries a unit (structure checks made it a number)."""
-    if block == "UNITS" or key not in DIMENSIONAL_KEYS or isinstance(value, str):
+    if block == 'UNITS' or key not in DIMENSIONAL_KEYS or isinstance(value, str):
         return value
     factor = 1.0
     for quantity, exponent in DIMENSIONAL_KEYS[key]:
@@ -549,28 +553,29 @@ def _to_si(block: str, key: str, value: float | str, factors: Mapping[str, float
 #: (block, key) that must be > 0: the loads, lengths and scaling factors the Magic
 #: Formula divides by or normalises with (Pacejka 4.E1: dfz = (Fz - Fz0') / Fz0').
 POSITIVE_KEYS: Final[tuple[tuple[str, str], ...]] = (
-    ("VERTICAL", "FNOMIN"),
-    ("DIMENSION", "UNLOADED_RADIUS"),
-    ("SCALING_COEFFICIENTS", "LFZO"),
+    ('VERTICAL', 'FNOMIN'),
+    ('DIMENSION', 'UNLOADED_RADIUS'),
+    ('SCALING_COEFFICIENTS', 'LFZO'),
 )
 #: (block, key) that must not be 0: B = K / (C D) divides by the shape factors C and the
 #: peak factors D (and their scaling factors), and K_y by PKY2 (Pacejka 4.E25).
 NONZERO_KEYS: Final[tuple[tuple[str, str], ...]] = (
-    ("LATERAL_COEFFICIENTS", "PCY1"),
-    ("LATERAL_COEFFICIENTS", "PDY1"),
-    ("LATERAL_COEFFICIENTS", "PKY2"),
-    ("LONGITUDINAL_COEFFICIENTS", "PCX1"),
-    ("LONGITUDINAL_COEFFICIENTS", "PDX1"),
-    ("SCALING_COEFFICIENTS", "LCY"),
-    ("SCALING_COEFFICIENTS", "LMUY"),
-    ("SCALING_COEFFICIENTS", "LCX"),
-    ("SCALING_COEFFICIENTS", "LMUX"),
+    ('LATERAL_COEFFICIENTS', 'PCY1'),
+    ('LATERAL_COEFFICIENTS', 'PDY1'),
+    ('LATERAL_COEFFICIENTS', 'PKY2'),
+    ('LONGITUDINAL_COEFFICIENTS', 'PCX1'),
+    ('LONGITUDINAL_COEFFICIENTS', 'PDX1'),
+    ('SCALING_COEFFICIENTS', 'LCY'),
+    ('SCALING_COEFFICIENTS', 'LMUY'),
+    ('SCALING_COEFFICIENTS', 'LCX'),
+    ('SCALING_COEFFICIENTS', 'LMUX'),
 )
 
 
 def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
                  where: Mapping[tuple[str, str], tuple[str, str]] | None = None) -> list[DataError]:
-    """Values no tire can have: non-finite numbers (``1e999``), a non-positive nominal
+    """
+    Values no tire can have: non-finite numbers (``1e999``), a non-positive nominal
     load, free radius or LFZO, and a zero divisor of the Magic Formula.
 
     ``where`` gives the ``line N: `` prefix and the text as written of a (block, key)
@@ -581,29 +586,29 @@ def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
     errors = []
 
     def bad(block: str, key: str, rule: str, value: float) -> None:
-        line, text = where.get((block, key), ("", f"{value:g}"))
-        errors.append(DataError(f"{line}key {key!r} in block [{block}] {rule}, found {text}",
+        line, text = where.get((block, key), ('', f'{value:g}'))
+        errors.append(DataError(f'{line}key {key!r} in block [{block}] {rule}, found {text}',
                                 file=source, key=key))
 
     for block, entries in sections.items():
         for key, value in entries.items():
             if isinstance(value, float) and not math.isfinite(value):
-                bad(block, key, "must be a finite number", value)
+                bad(block, key, 'must be a finite number', value)
     for block, key in POSITIVE_KEYS:
         value = sections.get(block, {}).get(key)
         if isinstance(value, float) and math.isfinite(value) and value <= 0.0:
-            bad(block, key, "must be > 0", value)
+            bad(block, key, 'must be > 0', value)
     for block, key in NONZERO_KEYS:
         value = sections.get(block, {}).get(key)
         if isinstance(value, float) and value == 0.0:
-            bad(block, key, "must not be 0 (the Magic Formula divides by it)", value)
+            bad(block, key, 'must not be 0 (the Magic Formula divides by it)', value)
     return errors
 
 
 def _check_physical(
     blocks: Mapping[str, Mapping[str, _Entry]], sections: Mapping[str, Mapping[str, float | str]], source: str
 ) -> list[DataError]:
-    where = {(block, key): (f"line {entry.line}: ", entry.text)
+    where = {(block, key): (f'line {entry.line}: ', entry.text)
              for block, entries in blocks.items() for key, entry in entries.items()}
     return check_values(sections, source, where)
 

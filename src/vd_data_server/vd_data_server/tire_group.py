@@ -1,4 +1,5 @@
-"""A tire group carries its whole .tir file as values.
+"""
+A tire group carries its whole .tir file as values.
 
 The data server reads the TeimOrbit file named by the tire group's ``file`` key
 and adds every entry as ``tir.<BLOCK>.<KEY>`` (numbers in SI, text as text).
@@ -12,40 +13,40 @@ from __future__ import annotations
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from .model import GroupData, Value
 from .errors import DataErrors
+from .model import GroupData, Value
 from .tir import DIMENSIONAL_KEYS, TireProperties, check_values
 
-PREFIX = "tir."
-FORMAT_KEY = "tir.FORMAT"
+PREFIX = 'tir.'
+FORMAT_KEY = 'tir.FORMAT'
 #: [UNITS] quantity exponents -> SI unit text used in vd
 _SI_OF = {
-    (("LENGTH", 1), ("TIME", -1)): "m/s",
-    (("LENGTH", 1),): "m",
-    (("FORCE", 1),): "N",
-    (("FORCE", 1), ("LENGTH", -1)): "N/m",
-    (("FORCE", 1), ("TIME", 1), ("LENGTH", -1)): "N*s/m",
-    (("ANGLE", 1),): "rad",
-    (("PRESSURE", 1),): "Pa",
-    (("MASS", 1),): "kg",
-    (("MASS", 1), ("LENGTH", 2)): "kg*m^2",
-    (("LENGTH", 1), ("TIME", -2)): "m/s^2",
-    (("FORCE", 1), ("LENGTH", 1), ("ANGLE", -1)): "N*m/rad",
-    (("TIME", -1),): "1/s",
+    (('LENGTH', 1), ('TIME', -1)): 'm/s',
+    (('LENGTH', 1),): 'm',
+    (('FORCE', 1),): 'N',
+    (('FORCE', 1), ('LENGTH', -1)): 'N/m',
+    (('FORCE', 1), ('TIME', 1), ('LENGTH', -1)): 'N*s/m',
+    (('ANGLE', 1),): 'rad',
+    (('PRESSURE', 1),): 'Pa',
+    (('MASS', 1),): 'kg',
+    (('MASS', 1), ('LENGTH', 2)): 'kg*m^2',
+    (('LENGTH', 1), ('TIME', -2)): 'm/s^2',
+    (('FORCE', 1), ('LENGTH', 1), ('ANGLE', -1)): 'N*m/rad',
+    (('TIME', -1),): '1/s',
 }
 
 
 def tire_values(props: TireProperties, source: str) -> dict[str, Value]:
-    values: dict[str, Value] = {FORMAT_KEY: Value(FORMAT_KEY, "text", props.file_format,
+    values: dict[str, Value] = {FORMAT_KEY: Value(FORMAT_KEY, 'text', props.file_format,
                                                   source=source)}
     for block, entries in props.sections.items():
         for key, raw in entries.items():
-            name = f"{PREFIX}{block}.{key}"
+            name = f'{PREFIX}{block}.{key}'
             if isinstance(raw, str):
-                values[name] = Value(name, "text", raw, source=source)
+                values[name] = Value(name, 'text', raw, source=source)
             else:
-                unit = _SI_OF[DIMENSIONAL_KEYS[key]] if key in DIMENSIONAL_KEYS else ""
-                values[name] = Value(name, "scalar", float(raw), unit, display_unit=unit,
+                unit = _SI_OF[DIMENSIONAL_KEYS[key]] if key in DIMENSIONAL_KEYS else ''
+                values[name] = Value(name, 'scalar', float(raw), unit, display_unit=unit,
                                      source=source)
     return values
 
@@ -62,7 +63,7 @@ def tire_properties(group: GroupData) -> TireProperties:
     for name, value in group.values.items():
         if not name.startswith(PREFIX) or name == FORMAT_KEY:
             continue
-        block, key = name[len(PREFIX):].split(".", 1)
+        block, key = name[len(PREFIX):].split('.', 1)
         sections.setdefault(block, {})[key] = value.si  # type: ignore[assignment]
     frozen: Mapping[str, Mapping[str, float | str]] = MappingProxyType(
         {b: MappingProxyType(v) for b, v in sections.items()})

@@ -1,4 +1,5 @@
-"""Units at the file boundary: every value is converted to SI once, at load.
+"""
+Units at the file boundary: every value is converted to SI once, at load.
 
 A data file declares the units it is written in with a ``units:`` block, like the
 ``[UNITS]`` block of Adams/TeimOrbit property files. The block names *base*
@@ -11,10 +12,10 @@ Conversion and dimension checks use the ``pint`` library.
 """
 from __future__ import annotations
 
-import math
-import re
 from collections.abc import Mapping
 from functools import lru_cache
+import math
+import re
 
 import pint
 
@@ -22,58 +23,58 @@ from .errors import DataError
 
 UREG = pint.UnitRegistry()
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
-_NUMBER_UNIT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$")
+_NUMBER_UNIT = re.compile(r'^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$')
 
 #: largest integer read as a number (a float holds no more; 400 digits would overflow)
 _LARGEST_INT = 10**308
 
 #: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
 SI_UNITS: Mapping[str, str] = {
-    "length": "m",
-    "angle": "rad",
-    "force": "N",
-    "mass": "kg",
-    "time": "s",
-    "velocity": "m/s",
-    "stiffness": "N/m",
-    "damping": "N*s/m",
-    "torsional_stiffness": "N*m/rad",
-    "torsional_damping": "N*m*s/rad",
-    "torque": "N*m",
-    "inertia": "kg*m^2",
-    "pressure": "Pa",
-    "density": "kg/m^3",
-    "area": "m^2",
-    "area_moment": "m^4",
-    "rack_ratio": "m/rad",
-    "acceleration": "m/s^2",
-    "frequency": "1/s",
-    "dimensionless": "",
+    'length': 'm',
+    'angle': 'rad',
+    'force': 'N',
+    'mass': 'kg',
+    'time': 's',
+    'velocity': 'm/s',
+    'stiffness': 'N/m',
+    'damping': 'N*s/m',
+    'torsional_stiffness': 'N*m/rad',
+    'torsional_damping': 'N*m*s/rad',
+    'torque': 'N*m',
+    'inertia': 'kg*m^2',
+    'pressure': 'Pa',
+    'density': 'kg/m^3',
+    'area': 'm^2',
+    'area_moment': 'm^4',
+    'rack_ratio': 'm/rad',
+    'acceleration': 'm/s^2',
+    'frequency': '1/s',
+    'dimensionless': '',
 }
 
-BASE_QUANTITIES = ("length", "force", "angle", "mass", "time")
+BASE_QUANTITIES = ('length', 'force', 'angle', 'mass', 'time')
 
 #: how derived quantities follow from the base units of a ``units:`` block
 _DERIVED: Mapping[str, str] = {
-    "velocity": "{length}/{time}",
-    "stiffness": "{force}/{length}",
-    "damping": "{force}*{time}/{length}",
-    "torsional_stiffness": "{force}*{length}/{angle}",
-    "torsional_damping": "{force}*{length}*{time}/{angle}",
-    "torque": "{force}*{length}",
-    "inertia": "{mass}*{length}^2",
-    "pressure": "{force}/{length}^2",
-    "density": "{mass}/{length}^3",
-    "area": "{length}^2",
-    "area_moment": "{length}^4",
-    "rack_ratio": "{length}/revolution",
+    'velocity': '{length}/{time}',
+    'stiffness': '{force}/{length}',
+    'damping': '{force}*{time}/{length}',
+    'torsional_stiffness': '{force}*{length}/{angle}',
+    'torsional_damping': '{force}*{length}*{time}/{angle}',
+    'torque': '{force}*{length}',
+    'inertia': '{mass}*{length}^2',
+    'pressure': '{force}/{length}^2',
+    'density': '{mass}/{length}^3',
+    'area': '{length}^2',
+    'area_moment': '{length}^4',
+    'rack_ratio': '{length}/revolution',
 }
 
 #: the abbreviations printed to users for SI units
 SI_SYMBOLS: Mapping[str, str] = {
-    "m": "m", "rad": "rad", "N": "N", "kg": "kg", "s": "s", "m/s": "m/s", "N/m": "N/m",
-    "N*s/m": "N·s/m", "N*m/rad": "N·m/rad", "N*m*s/rad": "N·m·s/rad", "N*m": "N·m",
-    "kg*m^2": "kg·m²", "Pa": "Pa", "kg/m^3": "kg/m³", "m^2": "m²", "m^4": "m⁴", "m/rad": "m/rad", "m/s^2": "m/s²", "1/s": "1/s", "": "-",
+    'm': 'm', 'rad': 'rad', 'N': 'N', 'kg': 'kg', 's': 's', 'm/s': 'm/s', 'N/m': 'N/m',
+    'N*s/m': 'N·s/m', 'N*m/rad': 'N·m/rad', 'N*m*s/rad': 'N·m·s/rad', 'N*m': 'N·m',
+    'kg*m^2': 'kg·m²', 'Pa': 'Pa', 'kg/m^3': 'kg/m³', 'm^2': 'm²', 'm^4': 'm⁴', 'm/rad': 'm/rad', 'm/s^2': 'm/s²', '1/s': '1/s', '': '-',
 }
 
 
@@ -91,7 +92,8 @@ def parse_unit(text: str) -> pint.Unit:
 
 @lru_cache(maxsize=512)
 def si_factor(unit: str, quantity: str) -> float:
-    """Factor that converts a number in ``unit`` to the SI unit of ``quantity``.
+    """
+    Factor that converts a number in ``unit`` to the SI unit of ``quantity``.
 
     Raises ``ValueError`` for an unknown unit or one of the wrong dimension.
     """
@@ -115,12 +117,12 @@ def si_factor(unit: str, quantity: str) -> float:
 
 
 def _radian_power(unit: pint.Unit) -> int:
-    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get("radian", 0)
+    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get('radian', 0)
 
 
 def _a(quantity: str) -> str:
     """'a length', 'an angle': the quantity's name with its article, for messages."""
-    name = quantity.replace("_", " ")
+    name = quantity.replace('_', ' ')
     return f"{'an' if name[0] in 'aeiou' else 'a'} {name}"
 
 
@@ -135,21 +137,21 @@ class UnitSystem:
             if quantity not in SI_UNITS:
                 raise DataError(
                     f"unknown quantity '{quantity}' (known: {', '.join(sorted(SI_UNITS))})",
-                    file=file, key=f"units.{quantity}")
+                    file=file, key=f'units.{quantity}')
             if not isinstance(unit, str):
-                raise DataError(f"unit must be a string, found {unit!r}", file=file,
-                                key=f"units.{quantity}")
+                raise DataError(f'unit must be a string, found {unit!r}', file=file,
+                                key=f'units.{quantity}')
             try:
                 si_factor(unit, quantity)
             except ValueError as err:
-                raise DataError(str(err), file=file, key=f"units.{quantity}") from None
+                raise DataError(str(err), file=file, key=f'units.{quantity}') from None
             units[quantity] = unit
         for quantity in BASE_QUANTITIES:
             units.setdefault(quantity, SI_UNITS[quantity])
         for quantity, pattern in _DERIVED.items():
             if quantity not in units:
-                units[quantity] = pattern.format(**{q: f"({units[q]})" for q in BASE_QUANTITIES})
-        units.setdefault("dimensionless", "")
+                units[quantity] = pattern.format(**{q: f'({units[q]})' for q in BASE_QUANTITIES})
+        units.setdefault('dimensionless', '')
         self.units = units
 
     def unit(self, quantity: str) -> str:
@@ -158,19 +160,20 @@ class UnitSystem:
     def display(self, quantity: str) -> str:
         """Short, readable unit for reports (``N/mm`` rather than ``(N)/(mm)``)."""
         unit = self.units[quantity]
-        return format(parse_unit(unit), "~") if unit else "-"
+        return format(parse_unit(unit), '~') if unit else '-'
 
 
 def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float:
-    """Convert one scalar (number, or ``"number unit"`` string) to SI.
+    """
+    Convert one scalar (number, or ``"number unit"`` string) to SI.
 
     Raises ``DataError`` naming file and key for non-numbers, unknown units,
     units of the wrong dimension and NaN/inf.
     """
     if isinstance(value, bool):
-        raise DataError(f"expected a number, found {value!r}", file=units.file, key=key)
+        raise DataError(f'expected a number, found {value!r}', file=units.file, key=key)
     if isinstance(value, int) and abs(value) > _LARGEST_INT:
-        raise DataError(f"number too large ({len(str(abs(value)))} digits)", file=units.file,
+        raise DataError(f'number too large ({len(str(abs(value)))} digits)', file=units.file,
                         key=key)
     if isinstance(value, (int, float)):
         number, unit = float(value), units.unit(quantity)
@@ -180,14 +183,14 @@ def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float
     elif isinstance(value, str):
         number, unit = parse_quantity(value, quantity, file=units.file, key=key)
     else:
-        raise DataError(f"expected a number, found {type(value).__name__} {value!r}",
+        raise DataError(f'expected a number, found {type(value).__name__} {value!r}',
                         file=units.file, key=key)
     try:
         result = number * si_factor(unit, quantity)
     except ValueError as err:
         raise DataError(str(err), file=units.file, key=key) from None
     if not math.isfinite(result):
-        raise DataError(f"value must be finite, found {value!r}", file=units.file, key=key)
+        raise DataError(f'value must be finite, found {value!r}', file=units.file, key=key)
     return result
 
 
@@ -198,15 +201,15 @@ def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> t
     try:
         number = float(parts[0])
     except (ValueError, IndexError):
-        raise DataError(f"expected a number with a unit, found {text!r}", file=file, key=key) from None
+        raise DataError(f'expected a number with a unit, found {text!r}', file=file, key=key) from None
     if not math.isfinite(number):
-        raise DataError(f"value must be finite, found {text!r}", file=file, key=key)
+        raise DataError(f'value must be finite, found {text!r}', file=file, key=key)
     if len(parts) == 1:
-        if quantity != "dimensionless":
+        if quantity != 'dimensionless':
             raise DataError(
                 f"value {text!r} needs a unit ({_a(quantity)}, e.g. '{parts[0]} "
                 f"{SI_UNITS[quantity]}')", file=file, key=key)
-        return number, ""
+        return number, ''
     unit = parts[1].strip()
     try:
         si_factor(unit, quantity)

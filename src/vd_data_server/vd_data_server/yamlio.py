@@ -1,4 +1,5 @@
-"""Safe YAML loading that remembers line numbers, for precise error messages.
+"""
+Safe YAML loading that remembers line numbers, for precise error messages.
 
 Every file is bounded before it is built into Python objects: its size
 (:data:`MAX_FILE_BYTES`), its nesting depth (:data:`MAX_DEPTH`) and the number
@@ -40,7 +41,7 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LineDict:
         key = loader.construct_object(key_node, deep=True)
         if not isinstance(key, (str, int, float)):
             raise yaml.constructor.ConstructorError(
-                None, None, f"unsupported key {key!r}", key_node.start_mark)
+                None, None, f'unsupported key {key!r}', key_node.start_mark)
         key = str(key)
         if key in result:
             raise yaml.constructor.ConstructorError(
@@ -54,8 +55,10 @@ _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _constru
 
 
 def _check_size(text: str, file: str) -> None:
-    """Depth and alias-expanded node count from the event stream (no recursion, no
-    expansion): refuse a file over :data:`MAX_DEPTH` or :data:`MAX_NODES`."""
+    """
+    Depth and alias-expanded node count from the event stream (no recursion, no
+    expansion): refuse a file over :data:`MAX_DEPTH` or :data:`MAX_NODES`.
+    """
     stack: list[int] = [0]  # expanded node count of each open collection
     anchors: list[str | None] = [None]
     sizes: dict[str, int] = {}
@@ -63,8 +66,8 @@ def _check_size(text: str, file: str) -> None:
         if isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
             if len(stack) > MAX_DEPTH:
                 mark = event.start_mark
-                raise DataError(f"exceeds the limit of {MAX_DEPTH} nesting levels (line "
-                                f"{mark.line + 1})", file=file)
+                raise DataError(f'exceeds the limit of {MAX_DEPTH} nesting levels (line '
+                                f'{mark.line + 1})', file=file)
             stack.append(1)
             anchors.append(event.anchor)
             continue
@@ -83,8 +86,8 @@ def _check_size(text: str, file: str) -> None:
         stack[-1] += size
         if stack[-1] > MAX_NODES or sum(stack) > MAX_NODES:
             mark = event.start_mark
-            raise DataError(f"exceeds the limit of {MAX_NODES} values with its aliases expanded "
-                            f"(line {mark.line + 1})", file=file)
+            raise DataError(f'exceeds the limit of {MAX_NODES} values with its aliases expanded '
+                            f'(line {mark.line + 1})', file=file)
 
 
 def loads(text: str, *, file: str) -> Any:
@@ -94,25 +97,25 @@ def loads(text: str, *, file: str) -> Any:
         return yaml.load(text, Loader=_Loader)  # noqa: S506 - _Loader derives from SafeLoader
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
-        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
-        raise DataError(f"malformed YAML: {err.problem or err.context}{where}", file=file) from None
+        where = f' (line {mark.line + 1}, column {mark.column + 1})' if mark else ''
+        raise DataError(f'malformed YAML: {err.problem or err.context}{where}', file=file) from None
     except yaml.YAMLError as err:
-        raise DataError(f"malformed YAML: {err}", file=file) from None
+        raise DataError(f'malformed YAML: {err}', file=file) from None
 
 
 def read_bytes(path: Path, *, display: str) -> bytes:
     """A file's bytes, refused above :data:`MAX_FILE_BYTES` (checked before reading)."""
     try:
-        with path.open("rb") as stream:
+        with path.open('rb') as stream:
             data = stream.read(MAX_FILE_BYTES + 1)
     except FileNotFoundError:
-        raise DataError("file not found", file=display) from None
+        raise DataError('file not found', file=display) from None
     except IsADirectoryError:
-        raise DataError("is a folder, not a file", file=display) from None
+        raise DataError('is a folder, not a file', file=display) from None
     except OSError as err:
-        raise DataError(f"cannot read file: {err.strerror or err}", file=display) from None
+        raise DataError(f'cannot read file: {err.strerror or err}', file=display) from None
     if len(data) > MAX_FILE_BYTES:
-        raise DataError(f"exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file",
+        raise DataError(f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file',
                         file=display)
     return data
 
@@ -120,12 +123,12 @@ def read_bytes(path: Path, *, display: str) -> bytes:
 def load_file(path: Path, *, display: str) -> Any:
     data = read_bytes(path, display=display)
     try:
-        text = data.decode("utf-8")
+        text = data.decode('utf-8')
     except UnicodeDecodeError as err:
-        raise DataError(f"cannot read file: not UTF-8 text (byte {err.start})",
+        raise DataError(f'cannot read file: not UTF-8 text (byte {err.start})',
                         file=display) from None
     return loads(text, file=display)
 
 
 def line_of(mapping: Any, key: str) -> int | None:
-    return getattr(mapping, "lines", {}).get(key)
+    return getattr(mapping, 'lines', {}).get(key)

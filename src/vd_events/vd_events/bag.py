@@ -1,4 +1,5 @@
-"""rosbag2 MCAP bags written and read with rosbags (pure Python).
+"""
+rosbag2 MCAP bags written and read with rosbags (pure Python).
 
 Messages are typed vd_interfaces messages with their definitions embedded, so
 Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. A bag
@@ -10,23 +11,23 @@ killed (``kill -9``) and is replaced by the next writer of the same bag.
 """
 from __future__ import annotations
 
-import fcntl
-import os
-import shutil
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
+import fcntl
 from functools import lru_cache
+import os
 from pathlib import Path
+import shutil
 from typing import Any
 
 from rosbags.rosbag2 import Reader, StoragePlugin, Writer
-from rosbags.typesys import Stores, get_typestore, get_types_from_msg
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
-PARTIAL_SUFFIX = ".partial"
-LOCK_NAME = "writer.lock"
+PARTIAL_SUFFIX = '.partial'
+LOCK_NAME = 'writer.lock'
 BAG_VERSION = 9
-INTERFACES = "vd_interfaces"
+INTERFACES = 'vd_interfaces'
 
 
 class BagError(Exception):
@@ -39,10 +40,10 @@ def typestore() -> Typestore:
     from ament_index_python.packages import get_package_share_directory
 
     store = get_typestore(Stores.ROS2_JAZZY)
-    msg_dir = Path(get_package_share_directory(INTERFACES)) / "msg"
+    msg_dir = Path(get_package_share_directory(INTERFACES)) / 'msg'
     types: dict[str, Any] = {}
-    for path in sorted(msg_dir.glob("*.msg")):
-        types.update(get_types_from_msg(path.read_text(), f"{INTERFACES}/msg/{path.stem}"))
+    for path in sorted(msg_dir.glob('*.msg')):
+        types.update(get_types_from_msg(path.read_text(), f'{INTERFACES}/msg/{path.stem}'))
     store.register(types)
     return store
 
@@ -50,18 +51,18 @@ def typestore() -> Typestore:
 def check_bag_path(path: Path) -> None:
     """Refuse an existing bag (or partial one) and an unwritable parent, before any work."""
     if path.exists():
-        raise BagError(f"{path}: bag path already exists (choose another --bag)")
+        raise BagError(f'{path}: bag path already exists (choose another --bag)')
     partial = path.with_name(path.name + PARTIAL_SUFFIX)
     if partial.exists() and _partial_is_live(partial):
-        raise BagError(f"{partial}: another run is writing this bag")
+        raise BagError(f'{partial}: another run is writing this bag')
     if partial.exists() and not partial.is_dir():
-        raise BagError(f"{partial}: is in the way and is not a partial bag (remove it)")
+        raise BagError(f'{partial}: is in the way and is not a partial bag (remove it)')
     parent = path.parent
     probe = parent
     while not probe.exists():
         probe = probe.parent
     if not probe.is_dir() or not _writable(probe):
-        raise BagError(f"{path}: cannot write under {probe}")
+        raise BagError(f'{path}: cannot write under {probe}')
 
 
 def _writable(folder: Path) -> bool:
@@ -104,7 +105,7 @@ class BagWriter:
             try:
                 self.partial.mkdir()
             except FileExistsError:
-                raise BagError(f"{self.partial}: another run is writing this bag") from None
+                raise BagError(f'{self.partial}: another run is writing this bag') from None
             self._lock = os.open(self.partial / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
             fcntl.flock(self._lock, fcntl.LOCK_EX)
             self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
@@ -116,7 +117,7 @@ class BagWriter:
             if self._lock >= 0:
                 shutil.rmtree(self.partial, ignore_errors=True)
                 self._unlock()
-            raise BagError(f"{self.path}: cannot write the bag: {err.strerror or err}") from None
+            raise BagError(f'{self.path}: cannot write the bag: {err.strerror or err}') from None
         self._connections: dict[str, Any] = {}
         self.count = 0
 
@@ -163,8 +164,8 @@ class BagWriter:
 
 def _type_name(msg: Any) -> str:
     """``vd_interfaces/msg/EventResult`` from an rclpy message instance."""
-    module = type(msg).__module__.split(".")  # e.g. vd_interfaces.msg._event_result
-    return f"{module[0]}/{module[1]}/{type(msg).__name__}"
+    module = type(msg).__module__.split('.')  # e.g. vd_interfaces.msg._event_result
+    return f'{module[0]}/{module[1]}/{type(msg).__name__}'
 
 
 @dataclass(frozen=True)
@@ -178,8 +179,8 @@ class BagMessage:
 def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMessage]:
     """Every message (deserialised with rosbags) of a finished bag."""
     path = Path(path)
-    if not (path / "metadata.yaml").is_file():
-        raise BagError(f"{path}: not a finished rosbag2 bag (no metadata.yaml)")
+    if not (path / 'metadata.yaml').is_file():
+        raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')
     store = typestore()
     with Reader(path) as reader:
         conns = [c for c in reader.connections if topics is None or c.topic in topics]
@@ -193,5 +194,5 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
 def custom_data(path: str | Path) -> dict[str, str]:
     import yaml
 
-    meta = yaml.safe_load((Path(path) / "metadata.yaml").read_text())
-    return dict(meta.get("rosbag2_bagfile_information", {}).get("custom_data") or {})
+    meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
+    return dict(meta.get('rosbag2_bagfile_information', {}).get('custom_data') or {})

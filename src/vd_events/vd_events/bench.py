@@ -1,4 +1,5 @@
-"""``vd bench`` / ``make bench``: the figures vd promises, measured on this machine.
+"""
+``vd bench`` / ``make bench``: the figures vd promises, measured on this machine.
 
 Timings are medians of a few repetitions (wall clock, ``time.perf_counter``),
 printed with the machine they ran on. They never decide a unit test.
@@ -6,23 +7,22 @@ printed with the machine they ran on. They never decide a unit test.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 import platform
 import statistics
 import tempfile
 import time
-from pathlib import Path
 from typing import Any
 
 from vd_solvers.timing import REPEATS, median_time
 
 
-
 def machine() -> dict[str, Any]:
     import numpy
 
-    return {"python": platform.python_version(), "machine": platform.machine(),
-            "cpus": os.cpu_count(), "numpy": numpy.__version__,
-            "processor": platform.processor() or platform.uname().machine}
+    return {'python': platform.python_version(), 'machine': platform.machine(),
+            'cpus': os.cpu_count(), 'numpy': numpy.__version__,
+            'processor': platform.processor() or platform.uname().machine}
 
 
 def run_bench() -> dict[str, Any]:
@@ -32,61 +32,65 @@ def run_bench() -> dict[str, Any]:
     from vd_solvers.kc.bench import bench_kc
     from vd_solvers.kc.from_config import suspension_input
 
-    results: dict[str, Any] = {"machine": machine()}
+    results: dict[str, Any] = {'machine': machine()}
     master = default_master()
-    results["load_study_s"] = median_time(lambda: load_study(master))
+    results['load_study_s'] = median_time(lambda: load_study(master))
     study = load_study(master)
-    config = study.configurations["baseline"]
-    front, rear = suspension_input(config, "front"), suspension_input(config, "rear")
+    config = study.configurations['baseline']
+    front, rear = suspension_input(config, 'front'), suspension_input(config, 'rear')
     kc_runs = [bench_kc(front, rear) for _ in range(REPEATS)]
-    results["kc"] = {k: statistics.median(r[k] for r in kc_runs) for k in kc_runs[0]}
+    results['kc'] = {k: statistics.median(r[k] for r in kc_runs) for k in kc_runs[0]}
     from vd_solvers.kc import cache
 
     def cold() -> None:
         cache.clear()
-        run_event(config, "steady_state_circular", "bicycle")
+        run_event(config, 'steady_state_circular', 'bicycle')
 
-    results["bicycle_cold_kc_s"] = median_time(cold)
-    results["bicycle_steady_state_s"] = median_time(
-        lambda: run_event(config, "steady_state_circular", "bicycle"))
-    results["two_track_handling_diagram_s"] = median_time(
-        lambda: run_event(config, "handling_diagram", "two_track"))
-    results["flex"] = _bench_flex(config)
-    results["capability_both_axles_s"] = _bench_capability(master)
+    results['bicycle_cold_kc_s'] = median_time(cold)
+    results['bicycle_steady_state_s'] = median_time(
+        lambda: run_event(config, 'steady_state_circular', 'bicycle'))
+    results['two_track_handling_diagram_s'] = median_time(
+        lambda: run_event(config, 'handling_diagram', 'two_track'))
+    results['flex'] = _bench_flex(config)
+    results['capability_both_axles_s'] = _bench_capability(master)
     from vd_solvers.vehicle.bench import bench_vehicle
 
-    results["vehicle"] = bench_vehicle(config)
-    results["embedded_run"] = _bench_embedded(master)
-    results["data_change_to_republish_s"] = _bench_data_change(master)
-    results["bag_write"] = _bench_bag()
+    results['vehicle'] = bench_vehicle(config)
+    results['embedded_run'] = _bench_embedded(master)
+    results['data_change_to_republish_s'] = _bench_data_change(master)
+    results['bag_write'] = _bench_bag()
     return results
 
 
 def _bench_flex(config) -> dict[str, float]:
-    """101-step parallel wheel travel, rigid and flexible (every component of the flex
-    groups), per axle; target: flexible within 3x rigid."""
+    """
+    101-step parallel wheel travel, rigid and flexible (every component of the flex
+    groups), per axle; target: flexible within 3x rigid.
+    """
     from vd_solvers.kc.events import KCModel
     from vd_solvers.kc.from_config import suspension_input
 
     out: dict[str, float] = {}
-    for axle in ("front", "rear"):
-        for fidelity in ("rigid", "flexible"):
+    for axle in ('front', 'rear'):
+        for fidelity in ('rigid', 'flexible'):
             model = KCModel(suspension_input(config, axle, fidelity))
-            out[f"{axle}_{fidelity}_s"] = median_time(lambda: model.run("parallel_wheel_travel"))
-        out[f"{axle}_ratio"] = out[f"{axle}_flexible_s"] / out[f"{axle}_rigid_s"]
+            out[f'{axle}_{fidelity}_s'] = median_time(lambda: model.run('parallel_wheel_travel'))
+        out[f'{axle}_ratio'] = out[f'{axle}_flexible_s'] / out[f'{axle}_rigid_s']
     return out
 
 
 def _bench_capability(master: Path) -> float:
-    """The whole capability study of both axles (22 runs, 101 steps, through the ROS
-    graph, with bags); target: under 20 s."""
+    """
+    The whole capability study of both axles (22 runs, 101 steps, through the ROS
+    graph, with bags); target: under 20 s.
+    """
     from vd_data_server.study import load_study
 
     from .capability import run_study
 
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        run_study(master, load_study(master), "baseline", ["front", "rear"], Path(tmp) / "cap")
+        run_study(master, load_study(master), 'baseline', ['front', 'rear'], Path(tmp) / 'cap')
         return time.perf_counter() - t0
 
 
@@ -95,34 +99,36 @@ def _bench_embedded(master: Path) -> dict[str, float]:
     from .runner import RunRequest, run_embedded
 
     with tempfile.TemporaryDirectory() as tmp:
-        request = RunRequest("parallel_wheel_travel", "baseline", "kc", axle="front",
-                             bag=Path(tmp) / "bag")
+        request = RunRequest('parallel_wheel_travel', 'baseline', 'kc', axle='front',
+                             bag=Path(tmp) / 'bag')
         t0 = time.perf_counter()
         (outcome,) = run_embedded(master, [request])
         total = time.perf_counter() - t0
     if outcome.error:
         raise RuntimeError(outcome.error)
-    return {"kc_parallel_wheel_travel_with_bag_s": total,
-            "goal_to_result_s": outcome.timings["run"]}
+    return {'kc_parallel_wheel_travel_with_bag_s': total,
+            'goal_to_result_s': outcome.timings['run']}
 
 
 def _bench_data_change(master: Path) -> float:
-    """Seconds from editing a data file on disk to the new configuration arriving at a
-    subscriber (data server watching every 0.5 s, its default)."""
+    """
+    Seconds from editing a data file on disk to the new configuration arriving at a
+    subscriber (data server watching every 0.5 s, its default).
+    """
     import shutil
 
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
     from rclpy.parameter import Parameter
-    from vd_interfaces.msg import Configuration
 
     from vd_data_server.data_server_node import CONFIGURATION_DEPTH, DataServer, latched
+    from vd_interfaces.msg import Configuration
 
     from .runner import _claim_domain, _ros_args, _spin_until
 
     with tempfile.TemporaryDirectory() as tmp:
-        root = Path(tmp) / "data"
+        root = Path(tmp) / 'data'
         shutil.copytree(master.parents[1], root)
         copy = root / master.relative_to(master.parents[1])
         claim = _claim_domain()
@@ -131,21 +137,21 @@ def _bench_data_change(master: Path) -> float:
                    signal_handler_options=None)
         executor = SingleThreadedExecutor(context=context)
         server = DataServer(context=context, parameter_overrides=[
-            Parameter("master_file", value=str(copy))])
-        listener = Node("bench_listener", context=context)
+            Parameter('master_file', value=str(copy))])
+        listener = Node('bench_listener', context=context)
         hashes: dict[str, str] = {}
-        listener.create_subscription(Configuration, "/vd/configuration",
+        listener.create_subscription(Configuration, '/vd/configuration',
                                      lambda m: hashes.__setitem__(m.name, m.data_hash),
                                      latched(CONFIGURATION_DEPTH))
         for node in (server, listener):
             executor.add_node(node)
         try:
-            _spin_until(executor, lambda: "baseline" in hashes, 10.0)
-            before = hashes["baseline"]
-            spring = root / "sedan" / "front_spring" / "X.yaml"
+            _spin_until(executor, lambda: 'baseline' in hashes, 10.0)
+            before = hashes['baseline']
+            spring = root / 'sedan' / 'front_spring' / 'X.yaml'
             t0 = time.perf_counter()
-            spring.write_text(spring.read_text().replace("rate: 30.0", "rate: 31.0"))
-            _spin_until(executor, lambda: hashes["baseline"] != before, 10.0)
+            spring.write_text(spring.read_text().replace('rate: 30.0', 'rate: 31.0'))
+            _spin_until(executor, lambda: hashes['baseline'] != before, 10.0)
             elapsed = time.perf_counter() - t0
         finally:
             for node in (server, listener):
@@ -163,77 +169,78 @@ def _bench_bag(n: int = 20000) -> dict[str, float]:
 
     from .bag import BagWriter
 
-    msg = Sample(event="bench", configuration="baseline", model="kc", step=0,
-                 names=[f"c{i}" for i in range(16)], values=[float(i) for i in range(16)])
+    msg = Sample(event='bench', configuration='baseline', model='kc', step=0,
+                 names=[f'c{i}' for i in range(16)], values=[float(i) for i in range(16)])
     with tempfile.TemporaryDirectory() as tmp:
-        writer = BagWriter(Path(tmp) / "bag")
+        writer = BagWriter(Path(tmp) / 'bag')
         t0 = time.perf_counter()
         for i in range(n):
-            writer.write("/vd/kc/state", msg, i)
+            writer.write('/vd/kc/state', msg, i)
         writer.close()
         elapsed = time.perf_counter() - t0
-    return {"messages": n, "messages_per_s": n / elapsed}
+    return {'messages': n, 'messages_per_s': n / elapsed}
 
 
 def print_bench(results: dict[str, Any]) -> None:
-    from vd_data_server.overview import console
     from rich.table import Table
 
-    table = Table(title="vd bench  (" + ", ".join(f"{k} {v}" for k, v in
-                                                  results["machine"].items()) + ")",
-                  title_justify="left")
-    table.add_column("figure")
-    table.add_column("value", justify="right")
-    table.add_column("target")
-    kc = results["kc"]
+    from vd_data_server.overview import console
+
+    table = Table(title='vd bench  (' + ', '.join(f'{k} {v}' for k, v in
+                                                  results['machine'].items()) + ')',
+                  title_justify='left')
+    table.add_column('figure')
+    table.add_column('value', justify='right')
+    table.add_column('target')
+    kc = results['kc']
     rows = [
-        ("K&C 101-step parallel wheel travel, front", f"{kc['parallel_wheel_travel_front']:.3f} s",
-         "well under 1 s"),
-        ("K&C 101-step parallel wheel travel, rear", f"{kc['parallel_wheel_travel_rear']:.3f} s",
-         "well under 1 s"),
-        ("K&C six-event suite, both axles", f"{kc['suite_both_axles']:.2f} s", "a few s"),
-        ("flexible K&C 101-step parallel travel, front",
+        ('K&C 101-step parallel wheel travel, front', f"{kc['parallel_wheel_travel_front']:.3f} s",
+         'well under 1 s'),
+        ('K&C 101-step parallel wheel travel, rear', f"{kc['parallel_wheel_travel_rear']:.3f} s",
+         'well under 1 s'),
+        ('K&C six-event suite, both axles', f"{kc['suite_both_axles']:.2f} s", 'a few s'),
+        ('flexible K&C 101-step parallel travel, front',
          f"{results['flex']['front_flexible_s']:.3f} s ({results['flex']['front_ratio']:.2f}x rigid)",
-         "within 3x rigid"),
-        ("flexible K&C 101-step parallel travel, rear",
+         'within 3x rigid'),
+        ('flexible K&C 101-step parallel travel, rear',
          f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
-         "within 3x rigid"),
-        ("capability study, both axles (22 runs via ROS, one bag)",
-         f"{results['capability_both_axles_s']:.1f} s", "under 20 s"),
-        ("load + resolve the sample study", f"{results['load_study_s']:.3f} s", ""),
-        ("bicycle steady state, K&C inputs computed (empty cache)",
-         f"{results['bicycle_cold_kc_s']:.2f} s", ""),
-        ("bicycle steady state (41 steps), K&C inputs cached",
-         f"{results['bicycle_steady_state_s']:.4f} s", ""),
-        ("two-track handling diagram to the limit, K&C inputs cached",
-         f"{results['two_track_handling_diagram_s']:.3f} s", ""),
-        ("embedded run, K&C event with bag, incl. start-up",
-         f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ""),
-        ("  of which goal to result", f"{results['embedded_run']['goal_to_result_s']:.3f} s", ""),
-        ("data file edited -> new configuration received",
-         f"{results['data_change_to_republish_s']:.2f} s", "about 1 s"),
-        ("bag write rate (Sample, 16 channels)",
-         f"{results['bag_write']['messages_per_s']:.0f} msg/s", ""),
+         'within 3x rigid'),
+        ('capability study, both axles (22 runs via ROS, one bag)',
+         f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
+        ('load + resolve the sample study', f"{results['load_study_s']:.3f} s", ''),
+        ('bicycle steady state, K&C inputs computed (empty cache)',
+         f"{results['bicycle_cold_kc_s']:.2f} s", ''),
+        ('bicycle steady state (41 steps), K&C inputs cached',
+         f"{results['bicycle_steady_state_s']:.4f} s", ''),
+        ('two-track handling diagram to the limit, K&C inputs cached',
+         f"{results['two_track_handling_diagram_s']:.3f} s", ''),
+        ('embedded run, K&C event with bag, incl. start-up',
+         f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ''),
+        ('  of which goal to result', f"{results['embedded_run']['goal_to_result_s']:.3f} s", ''),
+        ('data file edited -> new configuration received',
+         f"{results['data_change_to_republish_s']:.2f} s", 'about 1 s'),
+        ('bag write rate (Sample, 16 channels)',
+         f"{results['bag_write']['messages_per_s']:.0f} msg/s", ''),
     ]
-    vehicle = results["vehicle"]
-    ss, crt, cr, per = (vehicle["step_steer_10s"], vehicle["constant_radius_turn"],
-                        vehicle["commonroad"], vehicle["per_step"])
+    vehicle = results['vehicle']
+    ss, crt, cr, per = (vehicle['step_steer_10s'], vehicle['constant_radius_turn'],
+                        vehicle['commonroad'], vehicle['per_step'])
     rows += [
-        ("full vehicle: K&C maps + model build", f"{vehicle['model_build_s']:.2f} s", ""),
+        ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
          f"{vehicle['step_s'] * 1e3:g} ms)", f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
-         ""),
-        ("  per step", f"{ss['us_per_step']:.0f} us", ""),
-        ("    tires (MF, radii, relaxation; 4 wheels)", f"{per['tires_us']:.0f} us", ""),
-        ("    suspension maps", f"{per['suspension_maps_us']:.0f} us", ""),
-        ("    all forces (incl. the two above)", f"{per['forces_total_us']:.0f} us", ""),
-        ("    multibody (Pinocchio ABA + integration)", f"{per['multibody_us']:.0f} us", ""),
+         ''),
+        ('  per step', f"{ss['us_per_step']:.0f} us", ''),
+        ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),
+        ('    suspension maps', f"{per['suspension_maps_us']:.0f} us", ''),
+        ('    all forces (incl. the two above)', f"{per['forces_total_us']:.0f} us", ''),
+        ('    multibody (Pinocchio ABA + integration)', f"{per['multibody_us']:.0f} us", ''),
         (f"full vehicle: constant radius turn ({crt['simulated_s']:.0f} s simulated)",
-         f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ""),
+         f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ''),
         (f"CommonRoad MB ({cr['states']} states, odeint): 10 s step steer",
-         f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ""),
-        ("vd / CommonRoad real-time factor, step steer",
-         f"{vehicle['ratio_vs_commonroad']:.2f}", ">= 20"),
+         f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ''),
+        ('vd / CommonRoad real-time factor, step steer',
+         f"{vehicle['ratio_vs_commonroad']:.2f}", '>= 20'),
     ]
     for row in rows:
         table.add_row(*row)

@@ -1,4 +1,5 @@
-"""The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2): for every K&C
+"""
+The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2): for every K&C
 event of an axle, run the rigid and the flexible model on the same configuration and
 say, per quantity, whether the rigid model is good enough ("Rigid") or the flexible
 one is needed ("Flexible").
@@ -23,9 +24,9 @@ Criterion (documented in docs/capability.md; every tolerance configurable):
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 
@@ -34,11 +35,11 @@ from vd_solvers.results import EventOutcome
 DEG = math.pi / 180.0
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
 QUANTITIES: Mapping[str, tuple[tuple[str, ...], str, float | None]] = {
-    "toe": (("toe_left", "toe_right"), "rad", 0.05 * DEG),
-    "camber": (("camber_left", "camber_right"), "rad", 0.05 * DEG),
-    "wheelbase": (("contact_point_x_left", "contact_point_x_right"), "m", 0.5e-3),
-    "track": (("track",), "m", 0.5e-3),
-    "wheel_load": (("pad_force_left", "pad_force_right"), "N", None),
+    'toe': (('toe_left', 'toe_right'), 'rad', 0.05 * DEG),
+    'camber': (('camber_left', 'camber_right'), 'rad', 0.05 * DEG),
+    'wheelbase': (('contact_point_x_left', 'contact_point_x_right'), 'm', 0.5e-3),
+    'track': (('track',), 'm', 0.5e-3),
+    'wheel_load': (('pad_force_left', 'pad_force_right'), 'N', None),
 }
 #: wheel-load tolerance as a fraction of the design wheel load
 LOAD_FRACTION = 0.01
@@ -46,23 +47,23 @@ LOAD_FRACTION = 0.01
 RELATIVE = 0.05
 #: derived metrics compared per event, with the absolute floor (SI-ish, the metric's unit)
 METRICS: Mapping[str, Mapping[str, float]] = {
-    "parallel_wheel_travel": {"bump_steer": 0.5, "camber_gain": 0.5, "wheel_rate": 500.0,
-                              "roll_centre_height_kinematic": 0.002},
-    "opposite_wheel_travel": {"roll_stiffness": 10.0, "roll_steer": 0.005,
-                              "roll_camber": 0.005},
-    "lateral_force": {"lateral_compliance_steer": 0.01, "lateral_compliance_camber": 0.01,
-                      "lateral_stiffness": 10.0},
-    "longitudinal_force": {"longitudinal_stiffness_braking": 10.0,
-                           "longitudinal_stiffness_traction": 10.0,
-                           "longitudinal_compliance_steer_braking": 0.01},
-    "aligning_torque": {"aligning_torque_compliance_steer": 0.01},
-    "steering": {"steering_ratio": 0.1, "ackermann": 1.0},
+    'parallel_wheel_travel': {'bump_steer': 0.5, 'camber_gain': 0.5, 'wheel_rate': 500.0,
+                              'roll_centre_height_kinematic': 0.002},
+    'opposite_wheel_travel': {'roll_stiffness': 10.0, 'roll_steer': 0.005,
+                              'roll_camber': 0.005},
+    'lateral_force': {'lateral_compliance_steer': 0.01, 'lateral_compliance_camber': 0.01,
+                      'lateral_stiffness': 10.0},
+    'longitudinal_force': {'longitudinal_stiffness_braking': 10.0,
+                           'longitudinal_stiffness_traction': 10.0,
+                           'longitudinal_compliance_steer_braking': 0.01},
+    'aligning_torque': {'aligning_torque_compliance_steer': 0.01},
+    'steering': {'steering_ratio': 0.1, 'ackermann': 1.0},
 }
 METRIC_RELATIVE = 0.05
-EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-          "longitudinal_force", "aligning_torque", "steering")
-STOPS = ("bump_stop_force_left", "bump_stop_force_right", "rebound_stop_force_left",
-         "rebound_stop_force_right")
+EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
+          'longitudinal_force', 'aligning_torque', 'steering')
+STOPS = ('bump_stop_force_left', 'bump_stop_force_right', 'rebound_stop_force_left',
+         'rebound_stop_force_right')
 
 
 @dataclass(frozen=True)
@@ -82,7 +83,7 @@ class Cell:
 
     @property
     def label(self) -> str:
-        return self.verdict + ("*" if self.stop_needs_flexible else "")
+        return self.verdict + ('*' if self.stop_needs_flexible else '')
 
 
 @dataclass(frozen=True)
@@ -98,22 +99,22 @@ class Table:
     def to_json(self) -> dict:
         def cell(c: Cell) -> dict:
             return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                    for k, v in c.__dict__.items()} | {"label": c.label}
+                    for k, v in c.__dict__.items()} | {'label': c.label}
 
-        return {"configuration": self.configuration, "data_hash": self.data_hash,
-                "axle": self.axle, "flexible_components": list(self.components),
-                "cells": [cell(c) for c in self.cells],
-                "metrics": [cell(c) for c in self.metrics], "notes": list(self.notes)}
+        return {'configuration': self.configuration, 'data_hash': self.data_hash,
+                'axle': self.axle, 'flexible_components': list(self.components),
+                'cells': [cell(c) for c in self.cells],
+                'metrics': [cell(c) for c in self.metrics], 'notes': list(self.notes)}
 
 
 #: the swept channel of each event, whose zero is the design step
-SWEEP = {"parallel_wheel_travel": "pad_travel_left", "opposite_wheel_travel": "pad_travel_left",
-         "lateral_force": "applied_force", "longitudinal_force": "applied_force",
-         "aligning_torque": "applied_moment", "steering": "steering_wheel_angle"}
+SWEEP = {'parallel_wheel_travel': 'pad_travel_left', 'opposite_wheel_travel': 'pad_travel_left',
+         'lateral_force': 'applied_force', 'longitudinal_force': 'applied_force',
+         'aligning_torque': 'applied_moment', 'steering': 'steering_wheel_angle'}
 
 
 def _design_step(outcome: EventOutcome) -> int:
-    ch = outcome.channels.get(SWEEP.get(outcome.event, ""))
+    ch = outcome.channels.get(SWEEP.get(outcome.event, ''))
     return int(np.argmin(np.abs(ch.values))) if ch is not None else outcome.n_steps // 2
 
 
@@ -130,10 +131,12 @@ def _stop_mask(*outcomes: EventOutcome) -> np.ndarray:
 
 def compare(rigid: EventOutcome, flexible: EventOutcome,
             tolerances: Mapping[str, float] | None = None) -> tuple[list[Cell], list[Cell]]:
-    """Cells (per-step quantities) and metric cells of one event; see the module doc.
-    ``tolerances`` overrides the absolute tolerance per quantity (SI)."""
+    """
+    Cells (per-step quantities) and metric cells of one event; see the module doc.
+    ``tolerances`` overrides the absolute tolerance per quantity (SI).
+    """
     if rigid.n_steps != flexible.n_steps:
-        raise ValueError(f"{rigid.event}: the rigid and flexible runs have different steps")
+        raise ValueError(f'{rigid.event}: the rigid and flexible runs have different steps')
     event = rigid.event
     at = _design_step(rigid)
     stops = _stop_mask(rigid, flexible)
@@ -157,7 +160,7 @@ def compare(rigid: EventOutcome, flexible: EventOutcome,
                 offset = float(f[at] - r[at])
         limit = max(float(tolerance), RELATIVE * span)
         cells.append(Cell(event, quantity, unit, worst, limit,
-                          "Rigid" if worst <= limit else "Flexible", bool(np.any(stops)),
+                          'Rigid' if worst <= limit else 'Flexible', bool(np.any(stops)),
                           stop_worst, bool(stop_worst > limit), offset))
     metric_cells = []
     for name, floor in METRICS.get(event, {}).items():
@@ -165,10 +168,10 @@ def compare(rigid: EventOutcome, flexible: EventOutcome,
             continue
         a, b = rigid.metrics[name].value, flexible.metrics[name].value
         if not (math.isfinite(a) and math.isfinite(b)):
-            diff, limit, verdict = math.inf, 0.0, "Flexible"
+            diff, limit, verdict = math.inf, 0.0, 'Flexible'
         else:
             diff, limit = abs(b - a), max(floor, METRIC_RELATIVE * abs(a))
-            verdict = "Rigid" if diff <= limit else "Flexible"
+            verdict = 'Rigid' if diff <= limit else 'Flexible'
         metric_cells.append(Cell(event, name, rigid.metrics[name].unit, diff, limit, verdict,
                                  rigid_value=a, flexible_value=b))
     return cells, metric_cells
@@ -194,7 +197,7 @@ def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: 
 
 
 #: display units of the differences
-DISPLAY = {"rad": ("deg", 180.0 / math.pi), "m": ("mm", 1e3), "N": ("N", 1.0)}
+DISPLAY = {'rad': ('deg', 180.0 / math.pi), 'm': ('mm', 1e3), 'N': ('N', 1.0)}
 
 
 def format_table(table: Table) -> list[list[str]]:
@@ -205,7 +208,7 @@ def format_table(table: Table) -> list[list[str]]:
         for quantity in QUANTITIES:
             cell = next(c for c in table.cells if c.event == event and c.quantity == quantity)
             unit, scale = DISPLAY.get(cell.unit, (cell.unit, 1.0))
-            row.append(f"{cell.label} ({cell.max_difference * scale:.3g} {unit})")
+            row.append(f'{cell.label} ({cell.max_difference * scale:.3g} {unit})')
         rows.append(row)
     return rows
 
@@ -243,20 +246,22 @@ def from_msg(msg) -> Table:
                  tuple(msg.notes))
 
 
-TOPIC = "/vd/capability/table"
+TOPIC = '/vd/capability/table'
 
 
 def run_study(master, study, configuration: str, axles: Sequence[str], out,
               parameters: Sequence[str] = (), tolerances: Mapping[str, float] | None = None,
               progress=None) -> list[Table]:
-    """Run every K&C event rigid and flexible on ``axles`` through the ROS graph
+    """
+    Run every K&C event rigid and flexible on ``axles`` through the ROS graph
     (embedded) and record both runs of every event -- their EventResults and per-step
     Samples as the solver answered the goals -- and each axle's table to one bag,
     ``out/capability_<configuration>``; return the tables.
 
-    One bag for the study: a recorder per run would cost more than the runs themselves."""
-    import time
+    One bag for the study: a recorder per run would cost more than the runs themselves.
+    """
     from pathlib import Path
+    import time
 
     from builtin_interfaces.msg import Time
 
@@ -277,30 +282,30 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
                             f"the {axle} axle (no {axle}_flex group): nothing to compare",
                             file=str(master))
         for event in EVENTS:
-            if event == "steering" and (axle != "front" or "steering" not in config.groups):
+            if event == 'steering' and (axle != 'front' or 'steering' not in config.groups):
                 continue
-            for fidelity in ("rigid", "flexible"):
+            for fidelity in ('rigid', 'flexible'):
                 requests.append(RunRequest(
-                    event=event, configuration=configuration, model="kc", fidelity=fidelity,
+                    event=event, configuration=configuration, model='kc', fidelity=fidelity,
                     axle=axle, parameters=tuple(parameters)))
-    bag = out / f"capability_{configuration}"
+    bag = out / f'capability_{configuration}'
     requests = [validate(study, request) for request in requests]
     check_bag_path(bag)
     results = run_embedded(Path(master), requests, progress)
     errors = [r.error for r in results if r.error]
     if errors:
-        raise RunError("; ".join(errors))
+        raise RunError('; '.join(errors))
     tables = []
     for axle in axles:
         mine = [r for r in results if r.request.axle == axle]
         pairs = [(a.outcome, b.outcome) for a, b in zip(mine[0::2], mine[1::2])]
         chosen = [c for c in config.flexible_components if c in defined[axle]]
         tables.append(build_table(pairs, chosen or defined[axle], tolerances))  # type: ignore[arg-type]
-    writer = BagWriter(bag, {"vd.configuration": configuration,
-                             "vd.data_hash": tables[0].data_hash,
-                             "vd.master_file": str(master), "vd.model": "kc",
-                             "vd.fidelity": "rigid and flexible",
-                             "vd.kind": "capability study", "vd.axles": " ".join(axles)})
+    writer = BagWriter(bag, {'vd.configuration': configuration,
+                             'vd.data_hash': tables[0].data_hash,
+                             'vd.master_file': str(master), 'vd.model': 'kc',
+                             'vd.fidelity': 'rigid and flexible',
+                             'vd.kind': 'capability study', 'vd.axles': ' '.join(axles)})
     try:
         clock = time.time_ns()
 
@@ -313,8 +318,8 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
             assert result.outcome is not None
             for sample in outcome_samples(result.outcome):
                 sample.header.stamp = stamp()
-                writer.write("/vd/kc/state", sample, clock)
-            writer.write("/vd/kc/result", outcome_to_msg(result.outcome, stamp()), clock)
+                writer.write('/vd/kc/state', sample, clock)
+            writer.write('/vd/kc/result', outcome_to_msg(result.outcome, stamp()), clock)
         for table in tables:
             writer.write(TOPIC, to_msg(table, stamp()), clock)
         writer.close()

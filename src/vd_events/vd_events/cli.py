@@ -1,4 +1,5 @@
-"""The ``vd`` command-line tool (ARCHITECTURE §5).
+"""
+The ``vd`` command-line tool (ARCHITECTURE §5).
 
 Bad input never ends in a traceback: every expected error is printed as
 ``file: key: message`` lines (or ``{"error": ...}`` with ``--json``) and the
@@ -7,10 +8,10 @@ exit code is 2. Nothing is written before the inputs are validated.
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable, Sequence
 import json
 import signal
 import sys
-from collections.abc import Callable, Sequence
 
 from vd_data_server.errors import DataError
 
@@ -28,26 +29,26 @@ class UsageError(Exception):
 
 
 def _master_arg(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--master", help="master file (default: the bundled sample study)")
+    parser.add_argument('--master', help='master file (default: the bundled sample study)')
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="vd", description="vd: vehicle-dynamics simulation "
-                                     "on one shared vehicle data set")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = argparse.ArgumentParser(prog='vd', description='vd: vehicle-dynamics simulation '
+                                     'on one shared vehicle data set')
+    sub = parser.add_subparsers(dest='command', required=True)
 
-    data = sub.add_parser("data", help="vehicle data and master files").add_subparsers(
-        dest="data_command", required=True)
-    status = data.add_parser("status", help="overview: variant, UNCHANGED/MODIFIED, SAME/DIFFERS")
+    data = sub.add_parser('data', help='vehicle data and master files').add_subparsers(
+        dest='data_command', required=True)
+    status = data.add_parser('status', help='overview: variant, UNCHANGED/MODIFIED, SAME/DIFFERS')
     _master_arg(status)
-    status.add_argument("--json", action="store_true")
-    show = data.add_parser("show", help="the resolved configuration in SI")
-    show.add_argument("config")
+    status.add_argument('--json', action='store_true')
+    show = data.add_parser('show', help='the resolved configuration in SI')
+    show.add_argument('config')
     _master_arg(show)
-    show.add_argument("--json", action="store_true")
-    check = data.add_parser("check", help="validate the master file and every data file")
+    show.add_argument('--json', action='store_true')
+    check = data.add_parser('check', help='validate the master file and every data file')
     _master_arg(check)
-    check.add_argument("--json", action="store_true")
+    check.add_argument('--json', action='store_true')
 
     from . import commands
 
@@ -63,18 +64,21 @@ def _load(master: str | None):
 
 
 def cmd_data(args: argparse.Namespace) -> int:
-    from vd_data_server.overview import console
-
-    from vd_data_server.overview import configuration_json, print_configuration, print_status
+    from vd_data_server.overview import (
+        configuration_json,
+        console,
+        print_configuration,
+        print_status,
+    )
 
     study = _load(args.master)
     term = console()
-    if args.data_command == "status":
+    if args.data_command == 'status':
         if args.json:
             print(json.dumps(study.to_json(), indent=2))
         else:
             print_status(study, term)
-    elif args.data_command == "show":
+    elif args.data_command == 'show':
         if args.config not in study.configurations:
             raise UsageError(f"{study.master.path}: configuration '{args.config}' does not exist "
                              f"(available: {', '.join(study.configuration_names)})")
@@ -86,21 +90,23 @@ def cmd_data(args: argparse.Namespace) -> int:
     else:
         _check_models(study)
         n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
-        message = (f"{study.master.path}: OK ({len(study.configurations)} configurations, "
-                   f"{n_files} data files)")
+        message = (f'{study.master.path}: OK ({len(study.configurations)} configurations, '
+                   f'{n_files} data files)')
         if args.json:
-            print(json.dumps({"ok": True, "message": message, "warnings": list(study.warnings)}
-                             if study.warnings else {"ok": True, "message": message}))
+            print(json.dumps({'ok': True, 'message': message, 'warnings': list(study.warnings)}
+                             if study.warnings else {'ok': True, 'message': message}))
         else:
             for warning in study.warnings:
-                print(f"warning: {warning}", file=sys.stderr)
+                print(f'warning: {warning}', file=sys.stderr)
             print(message)
     return EXIT_OK
 
 
 def _check_models(study) -> None:
-    """What a run builds from the data beyond loading it: each configuration's tire models
-    (finite forces over the working range), so `vd data check` and a run agree."""
+    """
+    What a run builds from the data beyond loading it: each configuration's tire models
+    (finite forces over the working range), so `vd data check` and a run agree.
+    """
     from vd_data_server.errors import DataErrors
     from vd_data_server.tire_group import tire_properties
     from vd_solvers.errors import SolverError
@@ -109,7 +115,7 @@ def _check_models(study) -> None:
     errors: dict[str, DataError] = {}
     for config in study.configurations.values():
         for group in config.groups.values():
-            if group.kind != "tire":
+            if group.kind != 'tire':
                 continue
             try:
                 MagicFormula(tire_properties(group))
@@ -125,11 +131,11 @@ def _check_models(study) -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    handlers: dict[str, Callable[[argparse.Namespace], int]] = {"data": cmd_data}
+    handlers: dict[str, Callable[[argparse.Namespace], int]] = {'data': cmd_data}
     from . import commands
 
     handlers.update(commands.HANDLERS)
-    want_json = bool(getattr(args, "json", False))
+    want_json = bool(getattr(args, 'json', False))
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         return handlers[args.command](args)
@@ -140,11 +146,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         _report_error(str(err), want_json)
         return EXIT_USAGE
     except OSError as err:  # a file or folder the input named cannot be used
-        where = f"{err.filename}: " if err.filename else ""
-        _report_error(f"{where}{err.strerror or err}", want_json)
+        where = f'{err.filename}: ' if err.filename else ''
+        _report_error(f'{where}{err.strerror or err}', want_json)
         return EXIT_USAGE
     except KeyboardInterrupt:
-        _report_error("interrupted", want_json)
+        _report_error('interrupted', want_json)
         return EXIT_INTERRUPTED
     finally:
         signal.signal(signal.SIGTERM, previous)
@@ -157,10 +163,10 @@ def _terminate(signum, frame) -> None:
 
 def _report_error(message: str, want_json: bool) -> None:
     if want_json:
-        print(json.dumps({"error": message}))
+        print(json.dumps({'error': message}))
     else:
         print(message, file=sys.stderr)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     sys.exit(main())

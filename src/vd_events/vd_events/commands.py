@@ -2,10 +2,10 @@
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 from collections.abc import Callable
+import json
 from pathlib import Path
+import sys
 
 from vd_data_server.errors import DataError
 
@@ -15,66 +15,66 @@ from .runner import RunError, RunOutcome, RunRequest
 HANDLERS: dict[str, Callable[[argparse.Namespace], int]] = {}
 
 #: metrics printed first, when a run has them
-HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh", "critical_speed_kmh",
-            "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
-            "roll_gradient", "natural_frequency", "damping_ratio", "max_lateral_acceleration",
-            "sideslip_gradient", "yaw_rate_response_time_90", "yaw_rate_overshoot",
-            "lateral_acceleration_response_time_90")
+HEADLINE = ('understeer_gradient_deg_per_g', 'characteristic_speed_kmh', 'critical_speed_kmh',
+            'max_lateral_acceleration_g', 'understeer_gradient_linear_deg_per_g',
+            'roll_gradient', 'natural_frequency', 'damping_ratio', 'max_lateral_acceleration',
+            'sideslip_gradient', 'yaw_rate_response_time_90', 'yaw_rate_overshoot',
+            'lateral_acceleration_response_time_90')
 
 
 def add_subcommands(sub: argparse._SubParsersAction) -> None:
-    run = sub.add_parser("run", help="run one event on one configuration")
-    run.add_argument("event")
-    run.add_argument("--config", default=None, help="configuration (default: the first)")
-    run.add_argument("--model", default=None, help="bicycle | two_track | kc | vehicle")
-    run.add_argument("--fidelity", default="", help="rigid | flexible (K&C; default: the "
+    run = sub.add_parser('run', help='run one event on one configuration')
+    run.add_argument('event')
+    run.add_argument('--config', default=None, help='configuration (default: the first)')
+    run.add_argument('--model', default=None, help='bicycle | two_track | kc | vehicle')
+    run.add_argument('--fidelity', default='', help="rigid | flexible (K&C; default: the "
                      "configuration's 'flexible' switch in the master file)")
-    run.add_argument("--axle", default="", help="front | rear (K&C events)")
-    run.add_argument("--set", dest="overrides", action="append", default=[],
-                     metavar="KEY=VALUE", help="temporary override, e.g. "
+    run.add_argument('--axle', default='', help='front | rear (K&C events)')
+    run.add_argument('--set', dest='overrides', action='append', default=[],
+                     metavar='KEY=VALUE', help="temporary override, e.g. "
                      "front_alignment.camber='-1 deg'")
-    run.add_argument("--param", dest="parameters", action="append", default=[],
-                     metavar="NAME=VALUE", help="event parameter, e.g. radius='40 m'")
-    run.add_argument("--master", help="master file (default: the bundled sample study)")
-    run.add_argument("--bag", help="bag directory to write (must not exist)")
-    run.add_argument("--distributed", action="store_true",
-                     help="one process per node (DDS on loopback) instead of one process")
-    run.add_argument("--json", action="store_true")
-    HANDLERS["run"] = cmd_run
+    run.add_argument('--param', dest='parameters', action='append', default=[],
+                     metavar='NAME=VALUE', help="event parameter, e.g. radius='40 m'")
+    run.add_argument('--master', help='master file (default: the bundled sample study)')
+    run.add_argument('--bag', help='bag directory to write (must not exist)')
+    run.add_argument('--distributed', action='store_true',
+                     help='one process per node (DDS on loopback) instead of one process')
+    run.add_argument('--json', action='store_true')
+    HANDLERS['run'] = cmd_run
 
-    study = sub.add_parser("study", help="many events x configurations x models")
-    study.add_argument("plan", help="study plan YAML")
-    study.add_argument("--bag", help="folder for the bags (default: out/<plan name>/bags)")
-    study.add_argument("--report", help="folder for the report (default: out/<plan name>)")
-    study.add_argument("--distributed", action="store_true")
-    study.add_argument("--json", action="store_true")
-    HANDLERS["study"] = cmd_study
+    study = sub.add_parser('study', help='many events x configurations x models')
+    study.add_argument('plan', help='study plan YAML')
+    study.add_argument('--bag', help='folder for the bags (default: out/<plan name>/bags)')
+    study.add_argument('--report', help='folder for the report (default: out/<plan name>)')
+    study.add_argument('--distributed', action='store_true')
+    study.add_argument('--json', action='store_true')
+    HANDLERS['study'] = cmd_study
 
-    report = sub.add_parser("report", help="HTML report + PNG plots from bags")
-    report.add_argument("bags", nargs="+")
-    report.add_argument("--out", default="out/report", help="report folder")
-    HANDLERS["report"] = cmd_report
+    report = sub.add_parser('report', help='HTML report + PNG plots from bags')
+    report.add_argument('bags', nargs='+')
+    report.add_argument('--out', default='out/report', help='report folder')
+    HANDLERS['report'] = cmd_report
 
-    launch = sub.add_parser("launch", help="start the nodes and keep them running")
-    launch.add_argument("--distributed", action="store_true")
-    launch.add_argument("--master", help="master file")
-    HANDLERS["launch"] = cmd_launch
+    launch = sub.add_parser('launch', help='start the nodes and keep them running')
+    launch.add_argument('--distributed', action='store_true')
+    launch.add_argument('--master', help='master file')
+    HANDLERS['launch'] = cmd_launch
 
-    cap = sub.add_parser("capability", help="rigid vs flexible K&C: which model each "
-                         "event and quantity needs (thesis Tables 5.2.1/5.2.2)")
-    cap.add_argument("--config", default=None, help="configuration (default: the first)")
-    cap.add_argument("--axle", default="", help="front | rear (default: both)")
-    cap.add_argument("--master", help="master file (default: the bundled sample study)")
-    cap.add_argument("--out", default=None, help="folder for the bag of the runs and tables "
-                     "(default: out/capability/<configuration>; must not hold it yet)")
-    cap.add_argument("--param", dest="parameters", action="append", default=[],
-                     metavar="NAME=VALUE", help="event parameter for every event, e.g. steps=41")
-    cap.add_argument("--json", action="store_true")
-    HANDLERS["capability"] = cmd_capability
+    cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
+                         'event and quantity needs (thesis Tables 5.2.1/5.2.2)')
+    cap.add_argument('--config', default=None, help='configuration (default: the first)')
+    cap.add_argument('--axle', default='', help='front | rear (default: both)')
+    cap.add_argument('--master', help='master file (default: the bundled sample study)')
+    cap.add_argument('--out', default=None, help='folder for the bag of the runs and tables '
+                     '(default: out/capability/<configuration>; must not hold it yet)')
+    cap.add_argument('--param', dest='parameters', action='append', default=[],
+                     metavar='NAME=VALUE', help='event parameter for every event, e.g. steps=41')
+    cap.add_argument('--json', action='store_true')
+    HANDLERS['capability'] = cmd_capability
 
-    bench = sub.add_parser("bench", help="the benchmark suite")
-    bench.add_argument("--json", action="store_true")
-    HANDLERS["bench"] = cmd_bench
+    bench = sub.add_parser('bench', help='the benchmark suite')
+    bench.add_argument('--json', action='store_true')
+    HANDLERS['bench'] = cmd_bench
 
 
 def _study(master: str | None):
@@ -90,19 +90,21 @@ def _progress_printer(enabled: bool):
         return None
 
     def show(request: RunRequest, fraction: float, stage: str) -> None:
-        print(f"\r  {request.configuration} / {request.event} / {request.model}: "
-              f"{stage} {100 * fraction:3.0f}%", end="", file=sys.stderr, flush=True)
+        print(f'\r  {request.configuration} / {request.event} / {request.model}: '
+              f'{stage} {100 * fraction:3.0f}%', end='', file=sys.stderr, flush=True)
     return show
 
 
 def default_model(event: str) -> str:
-    """The model ``vd run EVENT`` uses without --model: two_track where it applies,
-    else the first model that runs the event."""
+    """
+    The model ``vd run EVENT`` uses without --model: two_track where it applies,
+    else the first model that runs the event.
+    """
     from .runner import MODELS, events_for
 
-    if event in events_for("two_track"):
-        return "two_track"
-    return next((m for m in MODELS if event in events_for(m)), "two_track")
+    if event in events_for('two_track'):
+        return 'two_track'
+    return next((m for m in MODELS if event in events_for(m)), 'two_track')
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -114,10 +116,10 @@ def cmd_run(args: argparse.Namespace) -> int:
     fidelity = args.fidelity
     if not fidelity:
         config = study.configurations.get(config_name)
-        fidelity = "flexible" if model == "kc" and config is not None and config.flexible \
-            else "rigid"
+        fidelity = 'flexible' if model == 'kc' and config is not None and config.flexible \
+            else 'rigid'
     request = RunRequest(event=args.event, configuration=config_name, model=model,
-                         fidelity=fidelity, axle=args.axle or "",
+                         fidelity=fidelity, axle=args.axle or '',
                          overrides=tuple(args.overrides), parameters=tuple(args.parameters),
                          bag=Path(args.bag) if args.bag else None)
     try:
@@ -140,35 +142,36 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def _print_outcome(result: RunOutcome) -> None:
-    from vd_data_server.overview import console
     from rich.table import Table
+
+    from vd_data_server.overview import console
 
     outcome = result.outcome
     assert outcome is not None
-    table = Table(title=f"{outcome.event} - {outcome.configuration} - {outcome.model}",
-                  title_justify="left")
-    table.add_column("metric")
-    table.add_column("value", justify="right")
-    table.add_column("unit")
+    table = Table(title=f'{outcome.event} - {outcome.configuration} - {outcome.model}',
+                  title_justify='left')
+    table.add_column('metric')
+    table.add_column('value', justify='right')
+    table.add_column('unit')
     names = [m for m in HEADLINE if m in outcome.metrics]
     names += [m for m in outcome.metrics if m not in names]
     for name in names:
         metric = outcome.metrics[name]
-        table.add_row(name, f"{metric.value:.5g}", metric.unit)
+        table.add_row(name, f'{metric.value:.5g}', metric.unit)
     term = console()
     term.print(table)
-    for note in [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith("inner "))]:
+    for note in [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith('inner '))]:
         term.print(note)
     if result.bag:
-        term.print(f"bag: {result.bag}")
+        term.print(f'bag: {result.bag}')
 
 
 def cmd_study(args: argparse.Namespace) -> int:
     from .study_plan import load_plan, run_plan
 
     plan = load_plan(Path(args.plan))
-    out = Path(args.report) if args.report else Path("out") / plan.name
-    bags = Path(args.bag) if args.bag else out / "bags"
+    out = Path(args.report) if args.report else Path('out') / plan.name
+    bags = Path(args.bag) if args.bag else out / 'bags'
     summary = run_plan(plan, bags, out, distributed=args.distributed,
                        progress=_progress_printer(sys.stderr.isatty() and not args.json))
     if args.json:
@@ -176,14 +179,14 @@ def cmd_study(args: argparse.Namespace) -> int:
     else:
         print(f"report: {summary['report']}")
         print(f"bags:   {summary['bags']}")
-    return 0 if not summary["errors"] else 1
+    return 0 if not summary['errors'] else 1
 
 
 def cmd_report(args: argparse.Namespace) -> int:
     from .report import build_report
 
     path = build_report([Path(b) for b in args.bags], Path(args.out))
-    print(f"report: {path}")
+    print(f'report: {path}')
     return 0
 
 
@@ -205,27 +208,27 @@ def cmd_bench(args: argparse.Namespace) -> int:
 
 
 def cmd_capability(args: argparse.Namespace) -> int:
-    from .capability import format_table, run_study, QUANTITIES
+    from .capability import QUANTITIES, format_table, run_study
 
     master, study = _study(args.master)
     name = args.config or study.configuration_names[0]
     if name not in study.configurations:
         raise DataError(f"configuration '{name}' does not exist (available: "
                         f"{', '.join(study.configuration_names)})", file=str(master))
-    if args.axle not in ("", "front", "rear"):
+    if args.axle not in ('', 'front', 'rear'):
         raise DataError(f"--axle must be front or rear, found '{args.axle}'")
-    axles = [args.axle] if args.axle else ["front", "rear"]
-    steps = [p for p in args.parameters if p.partition("=")[0].strip() == "steps"]
+    axles = [args.axle] if args.axle else ['front', 'rear']
+    steps = [p for p in args.parameters if p.partition('=')[0].strip() == 'steps']
     if len(steps) != len(args.parameters):
         raise DataError("vd capability takes only the parameter 'steps' (every event has it)")
-    out = Path(args.out) if args.out else Path("out") / "capability" / name
+    out = Path(args.out) if args.out else Path('out') / 'capability' / name
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
     tables = run_study(master, study, name, axles, out, args.parameters, progress=progress)
     if progress:
         print(file=sys.stderr)
     if args.json:
-        print(json.dumps({"configuration": name, "out": str(out),
-                          "tables": [t.to_json() for t in tables]}))
+        print(json.dumps({'configuration': name, 'out': str(out),
+                          'tables': [t.to_json() for t in tables]}))
         return 0
     from rich.table import Table as RichTable
 
@@ -234,16 +237,16 @@ def cmd_capability(args: argparse.Namespace) -> int:
     term = console()
     for t in tables:
         table = RichTable(title=f"capability - {t.configuration} - {t.axle} axle "
-                          f"(flexible: {', '.join(t.components)})", title_justify="left")
-        table.add_column("event")
+                          f"(flexible: {', '.join(t.components)})", title_justify='left')
+        table.add_column('event')
         for q in QUANTITIES:
             table.add_column(q)
         for row in format_table(t):
-            table.add_row(*[c if i == 0 else (f"[red]{c}[/red]" if c.startswith("Flexible")
-                                              else f"[green]{c}[/green]")
+            table.add_row(*[c if i == 0 else (f'[red]{c}[/red]' if c.startswith('Flexible')
+                                              else f'[green]{c}[/green]')
                             for i, c in enumerate(row)])
         term.print(table)
         for note in t.notes:
             term.print(note)
-    term.print(f"bag (both runs of every event and the tables): {out}/capability_{name}")
+    term.print(f'bag (both runs of every event and the tables): {out}/capability_{name}')
     return 0

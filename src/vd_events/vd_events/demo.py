@@ -1,4 +1,5 @@
-"""``make demo``: the bundled sample study end to end.
+"""
+``make demo``: the bundled sample study end to end.
 
 1. The data server serves the sample sedan study; its feedback (the thesis'
    overview tab) is printed as received over ROS.
@@ -10,42 +11,41 @@ Everything goes to ``out/demo/`` (replaced on each run).
 """
 from __future__ import annotations
 
-from vd_data_server.overview import console
-
+from pathlib import Path
 import shutil
 import sys
 import time
-from pathlib import Path
 
+from vd_data_server.overview import console
 
-OUT = Path("out/demo")
+OUT = Path('out/demo')
 #: metric, format, scale of the one-line summaries
 HEADLINE = (
-    ("understeer_gradient_deg_per_g", "K_us {:.3f} deg/g", 1.0),
-    ("characteristic_speed_kmh", "v_char {:.0f} km/h", 1.0),
-    ("max_lateral_acceleration_g", "a_y,max {:.3f} g", 1.0),
-    ("roll_gradient", "roll {:.2f} deg/g", 1.0),
-    ("sideslip_gradient", "sideslip {:.2f} deg/g", 1.0),
-    ("yaw_rate_response_time_90", "t90(r) {:.3f} s", 1.0),
-    ("yaw_rate_overshoot", "overshoot(r) {:.1f} %", 1.0),
-    ("natural_frequency", "f_n {:.2f} Hz", 1.0),
-    ("bump_steer", "bump steer {:.1f} deg/m", 1.0),
-    ("camber_gain", "camber gain {:.1f} deg/m", 1.0),
-    ("wheel_rate", "wheel rate {:.1f} N/mm", 1e-3),
-    ("roll_centre_height_kinematic", "RC {:.0f} mm", 1e3),
-    ("roll_stiffness", "roll stiffness {:.0f} N*m/deg", 1.0),
-    ("lateral_compliance_steer", "lat. compl. steer {:.3f} deg/kN", 1.0),
-    ("lateral_compliance_camber", "camber {:.3f} deg/kN", 1.0),
-    ("anti_squat", "anti-squat {:.0f} %", 1.0),
-    ("steering_ratio", "steering ratio {:.1f}", 1.0),
-    ("ackermann", "Ackermann {:.0f} %", 1.0),
+    ('understeer_gradient_deg_per_g', 'K_us {:.3f} deg/g', 1.0),
+    ('characteristic_speed_kmh', 'v_char {:.0f} km/h', 1.0),
+    ('max_lateral_acceleration_g', 'a_y,max {:.3f} g', 1.0),
+    ('roll_gradient', 'roll {:.2f} deg/g', 1.0),
+    ('sideslip_gradient', 'sideslip {:.2f} deg/g', 1.0),
+    ('yaw_rate_response_time_90', 't90(r) {:.3f} s', 1.0),
+    ('yaw_rate_overshoot', 'overshoot(r) {:.1f} %', 1.0),
+    ('natural_frequency', 'f_n {:.2f} Hz', 1.0),
+    ('bump_steer', 'bump steer {:.1f} deg/m', 1.0),
+    ('camber_gain', 'camber gain {:.1f} deg/m', 1.0),
+    ('wheel_rate', 'wheel rate {:.1f} N/mm', 1e-3),
+    ('roll_centre_height_kinematic', 'RC {:.0f} mm', 1e3),
+    ('roll_stiffness', 'roll stiffness {:.0f} N*m/deg', 1.0),
+    ('lateral_compliance_steer', 'lat. compl. steer {:.3f} deg/kN', 1.0),
+    ('lateral_compliance_camber', 'camber {:.3f} deg/kN', 1.0),
+    ('anti_squat', 'anti-squat {:.0f} %', 1.0),
+    ('steering_ratio', 'steering ratio {:.1f}', 1.0),
+    ('ackermann', 'Ackermann {:.0f} %', 1.0),
 )
 
 
 def _plan_path() -> Path:
     from ament_index_python.packages import get_package_share_directory
 
-    return Path(get_package_share_directory("vd_events")) / "plans" / "demo.yaml"
+    return Path(get_package_share_directory('vd_events')) / 'plans' / 'demo.yaml'
 
 
 def main() -> int:
@@ -60,37 +60,37 @@ def main() -> int:
     term = console()
     t0 = time.perf_counter()
     master = default_master()
-    term.rule("vd demo: the data (data server feedback)")
+    term.rule('vd demo: the data (data server feedback)')
     print_status(load_study(master), term)
     if OUT.exists():
         shutil.rmtree(OUT)
-    term.rule("vd demo: K&C, bicycle and two-track models through the ROS graph")
+    term.rule('vd demo: K&C, bicycle and two-track models through the ROS graph')
     plan = load_plan(_plan_path())
-    summary = run_plan(plan, OUT / "bags", OUT)
-    term.rule("vd demo: rigid vs flexible K&C, the analytical capability of the models")
+    summary = run_plan(plan, OUT / 'bags', OUT)
+    term.rule('vd demo: rigid vs flexible K&C, the analytical capability of the models')
     study = load_study(master)
-    tables = run_study(master, study, "baseline", ["front", "rear"], OUT / "capability")
+    tables = run_study(master, study, 'baseline', ['front', 'rear'], OUT / 'capability')
     for table in tables:
-        needs = sorted({c.event for c in table.cells if c.verdict == "Flexible"})
+        needs = sorted({c.event for c in table.cells if c.verdict == 'Flexible'})
         term.print(f"  baseline    {table.axle:<5} flexible ({', '.join(table.components)}) "
                    f"needed for: {', '.join(needs) or 'none'}")
-    bags = [Path(r["bag"]) for r in summary["runs"] if r["bag"]]
-    bags += sorted((OUT / "capability").glob("capability_*"))
-    summary["report"] = str(build_report(bags, OUT))
-    for run in summary["runs"]:
-        m = run["metrics"]
+    bags = [Path(r['bag']) for r in summary['runs'] if r['bag']]
+    bags += sorted((OUT / 'capability').glob('capability_*'))
+    summary['report'] = str(build_report(bags, OUT))
+    for run in summary['runs']:
+        m = run['metrics']
         parts = []
         for key, fmt, scale in HEADLINE:
             if key in m:
-                parts.append(fmt.format(m[key]["value"] * scale))
-        status = run["error"] or ", ".join(parts)
+                parts.append(fmt.format(m[key]['value'] * scale))
+        status = run['error'] or ', '.join(parts)
         term.print(f"  {run['configuration']:<11} {run['event']:<22} "
                       f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
     term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
     term.print(f"report: {summary['report']}")
-    term.print(f"done in {time.perf_counter() - t0:.1f} s")
-    return 1 if summary["errors"] else 0
+    term.print(f'done in {time.perf_counter() - t0:.1f} s')
+    return 1 if summary['errors'] else 0
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     sys.exit(main())

@@ -1,4 +1,5 @@
-"""Private ROS domains for runs: claimed with an exclusive lock, never shared silently.
+"""
+Private ROS domains for runs: claimed with an exclusive lock, never shared silently.
 
 Every ``vd run`` / ``vd study`` starts its own ROS graph in a domain of its own
 (:data:`DOMAINS`, or ``VD_DOMAIN_ID``). A domain is claimed by an exclusive
@@ -9,18 +10,18 @@ goes stale. A run never starts in a domain another live run holds.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 import fcntl
 import os
+from pathlib import Path
 import random
 import tempfile
-from dataclasses import dataclass
-from pathlib import Path
 
 #: domains drawn for runs (clear of the default 0 and of what ROS tools tend to use)
 DOMAINS = range(101, 216)
 #: the highest domain id ROS 2 accepts with the default port layout
 MAX_DOMAIN_ID = 232
-ENV = "VD_DOMAIN_ID"
+ENV = 'VD_DOMAIN_ID'
 
 
 class DomainError(Exception):
@@ -28,9 +29,9 @@ class DomainError(Exception):
 
 
 def lock_dir() -> Path:
-    base = os.environ.get("XDG_RUNTIME_DIR") or os.path.join(tempfile.gettempdir(),
-                                                              f"vd-{os.getuid()}")
-    return Path(base) / "vd"
+    base = os.environ.get('XDG_RUNTIME_DIR') or os.path.join(tempfile.gettempdir(),
+                                                              f'vd-{os.getuid()}')
+    return Path(base) / 'vd'
 
 
 @dataclass
@@ -47,37 +48,37 @@ class DomainClaim:
 def _try_lock(domain: int) -> DomainClaim | None:
     folder = lock_dir()
     folder.mkdir(parents=True, exist_ok=True, mode=0o700)
-    fd = os.open(folder / f"domain-{domain}.lock", os.O_RDWR | os.O_CREAT, 0o600)
+    fd = os.open(folder / f'domain-{domain}.lock', os.O_RDWR | os.O_CREAT, 0o600)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
         os.close(fd)
         return None
     os.ftruncate(fd, 0)
-    os.write(fd, f"{os.getpid()}\n".encode())
+    os.write(fd, f'{os.getpid()}\n'.encode())
     return DomainClaim(domain, fd)
 
 
 def holder(domain: int) -> str:
     """The pid written by the run holding ``domain`` (for messages)."""
     try:
-        return (lock_dir() / f"domain-{domain}.lock").read_text().strip() or "?"
+        return (lock_dir() / f'domain-{domain}.lock').read_text().strip() or '?'
     except OSError:
-        return "?"
+        return '?'
 
 
 def requested_domain() -> int | None:
     """``VD_DOMAIN_ID`` as a domain id, None if unset; DomainError if it is not one."""
     text = os.environ.get(ENV)
-    if text is None or text.strip() == "":
+    if text is None or text.strip() == '':
         return None
     try:
         domain = int(text.strip())
     except ValueError:
         domain = -1
     if not 0 <= domain <= MAX_DOMAIN_ID:
-        raise DomainError(f"{ENV}: expected a ROS domain id 0..{MAX_DOMAIN_ID}, found "
-                          f"{text[:40]!r}")
+        raise DomainError(f'{ENV}: expected a ROS domain id 0..{MAX_DOMAIN_ID}, found '
+                          f'{text[:40]!r}')
     return domain
 
 
@@ -88,8 +89,8 @@ def claim_domain() -> DomainClaim:
         if wanted is not None:
             claim = _try_lock(wanted)
             if claim is None:
-                raise DomainError(f"{ENV}: ROS domain {wanted} is in use by another vd run "
-                                  f"(pid {holder(wanted)}); unset {ENV} or choose another")
+                raise DomainError(f'{ENV}: ROS domain {wanted} is in use by another vd run '
+                                  f'(pid {holder(wanted)}); unset {ENV} or choose another')
             return claim
         candidates = list(DOMAINS)
         random.shuffle(candidates)
@@ -98,7 +99,7 @@ def claim_domain() -> DomainClaim:
             if claim is not None:
                 return claim
     except OSError as err:
-        raise DomainError(f"cannot claim a ROS domain under {lock_dir()}: "
-                          f"{err.strerror or err}") from None
-    raise DomainError(f"every ROS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use by "
-                      "another vd run")
+        raise DomainError(f'cannot claim a ROS domain under {lock_dir()}: '
+                          f'{err.strerror or err}') from None
+    raise DomainError(f'every ROS domain {DOMAINS.start}..{DOMAINS.stop - 1} is in use by '
+                      'another vd run')

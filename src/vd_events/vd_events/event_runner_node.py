@@ -1,4 +1,5 @@
-"""``ros2 run vd_events event_runner``: runs a study plan against a running graph.
+"""
+``ros2 run vd_events event_runner``: runs a study plan against a running graph.
 
 Parameter ``plan``: a study plan (see study_plan.py). The node sends each run
 as a RunEvent goal to the solver that serves its model (``/vd/steady_state/
@@ -7,11 +8,11 @@ the plan is done. Recording is the recorder node's job (start it first).
 """
 from __future__ import annotations
 
-import sys
 from pathlib import Path
+import sys
 
-import rclpy
 from rcl_interfaces.msg import ParameterDescriptor
+import rclpy
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 
@@ -24,9 +25,9 @@ from .study_plan import expand, load_plan
 
 class EventRunner(Node):
     def __init__(self, **kwargs) -> None:
-        super().__init__("event_runner", **kwargs)
-        self.declare_parameter("plan", "", ParameterDescriptor(
-            description="study plan YAML to run", read_only=True))
+        super().__init__('event_runner', **kwargs)
+        self.declare_parameter('plan', '', ParameterDescriptor(
+            description='study plan YAML to run', read_only=True))
         self.client = _Client(self)
 
 
@@ -36,14 +37,14 @@ def main(args=None) -> None:
     failures = 0
     try:
         node = EventRunner()
-        plan_path = node.get_parameter("plan").value
+        plan_path = node.get_parameter('plan').value
         if not plan_path:
             node.get_logger().error("parameter 'plan' is required")
             raise SystemExit(2)
         plan = load_plan(Path(plan_path))
         study = load_study(plan.master)
-        requests = [r for r in expand(plan, study.configuration_names, Path("."))]
-        requests = [type(r)(**{**r.__dict__, "bag": None}) for r in requests]
+        requests = [r for r in expand(plan, study.configuration_names, Path('.'))]
+        requests = [type(r)(**{**r.__dict__, 'bag': None}) for r in requests]
         requests = [validate(study, request) for request in requests]
         executor = SingleThreadedExecutor()
         executor.add_node(node)
@@ -58,7 +59,7 @@ def main(args=None) -> None:
                 failures += 1
                 node.get_logger().error(message)
     except (DataError, RunError) as err:
-        print(f"event_runner: {err}", file=sys.stderr)
+        print(f'event_runner: {err}', file=sys.stderr)
         failures += 1
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
@@ -69,5 +70,5 @@ def main(args=None) -> None:
     raise SystemExit(1 if failures else 0)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     main()

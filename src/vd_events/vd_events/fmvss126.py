@@ -1,4 +1,5 @@
-"""FMVSS 126 / UN R140 / GTR 8 sine-with-dwell processing and grading, on any time
+"""
+FMVSS 126 / UN R140 / GTR 8 sine-with-dwell processing and grading, on any time
 series -- a simulation or a measured vehicle log.
 
 Implemented as the rule states it (49 CFR 571.126 S5.2, S7.6, S7.9, S7.11; GTR 8):
@@ -27,9 +28,9 @@ Signals in SI (rad, rad/s, m/s^2, s); signs ISO 8855 (left positive). Results ca
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+import math
 
 import numpy as np
 import scipy.signal
@@ -46,7 +47,7 @@ BOS_ANGLE = 5.0 * DEG  # rad
 YAW_TIMES = (1.0, 1.75)  # s after COS
 YAW_LIMITS = (0.35, 0.20)
 DISPLACEMENT_TIME = 1.07  # s after BOS
-DISPLACEMENT_LIMIT = {"light": 1.83, "heavy": 1.52}  # m, GVWR <= / > 3 500 kg
+DISPLACEMENT_LIMIT = {'light': 1.83, 'heavy': 1.52}  # m, GVWR <= / > 3 500 kg
 HEAVY_GVWR = 3500.0  # kg
 RESPONSIVENESS_FROM = 5.0  # x A
 SIS_RANGE = (0.1 * G, 0.375 * G)  # m/s^2, regression window of the SIS runs
@@ -63,20 +64,22 @@ def lowpass(t: np.ndarray, x: np.ndarray, cutoff: float) -> np.ndarray:
     """12-pole phaseless Butterworth low-pass of ``x`` sampled at times ``t`` (uniform)."""
     t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
     if t.size < 30 or t.shape != x.shape:
-        raise ProcessingError("need at least 30 samples of equal-length time and signal")
+        raise ProcessingError('need at least 30 samples of equal-length time and signal')
     dt = np.diff(t)
     if not np.all(dt > 0.0) or np.ptp(dt) > 1e-6 * dt.mean() + 1e-12:
-        raise ProcessingError("time must be strictly increasing with a uniform step")
+        raise ProcessingError('time must be strictly increasing with a uniform step')
     fs = 1.0 / dt.mean()
     if not cutoff < 0.5 * fs:
-        raise ProcessingError(f"sample rate {fs:.1f} Hz is too low for a {cutoff:g} Hz filter")
-    sos = scipy.signal.butter(BUTTERWORTH_POLES, cutoff, fs=fs, output="sos")
+        raise ProcessingError(f'sample rate {fs:.1f} Hz is too low for a {cutoff:g} Hz filter')
+    sos = scipy.signal.butter(BUTTERWORTH_POLES, cutoff, fs=fs, output='sos')
     return scipy.signal.sosfiltfilt(sos, x)
 
 
 def zeroing_end(t: np.ndarray, steering: np.ndarray) -> float:
-    """The instant the steering-wheel rate first exceeds 75 deg/s and stays above it
-    for at least 200 ms (S7.11.3)."""
+    """
+    The instant the steering-wheel rate first exceeds 75 deg/s and stays above it
+    for at least 200 ms (S7.11.3).
+    """
     above = np.abs(np.gradient(steering, t)) > ZERO_RATE
     starts = np.flatnonzero(above & ~np.r_[False, above[:-1]])
     for i in starts:
@@ -85,13 +88,13 @@ def zeroing_end(t: np.ndarray, steering: np.ndarray) -> float:
             j += 1
         if t[j] - t[i] >= ZERO_HOLD:
             return float(t[i])
-    raise ProcessingError("the steering-wheel rate never exceeds 75 deg/s for 200 ms")
+    raise ProcessingError('the steering-wheel rate never exceeds 75 deg/s for 200 ms')
 
 
 def _zeroed(t: np.ndarray, x: np.ndarray, end: float) -> np.ndarray:
     window = (t >= end - ZERO_WINDOW) & (t < end)
     if not np.any(window):
-        raise ProcessingError("no samples in the 1 s zeroing window before the steer")
+        raise ProcessingError('no samples in the 1 s zeroing window before the steer')
     return x - x[window].mean()
 
 
@@ -129,11 +132,11 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
     """Process and grade one run (see the module doc). ``a_reference`` is A (rad)."""
     t = np.asarray(t, dtype=float)
     if not (math.isfinite(a_reference) and a_reference > 0.0):
-        raise ProcessingError(f"A must be a positive angle, got {a_reference!r}")
-    for name, x in (("steering", steering), ("yaw_rate", yaw_rate),
-                    ("lateral_acceleration", lateral_acceleration)):
+        raise ProcessingError(f'A must be a positive angle, got {a_reference!r}')
+    for name, x in (('steering', steering), ('yaw_rate', yaw_rate),
+                    ('lateral_acceleration', lateral_acceleration)):
         if not np.all(np.isfinite(np.asarray(x, dtype=float))):
-            raise ProcessingError(f"{name} holds non-finite samples")
+            raise ProcessingError(f'{name} holds non-finite samples')
     delta = lowpass(t, steering, STEER_CUTOFF)
     r = lowpass(t, yaw_rate, RESPONSE_CUTOFF)
     ay = lowpass(t, lateral_acceleration, RESPONSE_CUTOFF)
@@ -142,7 +145,7 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
     after = t >= end
     first = int(np.argmax(np.abs(delta) * after >= BOS_ANGLE))
     if not abs(delta[first]) >= BOS_ANGLE:
-        raise ProcessingError("the steering-wheel angle never reaches 5 deg")
+        raise ProcessingError('the steering-wheel angle never reaches 5 deg')
     direction = 1 if delta[first] > 0 else -1
     i = first
     while i > 0 and direction * delta[i - 1] >= BOS_ANGLE:
@@ -153,11 +156,11 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
     crossings = [k for k in range(first, t.size - 1) if (s[k] > 0) != (s[k + 1] > 0)
                  and abs(s[k] - s[k + 1]) > 0]
     if len(crossings) < 2:
-        raise ProcessingError("the steer does not reverse and return to zero")
+        raise ProcessingError('the steer does not reverse and return to zero')
     reversal = crossings[0]
     back = [k for k in crossings[1:] if s[k] < 0 <= s[k + 1]]
     if not back:
-        raise ProcessingError("the steering wheel does not return to zero after the dwell")
+        raise ProcessingError('the steering wheel does not return to zero after the dwell')
     cos = _crossing(t, s, back[0])
     amplitude = float(np.max(np.abs(delta[first: reversal + 1])))
     # the first local peak of yaw rate (opposite to the first steer) after the reversal
@@ -168,14 +171,14 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
             peak_i = k
             break
     if peak_i is None:
-        raise ProcessingError("no yaw-rate peak after the steering reversal")
+        raise ProcessingError('no yaw-rate peak after the steering reversal')
     peak = float(r[peak_i])
     if t[-1] < cos + YAW_TIMES[1]:
-        raise ProcessingError(f"the record ends {t[-1] - cos:.2f} s after COS; the rule "
-                              f"needs {YAW_TIMES[1]:g} s")
+        raise ProcessingError(f'the record ends {t[-1] - cos:.2f} s after COS; the rule '
+                              f'needs {YAW_TIMES[1]:g} s')
     ratios = [float(np.interp(cos + dt, t, r) / peak) for dt in YAW_TIMES]
     if t[-1] < bos + DISPLACEMENT_TIME:
-        raise ProcessingError("the record ends before BOS + 1.07 s")
+        raise ProcessingError('the record ends before BOS + 1.07 s')
     window = t >= bos
     tt = np.concatenate(([bos], t[window]))
     aa = np.concatenate(([np.interp(bos, t, ay)], ay[window]))
@@ -183,7 +186,7 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
     yy = np.concatenate(([0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * np.diff(tt))))
     displacement = direction * float(np.interp(bos + DISPLACEMENT_TIME, tt, yy))
     applies = amplitude >= RESPONSIVENESS_FROM * a_reference * (1.0 - 1e-3)
-    limit = DISPLACEMENT_LIMIT["heavy" if gvwr > HEAVY_GVWR else "light"]
+    limit = DISPLACEMENT_LIMIT['heavy' if gvwr > HEAVY_GVWR else 'light']
     return SwdGrade(
         amplitude=amplitude, direction=direction, bos=bos, cos=cos, peak_yaw_rate=peak,
         yaw_rate_ratio_1_00=ratios[0], yaw_rate_ratio_1_75=ratios[1],
@@ -196,29 +199,33 @@ def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float
 
 
 def amplitude_from_sis(runs: Sequence[tuple[np.ndarray, np.ndarray]]) -> float:
-    """A (rad) from slowly-increasing-steer runs, each (steering-wheel angle, lateral
+    """
+    A (rad) from slowly-increasing-steer runs, each (steering-wheel angle, lateral
     acceleration) filtered and zeroed: per run the steering angle at 0.3 g of the linear
     regression of |steering| on |lateral acceleration| over 0.1..0.375 g; averaged over
-    the runs and rounded to 0.1 deg."""
+    the runs and rounded to 0.1 deg.
+    """
     if not runs:
-        raise ProcessingError("no slowly-increasing-steer runs")
+        raise ProcessingError('no slowly-increasing-steer runs')
     values = []
     for k, (steer, ay) in enumerate(runs):
         steer, ay = np.abs(np.asarray(steer, float)), np.abs(np.asarray(ay, float))
         window = (ay >= SIS_RANGE[0]) & (ay <= SIS_RANGE[1])
         if np.count_nonzero(window) < 3:
-            raise ProcessingError(f"SIS run {k}: fewer than 3 samples between 0.1 and 0.375 g "
-                                  "(the run must reach 0.375 g)")
+            raise ProcessingError(f'SIS run {k}: fewer than 3 samples between 0.1 and 0.375 g '
+                                  '(the run must reach 0.375 g)')
         slope, intercept = np.polyfit(ay[window], steer[window], 1)
         values.append(slope * SIS_TARGET + intercept)
     return round(float(np.mean(values)) / DEG, 1) * DEG
 
 
 def amplitude_series(a_reference: float) -> list[float]:
-    """Commanded amplitudes (rad): 1.5A, 2A, ... up to the greater of 6.5A and 270 deg,
-    none beyond 300 deg."""
+    """
+    Commanded amplitudes (rad): 1.5A, 2A, ... up to the greater of 6.5A and 270 deg,
+    none beyond 300 deg.
+    """
     if not (math.isfinite(a_reference) and a_reference > 0.0):
-        raise ProcessingError(f"A must be a positive angle, got {a_reference!r}")
+        raise ProcessingError(f'A must be a positive angle, got {a_reference!r}')
     last = min(max(SERIES_TOP * a_reference, SERIES_MIN_LAST), SERIES_CAP)
     out, k = [], SERIES_START
     while k * a_reference <= last * (1.0 + 1e-12):
@@ -231,8 +238,10 @@ def amplitude_series(a_reference: float) -> list[float]:
 
 def sine_with_dwell(t: np.ndarray, amplitude: float, direction: int = 1,
                     start: float = 1.0, frequency: float = 0.7, dwell: float = 0.5) -> np.ndarray:
-    """The steering-wheel angle of the manoeuvre (S7.9.1): a 0.7 Hz sine, held for the
-    dwell at its second peak, then the last quarter cycle back to zero."""
+    """
+    The steering-wheel angle of the manoeuvre (S7.9.1): a 0.7 Hz sine, held for the
+    dwell at its second peak, then the last quarter cycle back to zero.
+    """
     w = 2.0 * math.pi * frequency
     period = 1.0 / frequency
     tau = np.asarray(t, dtype=float) - start

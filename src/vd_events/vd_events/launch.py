@@ -1,4 +1,5 @@
-"""``vd launch [--distributed]``: start the data server and the solvers and keep them up.
+"""
+``vd launch [--distributed]``: start the data server and the solvers and keep them up.
 
 Unlike ``vd run`` this uses the caller's ROS graph (ROS_DOMAIN_ID as set), so
 other tools (a recorder, Foxglove, ``ros2 run vd_events event_runner``) can use
@@ -7,10 +8,10 @@ the nodes. Ctrl-C stops everything cleanly.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 import signal
 import subprocess
 import time
-from pathlib import Path
 
 
 def launch(master: Path | None, *, distributed: bool) -> int:
@@ -36,12 +37,12 @@ def _embedded(master: Path) -> int:
     from vd_solvers.vehicle_node import VehicleSolver
 
     rclpy.init()
-    nodes = [DataServer(parameter_overrides=[Parameter("master_file", value=str(master))]),
+    nodes = [DataServer(parameter_overrides=[Parameter('master_file', value=str(master))]),
              AnalyticalSolver(), KCSolver(), VehicleSolver()]
     executor = MultiThreadedExecutor(num_threads=2)
     for node in nodes:
         executor.add_node(node)
-    print(f"vd nodes running in one process ({master}); Ctrl-C stops them")
+    print(f'vd nodes running in one process ({master}); Ctrl-C stops them')
     try:
         spin_guarded(executor, nodes[0])
     except (KeyboardInterrupt, ExternalShutdownException):
@@ -56,11 +57,11 @@ def _embedded(master: Path) -> int:
 def _distributed(master: Path) -> int:
     from .runner import _executable, stop_processes
 
-    commands = [[_executable("vd_data_server", "data_server"), "--ros-args", "-p",
-                 f"master_file:={master}"],
-                [_executable("vd_solvers", "analytical_solver")],
-                [_executable("vd_solvers", "kc_solver")],
-                [_executable("vd_solvers", "vehicle_solver")]]
+    commands = [[_executable('vd_data_server', 'data_server'), '--ros-args', '-p',
+                 f'master_file:={master}'],
+                [_executable('vd_solvers', 'analytical_solver')],
+                [_executable('vd_solvers', 'kc_solver')],
+                [_executable('vd_solvers', 'vehicle_solver')]]
     def stop(signum, frame):  # SIGTERM (and SIGINT where a shell ignores it) end the launch
         raise KeyboardInterrupt
 
@@ -68,7 +69,7 @@ def _distributed(master: Path) -> int:
     # the nodes end with the launch, even after kill -9 (node_main.die_with_parent)
     env = dict(os.environ, VD_PARENT_PID=str(os.getpid()))
     procs = [subprocess.Popen(cmd, env=env) for cmd in commands]
-    print(f"vd nodes running as {len(procs)} processes ({master}); Ctrl-C stops them")
+    print(f'vd nodes running as {len(procs)} processes ({master}); Ctrl-C stops them')
     try:
         while all(p.poll() is None for p in procs):
             time.sleep(0.5)

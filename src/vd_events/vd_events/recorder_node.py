@@ -1,4 +1,5 @@
-"""``ros2 run vd_events recorder``: records vd topics to an MCAP bag.
+"""
+``ros2 run vd_events recorder``: records vd topics to an MCAP bag.
 
 The role ``ros2 bag record`` plays (which pip-installed ROS lacks). Parameter
 ``bag``: the bag directory to create (refused if it exists). The bag is
@@ -15,45 +16,51 @@ import sys
 import threading
 import time
 
-import rclpy
+from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
+import rclpy
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
-from nav_msgs.msg import Odometry
-from tf2_msgs.msg import TFMessage
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
-from vd_interfaces.msg import (Configuration, DataStatus, EventResult, Provenance, Sample,
-                               VehicleState)
 
+from tf2_msgs.msg import TFMessage
 from vd_data_server.node_main import die_with_parent
 from vd_events.bag import BagError, BagWriter
+from vd_interfaces.msg import (
+    Configuration,
+    DataStatus,
+    EventResult,
+    Provenance,
+    Sample,
+    VehicleState,
+)
 from vd_solvers.solver_node import LATCHED, SAMPLES
 
 # the publishers' own profiles: latched data, results and samples kept for late joiners
 _LATCHED = LATCHED
 _STREAM = SAMPLES
 #: where the recorder says how many event results it has written completely (latched)
-RECORDED_TOPIC = "/vd/recorder/recorded"
+RECORDED_TOPIC = '/vd/recorder/recorded'
 
 #: the full vehicle's pose, one message per recorded step (odometry and TF)
-ODOMETRY_TOPIC = "/vd/vehicle/odom"
-TF_TOPIC = "/tf"
+ODOMETRY_TOPIC = '/vd/vehicle/odom'
+TF_TOPIC = '/tf'
 #: seconds the recorder process stays up after ~/finish, for its response to be delivered
 FINISH_LINGER = 0.3
 
 #: topic -> (type, QoS) recorded by default
 TOPICS = {
-    "/vd/configuration": (Configuration, _LATCHED),
-    "/vd/data_status": (DataStatus, _LATCHED),
-    "/vd/provenance": (Provenance, _STREAM),
-    "/vd/steady_state/result": (EventResult, _STREAM),
-    "/vd/steady_state/state": (Sample, _STREAM),
-    "/vd/kc/result": (EventResult, _STREAM),
-    "/vd/kc/state": (Sample, _STREAM),
-    "/vd/vehicle/result": (EventResult, _STREAM),
-    "/vd/vehicle/state": (VehicleState, _STREAM),
+    '/vd/configuration': (Configuration, _LATCHED),
+    '/vd/data_status': (DataStatus, _LATCHED),
+    '/vd/provenance': (Provenance, _STREAM),
+    '/vd/steady_state/result': (EventResult, _STREAM),
+    '/vd/steady_state/state': (Sample, _STREAM),
+    '/vd/kc/result': (EventResult, _STREAM),
+    '/vd/kc/state': (Sample, _STREAM),
+    '/vd/vehicle/result': (EventResult, _STREAM),
+    '/vd/vehicle/state': (VehicleState, _STREAM),
     ODOMETRY_TOPIC: (Odometry, _STREAM),
     TF_TOPIC: (TFMessage, _STREAM),
 }
@@ -66,8 +73,8 @@ _LATCHED_ONE = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1,
 
 def _stamp_ns(msg) -> int | None:
     """The stamp of a result, sample or provenance message (None for data topics)."""
-    stamp = getattr(msg, "stamp", None)
-    if stamp is None and hasattr(msg, "header"):
+    stamp = getattr(msg, 'stamp', None)
+    if stamp is None and hasattr(msg, 'header'):
         stamp = msg.header.stamp
     if stamp is None or isinstance(msg, (Configuration, DataStatus)):
         return None
@@ -76,18 +83,18 @@ def _stamp_ns(msg) -> int | None:
 
 class Recorder(Node):
     def __init__(self, bag: str | None = None, **kwargs) -> None:
-        super().__init__("recorder", **kwargs)
-        self.declare_parameter("bag", bag or "", ParameterDescriptor(
-            description="bag directory to create", read_only=True))
-        self.declare_parameter("configurations", [""], ParameterDescriptor(
+        super().__init__('recorder', **kwargs)
+        self.declare_parameter('bag', bag or '', ParameterDescriptor(
+            description='bag directory to create', read_only=True))
+        self.declare_parameter('configurations', [''], ParameterDescriptor(
             description="record only these configurations ('' = all)", read_only=True))
-        path = self.get_parameter("bag").value
+        path = self.get_parameter('bag').value
         if not path:
             raise ValueError("parameter 'bag' is required (the bag directory to create)")
-        wanted = [c for c in self.get_parameter("configurations").value if c]
+        wanted = [c for c in self.get_parameter('configurations').value if c]
         self.only = set(wanted)
-        self.writer = BagWriter(path, {"vd.recorder": "vd_events recorder"})
-        self.counts: dict[str, int] = {topic: 0 for topic in TOPICS}
+        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
+        self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
         self._pending: list[tuple[tuple[str, str, str], int, int]] = []
@@ -99,14 +106,14 @@ class Recorder(Node):
         # stops it from its own thread: writes and close never overlap
         self._lock = threading.Lock()
         try:
-            self.create_service(Trigger, "~/finish", self._finish)
+            self.create_service(Trigger, '~/finish', self._finish)
             self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
             for topic, (msg_type, qos) in TOPICS.items():
                 self.create_subscription(msg_type, topic, self._callback(topic), qos)
         except BaseException:  # e.g. a SIGTERM that shut the context down meanwhile
             self.writer.abort()
             raise
-        self.get_logger().info(f"recording to {path}")
+        self.get_logger().info(f'recording to {path}')
 
     def _callback(self, topic: str):
         def record(msg) -> None:
@@ -116,43 +123,45 @@ class Recorder(Node):
                 try:
                     self._record(topic, msg)
                 except OSError as err:
-                    self.error = f"{self.writer.path}: cannot write the bag: {err.strerror or err}"
+                    self.error = f'{self.writer.path}: cannot write the bag: {err.strerror or err}'
                     self.get_logger().error(self.error)
                     self.writer.abort()
         return record
 
     def _record(self, topic: str, msg) -> None:
-        name = getattr(msg, "configuration", None)
-        if topic == "/vd/configuration":
+        name = getattr(msg, 'configuration', None)
+        if topic == '/vd/configuration':
             name = msg.name
         if self.only and name is not None and name not in self.only:
             return
         stamp = _stamp_ns(msg)
         if stamp is not None and stamp < self.start:
             return  # kept by a solver from an earlier run: not this recording's
-        if topic == "/vd/provenance":
-            for key in ("configuration", "data_hash", "model", "fidelity", "event",
-                        "master_file", "software_version"):
-                self.writer.set_custom_data(f"vd.{key}", str(getattr(msg, key)))
-            self.writer.set_custom_data("vd.modified", "; ".join(
-                f"{g.group}.{k.key}={k.master_value} {k.unit}".strip()
-                for g in msg.groups for k in g.modified_keys) or "none")
+        if topic == '/vd/provenance':
+            for key in ('configuration', 'data_hash', 'model', 'fidelity', 'event',
+                        'master_file', 'software_version'):
+                self.writer.set_custom_data(f'vd.{key}', str(getattr(msg, key)))
+            self.writer.set_custom_data('vd.modified', '; '.join(
+                f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
+                for g in msg.groups for k in g.modified_keys) or 'none')
         self.writer.write(topic, msg, time.time_ns())
         self.counts[topic] += 1
-        if topic.endswith("/state"):
+        if topic.endswith('/state'):
             key = (msg.configuration, msg.event, msg.model)
             self._samples[key] = self._samples.get(key, 0) + 1
-        elif topic.endswith("/result"):
+        elif topic.endswith('/result'):
             steps = max((len(c.values) for c in msg.channels), default=0)
-            if msg.model == "vehicle":
+            if msg.model == 'vehicle':
                 self._odometry_needed += steps
             self._pending.append(((msg.configuration, msg.event, msg.model), steps,
                                   self._odometry_needed))
         self._publish_complete()
 
     def _publish_complete(self) -> None:
-        """Count the results whose every step sample (and, for the full vehicle, every
-        odometry message) is written too, and say so."""
+        """
+        Count the results whose every step sample (and, for the full vehicle, every
+        odometry message) is written too, and say so.
+        """
         odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending
                 if self._samples.get(p[0], 0) >= p[1] and odometry >= p[2]]
@@ -197,7 +206,7 @@ def main(args=None) -> None:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception as err:  # noqa: BLE001 - report a bad parameter without a traceback
-        print(f"recorder: {err}", flush=True)
+        print(f'recorder: {err}', flush=True)
         raise SystemExit(2) from None
     finally:
         # first of all, whatever ended the recording: no unfinished bag may stay
@@ -213,5 +222,5 @@ def main(args=None) -> None:
         sys.exit(1)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     main()

@@ -1,4 +1,5 @@
-"""``vd report BAG...``: an HTML report with PNG plots from recorded bags.
+"""
+``vd report BAG...``: an HTML report with PNG plots from recorded bags.
 
 Per event and model, one plot per channel pair with every configuration
 overlaid (like the thesis' Figs. 4.1.1-4.1.2, 4.2.x-4.3.x and, for the full vehicle,
@@ -7,11 +8,11 @@ and the configuration overview with the modified/unchanged feedback.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 import html
 import math
 import os
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +23,7 @@ from .bag import BagError, read_bag
 
 G = 9.80665
 DEG = 180.0 / math.pi
-LINE_STYLES = ("-", "--", ":", "-.")
+LINE_STYLES = ('-', '--', ':', '-.')
 
 
 @dataclass(frozen=True)
@@ -35,98 +36,98 @@ class Axis:
 
 #: event -> plots (x axis, y axis); channels missing from a result are skipped
 PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
-    "handling_diagram": (
-        (Axis("slip_angle_difference", "front minus rear slip angle α_f − α_r [deg]", DEG),
-         Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G)),
-        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
-         Axis("steer_angle", "road-wheel steer angle [deg]", DEG)),
-        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
-         Axis("roll_angle", "roll angle [deg]", DEG)),
+    'handling_diagram': (
+        (Axis('slip_angle_difference', 'front minus rear slip angle α_f − α_r [deg]', DEG),
+         Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G)),
+        (Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G),
+         Axis('steer_angle', 'road-wheel steer angle [deg]', DEG)),
+        (Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G),
+         Axis('roll_angle', 'roll angle [deg]', DEG)),
         # the thesis' Figs. 4.1.1-4.1.2: axle lateral force over slip angle
-        (Axis("slip_angle_front", "front slip angle [deg]", DEG),
-         Axis("lateral_force_front_axle", "front axle lateral force [kN]", 1e-3)),
-        (Axis("slip_angle_rear", "rear slip angle [deg]", DEG),
-         Axis("lateral_force_rear_axle", "rear axle lateral force [kN]", 1e-3)),
+        (Axis('slip_angle_front', 'front slip angle [deg]', DEG),
+         Axis('lateral_force_front_axle', 'front axle lateral force [kN]', 1e-3)),
+        (Axis('slip_angle_rear', 'rear slip angle [deg]', DEG),
+         Axis('lateral_force_rear_axle', 'rear axle lateral force [kN]', 1e-3)),
     ),
-    "steady_state_circular": (
-        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
-         Axis("steer_angle", "road-wheel steer angle [deg]", DEG)),
-        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
-         Axis("sideslip", "sideslip angle [deg]", DEG)),
-        (Axis("lateral_acceleration", "lateral acceleration [g]", 1 / G),
-         Axis("roll_angle", "roll angle [deg]", DEG)),
+    'steady_state_circular': (
+        (Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G),
+         Axis('steer_angle', 'road-wheel steer angle [deg]', DEG)),
+        (Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G),
+         Axis('sideslip', 'sideslip angle [deg]', DEG)),
+        (Axis('lateral_acceleration', 'lateral acceleration [g]', 1 / G),
+         Axis('roll_angle', 'roll angle [deg]', DEG)),
     ),
-    "step_steer": (
-        (Axis("time", "time [s]"), Axis("yaw_rate", "yaw rate [deg/s]", DEG)),
-        (Axis("time", "time [s]"), Axis("lateral_acceleration", "lateral acceleration [m/s²]")),
+    'step_steer': (
+        (Axis('time', 'time [s]'), Axis('yaw_rate', 'yaw rate [deg/s]', DEG)),
+        (Axis('time', 'time [s]'), Axis('lateral_acceleration', 'lateral acceleration [m/s²]')),
     ),
 }
-_TRAVEL = Axis("wheel_travel_left", "vertical wheel travel, left [mm]", 1e3)
-_OPPOSITE = Axis("wheel_travel_left", "opposite wheel travel, left wheel [mm]", 1e3)
-_FORCE = Axis("applied_force", "applied force per wheel [kN]", 1e-3)
-_TOE = Axis("toe_left", "toe angle, left [deg]", DEG)
-_CAMBER = Axis("camber_left", "camber angle, left [deg]", DEG)
+_TRAVEL = Axis('wheel_travel_left', 'vertical wheel travel, left [mm]', 1e3)
+_OPPOSITE = Axis('wheel_travel_left', 'opposite wheel travel, left wheel [mm]', 1e3)
+_FORCE = Axis('applied_force', 'applied force per wheel [kN]', 1e-3)
+_TOE = Axis('toe_left', 'toe angle, left [deg]', DEG)
+_CAMBER = Axis('camber_left', 'camber angle, left [deg]', DEG)
 KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
-    "parallel_wheel_travel": (
+    'parallel_wheel_travel': (
         (_TRAVEL, _TOE), (_TRAVEL, _CAMBER),
-        (_TRAVEL, Axis("track", "track change [mm]", 1e3, relative=True)),
-        (_TRAVEL, Axis("contact_point_x_left", "wheelbase change, left contact patch x [mm]",
+        (_TRAVEL, Axis('track', 'track change [mm]', 1e3, relative=True)),
+        (_TRAVEL, Axis('contact_point_x_left', 'wheelbase change, left contact patch x [mm]',
                        1e3, relative=True)),
-        (_TRAVEL, Axis("pad_force_left", "wheel vertical load, left [N]")),
-        (_TRAVEL, Axis("caster_left", "caster, left [deg]", DEG)),
+        (_TRAVEL, Axis('pad_force_left', 'wheel vertical load, left [N]')),
+        (_TRAVEL, Axis('caster_left', 'caster, left [deg]', DEG)),
     ),
-    "opposite_wheel_travel": (
+    'opposite_wheel_travel': (
         (_OPPOSITE, _TOE), (_OPPOSITE, _CAMBER),
-        (_OPPOSITE, Axis("pad_force_left", "wheel vertical load, left [N]")),
+        (_OPPOSITE, Axis('pad_force_left', 'wheel vertical load, left [N]')),
     ),
-    "lateral_force": (
+    'lateral_force': (
         (_FORCE, _CAMBER), (_FORCE, _TOE),
-        (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
-        (_FORCE, Axis("contact_point_y_left", "contact patch y change, left [mm]", 1e3,
+        (_FORCE, Axis('pad_force_left', 'wheel vertical load, left [N]')),
+        (_FORCE, Axis('contact_point_y_left', 'contact patch y change, left [mm]', 1e3,
                       relative=True)),
     ),
-    "longitudinal_force": (
-        (_FORCE, Axis("wheel_centre_x_left", "wheel centre x change, left [mm]", 1e3,
+    'longitudinal_force': (
+        (_FORCE, Axis('wheel_centre_x_left', 'wheel centre x change, left [mm]', 1e3,
                       relative=True)),
-        (_FORCE, Axis("pad_force_left", "wheel vertical load, left [N]")),
+        (_FORCE, Axis('pad_force_left', 'wheel vertical load, left [N]')),
         (_FORCE, _TOE),
     ),
-    "steering": (
-        (Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG),
-         Axis("steer_angle_left", "road-wheel angle, left [deg]", DEG)),
-        (Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG),
-         Axis("steer_angle_right", "road-wheel angle, right [deg]", DEG)),
-        (Axis("rack_travel", "rack travel [mm]", 1e3),
-         Axis("rack_force", "rack force [N]")),
+    'steering': (
+        (Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG),
+         Axis('steer_angle_left', 'road-wheel angle, left [deg]', DEG)),
+        (Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG),
+         Axis('steer_angle_right', 'road-wheel angle, right [deg]', DEG)),
+        (Axis('rack_travel', 'rack travel [mm]', 1e3),
+         Axis('rack_force', 'rack force [N]')),
     ),
 }
-_TIME = Axis("time", "time [s]")
-_AY = Axis("lateral_acceleration", "lateral acceleration [m/s²]")
+_TIME = Axis('time', 'time [s]')
+_AY = Axis('lateral_acceleration', 'lateral acceleration [m/s²]')
 #: full-vehicle plots; over time: the thesis' Figs. 4.4.1-4.4.3 (lateral acceleration,
 #: roll and steering angle over time, configurations overlaid)
 VEHICLE_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
-    "constant_radius_turn": (
+    'constant_radius_turn': (
         (_TIME, _AY),
-        (_TIME, Axis("roll", "roll angle [deg]", DEG)),
-        (_TIME, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
-        (_AY, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
-        (_AY, Axis("roll", "roll angle [deg]", DEG)),
-        (_AY, Axis("sideslip", "sideslip angle [deg]", DEG)),
+        (_TIME, Axis('roll', 'roll angle [deg]', DEG)),
+        (_TIME, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG)),
+        (_AY, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG)),
+        (_AY, Axis('roll', 'roll angle [deg]', DEG)),
+        (_AY, Axis('sideslip', 'sideslip angle [deg]', DEG)),
     ),
-    "step_steer": (
-        (_TIME, Axis("yaw_rate", "yaw rate [deg/s]", DEG)),
+    'step_steer': (
+        (_TIME, Axis('yaw_rate', 'yaw rate [deg/s]', DEG)),
         (_TIME, _AY),
-        (_TIME, Axis("roll", "roll angle [deg]", DEG)),
-        (_TIME, Axis("steering_wheel_angle", "steering-wheel angle [deg]", DEG)),
+        (_TIME, Axis('roll', 'roll angle [deg]', DEG)),
+        (_TIME, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG)),
     ),
 }
-HEADLINE = ("understeer_gradient_deg_per_g", "characteristic_speed_kmh",
-            "max_lateral_acceleration_g", "understeer_gradient_linear_deg_per_g",
-            "roll_gradient", "natural_frequency", "damping_ratio", "bump_steer", "camber_gain",
-            "wheel_rate", "roll_centre_height_kinematic", "roll_stiffness", "roll_steer",
-            "lateral_compliance_steer", "lateral_compliance_camber", "steering_ratio",
-            "sideslip_gradient", "yaw_rate_response_time_90", "yaw_rate_overshoot",
-            "lateral_acceleration_response_time_90", "yaw_rate_gain")
+HEADLINE = ('understeer_gradient_deg_per_g', 'characteristic_speed_kmh',
+            'max_lateral_acceleration_g', 'understeer_gradient_linear_deg_per_g',
+            'roll_gradient', 'natural_frequency', 'damping_ratio', 'bump_steer', 'camber_gain',
+            'wheel_rate', 'roll_centre_height_kinematic', 'roll_stiffness', 'roll_steer',
+            'lateral_compliance_steer', 'lateral_compliance_camber', 'steering_ratio',
+            'sideslip_gradient', 'yaw_rate_response_time_90', 'yaw_rate_overshoot',
+            'lateral_acceleration_response_time_90', 'yaw_rate_gain')
 
 
 @dataclass
@@ -143,12 +144,12 @@ class Run:
     notes: list[str]
     modified: list[str]
     sources: dict[str, str] = field(default_factory=dict)
-    fidelity: str = "rigid"
+    fidelity: str = 'rigid'
 
     @property
     def label(self) -> str:
-        flex = ", flexible" if self.fidelity == "flexible" else ""
-        return f"{self.configuration} ({self.model}{flex})"
+        flex = ', flexible' if self.fidelity == 'flexible' else ''
+        return f'{self.configuration} ({self.model}{flex})'
 
 
 def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
@@ -159,13 +160,13 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
         provenance: dict[str, list[str]] = {}
         for item in read_bag(bag):
             msg = item.msg
-            if item.topic == "/vd/data_status":
+            if item.topic == '/vd/data_status':
                 status = msg
-            elif item.topic == "/vd/provenance":
+            elif item.topic == '/vd/provenance':
                 provenance[msg.configuration] = [
-                    f"{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}".strip()
+                    f'{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}'.strip()
                     for g in msg.groups for k in g.modified_keys]
-            elif item.topic.endswith("/result"):
+            elif item.topic.endswith('/result'):
                 runs.append(Run(
                     bag=bag, event=msg.event, configuration=msg.configuration, model=msg.model,
                     axle=msg.axle, data_hash=msg.data_hash,
@@ -182,16 +183,16 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     """Write ``out/report.html`` and its PNGs; returns the HTML path."""
     import matplotlib
 
-    matplotlib.use("Agg")
+    matplotlib.use('Agg')
     import matplotlib.pyplot as plt
 
     for bag in bags:
-        if not (Path(bag) / "metadata.yaml").is_file():
-            raise BagError(f"{bag}: not a finished rosbag2 bag (no metadata.yaml)")
+        if not (Path(bag) / 'metadata.yaml').is_file():
+            raise BagError(f'{bag}: not a finished rosbag2 bag (no metadata.yaml)')
     runs, status = load_runs(bags)
     tables = load_capability(bags)
     if not runs and not tables:
-        raise BagError("no event results in " + ", ".join(str(b) for b in bags))
+        raise BagError('no event results in ' + ', '.join(str(b) for b in bags))
     out.mkdir(parents=True, exist_ok=True)
     sections: list[str] = [_capability_section(t) for t in tables]
     groups: dict[tuple[str, str, str], list[Run]] = {}
@@ -199,7 +200,7 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
     for (event, axle, family), members in groups.items():
         images = []
-        table = {"kc": KC_PLOTS, "vehicle": VEHICLE_PLOTS}.get(family, PLOTS)
+        table = {'kc': KC_PLOTS, 'vehicle': VEHICLE_PLOTS}.get(family, PLOTS)
         plots = table.get(event, _generic_plots(members[0]))
         for i, (xa, ya) in enumerate(plots):
             usable = [r for r in members if xa.channel in r.channels and ya.channel in r.channels]
@@ -213,56 +214,56 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
                 # line styles cycle too, so identical curves stay visible on top of each other
                 ax.plot(x * xa.scale, y * ya.scale, label=run.label,
                         linestyle=LINE_STYLES[k % len(LINE_STYLES)],
-                        marker="." if len(x) < 30 else None)
+                        marker='.' if len(x) < 30 else None)
             ax.set_xlabel(xa.label)
             ax.set_ylabel(ya.label)
             ax.grid(True, alpha=0.3)
-            ax.legend(fontsize="small")
+            ax.legend(fontsize='small')
             ax.set_title(f"{event}{' ' + axle if axle else ''}: {ya.channel} vs {xa.channel}",
-                         fontsize="medium")
+                         fontsize='medium')
             name = f"{event}{'_' + axle if axle else ''}_{family}_{i}.png"
             fig.tight_layout()
             fig.savefig(out / name)
             plt.close(fig)
             images.append(name)
         sections.append(_section(event, axle, family, members, images))
-    html_path = out / "report.html"
-    tmp = out / ".report.html.partial"
-    tmp.write_text(_page(runs, status, sections, bags, out), encoding="utf-8")
+    html_path = out / 'report.html'
+    tmp = out / '.report.html.partial'
+    tmp.write_text(_page(runs, status, sections, bags, out), encoding='utf-8')
     os.replace(tmp, html_path)
     return html_path
 
 
 def _family(model: str) -> str:
-    return "analytical" if model in ("bicycle", "two_track") else model
+    return 'analytical' if model in ('bicycle', 'two_track') else model
 
 
 def _generic_plots(run: Run) -> Sequence[tuple[Axis, Axis]]:
     names = list(run.channels)
     if not names:
         return ()
-    x = Axis(names[0], f"{names[0]} [{run.units[names[0]]}]")
-    return tuple((x, Axis(n, f"{n} [{run.units[n]}]")) for n in names[1:7])
+    x = Axis(names[0], f'{names[0]} [{run.units[names[0]]}]')
+    return tuple((x, Axis(n, f'{n} [{run.units[n]}]')) for n in names[1:7])
 
 
 def _fmt(value: float) -> str:
-    return "–" if not math.isfinite(value) else f"{value:.4g}"
+    return '–' if not math.isfinite(value) else f'{value:.4g}'
 
 
 def _section(event: str, axle: str, family: str, runs: list[Run], images: list[str]) -> str:
     names = [m for m in HEADLINE if any(m in r.metrics for r in runs)]
     names += sorted({m for r in runs for m in r.metrics} - set(names))
-    head = "".join(f"<th>{html.escape(n)}<br><small>{html.escape(_unit(runs, n))}</small></th>"
+    head = ''.join(f'<th>{html.escape(n)}<br><small>{html.escape(_unit(runs, n))}</small></th>'
                    for n in names)
-    rows = "".join(
-        "<tr><td>" + html.escape(r.label) + "</td>" + "".join(
+    rows = ''.join(
+        '<tr><td>' + html.escape(r.label) + '</td>' + ''.join(
             f"<td>{_fmt(r.metrics[n][0]) if n in r.metrics else ''}</td>" for n in names)
-        + "</tr>" for r in runs)
-    imgs = "".join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
-    notes = "".join(f"<li>{html.escape(r.label)}: {html.escape(r.notes[0])}</li>"
+        + '</tr>' for r in runs)
+    imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
+    notes = ''.join(f'<li>{html.escape(r.label)}: {html.escape(r.notes[0])}</li>'
                     for r in runs if r.notes)
     title = f"{event}{' — ' + axle if axle else ''} ({family})"
-    budgets = "".join(_budget(r) for r in runs)
+    budgets = ''.join(_budget(r) for r in runs)
     return (f"<h2>{html.escape(title)}</h2><div class='plots'>{imgs}</div>"
             f"<div class='scroll'><table><tr><th>run</th>{head}</tr>{rows}</table></div>"
             f"{budgets}<ul class='notes'>{notes}</ul>")
@@ -270,16 +271,16 @@ def _section(event: str, axle: str, family: str, runs: list[Run], images: list[s
 
 def _budget(run: Run) -> str:
     """The understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
-    names = [f"understeer_budget_{t}_deg_per_g" for t in BUDGET_TERMS]
+    names = [f'understeer_budget_{t}_deg_per_g' for t in BUDGET_TERMS]
     if not all(n in run.metrics for n in names):
-        return ""
-    rows = "".join(
+        return ''
+    rows = ''.join(
         f"<tr><td>{html.escape(t.replace('_', ' '))}</td><td>{run.metrics[n][0]:.3f}</td>"
         f"<td><small>{html.escape(run.sources.get(n, ''))}</small></td></tr>"
         for t, n in zip(BUDGET_TERMS, names))
-    total = run.metrics.get("understeer_budget_total_deg_per_g")
+    total = run.metrics.get('understeer_budget_total_deg_per_g')
     if total is not None:
-        rows += f"<tr><th>total</th><th>{total[0]:.3f}</th><td></td></tr>"
+        rows += f'<tr><th>total</th><th>{total[0]:.3f}</th><td></td></tr>'
     return (f"<h3>Understeer budget — {html.escape(run.label)}</h3>"
             f"<table class='budget'><tr><th>term</th><th>deg/g</th><th>source</th></tr>"
             f"{rows}</table>")
@@ -289,32 +290,32 @@ def _unit(runs: list[Run], name: str) -> str:
     for run in runs:
         if name in run.metrics:
             return run.metrics[name][1]
-    return ""
+    return ''
 
 
 def _overview(status) -> str:
     if status is None:
-        return "<p>No data status recorded.</p>"
+        return '<p>No data status recorded.</p>'
     configs = list(status.configurations)
     cells: dict[tuple[str, str], object] = {(s.configuration, s.group): s for s in status.status}
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in configs)
+    head = ''.join(f'<th>{html.escape(c)}</th>' for c in configs)
     rows = []
     for group in status.groups:
-        tds, consistency = [], "SAME"
+        tds, consistency = [], 'SAME'
         for c in configs:
             s = cells.get((c, group))
             if s is None or not s.variant:
                 tds.append("<td class='unused'>–</td>")
                 continue
             modified = s.state == s.MODIFIED
-            consistency = "DIFFERS" if s.consistency == s.DIFFERS else "SAME"
-            title = "; ".join(f"{k.key}: {k.data_value} → {k.master_value} {k.unit}"
+            consistency = 'DIFFERS' if s.consistency == s.DIFFERS else 'SAME'
+            title = '; '.join(f'{k.key}: {k.data_value} → {k.master_value} {k.unit}'
                               for k in s.modified_keys)
             tds.append(f"<td class='{'mod' if modified else 'unch'}' title='{html.escape(title)}'>"
                        f"{html.escape(s.variant)} {'MODIFIED' if modified else 'UNCHANGED'}</td>")
         rows.append(f"<tr><th>{html.escape(group)}</th>{''.join(tds)}"
                     f"<td class='{consistency.lower()}'>{consistency}</td></tr>")
-    modified = "".join(
+    modified = ''.join(
         f"<tr><td>{html.escape(s.configuration)}</td><td>{html.escape(s.group)}</td>"
         f"<td>{html.escape(k.key)}</td><td>{html.escape(k.data_value)}</td>"
         f"<td class='mod'>{html.escape(k.master_value)}</td><td>{html.escape(k.unit)}</td></tr>"
@@ -322,10 +323,10 @@ def _overview(status) -> str:
     table = (f"<table><tr><th>input group</th>{head}<th>all configurations</th></tr>"
              f"{''.join(rows)}</table>")
     if modified:
-        table += ("<h3>Modified values</h3><table><tr><th>configuration</th><th>group</th>"
-                  "<th>key</th><th>data file</th><th>master</th><th>unit</th></tr>"
-                  f"{modified}</table>")
-    return f"<p>Master file: {html.escape(status.master_file)}</p>{table}"
+        table += ('<h3>Modified values</h3><table><tr><th>configuration</th><th>group</th>'
+                  '<th>key</th><th>data file</th><th>master</th><th>unit</th></tr>'
+                  f'{modified}</table>')
+    return f'<p>Master file: {html.escape(status.master_file)}</p>{table}'
 
 
 CSS = """
@@ -339,7 +340,7 @@ td.differs{background:#fff3c4}td.same{color:#777}td.unused{color:#aaa}
 
 
 def _page(runs: list[Run], status, sections: list[str], bags: Sequence[Path], out: Path) -> str:
-    provenance = "".join(
+    provenance = ''.join(
         f"<tr><td>{html.escape(os.path.relpath(r.bag, out))}</td><td>{html.escape(r.event)}</td>"
         f"<td>{html.escape(r.configuration)}</td><td>{html.escape(r.model)}</td>"
         f"<td>{html.escape(r.data_hash)}</td><td>{html.escape('; '.join(r.modified) or '–')}</td>"
@@ -371,25 +372,25 @@ def _capability_section(table) -> str:
     """The table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
     from .capability import DISPLAY, QUANTITIES, format_table
 
-    head = "".join(f"<th>{html.escape(q)}</th>" for q in QUANTITIES)
+    head = ''.join(f'<th>{html.escape(q)}</th>' for q in QUANTITIES)
     rows = []
     for row in format_table(table):
-        cells = "".join(
+        cells = ''.join(
             f'<td style="background:{"#f4c7c3" if c.startswith("Flexible") else "#c9e7c0"}">'
-            f"{html.escape(c)}</td>" for c in row[1:])
-        rows.append(f"<tr><td>{html.escape(row[0])}</td>{cells}</tr>")
+            f'{html.escape(c)}</td>' for c in row[1:])
+        rows.append(f'<tr><td>{html.escape(row[0])}</td>{cells}</tr>')
     metric_rows = []
     for c in table.metrics:
         unit = html.escape(c.unit)
         metric_rows.append(
             f'<tr><td>{html.escape(c.event)}</td><td>{html.escape(c.quantity)}</td>'
-            f"<td>{c.rigid_value:.4g}</td><td>{c.flexible_value:.4g}</td><td>{unit}</td>"
+            f'<td>{c.rigid_value:.4g}</td><td>{c.flexible_value:.4g}</td><td>{unit}</td>'
             f'<td style="background:{"#f4c7c3" if c.verdict == "Flexible" else "#c9e7c0"}">'
-            f"{c.verdict}</td></tr>")
-    offsets = "; ".join(
+            f'{c.verdict}</td></tr>')
+    offsets = '; '.join(
         f"{c.event} {c.quantity} {c.design_offset * DISPLAY.get(c.unit, ('', 1.0))[1]:.3g} "
         f"{DISPLAY.get(c.unit, (c.unit, 1.0))[0]}" for c in table.cells
-        if c.quantity == "wheel_load" and abs(c.design_offset) > 0.0)
+        if c.quantity == 'wheel_load' and abs(c.design_offset) > 0.0)
     return (f"<h2>Analytical capability: {html.escape(table.configuration)}, "
             f"{html.escape(table.axle)} axle</h2>"
             f"<p>Rigid vs flexible K&amp;C (flexible: {html.escape(', '.join(table.components))}"

@@ -1,4 +1,5 @@
-"""Runs events through the ROS graph: embedded (one process) or distributed.
+"""
+Runs events through the ROS graph: embedded (one process) or distributed.
 
 Embedded: the data server, the solver nodes, a recorder per run and the event
 runner's action client share one executor in this process. Distributed: each
@@ -14,16 +15,16 @@ run removes its partial bag and says so.
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 import dataclasses
+from dataclasses import dataclass, field
 import os
+from pathlib import Path
 import shutil
 import signal
 import subprocess
 import tempfile
 import time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
 
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
@@ -39,12 +40,12 @@ from .bag import PARTIAL_SUFFIX, BagError, check_bag_path
 from .domain import DomainError, claim_domain
 
 #: model -> (solver family, events it runs)
-FAMILIES = {"bicycle": "steady_state", "two_track": "steady_state", "kc": "kc",
-            "vehicle": "vehicle"}
-ALL_EVENTS = ("steady_state_circular", "handling_diagram", "parallel_wheel_travel",
-              "opposite_wheel_travel", "lateral_force", "longitudinal_force", "steering",
-              "aligning_torque", "constant_radius_turn", "sine_with_dwell", "step_steer")
-MODELS = ("bicycle", "two_track", "kc", "vehicle")
+FAMILIES = {'bicycle': 'steady_state', 'two_track': 'steady_state', 'kc': 'kc',
+            'vehicle': 'vehicle'}
+ALL_EVENTS = ('steady_state_circular', 'handling_diagram', 'parallel_wheel_travel',
+              'opposite_wheel_travel', 'lateral_force', 'longitudinal_force', 'steering',
+              'aligning_torque', 'constant_radius_turn', 'sine_with_dwell', 'step_steer')
+MODELS = ('bicycle', 'two_track', 'kc', 'vehicle')
 GOAL_TIMEOUT = 60.0  # s: a solver silent (no result, no feedback) this long has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
 ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again
@@ -67,14 +68,14 @@ class RunRequest:
     event: str
     configuration: str
     model: str
-    fidelity: str = "rigid"
-    axle: str = ""
+    fidelity: str = 'rigid'
+    axle: str = ''
     overrides: tuple[str, ...] = ()
     parameters: tuple[str, ...] = ()
     bag: Path | None = None
     #: the data hash of the configuration (with ``overrides``) as validated; a result of
     #: other data (another study on the same domain) is refused. "" = set by validate()
-    data_hash: str = ""
+    data_hash: str = ''
 
     @property
     def family(self) -> str:
@@ -95,27 +96,29 @@ class RunOutcome:
 
 
 def events_for(model: str) -> tuple[str, ...]:
-    if model in ("bicycle", "two_track"):
+    if model in ('bicycle', 'two_track'):
         return tuple(e for e, models in ANALYTICAL_EVENTS.items() if model in models)
-    if model == "kc":
+    if model == 'kc':
         return tuple(KC_PARAMS)
-    if model == "vehicle":
+    if model == 'vehicle':
         return tuple(VEHICLE_PARAMS)
     return ()
 
 
 def event_params(model: str, event: str):
-    if model == "kc":
+    if model == 'kc':
         return KC_PARAMS[event]
-    if model == "vehicle":
+    if model == 'vehicle':
         return VEHICLE_PARAMS[event]
     return ANALYTICAL_PARAMS[event]
 
 
 def validate(study: Study, request: RunRequest) -> RunRequest:
-    """Every check that can be made before starting: raises DataError / RunError / BagError.
+    """
+    Every check that can be made before starting: raises DataError / RunError / BagError.
 
-    Returns the request with the data hash its result must carry."""
+    Returns the request with the data hash its result must carry.
+    """
     if request.event not in ALL_EVENTS:
         raise RunError(f"unknown event '{request.event}' (events: {', '.join(ALL_EVENTS)})")
     if request.model not in MODELS:
@@ -126,29 +129,29 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
     if request.event not in events_for(request.model):
         raise RunError(f"event '{request.event}' does not run on model '{request.model}' "
                        f"(its events: {', '.join(events_for(request.model))})")
-    if request.fidelity not in ("rigid", "flexible"):
+    if request.fidelity not in ('rigid', 'flexible'):
         raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
     # the K&C model has flexible components; the full vehicle passes the fidelity to its
     # K&C maps (flexible K&C results when the configuration has flex data)
-    if request.fidelity == "flexible" and request.model not in ("kc", "vehicle"):
+    if request.fidelity == 'flexible' and request.model not in ('kc', 'vehicle'):
         raise RunError(f"fidelity 'flexible' is available for models 'kc' and 'vehicle' only "
                        f"(model '{request.model}' has no flexible components)")
-    if request.model == "kc" and request.axle not in ("front", "rear"):
+    if request.model == 'kc' and request.axle not in ('front', 'rear'):
         raise RunError(f"K&C events need --axle front or rear (found '{request.axle}')")
-    if request.model != "kc" and request.axle:
+    if request.model != 'kc' and request.axle:
         raise RunError(f"model '{request.model}' is a whole-vehicle model: no --axle")
     if request.configuration not in study.configurations:
         raise DataError(f"configuration '{request.configuration}' does not exist (available: "
                         f"{', '.join(study.configuration_names)})", file=str(study.master.path))
     config = with_overrides(study.configurations[request.configuration],
                             parse_set(request.overrides))
-    if request.model == "kc" and request.event == "steering" and (
-            request.axle != "front" or "steering" not in config.groups):
+    if request.model == 'kc' and request.event == 'steering' and (
+            request.axle != 'front' or 'steering' not in config.groups):
         raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
                        f"'{request.configuration}' has no steering")
-    if request.fidelity == "flexible":
-        for axle in ([request.axle] if request.model == "kc" else ["front", "rear"]):
-            if f"{axle}_flex" not in config.groups:
+    if request.fidelity == 'flexible':
+        for axle in ([request.axle] if request.model == 'kc' else ['front', 'rear']):
+            if f'{axle}_flex' not in config.groups:
                 raise RunError(f"configuration '{request.configuration}' has no flexible "
                                f"components on the {axle} axle (no {axle}_flex group in the "
                                "master file)")
@@ -159,9 +162,11 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
 
 
 def _ros_args() -> list[str]:
-    """Node log level for in-process runs: the CLI reports errors itself, so the nodes
-    stay quiet unless VD_VERBOSE is set."""
-    return [] if os.environ.get("VD_VERBOSE") else ["--ros-args", "--log-level", "fatal"]
+    """
+    Node log level for in-process runs: the CLI reports errors itself, so the nodes
+    stay quiet unless VD_VERBOSE is set.
+    """
+    return [] if os.environ.get('VD_VERBOSE') else ['--ros-args', '--log-level', 'fatal']
 
 
 def _claim_domain():
@@ -176,12 +181,13 @@ class _Client:
 
     def __init__(self, node) -> None:
         from rclpy.action import ActionClient
+
         from vd_interfaces.action import RunEvent
 
         self.node = node
         self.warm: set[str] = set()
         self.running: list = []  # goal handles accepted and not finished (to cancel)
-        self.clients = {family: ActionClient(node, RunEvent, f"/vd/{family}/run_event")
+        self.clients = {family: ActionClient(node, RunEvent, f'/vd/{family}/run_event')
                         for family in set(FAMILIES.values())}
 
     def goal(self, request: RunRequest):
@@ -206,7 +212,7 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
     """Send one goal and wait for its result; returns (success, message, EventResult)."""
     action = client.clients[request.family]
     if not _spin_until(executor, action.server_is_ready, SERVER_TIMEOUT):
-        raise RunError(f"{request.label}: no solver answers on /vd/{request.family}/run_event")
+        raise RunError(f'{request.label}: no solver answers on /vd/{request.family}/run_event')
     if request.family not in client.warm:
         # Fast DDS drops a service response sent before the server has discovered the
         # client's response reader ("failed to send response"): give discovery a moment.
@@ -223,18 +229,18 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
         if _spin_until(executor, send.done, ACCEPT_TIMEOUT):
             break
     else:
-        raise RunError(f"{request.label}: the solver did not accept the goal in time")
+        raise RunError(f'{request.label}: the solver did not accept the goal in time')
     handle = send.result()
     if not handle.accepted:
-        raise RunError(f"{request.label}: goal rejected")
+        raise RunError(f'{request.label}: goal rejected')
     result_future = handle.get_result_async()
     client.running.append(handle)
     last_news[0] = time.monotonic()
     # a long goal is fine as long as it reports progress; silence for GOAL_TIMEOUT is not
     while not _spin_until(executor, result_future.done, GOAL_TIMEOUT / 10):
         if time.monotonic() - last_news[0] > GOAL_TIMEOUT:
-            raise RunError(f"{request.label}: no result and no progress for "
-                           f"{GOAL_TIMEOUT:.0f} s (solver died?)")
+            raise RunError(f'{request.label}: no result and no progress for '
+                           f'{GOAL_TIMEOUT:.0f} s (solver died?)')
     client.running.remove(handle)
     result = result_future.result().result
     return result.success, result.message, result.result
@@ -254,9 +260,11 @@ def _run_goal(executor, client: _Client, request: RunRequest,
 
 
 def check_result(request: RunRequest, result) -> None:
-    """The result answers this request: its configuration, event, model, axle and data
+    """
+    The result answers this request: its configuration, event, model, axle and data
     hash are the ones asked for (a solver of another run on the same domain, or of
-    other data, answers with other values)."""
+    other data, answers with other values).
+    """
     asked = (request.configuration, request.event, request.model, request.axle)
     got = (result.configuration, result.event, result.model, result.axle)
     if got != asked:
@@ -271,7 +279,8 @@ def check_result(request: RunRequest, result) -> None:
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  ) -> list[RunOutcome]:
-    """All nodes in this process; a recorder node per run with a bag.
+    """
+    All nodes in this process; a recorder node per run with a bag.
 
     A multi-threaded executor: a solver's execute callback (a goal may take minutes)
     runs in a worker thread while this thread keeps spinning the accept and result
@@ -289,18 +298,18 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
 
     from .recorder_node import Recorder
 
-    os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     claim = _claim_domain()
     context = rclpy.Context()
     rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
                signal_handler_options=None)
     executor = MultiThreadedExecutor(num_threads=EMBEDDED_THREADS, context=context)
     nodes = [DataServer(context=context, parameter_overrides=[
-                 Parameter("master_file", value=str(master)), Parameter("watch_period",
+                 Parameter('master_file', value=str(master)), Parameter('watch_period',
                                                                         value=0.0)]),
              AnalyticalSolver(context=context), KCSolver(context=context),
              VehicleSolver(context=context)]
-    client_node = Node("event_runner", context=context)
+    client_node = Node('event_runner', context=context)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
@@ -316,10 +325,10 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 if request.bag is not None:
                     recorder = Recorder(context=context, bag=str(request.bag),
                                         parameter_overrides=[Parameter(
-                                            "configurations", value=[request.configuration])])
+                                            'configurations', value=[request.configuration])])
                     executor.add_node(recorder)
                     # let the recorder's latched subscriptions catch up before the run
-                    _spin_until(executor, lambda: recorder.counts["/vd/configuration"] > 0
+                    _spin_until(executor, lambda: recorder.counts['/vd/configuration'] > 0
                                 or recorder.error is not None, 5.0)
                 t0 = time.perf_counter()
                 outcome = _run_goal(executor, client, request, progress)
@@ -327,14 +336,14 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 if recorder is not None:
                     if not _spin_until(executor, lambda: recorder.complete >= 1 or
                                        recorder.error is not None, RECORD_TIMEOUT):
-                        raise RunError(f"{request.label}: the recorder did not record the "
-                                       "result")
+                        raise RunError(f'{request.label}: the recorder did not record the '
+                                       'result')
                     try:
                         bag = recorder.stop()
                     except BagError as err:
-                        raise RunError(f"{request.label}: {err}") from None
+                        raise RunError(f'{request.label}: {err}') from None
                 outcomes.append(RunOutcome(request, outcome, bag,
-                                           timings={"run": time.perf_counter() - t0}))
+                                           timings={'run': time.perf_counter() - t0}))
             except RunError as err:
                 outcomes.append(RunOutcome(request, None, None, str(err)))
             except KeyboardInterrupt:
@@ -360,9 +369,9 @@ EMBEDDED_THREADS = 4
 
 
 def _interrupted(request: RunRequest) -> str:
-    where = (f"; no bag written ({request.bag}{PARTIAL_SUFFIX} removed)"
-             if request.bag is not None else "")
-    return f"{request.label}: interrupted{where}"
+    where = (f'; no bag written ({request.bag}{PARTIAL_SUFFIX} removed)'
+             if request.bag is not None else '')
+    return f'{request.label}: interrupted{where}'
 
 
 def _cancel_running(executor, client: _Client) -> None:
@@ -376,16 +385,17 @@ def _cancel_running(executor, client: _Client) -> None:
 def _executable(package: str, name: str) -> str:
     from ament_index_python.packages import get_package_prefix
 
-    path = Path(get_package_prefix(package)) / "lib" / package / name
+    path = Path(get_package_prefix(package)) / 'lib' / package / name
     if not path.exists():
-        raise RunError(f"executable {path} not found (is the workspace built?)")
+        raise RunError(f'executable {path} not found (is the workspace built?)')
     return str(path)
 
 
 def run_distributed(master: Path, requests: Sequence[RunRequest],
                     progress: Callable[[RunRequest, float, str], None] | None = None,
                     ) -> list[RunOutcome]:
-    """One process per node (as ``ros2 run`` starts them), DDS on loopback.
+    """
+    One process per node (as ``ros2 run`` starts them), DDS on loopback.
 
     The nodes are this process's children in their own session (a Ctrl-C at the
     terminal reaches only this process, which stops them in order) and end with
@@ -394,7 +404,6 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
-
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import UInt32
     from std_srvs.srv import Trigger
@@ -404,10 +413,10 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
 
     claim = _claim_domain()
     env = dict(os.environ, ROS_DOMAIN_ID=str(claim.domain), VD_PARENT_PID=str(os.getpid()),
-               ROS_AUTOMATIC_DISCOVERY_RANGE=os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE",
-                                                            "LOCALHOST"))
+               ROS_AUTOMATIC_DISCOVERY_RANGE=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE',
+                                                            'LOCALHOST'))
     # the nodes' output goes to one log file, shown when a run fails
-    logs = tempfile.TemporaryFile(mode="w+")
+    logs = tempfile.TemporaryFile(mode='w+')
 
     def start(command: list[str]) -> subprocess.Popen:
         return subprocess.Popen(command, env=env, stdout=logs, stderr=subprocess.STDOUT,
@@ -422,20 +431,20 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     recorder = None
     request = None
     try:
-        procs.append(start([_executable("vd_data_server", "data_server"), "--ros-args",
-                            "--log-level", "warn", "-p", f"master_file:={master}", "-p",
-                            "watch_period:=0.0"]))
-        procs.extend(start([_executable("vd_solvers", exe), "--ros-args", "--log-level",
-                            "warn"])
+        procs.append(start([_executable('vd_data_server', 'data_server'), '--ros-args',
+                            '--log-level', 'warn', '-p', f'master_file:={master}', '-p',
+                            'watch_period:=0.0']))
+        procs.extend(start([_executable('vd_solvers', exe), '--ros-args', '--log-level',
+                            'warn'])
                      for exe in sorted({f"{'analytical' if f == 'steady_state' else f}_solver"
                                         for f in {r.family for r in requests}}))
         context = rclpy.Context()
         rclpy.init(context=context, domain_id=claim.domain, signal_handler_options=None)
         executor = SingleThreadedExecutor(context=context)
-        node = Node("event_runner", context=context)
+        node = Node('event_runner', context=context)
         executor.add_node(node)
         client = _Client(node)
-        finish = node.create_client(Trigger, "/recorder/finish")
+        finish = node.create_client(Trigger, '/recorder/finish')
         recorded = [0]  # results the current run's recorder says it has written
 
         def on_recorded(msg) -> None:
@@ -447,34 +456,34 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
         for request in requests:
             recorded[0] = 0
             if request.bag is not None:
-                recorder = start([_executable("vd_events", "recorder"), "--ros-args", "-p",
-                                  f"bag:={request.bag}", "-p",
+                recorder = start([_executable('vd_events', 'recorder'), '--ros-args', '-p',
+                                  f'bag:={request.bag}', '-p',
                                   f"configurations:=['{request.configuration}']"])
             t0 = time.perf_counter()
             try:
                 if recorder is not None:
                     # the recorder's subscriptions must be matched before the results flow
-                    topics = (f"/vd/{request.family}/result", f"/vd/{request.family}/state")
+                    topics = (f'/vd/{request.family}/result', f'/vd/{request.family}/state')
                     if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
                                                              for t in topics), SERVER_TIMEOUT):
-                        raise RunError(f"{request.label}: the recorder did not start")
+                        raise RunError(f'{request.label}: the recorder did not start')
                 outcome = _run_goal(executor, client, request, progress)
                 bag = None
                 if recorder is not None:
                     if not _spin_until(executor, lambda: recorded[0] >= 1, RECORD_TIMEOUT):
-                        raise RunError(f"{request.label}: the recorder did not record the result")
+                        raise RunError(f'{request.label}: the recorder did not record the result')
                     bag = _finish_recording(executor, finish, recorder, request)
                     recorder = None
                     topics = {m.topic for m in read_bag(bag)}
-                    if f"/vd/{request.family}/result" not in topics:
-                        raise RunError(f"{request.label}: the recorder missed the result")
+                    if f'/vd/{request.family}/result' not in topics:
+                        raise RunError(f'{request.label}: the recorder missed the result')
                 outcomes.append(RunOutcome(request, outcome, bag,
-                                           timings={"run": time.perf_counter() - t0}))
+                                           timings={'run': time.perf_counter() - t0}))
             except RunError as err:
                 logs.seek(0)
-                tail = "".join(logs.readlines()[-5:]).strip()
+                tail = ''.join(logs.readlines()[-5:]).strip()
                 outcomes.append(RunOutcome(request, None, None,
-                                           f"{err}" + (f"\nnode output:\n{tail}" if tail else "")))
+                                           f'{err}' + (f'\nnode output:\n{tail}' if tail else '')))
                 _drop_recording(recorder, request)
                 recorder = None
         request = None
@@ -482,7 +491,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
         if client is not None:
             _cancel_running(executor, client)
         raise Interrupted(_interrupted(request) if request is not None
-                          else "interrupted") from None
+                          else 'interrupted') from None
     finally:
         if request is not None:
             _drop_recording(recorder, request)
@@ -501,28 +510,30 @@ def _finish_recording(executor, finish, recorder: subprocess.Popen, request: Run
     """The result is confirmed: the recorder closes the bag under its final name."""
     assert request.bag is not None
     if not _spin_until(executor, finish.service_is_ready, SERVER_TIMEOUT):
-        raise RunError(f"{request.label}: the recorder does not answer")
+        raise RunError(f'{request.label}: the recorder does not answer')
     from std_srvs.srv import Trigger
 
     future = finish.call_async(Trigger.Request())
     if not _spin_until(executor, lambda: future.done() or recorder.poll() is not None,
                        RECORD_TIMEOUT):
-        raise RunError(f"{request.label}: the recorder did not finish the bag")
+        raise RunError(f'{request.label}: the recorder did not finish the bag')
     if future.done() and not future.result().success:
-        raise RunError(f"{request.label}: {future.result().message}")
+        raise RunError(f'{request.label}: {future.result().message}')
     try:
         recorder.wait(timeout=RECORD_TIMEOUT)
     except subprocess.TimeoutExpired:
-        raise RunError(f"{request.label}: the recorder did not stop") from None
-    if recorder.returncode != 0 or not (request.bag / "metadata.yaml").is_file():
-        raise RunError(f"{request.label}: the recorder did not finish the bag")
+        raise RunError(f'{request.label}: the recorder did not stop') from None
+    if recorder.returncode != 0 or not (request.bag / 'metadata.yaml').is_file():
+        raise RunError(f'{request.label}: the recorder did not finish the bag')
     return request.bag
 
 
 def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> None:
-    """A failed or interrupted run: stop its recorder (which removes its partial bag)
+    """
+    A failed or interrupted run: stop its recorder (which removes its partial bag)
     and make sure nothing that looks like a result is left (validate() made sure the
-    paths did not exist before, so this removes only this run's files)."""
+    paths did not exist before, so this removes only this run's files).
+    """
     if recorder is not None:
         stop_processes([recorder])
     if request.bag is not None:
@@ -532,8 +543,10 @@ def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> N
 
 
 def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> None:
-    """SIGINT (a node's clean shutdown) to every process still running, then wait;
-    kill what does not stop in time. A Ctrl-C during the wait does not cut it short."""
+    """
+    SIGINT (a node's clean shutdown) to every process still running, then wait;
+    kill what does not stop in time. A Ctrl-C during the wait does not cut it short.
+    """
     for proc in procs:
         if proc.poll() is None:
             proc.send_signal(signal.SIGINT)
@@ -549,5 +562,5 @@ def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> 
             break
 
 
-__all__ = ["RunRequest", "RunOutcome", "RunError", "Interrupted", "BagError", "validate",
-           "check_result", "run_embedded", "run_distributed", "events_for", "stop_processes"]
+__all__ = ['RunRequest', 'RunOutcome', 'RunError', 'Interrupted', 'BagError', 'validate',
+           'check_result', 'run_embedded', 'run_distributed', 'events_for', 'stop_processes']

@@ -1,2 +1,2 @@
 """vd solvers: analytical, K&C and full-vehicle models (ROS-free cores + node shells)."""
-__version__ = "0.1.0"
+__version__ = '0.1.0'

@@ -1,4 +1,5 @@
-"""``ros2 run vd_solvers analytical_solver``: bicycle and two-track models.
+"""
+``ros2 run vd_solvers analytical_solver``: bicycle and two-track models.
 
 Action ``/vd/steady_state/run_event`` (vd_interfaces/RunEvent); results on
 ``/vd/steady_state/result`` and ``/vd/steady_state/state`` (see solver_node).
@@ -17,20 +18,20 @@ from vd_solvers.analytical.events import run_event
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SolverNode
 
-FAMILY = "steady_state"
+FAMILY = 'steady_state'
 
 
 class AnalyticalSolver(SolverNode):
     def __init__(self, **kwargs) -> None:
-        super().__init__("analytical_solver", FAMILY, self._solve, **kwargs)
+        super().__init__('analytical_solver', FAMILY, self._solve, **kwargs)
 
     def _solve(self, config: Configuration, goal, progress) -> EventOutcome:
-        return run_event(config, goal.event, goal.model or "two_track", list(goal.parameters))
+        return run_event(config, goal.event, goal.model or 'two_track', list(goal.parameters))
 
 
 def main(args=None) -> None:
     spin_node(AnalyticalSolver, args)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     main()

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 
 class SolverError(Exception):
-    """A model could not produce a trustworthy answer.
+    """
+    A model could not produce a trustworthy answer.
 
     The message names the configuration, the event and the step where known.
     """

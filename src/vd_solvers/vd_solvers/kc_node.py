@@ -1,4 +1,5 @@
-"""``ros2 run vd_solvers kc_solver``: the rigid and flexible kinematics & compliance solver.
+"""
+``ros2 run vd_solvers kc_solver``: the rigid and flexible kinematics & compliance solver.
 
 Goal fidelity 'rigid' or 'flexible'; empty: the configuration's ``flexible`` switch.
 
@@ -8,17 +9,17 @@ results on ``/vd/kc/result`` and per step on ``/vd/kc/state`` (see solver_node).
 from __future__ import annotations
 
 from vd_data_server.model import Configuration
+from vd_data_server.node_main import spin_node
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
 from vd_solvers.results import EventOutcome
-from vd_data_server.node_main import spin_node
 from vd_solvers.solver_node import SolverNode
 
-FAMILY = "kc"
+FAMILY = 'kc'
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
-    fidelity = goal.fidelity or ("flexible" if config.flexible else "rigid")
+    fidelity = goal.fidelity or ('flexible' if config.flexible else 'rigid')
     if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
                           f"'{goal.fidelity}' is not available (fidelities: "
@@ -29,12 +30,12 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
 
 class KCSolver(SolverNode):
     def __init__(self, **kwargs) -> None:
-        super().__init__("kc_solver", FAMILY, _run, **kwargs)
+        super().__init__('kc_solver', FAMILY, _run, **kwargs)
 
 
 def main(args=None) -> None:
     spin_node(KCSolver, args)
 
 
-if __name__ == "__main__":
+if __name__ == '__main__':
     main()

@@ -1,4 +1,5 @@
-"""The result of one event on one configuration, whatever the model.
+"""
+The result of one event on one configuration, whatever the model.
 
 Every solver returns an :class:`EventOutcome`; the nodes turn it into a
 ``vd_interfaces/EventResult``, the recorder into a bag, ``vd run --json`` into
@@ -17,7 +18,7 @@ import numpy as np
 class Metric:
     value: float
     unit: str  # SI (or deg, deg/g, km/h where the metric is conventionally quoted so)
-    source: str = ""
+    source: str = ''
 
 
 @dataclass(frozen=True)
@@ -45,14 +46,14 @@ class EventOutcome:
     def to_json(self, bag: str | None = None) -> dict[str, Any]:
         """The ``vd run --json`` contract."""
         return {
-            "event": self.event, "configuration": self.configuration, "model": self.model,
-            "fidelity": self.fidelity, "axle": self.axle, "data_hash": self.data_hash,
-            "metrics": {k: {"value": _num(m.value), "unit": m.unit, "source": m.source}
+            'event': self.event, 'configuration': self.configuration, 'model': self.model,
+            'fidelity': self.fidelity, 'axle': self.axle, 'data_hash': self.data_hash,
+            'metrics': {k: {'value': _num(m.value), 'unit': m.unit, 'source': m.source}
                         for k, m in self.metrics.items()},
-            "channels": {k: {"unit": c.unit, "values": [_num(v) for v in c.values]}
+            'channels': {k: {'unit': c.unit, 'values': [_num(v) for v in c.values]}
                          for k, c in self.channels.items()},
-            "notes": list(self.notes),
-            "bag": bag,
+            'notes': list(self.notes),
+            'bag': bag,
         }
 
 

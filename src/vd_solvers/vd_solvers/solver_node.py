@@ -1,4 +1,5 @@
-"""The shell every solver node shares: configurations in, RunEvent action, results out.
+"""
+The shell every solver node shares: configurations in, RunEvent action, results out.
 
 A solver node subscribes to the latched ``/vd/configuration`` and
 ``/vd/data_status`` topics, serves ``/vd/<family>/run_event``
@@ -10,24 +11,24 @@ configuration and event; the node keeps serving.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 import dataclasses
 import time
 import warnings
-from collections.abc import Callable
 
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
-from vd_interfaces.action import RunEvent
-from vd_interfaces.msg import Configuration as ConfigurationMsg, DataStatus, EventResult
-from vd_interfaces.msg import Provenance, Sample
 
 from vd_data_server.conversions import configuration_from_msg
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.model import Configuration
 from vd_data_server.study import modified_keys
+from vd_interfaces.action import RunEvent
+from vd_interfaces.msg import Configuration as ConfigurationMsg
+from vd_interfaces.msg import DataStatus, EventResult, Provenance, Sample
 from vd_solvers import __version__
 from vd_solvers.conversions import outcome_samples, outcome_to_msg
 from vd_solvers.errors import SolverError
@@ -70,23 +71,25 @@ class SolverNode(Node):
         self.configurations: dict[str, Configuration] = {}
         self.status: DataStatus | None = None
         group = ReentrantCallbackGroup()
-        self.create_subscription(ConfigurationMsg, "/vd/configuration", self._on_configuration,
+        self.create_subscription(ConfigurationMsg, '/vd/configuration', self._on_configuration,
                                  LATCHED, callback_group=group)
-        self.create_subscription(DataStatus, "/vd/data_status", self._on_status,
+        self.create_subscription(DataStatus, '/vd/data_status', self._on_status,
                                  QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                                             durability=DurabilityPolicy.TRANSIENT_LOCAL),
                                  callback_group=group)
-        self.result_pub = self.create_publisher(EventResult, f"/vd/{family}/result", RESULTS)
-        self.sample_pub = self.create_publisher(self.STATE_TYPE, f"/vd/{family}/state", SAMPLES)
-        self.provenance_pub = self.create_publisher(Provenance, "/vd/provenance", RESULTS)
-        self.action = ActionServer(self, RunEvent, f"/vd/{family}/run_event", self._execute,
+        self.result_pub = self.create_publisher(EventResult, f'/vd/{family}/result', RESULTS)
+        self.sample_pub = self.create_publisher(self.STATE_TYPE, f'/vd/{family}/state', SAMPLES)
+        self.provenance_pub = self.create_publisher(Provenance, '/vd/provenance', RESULTS)
+        self.action = ActionServer(self, RunEvent, f'/vd/{family}/run_event', self._execute,
                                    goal_callback=lambda _: GoalResponse.ACCEPT,
                                    cancel_callback=lambda _: CancelResponse.ACCEPT,
                                    callback_group=group)
 
     def _wait_for_configuration(self, name: str) -> Configuration | None:
-        """A solver started together with the data server may get a goal before the
-        latched configurations have arrived: wait a little for them."""
+        """
+        A solver started together with the data server may get a goal before the
+        latched configurations have arrived: wait a little for them.
+        """
         deadline = time.monotonic() + CONFIGURATION_WAIT
         while name not in self.configurations and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -125,49 +128,51 @@ class SolverNode(Node):
                     feedback.progress, feedback.stage = float(fraction), stage
                     goal_handle.publish_feedback(feedback)
 
-            progress(0.0, "solving")
+            progress(0.0, 'solving')
             with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
+                warnings.simplefilter('always')
                 outcome = self._run(config, goal, progress)
             if goal_handle.is_cancel_requested:
                 raise Cancelled
         except Cancelled:
             goal_handle.canceled()
-            result.success, result.message = False, f"{label}: cancelled"
+            result.success, result.message = False, f'{label}: cancelled'
             return result
         except (DataError, SolverError) as err:
-            message = str(err) if goal.configuration in str(err) else f"{label}: {err}"
+            message = str(err) if goal.configuration in str(err) else f'{label}: {err}'
             message += _warnings_text(caught)
             self.get_logger().error(message)
             goal_handle.abort()
             result.success, result.message = False, message
             return result
         except Exception as err:  # noqa: BLE001 - a solver bug must not kill the node
-            message = (f"{label}: internal solver error {type(err).__name__}: {err}"
-                       f"{_warnings_text(caught)}")
+            message = (f'{label}: internal solver error {type(err).__name__}: {err}'
+                       f'{_warnings_text(caught)}')
             self.get_logger().error(message)
             goal_handle.abort()
             result.success, result.message = False, message
             return result
         if caught:
             outcome = dataclasses.replace(outcome, notes=(
-                *outcome.notes, "numerical warnings during the run: " +
-                "; ".join(_warning_messages(caught))))
+                *outcome.notes, 'numerical warnings during the run: ' +
+                '; '.join(_warning_messages(caught))))
         self.publish_outcome(outcome, config, set_changes(base, config))
-        feedback.progress, feedback.stage = 1.0, "done"
+        feedback.progress, feedback.stage = 1.0, 'done'
         goal_handle.publish_feedback(feedback)
         goal_handle.succeed()
         result.success = True
-        result.message = f"{label}: {outcome.n_steps} steps"
+        result.message = f'{label}: {outcome.n_steps} steps'
         result.result = outcome_to_msg(outcome, self.get_clock().now().to_msg())
         return result
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
                         changes: list, stamp=None) -> None:
-        """Publish provenance (with this goal's ``--set`` changes), samples and result.
+        """
+        Publish provenance (with this goal's ``--set`` changes), samples and result.
 
         Samples of a time-domain event (a ``time`` channel) are stamped ``stamp`` +
-        simulated time, the others ``stamp``."""
+        simulated time, the others ``stamp``.
+        """
         stamp = stamp if stamp is not None else self.get_clock().now().to_msg()
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
@@ -196,12 +201,13 @@ def _warning_messages(caught) -> list[str]:
 def _warnings_text(caught) -> str:
     """`` (numerical warnings: overflow encountered in exp; ...)``, or ""."""
     texts = _warning_messages(caught)
-    return f" (numerical warnings: {'; '.join(texts)})" if texts else ""
+    return f" (numerical warnings: {'; '.join(texts)})" if texts else ''
 
 
 def set_changes(base: Configuration, config: Configuration) -> list:
     """GroupStatus messages for the groups a run's ``--set`` overrides changed."""
-    from vd_interfaces.msg import GroupStatus as GroupStatusMsg, ModifiedKey
+    from vd_interfaces.msg import GroupStatus as GroupStatusMsg
+    from vd_interfaces.msg import ModifiedKey
 
     out = []
     for name, group in config.groups.items():

@@ -1,9 +1,9 @@
 """Wall-clock timing for the benchmark suite (``vd bench``), never for pass/fail tests."""
 from __future__ import annotations
 
+from collections.abc import Callable
 import statistics
 import time
-from collections.abc import Callable
 from typing import Any
 
 #: repetitions of a timed call; the median is reported

@@ -1,4 +1,5 @@
-"""A mid-size passenger car for the analytical models.
+"""
+A mid-size passenger car for the analytical models.
 
 Numbers and why they are sane:
 
@@ -32,7 +33,7 @@ TIRE = SimpleTire(
     c1=5e-5,
     shape=1.3,
     curvature=-0.5,
-    source="test fixture: generic 205/55 R16 passenger tire",
+    source='test fixture: generic 205/55 R16 passenger tire',
 )
 
 WHEELBASE = 2.7
@@ -60,7 +61,7 @@ def build_car(front_share: float = 0.58, **overrides: object) -> VehicleParams:
         unsprung_mass_rear=70.0,
         unsprung_cog_height_front=0.31,
         unsprung_cog_height_rear=0.31,
-        sources={"mass": "test fixture", "tire_front": TIRE.source, "tire_rear": TIRE.source},
+        sources={'mass': 'test fixture', 'tire_front': TIRE.source, 'tire_rear': TIRE.source},
     )
     return replace(car, **overrides)
 

@@ -58,7 +58,7 @@ def test_right_turn_mirrors_left_turn(passenger_car: VehicleParams) -> None:
     )
 
 
-@pytest.mark.parametrize("car", ["passenger_car", "oversteering_car"])
+@pytest.mark.parametrize('car', ['passenger_car', 'oversteering_car'])
 def test_eq2_gradient_is_slope_of_excess_steer_over_lateral_acceleration(
     car: str, request: pytest.FixtureRequest
 ) -> None:
@@ -80,14 +80,14 @@ def test_yaw_rate_gain_peaks_at_characteristic_speed(passenger_car: VehicleParam
     speeds = np.linspace(0.2, 3.0, 2801) * v_char
     peak_speed = speeds[np.argmax(bicycle.yaw_rate_gain(p, speeds))]
     assert peak_speed == pytest.approx(v_char, rel=1e-3)
-    with pytest.raises(ValueError, match="needs oversteer"):
+    with pytest.raises(ValueError, match='needs oversteer'):
         bicycle.critical_speed(p)
 
 
 def test_critical_speed_zeroes_the_gain_denominator(oversteering_car: VehicleParams) -> None:
     p = oversteering_car
     v_crit = bicycle.critical_speed(p)
-    with pytest.raises(ValueError, match="needs understeer"):
+    with pytest.raises(ValueError, match='needs understeer'):
         bicycle.characteristic_speed(p)
     # V/(r/delta) = L + K V^2 goes to zero, so the gain grows without bound ...
     just_below = v_crit * (1.0 - 1e-9)
@@ -97,7 +97,7 @@ def test_critical_speed_zeroes_the_gain_denominator(oversteering_car: VehiclePar
     det_crit = np.linalg.det(bicycle.state_space(p, v_crit).a)
     assert abs(det_crit) < 1e-9 * det_low
     bicycle.bicycle_response(p, 0.99 * v_crit)
-    with pytest.raises(BeyondLimitError, match="critical speed"):
+    with pytest.raises(BeyondLimitError, match='critical speed'):
         bicycle.bicycle_response(p, 1.01 * v_crit)
     with pytest.raises(BeyondLimitError):
         bicycle.steer_step_response(p, 1.01 * v_crit, 0.01, 2.0)
@@ -140,7 +140,7 @@ def _independent_mode(p: VehicleParams, speed: float) -> tuple[float, float]:
     return omega, two_zeta_omega / (2 * omega)
 
 
-@pytest.mark.parametrize("speed", [10.0, 25.0, 40.0])
+@pytest.mark.parametrize('speed', [10.0, 25.0, 40.0])
 def test_transient_mode_matches_closed_form(passenger_car: VehicleParams, speed: float) -> None:
     omega, zeta = _independent_mode(passenger_car, speed)
     result = bicycle.bicycle_response(passenger_car, speed)
@@ -152,7 +152,7 @@ def test_transient_mode_matches_closed_form(passenger_car: VehicleParams, speed:
     assert np.all(eigenvalues.real < 0.0)
 
 
-@pytest.mark.parametrize("car", ["passenger_car", "oversteering_car"])
+@pytest.mark.parametrize('car', ['passenger_car', 'oversteering_car'])
 def test_state_space_steady_state_equals_the_gains(car: str, request: pytest.FixtureRequest) -> None:
     p: VehicleParams = request.getfixturevalue(car)
     speed = 20.0
@@ -184,11 +184,11 @@ def test_step_response_settles_to_steady_state(passenger_car: VehicleParams) -> 
 
 
 def test_invalid_inputs(passenger_car: VehicleParams) -> None:
-    with pytest.raises(ValueError, match="radius"):
+    with pytest.raises(ValueError, match='radius'):
         bicycle.steer_angle(passenger_car, 0.0, 10.0)
-    with pytest.raises(ValueError, match="speed"):
+    with pytest.raises(ValueError, match='speed'):
         bicycle.yaw_rate_gain(passenger_car, -1.0)
-    with pytest.raises(ValueError, match="speed"):
+    with pytest.raises(ValueError, match='speed'):
         bicycle.state_space(passenger_car, 0.0)
-    with pytest.raises(ValueError, match="duration"):
+    with pytest.raises(ValueError, match='duration'):
         bicycle.steer_step_response(passenger_car, 20.0, 0.01, 0.0)

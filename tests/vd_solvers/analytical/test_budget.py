@@ -1,4 +1,5 @@
-"""The understeer-gradient budget and the effective axle cornering stiffness.
+"""
+The understeer-gradient budget and the effective axle cornering stiffness.
 
 References: every term in isolation against its closed form written out here
 (Gillespie, "Fundamentals of Vehicle Dynamics", ch. 6; Milliken & Milliken,
@@ -9,15 +10,18 @@ implementation; and the bare-tire formulas of thesis eq. 2.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import replace
+import math
 
 import numpy as np
 import pytest
 
 from vd_solvers.analytical import bicycle, two_track
-from vd_solvers.analytical.budget import (TERMS, effective_axle_cornering_stiffness,
-                                          understeer_budget)
+from vd_solvers.analytical.budget import (
+    TERMS,
+    effective_axle_cornering_stiffness,
+    understeer_budget,
+)
 from vd_solvers.analytical.params import AxleCompliance, VehicleParams
 from vd_solvers.errors import SolverError
 
@@ -46,20 +50,20 @@ def roll_gradient_eq3(p: VehicleParams) -> float:
 
 
 def wheel_stiffness(p: VehicleParams, axle: str) -> float:
-    tire, load = ((p.tire_front, p.axle_load_front) if axle == "front"
+    tire, load = ((p.tire_front, p.axle_load_front) if axle == 'front'
                   else (p.tire_rear, p.axle_load_rear))
     return float(tire.cornering_stiffness(load / 2.0))
 
 
 def with_compliance(p: VehicleParams, axle: str, **values: float) -> VehicleParams:
-    return replace(p, **{f"compliance_{axle}": AxleCompliance(**values)})
+    return replace(p, **{f'compliance_{axle}': AxleCompliance(**values)})
 
 
 def only_term(p: VehicleParams, name: str) -> float:
     """The one nonzero compliance term; all others must be exactly zero."""
     budget = understeer_budget(p)
     for term in budget.terms:
-        if term.name not in ("tire", name):
+        if term.name not in ('tire', name):
             assert term.value == 0.0, term.name
     return budget.term(name).value
 
@@ -67,63 +71,63 @@ def only_term(p: VehicleParams, name: str) -> float:
 # --- each term against its closed form ------------------------------------------------
 
 
-@pytest.mark.parametrize("axle, sign", [("front", -1.0), ("rear", 1.0)])
+@pytest.mark.parametrize('axle, sign', [('front', -1.0), ('rear', 1.0)])
 def test_lateral_compliance_steer_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     # c deg/kN of steer towards the force, per wheel: the wheel load N/2 per g
     # steers it by c N/2 / 1000 deg per g, understeer at the rear, oversteer at the front
     c = 0.12  # deg/kN
     p = with_compliance(rigid_car, axle, lateral_compliance_steer=c / DEG / 1e3)
-    load = p.axle_load_front if axle == "front" else p.axle_load_rear
+    load = p.axle_load_front if axle == 'front' else p.axle_load_rear
     expected = sign * c * (load / 2.0) / 1000.0  # deg/g
-    assert deg_per_g(only_term(p, "lateral_compliance_steer"), p) == pytest.approx(expected, rel=1e-12)
+    assert deg_per_g(only_term(p, 'lateral_compliance_steer'), p) == pytest.approx(expected, rel=1e-12)
     change = deg_per_g(bicycle.understeer_gradient(p) - bicycle.understeer_gradient(rigid_car), p)
     assert change == pytest.approx(expected, rel=1e-9)
 
 
-@pytest.mark.parametrize("axle, sign", [("front", -1.0), ("rear", 1.0)])
+@pytest.mark.parametrize('axle, sign', [('front', -1.0), ('rear', 1.0)])
 def test_roll_steer_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     epsilon = -0.08  # rad of steer (left) per rad of roll: front steers out of the turn
     p = with_compliance(rigid_car, axle, roll_steer=epsilon)
     expected = sign * epsilon * roll_gradient_eq3(p)  # rad/(m/s^2)
-    assert only_term(p, "roll_steer") == pytest.approx(expected, rel=1e-12)
+    assert only_term(p, 'roll_steer') == pytest.approx(expected, rel=1e-12)
     assert understeer_budget(p).roll_gradient == pytest.approx(roll_gradient_eq3(p), rel=1e-12)
 
 
-@pytest.mark.parametrize("axle, sign", [("front", 1.0), ("rear", -1.0)])
+@pytest.mark.parametrize('axle, sign', [('front', 1.0), ('rear', -1.0)])
 def test_aligning_torque_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     # Mz = -t F_y turns each wheel by -c_Mz t F_y: out of the turn
     c_mz, trail = 3.0 / DEG / 1e3, 0.03  # rad/(N*m), m
     p = with_compliance(rigid_car, axle, aligning_torque_compliance_steer=c_mz, pneumatic_trail=trail)
-    load = p.axle_load_front if axle == "front" else p.axle_load_rear
+    load = p.axle_load_front if axle == 'front' else p.axle_load_rear
     expected = sign * c_mz * trail * load / 2.0  # rad per g
-    assert only_term(p, "aligning_torque") * p.g == pytest.approx(expected, rel=1e-12)
+    assert only_term(p, 'aligning_torque') * p.g == pytest.approx(expected, rel=1e-12)
 
 
-@pytest.mark.parametrize("axle, sign", [("front", 1.0), ("rear", -1.0)])
+@pytest.mark.parametrize('axle, sign', [('front', 1.0), ('rear', -1.0)])
 def test_roll_camber_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     # the wheels lean out of the turn by -0.8 rad per rad of roll; the camber
     # thrust C_gamma gamma then has to be made up by C_w of slip
     roll_camber, c_gamma = -0.8, 4000.0
     p = with_compliance(rigid_car, axle, roll_camber=roll_camber, camber_stiffness=c_gamma)
     expected = -sign * c_gamma / wheel_stiffness(p, axle) * roll_camber * roll_gradient_eq3(p)
-    assert only_term(p, "camber") == pytest.approx(expected, rel=1e-12)
+    assert only_term(p, 'camber') == pytest.approx(expected, rel=1e-12)
 
 
 def test_lateral_compliance_camber_term(rigid_car: VehicleParams) -> None:
     # top-outward camber per inward force: both wheels lean out of the turn
     cc, c_gamma = 0.05 / DEG / 1e3, 4000.0
-    p = with_compliance(rigid_car, "front", lateral_compliance_camber=cc, camber_stiffness=c_gamma)
-    expected = c_gamma / wheel_stiffness(p, "front") * cc * p.axle_load_front / 2.0  # rad per g
-    assert only_term(p, "camber") * p.g == pytest.approx(expected, rel=1e-12)
+    p = with_compliance(rigid_car, 'front', lateral_compliance_camber=cc, camber_stiffness=c_gamma)
+    expected = c_gamma / wheel_stiffness(p, 'front') * cc * p.axle_load_front / 2.0  # rad per g
+    assert only_term(p, 'camber') * p.g == pytest.approx(expected, rel=1e-12)
 
 
 def test_tire_term_is_eq_2_and_load_transfer_vanishes(rigid_car: VehicleParams) -> None:
     budget = understeer_budget(rigid_car)
-    c_f = 2.0 * wheel_stiffness(rigid_car, "front")
-    c_r = 2.0 * wheel_stiffness(rigid_car, "rear")
+    c_f = 2.0 * wheel_stiffness(rigid_car, 'front')
+    c_r = 2.0 * wheel_stiffness(rigid_car, 'rear')
     expected = (rigid_car.axle_load_front / c_f - rigid_car.axle_load_rear / c_r) / rigid_car.g
-    assert budget.term("tire").value == pytest.approx(expected, rel=1e-13)
-    assert budget.term("load_transfer").value == 0.0
+    assert budget.term('tire').value == pytest.approx(expected, rel=1e-13)
+    assert budget.term('load_transfer').value == 0.0
     assert [t.name for t in budget.terms] == list(TERMS)
 
 
@@ -143,7 +147,7 @@ def all_terms(p: VehicleParams) -> VehicleParams:
 def test_terms_sum_to_the_bicycle_understeer_gradient(passenger_car: VehicleParams) -> None:
     p = all_terms(passenger_car)
     budget = understeer_budget(p)
-    assert all(t.value != 0.0 for t in budget.terms if t.name != "load_transfer")
+    assert all(t.value != 0.0 for t in budget.terms if t.name != 'load_transfer')
     total = sum(deg_per_g(t.value, p) for t in budget.terms)
     assert total == pytest.approx(deg_per_g(bicycle.understeer_gradient(p), p), abs=1e-9)
     assert deg_per_g(budget.total, p) == pytest.approx(total, abs=1e-12)
@@ -189,7 +193,7 @@ def test_bicycle_steady_state_uses_the_effective_stiffness(passenger_car: Vehicl
 
 
 def test_zero_compliance_gives_the_bare_tire_values_exactly(passenger_car: VehicleParams) -> None:
-    labelled = replace(passenger_car, compliance_front=AxleCompliance(sources={"roll_steer": "K&C"}),
+    labelled = replace(passenger_car, compliance_front=AxleCompliance(sources={'roll_steer': 'K&C'}),
                        compliance_rear=AxleCompliance(pneumatic_trail=0.03))
     for p in (passenger_car, labelled):
         c_f = 2.0 * float(p.tire_front.cornering_stiffness(p.axle_load_front / 2.0))
@@ -205,12 +209,12 @@ def test_zero_compliance_gives_the_bare_tire_values_exactly(passenger_car: Vehic
         limit = two_track.max_lateral_acceleration(p, RADIUS)
         assert limit == two_track.max_lateral_acceleration(passenger_car, RADIUS)
     sources = {t.name: t.source for t in understeer_budget(passenger_car).terms}
-    assert sources["roll_steer"] == "front: bare tire: no K&C results; rear: bare tire: no K&C results"
+    assert sources['roll_steer'] == 'front: bare tire: no K&C results; rear: bare tire: no K&C results'
 
 
 def test_compliance_that_cancels_the_tires_is_refused(passenger_car: VehicleParams) -> None:
     # steer towards the force large enough to need no tire slip at all
-    p = with_compliance(passenger_car, "front", lateral_compliance_steer=2.0 / DEG / 1e3)
+    p = with_compliance(passenger_car, 'front', lateral_compliance_steer=2.0 / DEG / 1e3)
     with pytest.raises(SolverError, match="front axle: the compliance slip .* cancels the tires' "
                                           ".* no positive effective cornering stiffness"):
         effective_axle_cornering_stiffness(p)

@@ -12,17 +12,17 @@ from vd_solvers.analytical.from_config import mass_properties, static_wheel_load
 G = 9.80665
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def baseline():
     from conftest import SAMPLE_DATA
 
-    return load_study(SAMPLE_DATA / "studies" / "sedan.yaml").configurations["baseline"]
+    return load_study(SAMPLE_DATA / 'studies' / 'sedan.yaml').configurations['baseline']
 
 
 def _shift_x(group: GroupData, dx: float) -> GroupData:
     values = {}
     for key, value in group.values.items():
-        if value.type == "point":
+        if value.type == 'point':
             x, y, z = value.si
             value = replace(value, si=(x + dx, y, z))
         values[key] = value
@@ -30,8 +30,10 @@ def _shift_x(group: GroupData, dx: float) -> GroupData:
 
 
 def test_mass_properties_by_hand(baseline):
-    """sedan/mass/X.yaml: 1550 kg at x = -1.25 m, z = 0.55 m; 2 x 45 kg at the front wheel
-    centres (x 0, z 0.329), 2 x 40 kg at the rear (x -2.776, z 0.332)."""
+    """
+    sedan/mass/X.yaml: 1550 kg at x = -1.25 m, z = 0.55 m; 2 x 45 kg at the front wheel
+    centres (x 0, z 0.329), 2 x 40 kg at the rear (x -2.776, z 0.332).
+    """
     mp = mass_properties(baseline)
     m = 1550.0 + 90.0 + 80.0
     assert mp.mass == pytest.approx(m)
@@ -53,10 +55,12 @@ def test_static_loads_balance_weight_and_pitch_moment(baseline):
 
 
 def test_moving_the_whole_car_in_x_changes_nothing(baseline):
-    """The vehicle frame's origin is a convention: shifting every point and the COG by the
-    same dx must give the same analytical parameters."""
+    """
+    The vehicle frame's origin is a convention: shifting every point and the COG by the
+    same dx must give the same analytical parameters.
+    """
     groups = dict(baseline.groups)
-    for name in ("front_hardpoints", "rear_hardpoints", "mass"):
+    for name in ('front_hardpoints', 'rear_hardpoints', 'mass'):
         groups[name] = _shift_x(groups[name], 0.4)
     moved = replace(baseline, groups=groups)
     p0, p1 = vehicle_params(baseline), vehicle_params(moved)
@@ -67,11 +71,11 @@ def test_moving_the_whole_car_in_x_changes_nothing(baseline):
 
 def test_every_parameter_names_its_source(baseline):
     p = vehicle_params(baseline)
-    for name in ("mass", "cog_to_front_axle", "cog_height", "yaw_inertia", "tire_front",
-                 "tire_rear", "roll_stiffness_front", "roll_stiffness_rear",
-                 "roll_centre_height_front", "roll_centre_height_rear"):
+    for name in ('mass', 'cog_to_front_axle', 'cog_height', 'yaw_inertia', 'tire_front',
+                 'tire_rear', 'roll_stiffness_front', 'roll_stiffness_rear',
+                 'roll_centre_height_front', 'roll_centre_height_rear'):
         assert p.sources[name], name
-    assert p.sources["roll_stiffness_front"] == ("design target sedan/targets/X.yaml "
-                                                 "(variant X)")
-    assert p.sources["tire_front"].startswith("tires/Sedan_Pac02Tire.tir Magic Formula fitted")
+    assert p.sources['roll_stiffness_front'] == ('design target sedan/targets/X.yaml '
+                                                 '(variant X)')
+    assert p.sources['tire_front'].startswith('tires/Sedan_Pac02Tire.tir Magic Formula fitted')
 

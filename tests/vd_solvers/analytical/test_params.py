@@ -1,7 +1,7 @@
 from __future__ import annotations
 
-import math
 from dataclasses import FrozenInstanceError, replace
+import math
 
 import pytest
 
@@ -17,24 +17,24 @@ def test_static_axle_loads_add_up_to_the_weight(passenger_car: VehicleParams) ->
 
 
 @pytest.mark.parametrize(
-    ("field", "value"),
+    ('field', 'value'),
     [
-        ("mass", 0.0),
-        ("mass", -1500.0),
-        ("wheelbase", 0.0),
-        ("cog_to_front_axle", 0.0),
-        ("cog_to_front_axle", 2.7),
-        ("track_front", 0.0),
-        ("track_rear", -1.5),
-        ("cog_height", 0.0),
-        ("roll_stiffness_front", -1.0),
-        ("roll_stiffness_rear", -1.0),
-        ("yaw_inertia", 0.0),
-        ("unsprung_mass_front", -10.0),
-        ("unsprung_cog_height_rear", -0.3),
-        ("g", 0.0),
-        ("roll_centre_height_front", math.nan),
-        ("cog_height", math.inf),
+        ('mass', 0.0),
+        ('mass', -1500.0),
+        ('wheelbase', 0.0),
+        ('cog_to_front_axle', 0.0),
+        ('cog_to_front_axle', 2.7),
+        ('track_front', 0.0),
+        ('track_rear', -1.5),
+        ('cog_height', 0.0),
+        ('roll_stiffness_front', -1.0),
+        ('roll_stiffness_rear', -1.0),
+        ('yaw_inertia', 0.0),
+        ('unsprung_mass_front', -10.0),
+        ('unsprung_cog_height_rear', -0.3),
+        ('g', 0.0),
+        ('roll_centre_height_front', math.nan),
+        ('cog_height', math.inf),
     ],
 )
 def test_invalid_values_name_their_field(passenger_car: VehicleParams, field: str, value: float) -> None:
@@ -43,19 +43,19 @@ def test_invalid_values_name_their_field(passenger_car: VehicleParams, field: st
 
 
 def test_unsprung_masses_must_leave_a_sprung_body(passenger_car: VehicleParams) -> None:
-    with pytest.raises(ValueError, match="unsprung_mass"):
+    with pytest.raises(ValueError, match='unsprung_mass'):
         replace(passenger_car, unsprung_mass_front=800.0, unsprung_mass_rear=700.0)
 
 
 @pytest.mark.parametrize(
-    ("change", "field"),
+    ('change', 'field'),
     [
-        ({"shape": 1.0}, "tire_front.shape"),
-        ({"shape": 2.2}, "tire_front.shape"),
-        ({"curvature": 1.0}, "tire_front.curvature"),
-        ({"fz0": 0.0}, "tire_front.fz0"),
-        ({"c0": -18.0}, "tire_front"),
-        ({"mu0": 0.0}, "tire_front"),
+        ({'shape': 1.0}, 'tire_front.shape'),
+        ({'shape': 2.2}, 'tire_front.shape'),
+        ({'curvature': 1.0}, 'tire_front.curvature'),
+        ({'fz0': 0.0}, 'tire_front.fz0'),
+        ({'c0': -18.0}, 'tire_front'),
+        ({'mu0': 0.0}, 'tire_front'),
     ],
 )
 def test_unusable_tires_are_rejected(passenger_car: VehicleParams, change: dict[str, float], field: str) -> None:
@@ -64,11 +64,11 @@ def test_unusable_tires_are_rejected(passenger_car: VehicleParams, change: dict[
 
 
 def test_sources_must_name_fields_and_are_frozen(passenger_car: VehicleParams) -> None:
-    with pytest.raises(ValueError, match="sources"):
-        replace(passenger_car, sources={"mass_kg": "typo"})
-    assert passenger_car.sources["mass"] == "test fixture"
+    with pytest.raises(ValueError, match='sources'):
+        replace(passenger_car, sources={'mass_kg': 'typo'})
+    assert passenger_car.sources['mass'] == 'test fixture'
     with pytest.raises(TypeError):
-        passenger_car.sources["mass"] = "changed"  # type: ignore[index]
+        passenger_car.sources['mass'] = 'changed'  # type: ignore[index]
     with pytest.raises(FrozenInstanceError):
         passenger_car.mass = 1.0  # type: ignore[misc]
 

@@ -1,9 +1,9 @@
 """Two-track steady state: eqs. 3-9, equilibrium, limits and the thesis' 4.1 trends."""
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import replace
+import math
 
 import numpy as np
 import pytest
@@ -49,7 +49,7 @@ def test_roll_and_load_transfer_are_eqs_3_and_4(passenger_car: VehicleParams) ->
     )
 
 
-@pytest.mark.parametrize("unsprung", [True, False])
+@pytest.mark.parametrize('unsprung', [True, False])
 def test_load_transfer_balances_the_overturning_moment(passenger_car: VehicleParams, unsprung: bool) -> None:
     """Sum of dF_z t = m a_y h + m_s g h1 phi (inertia at the COG plus the rolled body's weight shift)."""
     p = passenger_car if unsprung else _thesis_car(passenger_car)
@@ -91,7 +91,7 @@ def test_linear_gradient_sign_follows_weight_distribution(oversteering_car: Vehi
     assert gradient < 0.0
 
 
-@pytest.mark.parametrize("car", ["passenger_car", "oversteering_car"])
+@pytest.mark.parametrize('car', ['passenger_car', 'oversteering_car'])
 def test_every_solved_point_is_in_equilibrium(car: str, request: pytest.FixtureRequest) -> None:
     p: VehicleParams = request.getfixturevalue(car)
     diagram = two_track.handling_diagram(p, RADIUS, n=25)
@@ -183,21 +183,21 @@ def test_tire_peak_slip_is_where_the_force_peaks(passenger_car: VehicleParams) -
 def test_limit_is_solvable_and_just_beyond_it_is_not(passenger_car: VehicleParams) -> None:
     p = passenger_car
     limit = two_track.max_lateral_acceleration(p, RADIUS)
-    assert limit.limiting_axle == "front" and limit.cause == "saturation"
-    assert limit.behaviour == "limit understeer"
+    assert limit.limiting_axle == 'front' and limit.cause == 'saturation'
+    assert limit.behaviour == 'limit understeer'
     assert 0.85 * p.g < limit.lateral_acceleration < 1.0 * p.g
     assert limit.speed == pytest.approx(math.sqrt(limit.lateral_acceleration * RADIUS))
     two_track.steady_state(p, limit.lateral_acceleration, RADIUS)
-    with pytest.raises(BeyondLimitError, match="front axle saturates"):
+    with pytest.raises(BeyondLimitError, match='front axle saturates'):
         two_track.steady_state(p, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
-    with pytest.raises(BeyondLimitError, match=r"front axle .* a_y = 10\.5"):
+    with pytest.raises(BeyondLimitError, match=r'front axle .* a_y = 10\.5'):
         two_track.steady_state(p, 10.5, RADIUS)
 
 
 def test_oversteering_car_is_rear_limited(oversteering_car: VehicleParams) -> None:
     limit = two_track.max_lateral_acceleration(oversteering_car, RADIUS)
-    assert limit.limiting_axle == "rear" and limit.behaviour == "limit oversteer"
-    with pytest.raises(BeyondLimitError, match="rear axle saturates"):
+    assert limit.limiting_axle == 'rear' and limit.behaviour == 'limit oversteer'
+    with pytest.raises(BeyondLimitError, match='rear axle saturates'):
         two_track.steady_state(oversteering_car, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
 
 
@@ -206,7 +206,7 @@ def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> 
     # front axle saturates later, on its outer wheel alone
     car = make_car(cog_height=0.75, roll_stiffness_front=100000.0, roll_stiffness_rear=30000.0)
     axle, onset = two_track.wheel_lift_onset(car)
-    assert axle == "front"
+    assert axle == 'front'
     geo = two_track.roll_geometry(car)
     # eq. 4 with both wheels down reaches N_f/2 exactly at the onset
     transfer = (geo.sprung_mass_front * onset * car.roll_centre_height_front
@@ -214,7 +214,7 @@ def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> 
                 + car.unsprung_mass_front * onset * car.unsprung_cog_height_front) / car.track_front
     assert transfer == pytest.approx(car.axle_load_front / 2.0, rel=1e-12)
     limit = two_track.max_lateral_acceleration(car, RADIUS)
-    assert (limit.limiting_axle, limit.cause) == ("front", "saturation")
+    assert (limit.limiting_axle, limit.cause) == ('front', 'saturation')
     assert limit.lateral_acceleration > onset + 0.5
     a_y = 0.5 * (onset + limit.lateral_acceleration)
     point = two_track.steady_state(car, a_y, RADIUS)
@@ -245,10 +245,10 @@ def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> 
 def test_rollover_when_both_inner_wheels_lift(make_car: CarFactory) -> None:
     tall = make_car(cog_height=0.9, roll_stiffness_front=80000.0, roll_stiffness_rear=20000.0)
     limit = two_track.max_lateral_acceleration(tall, RADIUS)
-    assert (limit.limiting_axle, limit.cause, limit.behaviour) == ("front", "rollover", "rollover")
+    assert (limit.limiting_axle, limit.cause, limit.behaviour) == ('front', 'rollover', 'rollover')
     loads = two_track.steady_state(tall, limit.lateral_acceleration, RADIUS).wheel_loads
     assert loads[0] == pytest.approx(0.0, abs=1e-9) and loads[2] > 0.0
-    with pytest.raises(BeyondLimitError, match="rolls over"):
+    with pytest.raises(BeyondLimitError, match='rolls over'):
         two_track.steady_state(tall, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
 
 
@@ -260,17 +260,17 @@ def test_roll_instability_is_a_solver_error(passenger_car: VehicleParams) -> Non
         lambda: two_track.max_lateral_acceleration(soft, RADIUS),
         lambda: two_track.handling_diagram(soft, RADIUS),
     ):
-        with pytest.raises(SolverError, match="roll instability") as caught:
+        with pytest.raises(SolverError, match='roll instability') as caught:
             call()
         assert not isinstance(caught.value, BeyondLimitError)
 
 
 def test_invalid_operating_points(passenger_car: VehicleParams) -> None:
-    with pytest.raises(ValueError, match="radius"):
+    with pytest.raises(ValueError, match='radius'):
         two_track.steady_state(passenger_car, 1.0, 0.0)
-    with pytest.raises(ValueError, match="share the sign"):
+    with pytest.raises(ValueError, match='share the sign'):
         two_track.steady_state(passenger_car, -1.0, RADIUS)
-    with pytest.raises(ValueError, match="n must"):
+    with pytest.raises(ValueError, match='n must'):
         two_track.handling_diagram(passenger_car, RADIUS, n=1)
 
 
@@ -293,7 +293,7 @@ def test_trend_a_rear_roll_stiffness_raises_the_understeer_limit(make_car: CarFa
     """Moving roll stiffness rearward unloads the front's load transfer: more grip where it limits."""
     cars = [_front_heavy(make_car, front, rear) for front, rear in ROLL_STIFFNESS_VARIANTS]
     limits = [two_track.max_lateral_acceleration(car, RADIUS) for car in cars]
-    assert [limit.behaviour for limit in limits] == ["limit understeer"] * 3
+    assert [limit.behaviour for limit in limits] == ['limit understeer'] * 3
     assert all(two_track.understeer_gradient_linear(car) > 0.0 for car in cars)
     a_max = [limit.lateral_acceleration for limit in limits]
     assert a_max[0] < a_max[1] < a_max[2]
@@ -304,19 +304,21 @@ def test_trend_b_higher_cog_lowers_the_oversteer_limit(make_car: CarFactory) -> 
     """More load transfer on both axles costs grip through the friction load sensitivity."""
     cars = [_rear_heavy(make_car, height) for height in COG_HEIGHT_VARIANTS]
     limits = [two_track.max_lateral_acceleration(car, RADIUS) for car in cars]
-    assert [limit.behaviour for limit in limits] == ["limit oversteer"] * 3
+    assert [limit.behaviour for limit in limits] == ['limit oversteer'] * 3
     assert all(two_track.understeer_gradient_linear(car) < 0.0 for car in cars)
     a_max = [limit.lateral_acceleration for limit in limits]
     assert a_max[0] > a_max[1] > a_max[2]
     assert a_max[0] - a_max[2] > 100 * two_track.LIMIT_TOLERANCE
 
 
-@pytest.mark.parametrize("variants", ["roll_stiffness", "cog_height"])
+@pytest.mark.parametrize('variants', ['roll_stiffness', 'cog_height'])
 def test_trends_vanish_with_load_insensitive_tires(make_car: CarFactory, variants: str) -> None:
-    """Control: with mu1 = c1 = 0 an axle's force is mu0 N f(alpha) whatever the load transfer,
-    so both trends disappear and every car reaches mu0 g: the trends come from the tire physics."""
+    """
+    Control: with mu1 = c1 = 0 an axle's force is mu0 N f(alpha) whatever the load transfer,
+    so both trends disappear and every car reaches mu0 g: the trends come from the tire physics.
+    """
     insensitive = replace(make_car().tire_front, mu1=0.0, c1=0.0)
-    if variants == "roll_stiffness":
+    if variants == 'roll_stiffness':
         cars = [_front_heavy(make_car, front, rear) for front, rear in ROLL_STIFFNESS_VARIANTS]
     else:
         cars = [_rear_heavy(make_car, height) for height in COG_HEIGHT_VARIANTS]

@@ -1,4 +1,5 @@
-"""The beam element, sections and condensation against closed forms.
+"""
+The beam element, sections and condensation against closed forms.
 
 Closed forms: Timoshenko cantilever (Timoshenko & Gere, Mechanics of Materials,
 tip deflection P L^3 / (3 E I) + P L / (kappa G A), tip rotation P L^2 / (2 E I)),
@@ -28,12 +29,12 @@ def _cantilever(direction: np.ndarray, section: sec.Section, load: np.ndarray) -
     return np.linalg.solve(k[6:, 6:], load)
 
 
-@pytest.mark.parametrize("shape", ["solid_round", "tube", "rectangle", "i_beam"])
+@pytest.mark.parametrize('shape', ['solid_round', 'tube', 'rectangle', 'i_beam'])
 def test_cantilever_bending_in_both_planes(shape):
-    s = {"solid_round": lambda: sec.solid_round(0.02, 0.3),
-         "tube": lambda: sec.tube(0.025, 0.0025, 0.3),
-         "rectangle": lambda: sec.rectangle(0.03, 0.05, 0.3),
-         "i_beam": lambda: sec.i_beam(0.06, 0.04, 0.006, 0.005)}[shape]()
+    s = {'solid_round': lambda: sec.solid_round(0.02, 0.3),
+         'tube': lambda: sec.tube(0.025, 0.0025, 0.3),
+         'rectangle': lambda: sec.rectangle(0.03, 0.05, 0.3),
+         'i_beam': lambda: sec.i_beam(0.06, 0.04, 0.006, 0.005)}[shape]()
     e, g, p = STEEL.youngs_modulus, STEEL.shear_modulus, 1000.0
     x = np.array([1.0, 0.0, 0.0])  # local y = vehicle y, local z = vehicle z
     tip = _cantilever(x, s, np.array([0, 0, p, 0, 0, 0.0]))  # vertical load: bends about y
@@ -73,13 +74,15 @@ def test_euler_bernoulli_when_no_shear_area():
 
 
 def test_condensation_reproduces_the_full_model():
-    """Static loads at the attachment nodes: the condensed stiffness gives the full
-    model's attachment displacements (Guyan reduction is exact for statics)."""
-    pts = {"front": np.array([0.26, 0.2, 0.2]), "rear": np.array([-0.26, 0.19, 0.22]),
-           "outer": np.array([0.02, 0.62, 0.18]), "seat": np.array([0.0, 0.45, 0.25])}
-    comp = build("arm", pts, [("front", "outer"), ("rear", "outer")], STEEL,
-                 sec.tube(0.03, 0.003, 0.3), attachments=["seat"], elements_per_member=5,
-                 shape_points=[ShapePoint("front", "outer", 0.4, (0.0, 0.0, 0.03))])
+    """
+    Static loads at the attachment nodes: the condensed stiffness gives the full
+    model's attachment displacements (Guyan reduction is exact for statics).
+    """
+    pts = {'front': np.array([0.26, 0.2, 0.2]), 'rear': np.array([-0.26, 0.19, 0.22]),
+           'outer': np.array([0.02, 0.62, 0.18]), 'seat': np.array([0.0, 0.45, 0.25])}
+    comp = build('arm', pts, [('front', 'outer'), ('rear', 'outer')], STEEL,
+                 sec.tube(0.03, 0.003, 0.3), attachments=['seat'], elements_per_member=5,
+                 shape_points=[ShapePoint('front', 'outer', 0.4, (0.0, 0.0, 0.03))])
     frame = comp.full
     assert frame is not None and frame.positions.shape[0] > len(comp.nodes)
     rng = np.random.default_rng(1)
@@ -94,8 +97,8 @@ def test_condensation_reproduces_the_full_model():
 
 
 def test_condensed_component_has_exactly_six_rigid_modes():
-    pts = {"a": np.zeros(3), "b": np.array([0.4, 0.0, 0.0]), "c": np.array([0.2, 0.3, 0.0])}
-    comp = build("tri", pts, [("a", "c"), ("b", "c")], STEEL, sec.solid_round(0.02, 0.3))
+    pts = {'a': np.zeros(3), 'b': np.array([0.4, 0.0, 0.0]), 'c': np.array([0.2, 0.3, 0.0])}
+    comp = build('tri', pts, [('a', 'c'), ('b', 'c')], STEEL, sec.solid_round(0.02, 0.3))
     values = np.linalg.eigvalsh(comp.stiffness)
     assert np.sum(np.abs(values) < 1e-10 * values.max()) == 6
     # the rigid modes are the null space: a rigid rotation of all nodes stores nothing
@@ -105,9 +108,9 @@ def test_condensed_component_has_exactly_six_rigid_modes():
 
 
 def test_mass_and_centre_of_mass_from_the_elements():
-    pts = {"a": np.zeros(3), "b": np.array([0.5, 0.0, 0.0])}
+    pts = {'a': np.zeros(3), 'b': np.array([0.5, 0.0, 0.0])}
     s = sec.solid_round(0.02, 0.3)
-    comp = build("rod", pts, [("a", "b")], STEEL, s, elements_per_member=3)
+    comp = build('rod', pts, [('a', 'b')], STEEL, s, elements_per_member=3)
     assert comp.mass == pytest.approx(STEEL.density * s.area * 0.5)
     np.testing.assert_allclose(comp.cog, [0.25, 0.0, 0.0], atol=1e-15)
 
@@ -117,12 +120,12 @@ def test_condense_keeps_masters_only():
     assert condense(k, np.array([0, 1])).shape == (12, 12)
 
 
-@pytest.mark.parametrize("make, message", [
-    (lambda: sec.solid_round(0.0, 0.3), "solid_round section: diameter must be positive, got 0.0"),
-    (lambda: sec.tube(0.02, 0.01, 0.3), "tube section: wall 0.01 m leaves no bore in outer "
-                                         "diameter 0.02 m (use solid_round)"),
-    (lambda: sec.Section(-1e-4, 1e-8, 1e-8, 1e-8), "general section: area must be positive, "
-                                                   "got -0.0001"),
+@pytest.mark.parametrize('make, message', [
+    (lambda: sec.solid_round(0.0, 0.3), 'solid_round section: diameter must be positive, got 0.0'),
+    (lambda: sec.tube(0.02, 0.01, 0.3), 'tube section: wall 0.01 m leaves no bore in outer '
+                                         'diameter 0.02 m (use solid_round)'),
+    (lambda: sec.Section(-1e-4, 1e-8, 1e-8, 1e-8), 'general section: area must be positive, '
+                                                   'got -0.0001'),
 ])
 def test_bad_sections_are_refused(make, message):
     with pytest.raises(SolverError) as err:
@@ -131,14 +134,14 @@ def test_bad_sections_are_refused(make, message):
 
 
 def test_coincident_member_points_are_refused():
-    pts = {"a": np.zeros(3), "b": np.array([0.004, 0.0, 0.0])}
+    pts = {'a': np.zeros(3), 'b': np.array([0.004, 0.0, 0.0])}
     with pytest.raises(SolverError) as err:
-        build("lca", pts, [("a", "b")], STEEL, sec.solid_round(0.02, 0.3))
+        build('lca', pts, [('a', 'b')], STEEL, sec.solid_round(0.02, 0.3))
     assert str(err.value) == "component 'lca': hard points 'a' and 'b' coincide (a member needs length)"
 
 
 def test_disconnected_frame_is_refused():
-    pts = {"a": np.zeros(3), "b": np.array([0.3, 0, 0]), "c": np.array([0, 1, 0]),
-           "d": np.array([0.3, 1, 0])}
-    with pytest.raises(SolverError, match="zero-stiffness deformation mode"):
-        build("two", pts, [("a", "b"), ("c", "d")], STEEL, sec.solid_round(0.02, 0.3))
+    pts = {'a': np.zeros(3), 'b': np.array([0.3, 0, 0]), 'c': np.array([0, 1, 0]),
+           'd': np.array([0.3, 1, 0])}
+    with pytest.raises(SolverError, match='zero-stiffness deformation mode'):
+        build('two', pts, [('a', 'b'), ('c', 'd')], STEEL, sec.solid_round(0.02, 0.3))

@@ -1,6 +1,8 @@
-"""Flexible components inside the K&C model: objectivity of the co-rotational
+"""
+Flexible components inside the K&C model: objectivity of the co-rotational
 embedding, the rigid limit, softening, the beam anti-roll bar against G J / L,
-imported stiffness equal to the generated one, and the thesis' trends (5.1)."""
+imported stiffness equal to the generated one, and the thesis' trends (5.1).
+"""
 from __future__ import annotations
 
 from dataclasses import replace
@@ -20,35 +22,37 @@ from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.model import FlexSpec, StabilizerSpec
 from vd_solvers.kc.solver import rotation_vectors_to_matrices
 
-EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force",
-          "longitudinal_force")
+EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
+          'longitudinal_force')
 STEPS = 11
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def studies():
     from pathlib import Path
 
-    root = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "studies"
-    return {v: load_study(root / f"{v}.yaml") for v in ("sedan", "hmmwv")}
+    root = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
+    return {v: load_study(root / f'{v}.yaml') for v in ('sedan', 'hmmwv')}
 
 
 def _inputs(studies, fidelity):
     for vehicle, study in studies.items():
         for name, config in study.configurations.items():
-            for axle in ("front", "rear"):
-                yield f"{vehicle}/{name}/{axle}", suspension_input(config, axle, fidelity)
+            for axle in ('front', 'rear'):
+                yield f'{vehicle}/{name}/{axle}', suspension_input(config, axle, fidelity)
 
 
 def test_rigid_rotation_of_a_component_stores_no_energy(studies):
-    """Objectivity: rotate every node of the flexible lower arm rigidly by 30 deg,
-    deformed or not; the component's strain energy and internal force are unchanged."""
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    """
+    Objectivity: rotate every node of the flexible lower arm rigidly by 30 deg,
+    deformed or not; the component's strain energy and internal force are unchanged.
+    """
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'flexible')
     system = assemble(inp)
     law_idx = [i for law, i in system.laws if isinstance(law, MatrixLaw)]
     # round-off floor: the stiffest entry times a position error of ~50 ulp of 1 m
     floor = system.coupled_max * 1e-14
-    nodes = [k for k, n in enumerate(system.part_names) if n.startswith("lca.left@")]
+    nodes = [k for k, n in enumerate(system.part_names) if n.startswith('lca.left@')]
     assert len(nodes) == 3
     # the lca's measures are the ones that change when only its nodes move
     state = system.design_state()
@@ -82,31 +86,35 @@ RIGID_LIMIT_SCALE = 1e5
 
 
 def _stiffened(inp, factor=RIGID_LIMIT_SCALE):
-    """Every flexible component except the bar made far stiffer and massless,
-    the rigid model's part masses removed (so both carry the same weights)."""
+    """
+    Every flexible component except the bar made far stiffer and massless,
+    the rigid model's part masses removed (so both carry the same weights).
+    """
     flex = {}
     for name, spec in inp.flexible.items():
-        if name == "anti_roll_bar":
+        if name == 'anti_roll_bar':
             continue
         m = spec.material
         flex[name] = replace(spec, material=sec.Material(m.youngs_modulus * factor,
                                                          m.shear_modulus * factor, 0.0))
-    return replace(inp, flexible=flex, masses={"wheel": inp.masses["wheel"]})
+    return replace(inp, flexible=flex, masses={'wheel': inp.masses['wheel']})
 
 
 def test_rigid_limit_equals_the_rigid_model(studies):
-    """E and G x 1e5: the flexible K&C equals the rigid K&C within 1e-4 deg and 1e-3 mm
-    on every event, every configuration of both sample vehicles."""
+    """
+    E and G x 1e5: the flexible K&C equals the rigid K&C within 1e-4 deg and 1e-3 mm
+    on every event, every configuration of both sample vehicles.
+    """
     checked = 0
-    for label, inp in _inputs(studies, "flexible"):
+    for label, inp in _inputs(studies, 'flexible'):
         stiff = _stiffened(inp)
-        rigid = replace(inp, flexible={}, masses={"wheel": inp.masses["wheel"]})
+        rigid = replace(inp, flexible={}, masses={'wheel': inp.masses['wheel']})
         m_rigid, m_flex = KCModel(rigid, label), KCModel(stiff, label)
         for event in EVENTS:
             a, b = m_rigid.run(event, steps=STEPS), m_flex.run(event, steps=STEPS)
-            for ch in ("toe", "camber"):
+            for ch in ('toe', 'camber'):
                 assert np.degrees(np.abs(a.channels[ch] - b.channels[ch]).max()) < 1e-4, (label, event, ch)
-            for ch in ("wheel_centre", "contact_point"):
+            for ch in ('wheel_centre', 'contact_point'):
                 assert np.abs(a.channels[ch] - b.channels[ch]).max() < 1e-6, (label, event, ch)
             checked += 1
     assert checked == 4 * 2 * (3 + 2)  # events x axles x configurations (sedan 3, hmmwv 2)
@@ -119,38 +127,42 @@ def _metrics(inp, label):
 
 
 def test_flexibility_can_only_soften(studies):
-    """Compliance added in series can only increase the flexibility of a loaded point in
+    """
+    Compliance added in series can only increase the flexibility of a loaded point in
     the direction of its load (Rayleigh): the work-conjugate stiffnesses -- lateral at the
     contact point, traction at the wheel centre, roll -- cannot rise. (Braking acts on the
     locked wheel at the contact patch while its metric follows the wheel centre, which a
-    softer knuckle may let move less: not a conjugate pair, so not part of the property.)"""
-    for label, inp in _inputs(studies, "flexible"):
+    softer knuckle may let move less: not a conjugate pair, so not part of the property.)
+    """
+    for label, inp in _inputs(studies, 'flexible'):
         rigid = replace(inp, flexible={})
         mr, mf = _metrics(rigid, label), _metrics(inp, label)
-        for key in ("lateral_stiffness", "longitudinal_stiffness_traction", "roll_stiffness"):
+        for key in ('lateral_stiffness', 'longitudinal_stiffness_traction', 'roll_stiffness'):
             assert mf[key][0] <= mr[key][0] * (1 + 1e-9), (label, key, mf[key][0], mr[key][0])
 
 
 def test_straight_beam_bar_matches_torsion_spring(studies):
-    """A straight bar with stiff arms running along x: its roll stiffness equals the
-    torsion-spring model's with k = G J / L (L the distance between the mounts), within 1 %."""
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "rigid")
+    """
+    A straight bar with stiff arms running along x: its roll stiffness equals the
+    torsion-spring model's with k = G J / L (L the distance between the mounts), within 1 %.
+    """
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'rigid')
     hp = dict(inp.hardpoints)
-    upper = hp["arb_link_upper"]
-    hp["arb_pivot"] = np.array([hp["arb_pivot"][0], upper[1], upper[2]])  # arm along x
+    upper = hp['arb_link_upper']
+    hp['arb_pivot'] = np.array([hp['arb_pivot'][0], upper[1], upper[2]])  # arm along x
     bar = sec.solid_round(0.022, 0.3)
     steel = sec.Material(206e9, 79.3e9, 0.0)  # massless: the stiff arms would weigh 90 kg
-    length = 2.0 * hp["arb_pivot"][1]
-    base = replace(inp, hardpoints=hp, masses={"wheel": inp.masses["wheel"]})
+    length = 2.0 * hp['arb_pivot'][1]
+    base = replace(inp, hardpoints=hp, masses={'wheel': inp.masses['wheel']})
     rigid = replace(base, stabilizer=StabilizerSpec(steel.shear_modulus * bar.j / length))
     stiff_arm = sec.solid_round(0.2, 0.3)
-    flex = replace(base, flexible={"anti_roll_bar": FlexSpec(steel, bar, arm_section=stiff_arm,
+    flex = replace(base, flexible={'anti_roll_bar': FlexSpec(steel, bar, arm_section=stiff_arm,
                                                              elements_per_member=4)})
     bare = replace(base, stabilizer=None)
 
     def roll(i):
-        r = KCModel(i).run("opposite_wheel_travel", steps=11, amplitude=0.02)
-        return derived_metrics({"opposite_wheel_travel": r}, i.tire_vertical_stiffness)["roll_stiffness"][0]
+        r = KCModel(i).run('opposite_wheel_travel', steps=11, amplitude=0.02)
+        return derived_metrics({'opposite_wheel_travel': r}, i.tire_vertical_stiffness)['roll_stiffness'][0]
 
     k0 = roll(bare)
     assert roll(flex) - k0 == pytest.approx(roll(rigid) - k0, rel=0.01)
@@ -161,40 +173,42 @@ def _plain(comp, length=1e-3):
     from vd_solvers.flex.imported import dof_scales
 
     k = comp.stiffness / dof_scales(len(comp.nodes), length, 1.0, 1.0)
-    return {"units": {"length": "mm"}, "mass": comp.mass, "cog": list(comp.cog / length),
-            "nodes": {n: list(p / length) for n, p in zip(comp.nodes, comp.positions)},
-            "stiffness": k.tolist()}
+    return {'units': {'length': 'mm'}, 'mass': comp.mass, 'cog': list(comp.cog / length),
+            'nodes': {n: list(p / length) for n, p in zip(comp.nodes, comp.positions)},
+            'stiffness': k.tolist()}
 
 
 def _dmig(comp, grids):
-    lines = [f"DMIG*   {'KAAX':<16}{0:>16}{6:>16}{2:>16}", "*       " + f"{0:>16}"]
+    lines = [f"DMIG*   {'KAAX':<16}{0:>16}{6:>16}{2:>16}", '*       ' + f'{0:>16}']
     for j in range(comp.stiffness.shape[0]):
         lines.append(f"DMIG*   {'KAAX':<16}{grids[j // 6]:>16}{j % 6 + 1:>16}")
         for i in range(j + 1):
-            lines.append(f"*       {grids[i // 6]:>16}{i % 6 + 1:>16}"
-                         f"{comp.stiffness[i, j]:>16.9E}".replace("E", "D"))
-    return "\n".join(lines) + "\n"
+            lines.append(f'*       {grids[i // 6]:>16}{i % 6 + 1:>16}'
+                         f'{comp.stiffness[i, j]:>16.9E}'.replace('E', 'D'))
+    return '\n'.join(lines) + '\n'
 
 
 def test_imported_stiffness_equals_the_generated_frame(studies):
-    """The lower arm's condensed stiffness written as a plain file and as a Nastran DMIG
-    punch, read back and used in the K&C model: the same results as the beam frame."""
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
-    model = KCModel(replace(inp, flexible={"lca": inp.flexible["lca"]}))
-    (comp,) = [c for c in model.system.outputs.components if c.name == "lca"]
-    factors = {"length": 1.0, "force": 1.0, "angle": 1.0, "mass": 1.0}
-    plain = from_plain("lca", _plain(comp), what="test", factors={**factors, "length": 1e-3})
+    """
+    The lower arm's condensed stiffness written as a plain file and as a Nastran DMIG
+    punch, read back and used in the K&C model: the same results as the beam frame.
+    """
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'flexible')
+    model = KCModel(replace(inp, flexible={'lca': inp.flexible['lca']}))
+    (comp,) = [c for c in model.system.outputs.components if c.name == 'lca']
+    factors = {'length': 1.0, 'force': 1.0, 'angle': 1.0, 'mass': 1.0}
+    plain = from_plain('lca', _plain(comp), what='test', factors={**factors, 'length': 1e-3})
     np.testing.assert_allclose(plain.stiffness, comp.stiffness, rtol=1e-12)
     grids = {101 + i: n for i, n in enumerate(comp.nodes)}
-    dmig = from_dmig("lca", _dmig(comp, list(grids)), matrix="KAAX", grids=grids, what="test",
+    dmig = from_dmig('lca', _dmig(comp, list(grids)), matrix='KAAX', grids=grids, what='test',
                      factors=factors)
     np.testing.assert_allclose(dmig.stiffness, comp.stiffness, rtol=1e-8,
                                atol=1e-8 * np.abs(comp.stiffness).max())
-    ref = model.run("lateral_force", steps=STEPS)
+    ref = model.run('lateral_force', steps=STEPS)
     for imported in (plain, replace(dmig, mass=comp.mass, cog=comp.cog)):
         spec = FlexSpec(imported=imported)
-        got = KCModel(replace(inp, flexible={"lca": spec})).run("lateral_force", steps=STEPS)
-        np.testing.assert_allclose(got.channels["toe"], ref.channels["toe"], atol=1e-9)
+        got = KCModel(replace(inp, flexible={'lca': spec})).run('lateral_force', steps=STEPS)
+        np.testing.assert_allclose(got.channels['toe'], ref.channels['toe'], atol=1e-9)
 
 
 def test_mirrored_stiffness_is_the_mirror_image():
@@ -206,59 +220,63 @@ def test_mirrored_stiffness_is_the_mirror_image():
 
 def test_malformed_dmig_is_refused():
     with pytest.raises(SolverError) as err:
-        from_dmig("lca", "DMIG    KGG     0       6       2\n", matrix="KAAX", grids={1: "a"},
-                  what="f.pch", factors={"length": 1.0, "force": 1.0, "angle": 1.0})
+        from_dmig('lca', 'DMIG    KGG     0       6       2\n', matrix='KAAX', grids={1: 'a'},
+                  what='f.pch', factors={'length': 1.0, 'force': 1.0, 'angle': 1.0})
     assert str(err.value) == "f.pch: no DMIG matrix 'KAAX' (found: KGG)"
-    text = ("DMIG    KAAX    0       6       2\n"
-            "DMIG    KAAX    101     1               101     1       1.0x+3\n")
+    text = ('DMIG    KAAX    0       6       2\n'
+            'DMIG    KAAX    101     1               101     1       1.0x+3\n')
     with pytest.raises(SolverError) as err:
-        from_dmig("lca", text, matrix="KAAX", grids={101: "a"}, what="f.pch",
-                  factors={"length": 1.0, "force": 1.0, "angle": 1.0})
+        from_dmig('lca', text, matrix='KAAX', grids={101: 'a'}, what='f.pch',
+                  factors={'length': 1.0, 'force': 1.0, 'angle': 1.0})
     assert str(err.value) == "f.pch: '1.0x+3' is not a number"
 
 
 def test_unknown_component_for_the_template_is_refused(studies):
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'flexible')
     with pytest.raises(SolverError) as err:
-        KCModel(replace(inp, flexible={"crossmember": inp.flexible["lca"]}), "cfg")
+        KCModel(replace(inp, flexible={'crossmember': inp.flexible['lca']}), 'cfg')
     assert str(err.value) == ("cfg: unknown flexible component 'crossmember' (components of "
                               "template 'macpherson': upright, lca, strut, tierod, anti_roll_bar, subframe)")
 
 
 def test_thesis_trends(studies):
-    """Thesis 5.1: the force events differ between rigid and flexible; the steering
-    event (kinematics) nearly agrees."""
-    config = studies["sedan"].configurations["baseline"]
-    inp = suspension_input(config, "front", "flexible")
+    """
+    Thesis 5.1: the force events differ between rigid and flexible; the steering
+    event (kinematics) nearly agrees.
+    """
+    config = studies['sedan'].configurations['baseline']
+    inp = suspension_input(config, 'front', 'flexible')
     rigid, flex = KCModel(replace(inp, flexible={})), KCModel(inp)
 
     def toe_gap(event, **kw):
         """Worst difference of the toe change, and that relative to the event's toe range."""
         a, b = rigid.run(event, steps=STEPS, **kw), flex.run(event, steps=STEPS, **kw)
-        da = a.channels["toe"] - a.channels["toe"][STEPS // 2]
-        db = b.channels["toe"] - b.channels["toe"][STEPS // 2]
+        da = a.channels['toe'] - a.channels['toe'][STEPS // 2]
+        db = b.channels['toe'] - b.channels['toe'][STEPS // 2]
         gap = np.abs(da - db).max()
         return np.degrees(gap), gap / np.ptp(da)
 
-    lateral, lateral_rel = toe_gap("lateral_force")
-    _, steering_rel = toe_gap("steering")
+    lateral, lateral_rel = toe_gap('lateral_force')
+    _, steering_rel = toe_gap('steering')
     assert lateral > 0.05 and lateral_rel > 0.10  # a designer would see it
     assert steering_rel < 0.01  # the steering response is the kinematics
 
 
 def test_tangent_is_consistent_with_the_internal_forces(studies):
-    """The assembled tangent of the flexible model against central finite differences
+    """
+    The assembled tangent of the flexible model against central finite differences
     of the force residual at an equilibrium (opposite pad travel: the bar, springs and
     every component loaded). At equilibrium the symmetric exponential-map chart is
     exact; away from it the tangent lacks the (vanishing) skew term of the residual
     moment, by design. Pad loads only: a force at the contact point has a documented
-    approximate tangent (the contact point rolls along the tread; assembly._applied)."""
+    approximate tangent (the contact point rolls along the tread; assembly._applied).
+    """
     from vd_solvers.kc.solver import solve_static
 
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "rear", "flexible")
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'rear', 'flexible')
     system = assemble(inp)
     load = LoadCase(pad=np.array([0.01, -0.006]))
-    state, _, _ = solve_static(system, load, "tangent check")
+    state, _, _ = solve_static(system, load, 'tangent check')
     rng = np.random.default_rng(3)
     k = system.evaluate(state, load).tangent(state.lam)
 
@@ -276,19 +294,21 @@ def test_tangent_is_consistent_with_the_internal_forces(studies):
 
 
 def test_flexible_subframe_carries_the_arm_pivots(studies):
-    """The subframe alone: the lower-arm joints sit on its nodes, so it adds lateral
-    compliance at the contact patch; made 1e5 times stiffer it is the body again."""
-    inp = suspension_input(studies["sedan"].configurations["baseline"], "front", "flexible")
-    spec = inp.flexible["subframe"]
+    """
+    The subframe alone: the lower-arm joints sit on its nodes, so it adds lateral
+    compliance at the contact patch; made 1e5 times stiffer it is the body again.
+    """
+    inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'flexible')
+    spec = inp.flexible['subframe']
     rigid = replace(inp, flexible={})
-    only = replace(inp, flexible={"subframe": spec})
-    stiff = replace(inp, flexible={"subframe": replace(spec, material=sec.Material(
+    only = replace(inp, flexible={'subframe': spec})
+    stiff = replace(inp, flexible={'subframe': replace(spec, material=sec.Material(
         spec.material.youngs_modulus * 1e5, spec.material.shear_modulus * 1e5, 0.0))})
-    m_rigid, m_only = _metrics(rigid, "rigid"), _metrics(only, "subframe")
-    assert m_only["lateral_stiffness"][0] < m_rigid["lateral_stiffness"][0]
-    a = KCModel(rigid).run("lateral_force", steps=STEPS)
-    b = KCModel(stiff).run("lateral_force", steps=STEPS)
-    assert np.degrees(np.abs(a.channels["toe"] - b.channels["toe"]).max()) < 1e-4
-    assert np.abs(a.channels["contact_point"] - b.channels["contact_point"]).max() < 1e-6
+    m_rigid, m_only = _metrics(rigid, 'rigid'), _metrics(only, 'subframe')
+    assert m_only['lateral_stiffness'][0] < m_rigid['lateral_stiffness'][0]
+    a = KCModel(rigid).run('lateral_force', steps=STEPS)
+    b = KCModel(stiff).run('lateral_force', steps=STEPS)
+    assert np.degrees(np.abs(a.channels['toe'] - b.channels['toe']).max()) < 1e-4
+    assert np.abs(a.channels['contact_point'] - b.channels['contact_point']).max() < 1e-6
     names = KCModel(only).system.part_names
-    assert "subframe.left@lca_front.right" in names
+    assert 'subframe.left@lca_front.right' in names

@@ -1,4 +1,5 @@
-"""K&C fixtures built from Project Chrono's vehicle data (BSD-3, (c) 2016
+"""
+K&C fixtures built from Project Chrono's vehicle data (BSD-3, (c) 2016
 Project Chrono Development Team), copied from
 /work/shared/reference-data/chrono/ -- not read at test time.
 
@@ -57,92 +58,92 @@ CHASSIS_CG_X = 0.056  # m, vehicle frame, same file
 
 # generic__suspension__MacPhersonStrut.json, suspension frame.
 MACPHERSON = {
-    "lca_front": [0.220, 0.520, -0.156],
-    "lca_rear": [-0.300, 0.507, -0.137],
-    "lca_outer": [-0.02165371, 0.94057703, -0.17402826],
-    "tierod_inner": [-0.300, 0.520, -0.059],
-    "tierod_outer": [-0.2373756, 0.89495045, -0.01605418],
-    "strut_top": [-0.115, 0.785, 0.579],  # "Spring" / "Shock" Location Chassis
-    "strut_lower": [-0.07402507, 0.8532915, 0.2484536],  # Location Upright
-    "wheel_centre": [-0.04000403, 1.09999965, -0.02602507],  # Spindle COM
+    'lca_front': [0.220, 0.520, -0.156],
+    'lca_rear': [-0.300, 0.507, -0.137],
+    'lca_outer': [-0.02165371, 0.94057703, -0.17402826],
+    'tierod_inner': [-0.300, 0.520, -0.059],
+    'tierod_outer': [-0.2373756, 0.89495045, -0.01605418],
+    'strut_top': [-0.115, 0.785, 0.579],  # "Spring" / "Shock" Location Chassis
+    'strut_lower': [-0.07402507, 0.8532915, 0.2484536],  # Location Upright
+    'wheel_centre': [-0.04000403, 1.09999965, -0.02602507],  # Spindle COM
     # ours: drop link on the upright, bar ahead of the axle
-    "arb_link_lower": [-0.030, 0.860, 0.100],
-    "arb_link_upper": [-0.030, 0.860, 0.220],
-    "arb_pivot": [0.220, 0.450, 0.220],
+    'arb_link_lower': [-0.030, 0.860, 0.100],
+    'arb_link_upper': [-0.030, 0.860, 0.220],
+    'arb_pivot': [0.220, 0.450, 0.220],
 }
-MACPHERSON_MASSES = {"upright": 20.0, "lca": 5.091, "strut": 5.0, "wheel": 1.103}  # kg (spindle as wheel)
+MACPHERSON_MASSES = {'upright': 20.0, 'lca': 5.091, 'strut': 5.0, 'wheel': 1.103}  # kg (spindle as wheel)
 MACPHERSON_SPRING_RATE = 369149.0  # N/m
 
 # generic__suspension__MultiLink.json, suspension frame.
 MULTILINK = {
-    "upper_front": [0.060, 0.547, 0.082],
-    "upper_rear": [-0.157, 0.508, 0.062],
-    "upper_outer": [0.056, 0.864, 0.151],
-    "lateral_inner": [0.036, 0.338, -0.133],
-    "lateral_outer": [0.029, 0.842, -0.093],
-    "trailing_inner": [0.723, 0.599, -0.072],
-    "trailing_outer": [-0.000, 0.864, -0.156],
-    "tierod_inner": [-0.257, 0.320, -0.116],
-    "tierod_outer": [-0.144, 0.862, -0.056],
-    "spring_upper": [0.181, 0.641, 0.110],
-    "spring_lower": [0.181, 0.669, -0.164],
-    "damper_upper": [0.171, 0.628, 0.315],
-    "damper_lower": [0.181, 0.669, -0.162],
-    "wheel_centre": [0.000, 0.950, 0.000],
+    'upper_front': [0.060, 0.547, 0.082],
+    'upper_rear': [-0.157, 0.508, 0.062],
+    'upper_outer': [0.056, 0.864, 0.151],
+    'lateral_inner': [0.036, 0.338, -0.133],
+    'lateral_outer': [0.029, 0.842, -0.093],
+    'trailing_inner': [0.723, 0.599, -0.072],
+    'trailing_outer': [-0.000, 0.864, -0.156],
+    'tierod_inner': [-0.257, 0.320, -0.116],
+    'tierod_outer': [-0.144, 0.862, -0.056],
+    'spring_upper': [0.181, 0.641, 0.110],
+    'spring_lower': [0.181, 0.669, -0.164],
+    'damper_upper': [0.171, 0.628, 0.315],
+    'damper_lower': [0.181, 0.669, -0.162],
+    'wheel_centre': [0.000, 0.950, 0.000],
     # ours: drop link on the trailing link, bar ahead of the axle
-    "arb_link_lower": [0.250, 0.680, -0.140],
-    "arb_link_upper": [0.250, 0.680, -0.020],
-    "arb_pivot": [0.500, 0.450, -0.020],
+    'arb_link_lower': [0.250, 0.680, -0.140],
+    'arb_link_upper': [0.250, 0.680, -0.020],
+    'arb_pivot': [0.500, 0.450, -0.020],
 }
 # Chrono's universal joint of the trailing link: (chassis axis, link axis).
 MULTILINK_TRAILING_CROSS = ([-0.272, 0.962, 0.0], [0.0, 0.0, 1.0])
 MULTILINK_MASSES = {
-    "upright": 3.201, "upper_arm": 4.744, "trailing_link": 15.204, "lateral_link": 1.910, "wheel": 1.103,
+    'upright': 3.201, 'upper_arm': 4.744, 'trailing_link': 15.204, 'lateral_link': 1.910, 'wheel': 1.103,
 }
 MULTILINK_SPRING_RATE = 120000.0  # N/m
 
 # generic__suspension__DoubleWishbone.json, suspension frame.
 DOUBLE_WISHBONE = {
-    "uca_front": [0.160, 0.539, 0.243],
-    "uca_rear": [-0.339, 0.587, 0.249],
-    "uca_outer": [-0.088, 0.808, 0.243],
-    "lca_front": [0.199, 0.479, -0.206],
-    "lca_rear": [-0.279, 0.539, -0.200],
-    "lca_outer": [-0.040, 0.898, -0.265],
-    "tierod_inner": [-0.279, 0.479, -0.026],
-    "tierod_outer": [-0.220, 0.898, -0.026],
-    "spring_upper": [-0.064, 0.659, 0.094],
-    "spring_lower": [-0.040, 0.718, -0.206],
-    "damper_upper": [-0.088, 0.599, 0.393],
-    "damper_lower": [-0.040, 0.718, -0.206],
-    "wheel_centre": [-0.040, 1.100, -0.026],
+    'uca_front': [0.160, 0.539, 0.243],
+    'uca_rear': [-0.339, 0.587, 0.249],
+    'uca_outer': [-0.088, 0.808, 0.243],
+    'lca_front': [0.199, 0.479, -0.206],
+    'lca_rear': [-0.279, 0.539, -0.200],
+    'lca_outer': [-0.040, 0.898, -0.265],
+    'tierod_inner': [-0.279, 0.479, -0.026],
+    'tierod_outer': [-0.220, 0.898, -0.026],
+    'spring_upper': [-0.064, 0.659, 0.094],
+    'spring_lower': [-0.040, 0.718, -0.206],
+    'damper_upper': [-0.088, 0.599, 0.393],
+    'damper_lower': [-0.040, 0.718, -0.206],
+    'wheel_centre': [-0.040, 1.100, -0.026],
     # ours: drop link on the lower arm
-    "arb_link_lower": [0.050, 0.760, -0.200],
-    "arb_link_upper": [0.050, 0.760, -0.080],
-    "arb_pivot": [0.300, 0.450, -0.080],
+    'arb_link_lower': [0.050, 0.760, -0.200],
+    'arb_link_upper': [0.050, 0.760, -0.080],
+    'arb_pivot': [0.300, 0.450, -0.080],
 }
-DOUBLE_WISHBONE_MASSES = {"upright": 19.450, "lca": 23.965, "uca": 5.813, "wheel": 14.705}
+DOUBLE_WISHBONE_MASSES = {'upright': 19.450, 'lca': 23.965, 'uca': 5.813, 'wheel': 14.705}
 DOUBLE_WISHBONE_SPRING = SpringSpec(rate=369149.0, free_length=0.339)
 
 # hmmwv__suspension__HMMWV_DoubleWishboneFront_bushings.json, suspension frame;
 # vehicle hmmwv__vehicle__HMMWV_Vehicle.json: front at [1.688965, 0, 0].
 HMMWV_FRONT = {
-    "uca_front": [-0.048, 0.446, 0.245],
-    "uca_rear": [-0.268, 0.478, 0.196],
-    "uca_outer": [-0.053, 0.716, 0.215],
-    "lca_front": [0.223, 0.307, 0.000],
-    "lca_rear": [-0.223, 0.307, 0.000],
-    "lca_outer": [-0.036, 0.787, -0.118],
-    "tierod_inner": [-0.250, 0.448, 0.054],
-    "tierod_outer": [-0.176, 0.821, -0.016],
-    "spring_upper": [0.104, 0.510, 0.197],
-    "spring_lower": [0.097, 0.543, -0.047],
-    "damper_upper": [0.104, 0.498, 0.323],
-    "damper_lower": [0.097, 0.543, -0.047],
-    "wheel_centre": [-0.040, 0.910, -0.026],
+    'uca_front': [-0.048, 0.446, 0.245],
+    'uca_rear': [-0.268, 0.478, 0.196],
+    'uca_outer': [-0.053, 0.716, 0.215],
+    'lca_front': [0.223, 0.307, 0.000],
+    'lca_rear': [-0.223, 0.307, 0.000],
+    'lca_outer': [-0.036, 0.787, -0.118],
+    'tierod_inner': [-0.250, 0.448, 0.054],
+    'tierod_outer': [-0.176, 0.821, -0.016],
+    'spring_upper': [0.104, 0.510, 0.197],
+    'spring_lower': [0.097, 0.543, -0.047],
+    'damper_upper': [0.104, 0.498, 0.323],
+    'damper_lower': [0.097, 0.543, -0.047],
+    'wheel_centre': [-0.040, 0.910, -0.026],
 }
 HMMWV_LOCATION = [1.688965, 0.0, 0.0]
-HMMWV_MASSES = {"upright": 19.450, "lca": 23.965, "uca": 5.813, "wheel": 14.705 + 18.8, "tierod": 6.0}
+HMMWV_MASSES = {'upright': 19.450, 'lca': 23.965, 'uca': 5.813, 'wheel': 14.705 + 18.8, 'tierod': 6.0}
 # Spring Curve Data (deflection m, force N) and free length.
 HMMWV_SPRING_CURVE = Curve(
     np.array([-0.2, -0.18, -0.16, -0.14, -0.12, -0.1, -0.08, -0.06, -0.04, -0.02, 0.0,
@@ -169,14 +170,14 @@ def _unsprung(masses: Mapping[str, float], halves: tuple[str, ...]) -> float:
 
 def _generic_loads() -> tuple[float, float, float]:
     """Front and rear corner loads (N) and the wheelbase (m) of the pairing."""
-    x_front = GENERIC_FRONT_LOCATION[0] + MACPHERSON["wheel_centre"][0]
-    x_rear = GENERIC_REAR_LOCATION[0] + MULTILINK["wheel_centre"][0]
+    x_front = GENERIC_FRONT_LOCATION[0] + MACPHERSON['wheel_centre'][0]
+    x_rear = GENERIC_REAR_LOCATION[0] + MULTILINK['wheel_centre'][0]
     wheelbase = x_front - x_rear
     front_share = (CHASSIS_CG_X - x_rear) / wheelbase
     sprung = CHASSIS_MASS * G
-    front = 0.5 * front_share * sprung + _unsprung(MACPHERSON_MASSES, ("lca", "strut"))
+    front = 0.5 * front_share * sprung + _unsprung(MACPHERSON_MASSES, ('lca', 'strut'))
     rear = 0.5 * (1 - front_share) * sprung + _unsprung(
-        MULTILINK_MASSES, ("upper_arm", "trailing_link", "lateral_link")
+        MULTILINK_MASSES, ('upper_arm', 'trailing_link', 'lateral_link')
     )
     return front, rear, wheelbase
 
@@ -186,9 +187,9 @@ FRONT_RADIUS = TIRE_UNLOADED_RADIUS - FRONT_LOAD / TIRE_STIFFNESS
 REAR_RADIUS = TIRE_UNLOADED_RADIUS - REAR_LOAD / TIRE_STIFFNESS
 GENERIC_ORIGIN = np.array(
     [
-        GENERIC_FRONT_LOCATION[0] + MACPHERSON["wheel_centre"][0],
+        GENERIC_FRONT_LOCATION[0] + MACPHERSON['wheel_centre'][0],
         0.0,
-        GENERIC_FRONT_LOCATION[2] + MACPHERSON["wheel_centre"][2] - FRONT_RADIUS,
+        GENERIC_FRONT_LOCATION[2] + MACPHERSON['wheel_centre'][2] - FRONT_RADIUS,
     ]
 )
 
@@ -207,8 +208,8 @@ STEERING = SteeringSpec(rack_ratio=0.05 / (2 * np.pi), rack_travel_limit=0.1 * n
 def macpherson_front_input(**overrides: object) -> SuspensionInput:
     """Chrono generic MacPherson as the front axle, with rack, bar and stops."""
     inp = SuspensionInput(
-        template="macpherson",
-        axle="front",
+        template='macpherson',
+        axle='front',
         hardpoints=rig_points(MACPHERSON, GENERIC_FRONT_LOCATION, GENERIC_ORIGIN),
         spring=SpringSpec(rate=MACPHERSON_SPRING_RATE),
         tire_radius=FRONT_RADIUS,
@@ -226,8 +227,8 @@ def macpherson_front_input(**overrides: object) -> SuspensionInput:
 def multilink_rear_input(**overrides: object) -> SuspensionInput:
     """Chrono generic multi-link as the rear axle, with bar and stops."""
     inp = SuspensionInput(
-        template="multilink",
-        axle="rear",
+        template='multilink',
+        axle='rear',
         hardpoints=rig_points(MULTILINK, GENERIC_REAR_LOCATION, GENERIC_ORIGIN),
         spring=SpringSpec(rate=MULTILINK_SPRING_RATE),
         tire_radius=REAR_RADIUS,
@@ -237,17 +238,19 @@ def multilink_rear_input(**overrides: object) -> SuspensionInput:
         rebound_stop=REBOUND_STOP,
         stabilizer=ARB,
         masses=MULTILINK_MASSES,
-        joint_axes={"trailing_inner": tuple(np.array(v) for v in MULTILINK_TRAILING_CROSS)},
+        joint_axes={'trailing_inner': tuple(np.array(v) for v in MULTILINK_TRAILING_CROSS)},
     )
     return replace(inp, **overrides)  # type: ignore[arg-type]
 
 
 def double_wishbone_input(**overrides: object) -> SuspensionInput:
-    """Chrono generic double wishbone (free length from Chrono), no bar, as a
-    rear axle at the generic rear location."""
+    """
+    Chrono generic double wishbone (free length from Chrono), no bar, as a
+    rear axle at the generic rear location.
+    """
     inp = SuspensionInput(
-        template="double_wishbone",
-        axle="rear",
+        template='double_wishbone',
+        axle='rear',
         hardpoints=rig_points(DOUBLE_WISHBONE, GENERIC_REAR_LOCATION, GENERIC_ORIGIN),
         spring=DOUBLE_WISHBONE_SPRING,
         tire_radius=REAR_RADIUS,
@@ -262,19 +265,19 @@ def hmmwv_front_input(with_bushings: bool = True, **overrides: object) -> Suspen
     """HMMWV front double wishbone with Chrono's arm bushings (or ideal joints)."""
     radius = TIRE_UNLOADED_RADIUS - 6000.0 / TIRE_STIFFNESS  # hmmwv__tire__HMMWV_Pac02Tire.tir
     origin = np.array(
-        [HMMWV_LOCATION[0] + HMMWV_FRONT["wheel_centre"][0], 0.0, HMMWV_FRONT["wheel_centre"][2] - radius]
+        [HMMWV_LOCATION[0] + HMMWV_FRONT['wheel_centre'][0], 0.0, HMMWV_FRONT['wheel_centre'][2] - radius]
     )
     points = rig_points(HMMWV_FRONT, HMMWV_LOCATION, origin)
     arm_bushings: dict[str, Bushing] = {}
     if with_bushings:
         k, kr = HMMWV_BUSHING_LINEAR, HMMWV_BUSHING_ROTATIONAL
-        for arm in ("uca", "lca"):
-            axis = points[f"{arm}_rear"] - points[f"{arm}_front"]
-            for end in ("front", "rear"):
-                arm_bushings[f"{arm}_{end}"] = Bushing((k, k, k, kr, kr, 0.0), axial=axis)
+        for arm in ('uca', 'lca'):
+            axis = points[f'{arm}_rear'] - points[f'{arm}_front']
+            for end in ('front', 'rear'):
+                arm_bushings[f'{arm}_{end}'] = Bushing((k, k, k, kr, kr, 0.0), axial=axis)
     inp = SuspensionInput(
-        template="double_wishbone",
-        axle="front",
+        template='double_wishbone',
+        axle='front',
         hardpoints=points,
         spring=SpringSpec(curve=HMMWV_SPRING_CURVE, free_length=HMMWV_FREE_LENGTH),
         tire_radius=radius,
@@ -289,26 +292,26 @@ def hmmwv_front_input(with_bushings: bool = True, **overrides: object) -> Suspen
 InputFactory = Callable[..., SuspensionInput]
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def macpherson_front() -> InputFactory:
     return macpherson_front_input
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def multilink_rear() -> InputFactory:
     return multilink_rear_input
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def double_wishbone() -> InputFactory:
     return double_wishbone_input
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def hmmwv_front() -> InputFactory:
     return hmmwv_front_input
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope='session')
 def generic_wheelbase() -> float:
     return GENERIC_WHEELBASE

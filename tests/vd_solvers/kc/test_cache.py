@@ -15,36 +15,36 @@ from vd_solvers.kc.from_config import suspension_input
 @pytest.fixture
 def baseline(sedan_master):
     cache.clear()
-    return load_study(sedan_master).configurations["baseline"]
+    return load_study(sedan_master).configurations['baseline']
 
 
 def test_result_equals_a_direct_run_and_is_reused(baseline):
-    first = cache.kc_result(baseline, "front", "parallel_wheel_travel", steps=11)
-    direct = KCModel(suspension_input(baseline, "front")).run("parallel_wheel_travel", steps=11)
-    np.testing.assert_array_equal(first.channels["toe"], direct.channels["toe"])
-    assert cache.kc_result(baseline, "front", "parallel_wheel_travel", steps=11) is first
+    first = cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    direct = KCModel(suspension_input(baseline, 'front')).run('parallel_wheel_travel', steps=11)
+    np.testing.assert_array_equal(first.channels['toe'], direct.channels['toe'])
+    assert cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11) is first
 
 
 def test_changed_data_is_a_new_entry(baseline):
-    first = cache.kc_result(baseline, "front", "parallel_wheel_travel", steps=11)
-    cambered = with_overrides(baseline, parse_set(["front_alignment.camber=-2 deg"]))
+    first = cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    cambered = with_overrides(baseline, parse_set(['front_alignment.camber=-2 deg']))
     assert cambered.data_hash != baseline.data_hash
-    second = cache.kc_result(cambered, "front", "parallel_wheel_travel", steps=11)
+    second = cache.kc_result(cambered, 'front', 'parallel_wheel_travel', steps=11)
     assert second is not first
     at = 5  # design step of an 11-step symmetric sweep
     # bushings deflect under the corner load, so compare the change with the override's
-    change = second.channels["camber"][at, 0] - first.channels["camber"][at, 0]
-    given = np.radians(-2.0) - baseline.group("front_alignment").scalar("camber")
+    change = second.channels['camber'][at, 0] - first.channels['camber'][at, 0]
+    given = np.radians(-2.0) - baseline.group('front_alignment').scalar('camber')
     assert change == pytest.approx(given, abs=np.radians(0.02))
 
 
 def test_no_bar_run_is_softer_in_roll(baseline):
-    bar = cache.kc_result(baseline, "front", "opposite_wheel_travel", steps=11)
-    bare = cache.kc_result(baseline, "front", cache.NO_BAR, steps=11)
-    roll_moment = lambda r: np.ptp(r.channels["pad_force"][:, 0])  # noqa: E731
+    bar = cache.kc_result(baseline, 'front', 'opposite_wheel_travel', steps=11)
+    bare = cache.kc_result(baseline, 'front', cache.NO_BAR, steps=11)
+    roll_moment = lambda r: np.ptp(r.channels['pad_force'][:, 0])  # noqa: E731
     assert roll_moment(bare) < roll_moment(bar)
 
 
 def test_unknown_fidelity_is_refused(baseline):
     with pytest.raises(SolverError, match="fidelity 'wobbly' is not available"):
-        cache.kc_result(baseline, "front", "parallel_wheel_travel", fidelity="wobbly")
+        cache.kc_result(baseline, 'front', 'parallel_wheel_travel', fidelity='wobbly')

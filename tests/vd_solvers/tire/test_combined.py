@@ -1,4 +1,5 @@
-"""Combined slip, moments, radii and relaxation lengths of the PAC2002 Magic Formula.
+"""
+Combined slip, moments, radii and relaxation lengths of the PAC2002 Magic Formula.
 
 The reference is the MF-Tyre 5.2 / PAC2002 equation list (Pacejka, "Tire and Vehicle
 Dynamics", 3rd ed., 4.E1-4.E78; the MF-Tyre 5.2 equation manual for rolling resistance,
@@ -19,9 +20,9 @@ import pytest
 from vd_data_server.tir import read_tir
 from vd_solvers.tire.magic_formula import MagicFormula
 
-DATA_DIR = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "tires"
-HMMWV = DATA_DIR / "HMMWV_Pac02Tire.tir"
-SEDAN = DATA_DIR / "Sedan_Pac02Tire.tir"
+DATA_DIR = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'tires'
+HMMWV = DATA_DIR / 'HMMWV_Pac02Tire.tir'
+SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
 RTOL = 1e-10
 
 
@@ -29,102 +30,102 @@ def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: fl
     """PAC2002 combined-slip forces and moments of one wheel, written out by hand."""
 
     def c(key: str) -> float:
-        for block in ("LONGITUDINAL_COEFFICIENTS", "LATERAL_COEFFICIENTS",
-                      "ALIGNING_COEFFICIENTS", "OVERTURNING_COEFFICIENTS",
-                      "ROLLING_COEFFICIENTS"):
+        for block in ('LONGITUDINAL_COEFFICIENTS', 'LATERAL_COEFFICIENTS',
+                      'ALIGNING_COEFFICIENTS', 'OVERTURNING_COEFFICIENTS',
+                      'ROLLING_COEFFICIENTS'):
             if key in props.sections.get(block, {}):
                 return float(props.sections[block][key])
         return 0.0
 
     def lam(key: str) -> float:
-        return float(props.sections["SCALING_COEFFICIENTS"].get(key, 1.0))
+        return float(props.sections['SCALING_COEFFICIENTS'].get(key, 1.0))
 
-    r0 = props.number("DIMENSION", "UNLOADED_RADIUS")
-    fz0 = props.number("VERTICAL", "FNOMIN") * lam("LFZO")
+    r0 = props.number('DIMENSION', 'UNLOADED_RADIUS')
+    fz0 = props.number('VERTICAL', 'FNOMIN') * lam('LFZO')
     dfz = (fz - fz0) / fz0
     # pure longitudinal (4.E9-4.E18)
-    gx = gamma * lam("LGAX")
-    shx = (c("PHX1") + c("PHX2") * dfz) * lam("LHX")
+    gx = gamma * lam('LGAX')
+    shx = (c('PHX1') + c('PHX2') * dfz) * lam('LHX')
     kx_ = kappa + shx
-    cx = c("PCX1") * lam("LCX")
-    dx = (c("PDX1") + c("PDX2") * dfz) * (1 - c("PDX3") * gx * gx) * lam("LMUX") * fz
-    ex = min((c("PEX1") + c("PEX2") * dfz + c("PEX3") * dfz * dfz)
-             * (1 - c("PEX4") * math.copysign(1.0, kx_) if kx_ != 0 else 1.0) * lam("LEX"), 1.0)
-    kxk = fz * (c("PKX1") + c("PKX2") * dfz) * math.exp(c("PKX3") * dfz) * lam("LKX")
+    cx = c('PCX1') * lam('LCX')
+    dx = (c('PDX1') + c('PDX2') * dfz) * (1 - c('PDX3') * gx * gx) * lam('LMUX') * fz
+    ex = min((c('PEX1') + c('PEX2') * dfz + c('PEX3') * dfz * dfz)
+             * (1 - c('PEX4') * math.copysign(1.0, kx_) if kx_ != 0 else 1.0) * lam('LEX'), 1.0)
+    kxk = fz * (c('PKX1') + c('PKX2') * dfz) * math.exp(c('PKX3') * dfz) * lam('LKX')
     bx = kxk / (cx * dx)
-    svx = fz * (c("PVX1") + c("PVX2") * dfz) * lam("LVX") * lam("LMUX")
+    svx = fz * (c('PVX1') + c('PVX2') * dfz) * lam('LVX') * lam('LMUX')
     fx0 = dx * math.sin(cx * math.atan(bx * kx_ - ex * (bx * kx_ - math.atan(bx * kx_)))) + svx
     # pure lateral (4.E19-4.E30)
-    gy = gamma * lam("LGAY")
-    shy = (c("PHY1") + c("PHY2") * dfz) * lam("LHY") + c("PHY3") * gy
+    gy = gamma * lam('LGAY')
+    shy = (c('PHY1') + c('PHY2') * dfz) * lam('LHY') + c('PHY3') * gy
     ay = alpha + shy
-    cy = c("PCY1") * lam("LCY")
-    muy = (c("PDY1") + c("PDY2") * dfz) * (1 - c("PDY3") * gy * gy) * lam("LMUY")
+    cy = c('PCY1') * lam('LCY')
+    muy = (c('PDY1') + c('PDY2') * dfz) * (1 - c('PDY3') * gy * gy) * lam('LMUY')
     dy = muy * fz
     sgn = math.copysign(1.0, ay) if ay != 0 else 0.0
-    ey = min((c("PEY1") + c("PEY2") * dfz) * (1 - (c("PEY3") + c("PEY4") * gy) * sgn)
-             * lam("LEY"), 1.0)
-    kya = (c("PKY1") * fz0 * math.sin(2 * math.atan(fz / (c("PKY2") * fz0)))
-           * (1 - c("PKY3") * abs(gy)) * lam("LKY"))
+    ey = min((c('PEY1') + c('PEY2') * dfz) * (1 - (c('PEY3') + c('PEY4') * gy) * sgn)
+             * lam('LEY'), 1.0)
+    kya = (c('PKY1') * fz0 * math.sin(2 * math.atan(fz / (c('PKY2') * fz0)))
+           * (1 - c('PKY3') * abs(gy)) * lam('LKY'))
     by = kya / (cy * dy)
-    svy = fz * ((c("PVY1") + c("PVY2") * dfz) * lam("LVY") + (c("PVY3") + c("PVY4") * dfz) * gy) \
-        * lam("LMUY")
+    svy = fz * ((c('PVY1') + c('PVY2') * dfz) * lam('LVY') + (c('PVY3') + c('PVY4') * dfz) * gy) \
+        * lam('LMUY')
     fy0 = dy * math.sin(cy * math.atan(by * ay - ey * (by * ay - math.atan(by * ay)))) + svy
     # combined (4.E50-4.E67)
-    shxa = c("RHX1")
-    bxa = c("RBX1") * math.cos(math.atan(c("RBX2") * kappa)) * lam("LXAL")
-    cxa = c("RCX1")
-    exa = min(c("REX1") + c("REX2") * dfz, 1.0)
+    shxa = c('RHX1')
+    bxa = c('RBX1') * math.cos(math.atan(c('RBX2') * kappa)) * lam('LXAL')
+    cxa = c('RCX1')
+    exa = min(c('REX1') + c('REX2') * dfz, 1.0)
 
     def g(b, cc, e, x):
         return math.cos(cc * math.atan(b * x - e * (b * x - math.atan(b * x))))
 
     fx = g(bxa, cxa, exa, alpha + shxa) / g(bxa, cxa, exa, shxa) * fx0
-    shyk = c("RHY1") + c("RHY2") * dfz
-    byk = c("RBY1") * math.cos(math.atan(c("RBY2") * (alpha - c("RBY3")))) * lam("LYKA")
-    cyk = c("RCY1")
-    eyk = min(c("REY1") + c("REY2") * dfz, 1.0)
-    dvyk = muy * fz * (c("RVY1") + c("RVY2") * dfz + c("RVY3") * gamma) \
-        * math.cos(math.atan(c("RVY4") * alpha))
-    svyk = dvyk * math.sin(c("RVY5") * math.atan(c("RVY6") * kappa)) * lam("LVYKA")
+    shyk = c('RHY1') + c('RHY2') * dfz
+    byk = c('RBY1') * math.cos(math.atan(c('RBY2') * (alpha - c('RBY3')))) * lam('LYKA')
+    cyk = c('RCY1')
+    eyk = min(c('REY1') + c('REY2') * dfz, 1.0)
+    dvyk = muy * fz * (c('RVY1') + c('RVY2') * dfz + c('RVY3') * gamma) \
+        * math.cos(math.atan(c('RVY4') * alpha))
+    svyk = dvyk * math.sin(c('RVY5') * math.atan(c('RVY6') * kappa)) * lam('LVYKA')
     fy = g(byk, cyk, eyk, kappa + shyk) / g(byk, cyk, eyk, shyk) * fy0 + svyk
     # aligning moment (4.E31-4.E49, combined 4.E71-4.E78)
-    gz = gamma * lam("LGAZ")
-    sht = c("QHZ1") + c("QHZ2") * dfz + (c("QHZ3") + c("QHZ4") * dfz) * gz
+    gz = gamma * lam('LGAZ')
+    sht = c('QHZ1') + c('QHZ2') * dfz + (c('QHZ3') + c('QHZ4') * dfz) * gz
     at = alpha + sht
-    bt = (c("QBZ1") + c("QBZ2") * dfz + c("QBZ3") * dfz ** 2) \
-        * (1 + c("QBZ4") * gz + c("QBZ5") * abs(gz)) * lam("LKY") / lam("LMUY")
-    ct = c("QCZ1")
-    dt = fz * (c("QDZ1") + c("QDZ2") * dfz) * (1 + c("QDZ3") * gz + c("QDZ4") * gz ** 2) \
-        * (r0 / fz0) * lam("LTR")
+    bt = (c('QBZ1') + c('QBZ2') * dfz + c('QBZ3') * dfz ** 2) \
+        * (1 + c('QBZ4') * gz + c('QBZ5') * abs(gz)) * lam('LKY') / lam('LMUY')
+    ct = c('QCZ1')
+    dt = fz * (c('QDZ1') + c('QDZ2') * dfz) * (1 + c('QDZ3') * gz + c('QDZ4') * gz ** 2) \
+        * (r0 / fz0) * lam('LTR')
     kyk_ratio = kxk / kya  # K_x / K_y of the pure-slip curves
     at_eq = math.atan(math.sqrt(math.tan(at) ** 2 + (kyk_ratio * kappa) ** 2)) \
         * (1.0 if at >= 0 else -1.0)
-    et = min((c("QEZ1") + c("QEZ2") * dfz + c("QEZ3") * dfz ** 2)
-             * (1 + (c("QEZ4") + c("QEZ5") * gz) * (2 / math.pi) * math.atan(bt * ct * at_eq)),
+    et = min((c('QEZ1') + c('QEZ2') * dfz + c('QEZ3') * dfz ** 2)
+             * (1 + (c('QEZ4') + c('QEZ5') * gz) * (2 / math.pi) * math.atan(bt * ct * at_eq)),
              1.0)
     t = dt * math.cos(ct * math.atan(bt * at_eq - et * (bt * at_eq - math.atan(bt * at_eq)))) \
         * math.cos(alpha)
     ar = alpha + shy + svy / kya
     ar_eq = math.atan(math.sqrt(math.tan(ar) ** 2 + (kyk_ratio * kappa) ** 2)) \
         * (1.0 if ar >= 0 else -1.0)
-    br = c("QBZ9") * lam("LKY") / lam("LMUY") + c("QBZ10") * by * cy
-    dr = fz * r0 * ((c("QDZ6") + c("QDZ7") * dfz) * lam("LRES")
-                    + (c("QDZ8") + c("QDZ9") * dfz) * gz) * lam("LMUY")
+    br = c('QBZ9') * lam('LKY') / lam('LMUY') + c('QBZ10') * by * cy
+    dr = fz * r0 * ((c('QDZ6') + c('QDZ7') * dfz) * lam('LRES')
+                    + (c('QDZ8') + c('QDZ9') * dfz) * gz) * lam('LMUY')
     mzr = dr * math.cos(math.atan(br * ar_eq)) * math.cos(alpha)
-    s = r0 * (c("SSZ1") + c("SSZ2") * fy / fz0 + (c("SSZ3") + c("SSZ4") * dfz) * gz) * lam("LS")
+    s = r0 * (c('SSZ1') + c('SSZ2') * fy / fz0 + (c('SSZ3') + c('SSZ4') * dfz) * gz) * lam('LS')
     mz = -t * (fy - svyk) + mzr + s * fx
-    mx = fz * r0 * (c("QSX1") * lam("LVMX") - c("QSX2") * gamma + c("QSX3") * fy / fz0) \
-        * lam("LMX")
-    vref = props.number("MODEL", "LONGVL")
-    my = -math.copysign(1.0, vx) * fz * r0 * (c("QSY1") + c("QSY2") * fx / fz0
-                                             + c("QSY3") * abs(vx / vref)
-                                             + c("QSY4") * (vx / vref) ** 4) * lam("LMY")
-    return {"fx": fx, "fy": fy, "mz": mz, "mx": mx, "my": my}
+    mx = fz * r0 * (c('QSX1') * lam('LVMX') - c('QSX2') * gamma + c('QSX3') * fy / fz0) \
+        * lam('LMX')
+    vref = props.number('MODEL', 'LONGVL')
+    my = -math.copysign(1.0, vx) * fz * r0 * (c('QSY1') + c('QSY2') * fx / fz0
+                                             + c('QSY3') * abs(vx / vref)
+                                             + c('QSY4') * (vx / vref) ** 4) * lam('LMY')
+    return {'fx': fx, 'fy': fy, 'mz': mz, 'mx': mx, 'my': my}
 
 
-@pytest.mark.parametrize("path", [HMMWV, SEDAN])
-@pytest.mark.parametrize(("kappa", "alpha", "gamma"), [
+@pytest.mark.parametrize('path', [HMMWV, SEDAN])
+@pytest.mark.parametrize(('kappa', 'alpha', 'gamma'), [
     (0.05, 0.06, 0.02), (-0.08, 0.1, -0.03), (0.2, -0.04, 0.0), (-0.01, -0.15, 0.05)])
 def test_combined_slip_matches_the_pac2002_equations(path, kappa, alpha, gamma) -> None:
     props = read_tir(path)
@@ -178,8 +179,10 @@ def test_mirrored_wheel_forces_and_moments_are_the_mirror_image() -> None:
 
 
 def test_aligning_moment_is_restoring_at_small_slip_and_falls_off_beyond_the_trail_peak() -> None:
-    """Pneumatic trail: Mz opposes the slip angle near zero (Fy < 0 for alpha > 0 in TYDEX,
-    so Mz > 0), and decays at large slip angles (Pacejka fig. 4.16)."""
+    """
+    Pneumatic trail: Mz opposes the slip angle near zero (Fy < 0 for alpha > 0 in TYDEX,
+    so Mz > 0), and decays at large slip angles (Pacejka fig. 4.16).
+    """
     tire = MagicFormula(read_tir(SEDAN))
     fz = tire.nominal_load
     alpha = np.linspace(0.01, 0.3, 60)
@@ -195,8 +198,8 @@ def test_radii_follow_the_vertical_stiffness_and_the_effective_radius_formula() 
     tire = MagicFormula(props)
     fz = np.array([1000.0, 4850.0, 8000.0])
     loaded, effective = tire.radii(fz)
-    r0 = props.number("DIMENSION", "UNLOADED_RADIUS")
-    cz = props.number("VERTICAL", "VERTICAL_STIFFNESS")
+    r0 = props.number('DIMENSION', 'UNLOADED_RADIUS')
+    cz = props.number('VERTICAL', 'VERTICAL_STIFFNESS')
     npt.assert_allclose(loaded, r0 - fz / cz, rtol=1e-14)
     fn = props.fnomin
     want = [r0 - fn / cz * (0.27 * math.atan(8.4 * f / fn) + 0.07 * f / fn) for f in fz]

@@ -1,4 +1,5 @@
-"""Tests of the SimpleTire fit to the PAC2002 Magic Formula.
+"""
+Tests of the SimpleTire fit to the PAC2002 Magic Formula.
 
 References: PAC2002's mu_y is a straight line in Fz, so its fit is exact and
 checked against the hand formula; the cornering stiffness is checked against
@@ -7,8 +8,8 @@ the Magic Formula it was fitted to, and eqs. 8-9 against finite differences.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
+import re
 
 import numpy as np
 import numpy.testing as npt
@@ -21,9 +22,9 @@ from vd_solvers.tire.fit import fit_simple_tire
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.tire.simple import SimpleTire
 
-DATA_DIR = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "tires"
-SEDAN = DATA_DIR / "Sedan_Pac02Tire.tir"
-HMMWV = DATA_DIR / "HMMWV_Pac02Tire.tir"
+DATA_DIR = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'tires'
+SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
+HMMWV = DATA_DIR / 'HMMWV_Pac02Tire.tir'
 SEDAN_RANGE = (2000.0, 6000.0)
 HMMWV_RANGE = (10000.0, 30000.0)
 RTOL = 1e-12
@@ -37,18 +38,18 @@ SEDAN_PEY1, SEDAN_PEY2 = -0.0074722, -0.0063208
 
 def sedan_text_with(line: str) -> str:
     """Sedan file text with ``line`` in place of the line assigning the same key."""
-    key = line.split("=")[0].strip()
-    text, count = re.subn(rf"(?m)^{key}\s*=.*$", line, SEDAN.read_text(encoding="ascii"))
+    key = line.split('=')[0].strip()
+    text, count = re.subn(rf'(?m)^{key}\s*=.*$', line, SEDAN.read_text(encoding='ascii'))
     assert count == 1
     return text
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def sedan_mf() -> MagicFormula:
     return MagicFormula(read_tir(SEDAN))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def sedan_fit(sedan_mf: MagicFormula) -> SimpleTire:
     return fit_simple_tire(sedan_mf, SEDAN_RANGE)
 
@@ -74,11 +75,11 @@ def test_curvature_is_even_part_of_ey_at_reference_load(sedan_fit: SimpleTire) -
 
 
 def test_curvature_is_limited_to_one() -> None:
-    mf = MagicFormula(parse_tir_text(sedan_text_with("PEY1 = 1.8"), "x"))
+    mf = MagicFormula(parse_tir_text(sedan_text_with('PEY1 = 1.8'), 'x'))
     assert fit_simple_tire(mf, SEDAN_RANGE).curvature == 1.0
 
 
-@pytest.mark.parametrize(("path", "fz_range"), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
+@pytest.mark.parametrize(('path', 'fz_range'), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
 def test_fit_is_exact_at_the_reference_load(path: Path, fz_range: tuple[float, float]) -> None:
     # where the bicycle model uses the tire: the static wheel load = fz0
     mf = MagicFormula(read_tir(path))
@@ -88,7 +89,7 @@ def test_fit_is_exact_at_the_reference_load(path: Path, fz_range: tuple[float, f
     npt.assert_allclose(fit.friction(fz0), mf.peak_lateral_friction(fz0), rtol=1e-13)
 
 
-@pytest.mark.parametrize(("path", "fz_range"), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
+@pytest.mark.parametrize(('path', 'fz_range'), [(SEDAN, SEDAN_RANGE), (HMMWV, HMMWV_RANGE)])
 def test_fit_reproduces_cornering_stiffness_around_the_reference_load(
         path: Path, fz_range: tuple[float, float]) -> None:
     # the middle half of the range (fz0 +- 25 % of its width): the line through
@@ -100,14 +101,14 @@ def test_fit_reproduces_cornering_stiffness_around_the_reference_load(
     npt.assert_allclose(fitted, -mf.cornering_stiffness(fz), rtol=STIFFNESS_FIT_RTOL)
 
 
-@pytest.mark.parametrize("fz", [2000.0, 4000.0, 6000.0])
+@pytest.mark.parametrize('fz', [2000.0, 4000.0, 6000.0])
 def test_simple_tire_slope_at_zero_is_its_cornering_stiffness(sedan_fit: SimpleTire, fz: float) -> None:
     step = 1e-6
     slope = (sedan_fit.lateral_force(fz, step) - sedan_fit.lateral_force(fz, -step)) / (2.0 * step)
     npt.assert_allclose(slope, sedan_fit.cornering_stiffness(fz), rtol=1e-6)
 
 
-@pytest.mark.parametrize("fz", [2000.0, 4000.0, 6000.0])
+@pytest.mark.parametrize('fz', [2000.0, 4000.0, 6000.0])
 def test_simple_tire_slope_at_zero_matches_magic_formula(
     sedan_mf: MagicFormula, sedan_fit: SimpleTire, fz: float
 ) -> None:
@@ -119,7 +120,7 @@ def test_simple_tire_slope_at_zero_matches_magic_formula(
 def test_simple_tire_peak_is_magic_formula_peak(sedan_mf: MagicFormula, sedan_fit: SimpleTire) -> None:
     fz = 5000.0
     result = minimize_scalar(
-        lambda a: -float(sedan_fit.lateral_force(fz, a)), bounds=(0.0, 1.0), method="bounded", options={"xatol": 1e-10}
+        lambda a: -float(sedan_fit.lateral_force(fz, a)), bounds=(0.0, 1.0), method='bounded', options={'xatol': 1e-10}
     )
     npt.assert_allclose(-result.fun, sedan_mf.peak_lateral_friction(fz) * fz, rtol=1e-9)
 
@@ -129,28 +130,28 @@ def test_fitted_tire_gives_positive_force_for_positive_slip(sedan_fit: SimpleTir
 
 
 def test_source_names_file_and_range(sedan_fit: SimpleTire) -> None:
-    assert sedan_fit.source == ("Sedan_Pac02Tire.tir (PAC2002): exact at Fz 4000 N, slopes fitted "
-                                "over 2000..6000 N, n=20")
+    assert sedan_fit.source == ('Sedan_Pac02Tire.tir (PAC2002): exact at Fz 4000 N, slopes fitted '
+                                'over 2000..6000 N, n=20')
 
 
 # --- bad input --------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("fz_range", [(0.0, 5000.0), (-1000.0, 5000.0), (6000.0, 2000.0), (3000.0, 3000.0)])
+@pytest.mark.parametrize('fz_range', [(0.0, 5000.0), (-1000.0, 5000.0), (6000.0, 2000.0), (3000.0, 3000.0)])
 def test_bad_load_range_is_refused(sedan_mf: MagicFormula, fz_range: tuple[float, float]) -> None:
     with pytest.raises(ValueError) as info:
         fit_simple_tire(sedan_mf, fz_range)
-    assert str(info.value) == f"fz_range must satisfy 0 < low < high, got {fz_range!r}"
+    assert str(info.value) == f'fz_range must satisfy 0 < low < high, got {fz_range!r}'
 
 
 def test_too_few_points_are_refused(sedan_mf: MagicFormula) -> None:
     with pytest.raises(ValueError) as info:
         fit_simple_tire(sedan_mf, SEDAN_RANGE, n=1)
-    assert str(info.value) == "n must be at least 2, got 1"
+    assert str(info.value) == 'n must be at least 2, got 1'
 
 
 def test_positive_pky1_is_refused(sedan_fit: SimpleTire) -> None:
-    mf = MagicFormula(parse_tir_text(sedan_text_with("PKY1 = 21.92"), "flipped.tir"))
+    mf = MagicFormula(parse_tir_text(sedan_text_with('PKY1 = 21.92'), 'flipped.tir'))
     with pytest.raises(SolverError) as info:
         fit_simple_tire(mf, SEDAN_RANGE)
     # K_y is proportional to PKY1, so the fit of the flipped file is the negated fit.

@@ -8,9 +8,15 @@ import numpy.testing as npt
 import pytest
 
 from vd_solvers.errors import SolverError
-from vd_solvers.vehicle.drivers import (DRIVERS, CirclePathFollower, Observation,
-                                        OpenLoopSteering, ReplaySteering, SpeedController,
-                                        wheel_torques)
+from vd_solvers.vehicle.drivers import (
+    DRIVERS,
+    CirclePathFollower,
+    Observation,
+    OpenLoopSteering,
+    ReplaySteering,
+    SpeedController,
+    wheel_torques,
+)
 
 
 def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
@@ -18,8 +24,8 @@ def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
 
 
 def test_registry_names_every_driver():
-    assert DRIVERS == {"open_loop": OpenLoopSteering, "replay": ReplaySteering,
-                       "path_follower": CirclePathFollower, "speed": SpeedController}
+    assert DRIVERS == {'open_loop': OpenLoopSteering, 'replay': ReplaySteering,
+                       'path_follower': CirclePathFollower, 'speed': SpeedController}
 
 
 def test_open_loop_table_interpolates_and_holds_its_ends():
@@ -28,7 +34,7 @@ def test_open_loop_table_interpolates_and_holds_its_ends():
         pytest.approx([0.0, 0.2, 0.4])
 
 
-@pytest.mark.parametrize("times, angles", [([0.0], [0.0]), ([0.0, 0.0], [0.0, 1.0]),
+@pytest.mark.parametrize('times, angles', [([0.0], [0.0]), ([0.0, 0.0], [0.0, 1.0]),
                                            ([0.0, 1.0], [0.0, math.nan]), ([0.0, 1.0], [1.0])])
 def test_open_loop_table_is_checked(times, angles):
     with pytest.raises(SolverError):
@@ -41,8 +47,10 @@ def test_replay_shifts_the_recorded_signal():
 
 
 def test_path_follower_on_the_circle_steers_the_ackermann_angle():
-    """On the circle and tangent to it the preview point lies on it: no correction, the
-    steering-wheel angle is i_s L / R (after the lag has settled)."""
+    """
+    On the circle and tangent to it the preview point lies on it: no correction, the
+    steering-wheel angle is i_s L / R (after the lag has settled).
+    """
     follower = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
                                   max_angle=10.0)
     phi = 0.3  # somewhere on the circle centred at (0, 40), heading along it

@@ -1,4 +1,5 @@
-"""Full-vehicle events: the thesis' trends (4.4.1), ladder consistency, bad input.
+"""
+Full-vehicle events: the thesis' trends (4.4.1), ladder consistency, bad input.
 
 The constant radius turns here ramp the speed at 0.5 m/s^2 instead of the default 0.25
 to keep the suite fast; the gradients are then about 10 % above the steady-state values
@@ -15,30 +16,29 @@ import pytest
 from vd_data_server.errors import DataError
 from vd_data_server.study import load_study
 from vd_solvers.analytical import two_track
-from vd_solvers.analytical.from_config import (mass_properties, static_wheel_loads,
-                                               vehicle_params)
+from vd_solvers.analytical.from_config import mass_properties, static_wheel_loads, vehicle_params
 from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.events import LINEAR_RANGE, run_vehicle_event
 
-STUDIES = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "studies"
-FAST_RAMP = "speed_rate=0.5 m/s^2"
+STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
+FAST_RAMP = 'speed_rate=0.5 m/s^2'
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def sedan():
-    return load_study(STUDIES / "sedan.yaml").configurations
+    return load_study(STUDIES / 'sedan.yaml').configurations
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def turns(sedan):
-    return {name: run_vehicle_event(sedan[name], "constant_radius_turn", [FAST_RAMP])
-            for name in ("baseline", "stiff_rear")}
+    return {name: run_vehicle_event(sedan[name], 'constant_radius_turn', [FAST_RAMP])
+            for name in ('baseline', 'stiff_rear')}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def step(sedan):
-    return run_vehicle_event(sedan["baseline"], "step_steer")
+    return run_vehicle_event(sedan['baseline'], 'step_steer')
 
 
 def _m(outcome, name):
@@ -46,123 +46,135 @@ def _m(outcome, name):
 
 
 def test_stiffer_rear_roll_stiffness_gives_the_thesis_trends(turns):
-    """Thesis 4.4.1 (Figs. 4.4.1-4.4.3): more rear roll stiffness reaches a higher lateral
-    acceleration, with less body roll and a slower rise of the steering angle."""
-    base, stiff = turns["baseline"], turns["stiff_rear"]
-    assert _m(stiff, "max_lateral_acceleration") > _m(base, "max_lateral_acceleration")
-    assert _m(stiff, "roll_gradient") < 0.9 * _m(base, "roll_gradient")
-    assert _m(stiff, "understeer_gradient") < _m(base, "understeer_gradient")
+    """
+    Thesis 4.4.1 (Figs. 4.4.1-4.4.3): more rear roll stiffness reaches a higher lateral
+    acceleration, with less body roll and a slower rise of the steering angle.
+    """
+    base, stiff = turns['baseline'], turns['stiff_rear']
+    assert _m(stiff, 'max_lateral_acceleration') > _m(base, 'max_lateral_acceleration')
+    assert _m(stiff, 'roll_gradient') < 0.9 * _m(base, 'roll_gradient')
+    assert _m(stiff, 'understeer_gradient') < _m(base, 'understeer_gradient')
     # the steering angle over time: lower at the same time of the common speed ramp
-    t = base.channels["time"].values
+    t = base.channels['time'].values
     at = (t > 12.0) & (t < 20.0)
-    swa_base = base.channels["steering_wheel_angle"].values[at]
-    swa_stiff = np.interp(t[at], stiff.channels["time"].values,
-                          stiff.channels["steering_wheel_angle"].values)
+    swa_base = base.channels['steering_wheel_angle'].values[at]
+    swa_stiff = np.interp(t[at], stiff.channels['time'].values,
+                          stiff.channels['steering_wheel_angle'].values)
     assert np.all(swa_stiff < swa_base)
 
 
 def _axle_forces(outcome, config):
-    """Effective lateral force of each axle, N: the axle's yaw moment about the CoG over its
+    """
+    Effective lateral force of each axle, N: the axle's yaw moment about the CoG over its
     lever arm (a for the front, -b for the rear), from the wheels' forces in body axes
     (steer angles), the track offsets of their longitudinal forces and their aligning
-    moments. The yaw moment is what the single-track model's axle force stands for."""
+    moments. The yaw moment is what the single-track model's axle force stands for.
+    """
     ch = {k: c.values for k, c in outcome.channels.items()}
     mp = mass_properties(config)
     out = []
-    for axle in ("front", "rear"):
-        x, y, _ = config.group(f"{axle}_hardpoints").point("points.wheel_centre")
+    for axle in ('front', 'rear'):
+        x, y, _ = config.group(f'{axle}_hardpoints').point('points.wheel_centre')
         moment = 0.0
-        for side, sign in (("left", 1.0), ("right", -1.0)):
-            w = f"{axle}_{side}"
-            delta = ch[f"wheel_steer_{w}"]
-            fx, fy = ch[f"tire_force_x_{w}"], ch[f"tire_force_y_{w}"]
+        for side, sign in (('left', 1.0), ('right', -1.0)):
+            w = f'{axle}_{side}'
+            delta = ch[f'wheel_steer_{w}']
+            fx, fy = ch[f'tire_force_x_{w}'], ch[f'tire_force_y_{w}']
             f_long = fx * np.cos(delta) - fy * np.sin(delta)
             f_lat = fx * np.sin(delta) + fy * np.cos(delta)
             moment = moment + (x - mp.cog_x) * f_lat - sign * abs(y) * f_long \
-                + ch[f"aligning_moment_{w}"]
+                + ch[f'aligning_moment_{w}']
         out.append(moment / (x - mp.cog_x))
     return out
 
 
 def _effective_slips(outcome, config):
-    """Single-track slip angles with every steer effect in the axle characteristic:
-    alpha_f = delta_sw / i_s - beta - a r / v, alpha_r = -beta + b r / v (at the CoG)."""
+    """
+    Single-track slip angles with every steer effect in the axle characteristic:
+    alpha_f = delta_sw / i_s - beta - a r / v, alpha_r = -beta + b r / v (at the CoG).
+    """
     ch = {k: c.values for k, c in outcome.channels.items()}
     mp = mass_properties(config)
     a = mp.cog_to_front_axle
-    b = config.group("geometry").scalar("wheelbase") - a
-    ratio = _m(outcome, "steering_ratio")
-    r, v, beta = ch["yaw_rate"], ch["speed"], ch["sideslip"]
-    return (ch["steering_wheel_angle"] / ratio - beta - a * r / v, -beta + b * r / v, mp, a, b)
+    b = config.group('geometry').scalar('wheelbase') - a
+    ratio = _m(outcome, 'steering_ratio')
+    r, v, beta = ch['yaw_rate'], ch['speed'], ch['sideslip']
+    return (ch['steering_wheel_angle'] / ratio - beta - a * r / v, -beta + b * r / v, mp, a, b)
 
 
 def test_understeer_gradient_agrees_with_the_bicycle_model_of_the_same_axles(sedan, turns):
-    """Ladder: feed the bicycle model (thesis eq. 2, K = m/L (b/C_f - a/C_r)) the effective
+    """
+    Ladder: feed the bicycle model (thesis eq. 2, K = m/L (b/C_f - a/C_r)) the effective
     axle cornering stiffnesses of the full vehicle's own linear range (axle force over the
     single-track slip angle, every steer effect included). Its K must equal the full
     vehicle's K_us within 5 %: what the single track leaves out is the tires' aligning
     moments (about 2 % of the yaw moment here), the longitudinal-force components of the
-    steered wheels and the speed ramp."""
-    config = sedan["baseline"]
-    turn = turns["baseline"]
+    steered wheels and the speed ramp.
+    """
+    config = sedan['baseline']
+    turn = turns['baseline']
     alpha_f, alpha_r, mp, a, b = _effective_slips(turn, config)
     f_front, f_rear = _axle_forces(turn, config)
-    a_y = turn.channels["lateral_acceleration"].values
+    a_y = turn.channels['lateral_acceleration'].values
     lin = (a_y >= LINEAR_RANGE[0]) & (a_y <= LINEAR_RANGE[1])
     c_f = np.polyfit(alpha_f[lin], f_front[lin], 1)[0]
     c_r = np.polyfit(alpha_r[lin], f_rear[lin], 1)[0]
     wheelbase = a + b
     k_bicycle = mp.mass / wheelbase * (b / c_f - a / c_r)
-    assert k_bicycle == pytest.approx(_m(turn, "understeer_gradient"), rel=0.05)
+    assert k_bicycle == pytest.approx(_m(turn, 'understeer_gradient'), rel=0.05)
 
 
 def test_yaw_rate_gain_agrees_with_the_bicycle_model_of_the_same_axles(sedan, step):
-    """Ladder: the steady yaw-rate gain of the step steer against the bicycle model's
+    """
+    Ladder: the steady yaw-rate gain of the step steer against the bicycle model's
     r / delta = (v / L) / (1 + K v^2 / L), with K from the effective axle stiffnesses of the
-    same steady state (secants). Within 3 %: as above, without the speed ramp."""
-    config = sedan["baseline"]
+    same steady state (secants). Within 3 %: as above, without the speed ramp.
+    """
+    config = sedan['baseline']
     alpha_f, alpha_r, mp, a, b = _effective_slips(step, config)
     f_front, f_rear = _axle_forces(step, config)
-    t = step.channels["time"].values
+    t = step.channels['time'].values
     steady = t >= t[-1] - 1.0
     c_f = f_front[steady].mean() / alpha_f[steady].mean()
     c_r = f_rear[steady].mean() / alpha_r[steady].mean()
     wheelbase = a + b
     k = mp.mass / wheelbase * (b / c_f - a / c_r)
-    v = _m(step, "speed")
+    v = _m(step, 'speed')
     gain = (v / wheelbase) / (1.0 + k * v**2 / wheelbase)
-    vehicle = _m(step, "yaw_rate_gain") * _m(step, "steering_ratio")
+    vehicle = _m(step, 'yaw_rate_gain') * _m(step, 'steering_ratio')
     assert vehicle == pytest.approx(gain, rel=0.03)
 
 
 def test_maximum_lateral_acceleration_is_near_the_two_track_model(sedan, turns):
-    """Ladder: the two-track model with the same K&C roll stiffness and roll centres reaches
+    """
+    Ladder: the two-track model with the same K&C roll stiffness and roll centres reaches
     its steady-state limit within 10 % of the full vehicle's (which loses the radius when
-    the front axle saturates; the two-track has no compliance, camber or jacking)."""
-    config = sedan["baseline"]
+    the front axle saturates; the two-track has no compliance, camber or jacking).
+    """
+    config = sedan['baseline']
     suspension = kc_inputs(config, static_wheel_loads(config)).suspension
     limit = two_track.handling_diagram(vehicle_params(config, suspension), 40.0, 41).limit
-    assert _m(turns["baseline"], "max_lateral_acceleration") == pytest.approx(
+    assert _m(turns['baseline'], 'max_lateral_acceleration') == pytest.approx(
         limit.lateral_acceleration, rel=0.10)
 
 
 def test_step_steer_metrics_are_consistent_with_its_channels(step):
     """t90 and peak times are read from the recorded yaw rate after the 50 % steer instant."""
-    t = step.channels["time"].values
-    r = step.channels["yaw_rate"].values
-    r_ss = _m(step, "steady_yaw_rate")
+    t = step.channels['time'].values
+    r = step.channels['yaw_rate'].values
+    r_ss = _m(step, 'steady_yaw_rate')
     t50 = 1.0 + 0.5 * 0.1
-    t90 = t50 + _m(step, "yaw_rate_response_time_90")
+    t90 = t50 + _m(step, 'yaw_rate_response_time_90')
     assert np.all(r[t < t90 - 1e-9] < 0.9 * r_ss)
     assert r[np.argmin(np.abs(t - t90))] >= 0.9 * r_ss
     peak = r.max()
-    assert _m(step, "yaw_rate_overshoot") == pytest.approx(100.0 * (peak / r_ss - 1.0))
-    assert _m(step, "steady_lateral_acceleration") == pytest.approx(4.0, rel=0.02)
+    assert _m(step, 'yaw_rate_overshoot') == pytest.approx(100.0 * (peak / r_ss - 1.0))
+    assert _m(step, 'steady_lateral_acceleration') == pytest.approx(4.0, rel=0.02)
 
 
 def test_unknown_event_parameter_is_a_data_error(sedan):
     with pytest.raises(DataError) as err:
-        run_vehicle_event(sedan["baseline"], "step_steer", ["diameter=3 m"])
+        run_vehicle_event(sedan['baseline'], 'step_steer', ['diameter=3 m'])
     assert str(err.value) == ("event step_steer: unknown parameter 'diameter' (parameters of "
                               "step_steer: speed, lateral_acceleration, ramp_time, duration, "
                               "drive_front, brake_front)")
@@ -170,26 +182,28 @@ def test_unknown_event_parameter_is_a_data_error(sedan):
 
 def test_a_step_beyond_the_steering_lock_is_an_error(sedan):
     with pytest.raises(SolverError) as err:
-        run_vehicle_event(sedan["baseline"], "step_steer",
-                          ["speed=5 m/s", "lateral_acceleration=8 m/s^2"])
+        run_vehicle_event(sedan['baseline'], 'step_steer',
+                          ['speed=5 m/s', 'lateral_acceleration=8 m/s^2'])
     message = str(err.value)
-    assert message.startswith("step steer to 8 m/s^2 at 5 m/s needs a steering-wheel angle "
-                              "beyond the lock (")
+    assert message.startswith('step steer to 8 m/s^2 at 5 m/s needs a steering-wheel angle '
+                              'beyond the lock (')
 
 
 def test_flexible_fidelity_drives_on_the_flexible_kc_maps(sedan, step):
-    """The same configuration on its flexible K&C results: every suspension map says so,
-    and the more compliant suspension changes the response."""
-    flex = run_vehicle_event(sedan["baseline"], "step_steer", [], fidelity="flexible")
-    assert flex.fidelity == "flexible"
-    maps = [n for n in flex.notes if "data hash" in n]
-    assert maps and all("flexible" in n for n in maps if "K&C" in n)
-    assert _m(flex, "yaw_rate_gain") != pytest.approx(_m(step, "yaw_rate_gain"), rel=1e-3)
+    """
+    The same configuration on its flexible K&C results: every suspension map says so,
+    and the more compliant suspension changes the response.
+    """
+    flex = run_vehicle_event(sedan['baseline'], 'step_steer', [], fidelity='flexible')
+    assert flex.fidelity == 'flexible'
+    maps = [n for n in flex.notes if 'data hash' in n]
+    assert maps and all('flexible' in n for n in maps if 'K&C' in n)
+    assert _m(flex, 'yaw_rate_gain') != pytest.approx(_m(step, 'yaw_rate_gain'), rel=1e-3)
 
 
 def test_unknown_event_is_an_error(sedan):
     with pytest.raises(SolverError) as err:
-        run_vehicle_event(sedan["baseline"], "sine_with_dwell")
+        run_vehicle_event(sedan['baseline'], 'sine_with_dwell')
     assert str(err.value) == ("configuration 'baseline', event 'sine_with_dwell': the "
                               "full-vehicle model has no event 'sine_with_dwell' (events: "
                               "constant_radius_turn, step_steer)")

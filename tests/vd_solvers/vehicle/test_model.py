@@ -20,60 +20,66 @@ from vd_solvers.vehicle.maps import KC_STEPS
 from vd_solvers.vehicle.model import Options, VehicleModel
 from vd_solvers.vehicle.simulation import simulate
 
-STUDIES = Path(__file__).resolve().parents[3] / "src" / "vd_data_server" / "data" / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def sedan():
-    return load_study(STUDIES / "sedan.yaml").configurations["baseline"]
+    return load_study(STUDIES / 'sedan.yaml').configurations['baseline']
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope='module')
 def model(sedan):
     return VehicleModel(sedan)
 
 
 def test_maps_are_the_kc_results_of_the_same_configuration(sedan, model):
-    """At design (z = 0) the wheel-force map is the K&C pad load less the unsprung weight,
-    toe and camber are the K&C ones, and every map names its K&C event and data hash."""
-    par = kc_result(sedan, "front", "parallel_wheel_travel", steps=KC_STEPS)
-    at = int(np.argmin(np.abs(par.channels["wheel_travel"][:, 0])))
+    """
+    At design (z = 0) the wheel-force map is the K&C pad load less the unsprung weight,
+    toe and camber are the K&C ones, and every map names its K&C event and data hash.
+    """
+    par = kc_result(sedan, 'front', 'parallel_wheel_travel', steps=KC_STEPS)
+    at = int(np.argmin(np.abs(par.channels['wheel_travel'][:, 0])))
     z = np.zeros(4)
-    z[0] = par.channels["wheel_travel"][at, 0]
+    z[0] = par.channels['wheel_travel'][at, 0]
     values = model.maps.travel(z)
-    m_u = sedan.group("mass").scalar("unsprung_mass_front")
+    m_u = sedan.group('mass').scalar('unsprung_mass_front')
     # resampled on a uniform grid of the same spacing: linear interpolation between nodes
     # of a smooth curve, 1e-5 relative at most here
-    npt.assert_allclose(values[0, 0], par.channels["pad_force"][at, 0] - m_u * G, rtol=1e-5)
-    npt.assert_allclose(values[1, 0], par.channels["toe"][at, 0], atol=1e-6)
-    npt.assert_allclose(values[2, 0], par.channels["camber"][at, 0], atol=1e-6)
-    for key in ("wheel_force", "toe", "camber", "anti_roll_bar", "compliance_steer_lateral",
-                "jacking_longitudinal", "steering"):
+    npt.assert_allclose(values[0, 0], par.channels['pad_force'][at, 0] - m_u * G, rtol=1e-5)
+    npt.assert_allclose(values[1, 0], par.channels['toe'][at, 0], atol=1e-6)
+    npt.assert_allclose(values[2, 0], par.channels['camber'][at, 0], atol=1e-6)
+    for key in ('wheel_force', 'toe', 'camber', 'anti_roll_bar', 'compliance_steer_lateral',
+                'jacking_longitudinal', 'steering'):
         assert sedan.data_hash in model.maps.provenance[key], key
 
 
 def test_anti_roll_bar_forces_are_zero_in_parallel_travel_and_give_the_kc_bar_stiffness(sedan,
                                                                                     model):
-    """No bar force when both wheels travel alike; in roll, the bar forces' roll moment over
+    """
+    No bar force when both wheels travel alike; in roll, the bar forces' roll moment over
     the roll angle is the K&C bar roll stiffness (with bar minus without), within 2 %
-    (the K&C metric is a slope fitted over +-10 mm, this a secant over +-5 mm)."""
+    (the K&C metric is a slope fitted over +-10 mm, this a secant over +-5 mm).
+    """
     npt.assert_allclose(model.maps.arb(np.array([0.03, 0.03, -0.02, -0.02])), 0.0, atol=1e-6)
-    par = kc_result(sedan, "front", "parallel_wheel_travel", steps=KC_STEPS)
-    track = float(par.channels["track"][int(np.argmin(np.abs(par.channels["pad_travel"][:, 0])))])
+    par = kc_result(sedan, 'front', 'parallel_wheel_travel', steps=KC_STEPS)
+    track = float(par.channels['track'][int(np.argmin(np.abs(par.channels['pad_travel'][:, 0])))])
     z = np.array([-0.005, 0.005, 0.0, 0.0])
     bar = model.maps.arb(z)
     assert bar[1] > 0.0 > bar[0]  # the bar pushes the bump-side (right) wheel down
     moment = 0.5 * track * (bar[1] - bar[0])
     phi = math.atan((z[1] - z[0]) / track)
-    results = {e: kc_result(sedan, "front", e, steps=KC_STEPS) for e in
-               ("opposite_wheel_travel", "opposite_wheel_travel_no_bar")}
-    k_bar = derived_metrics(results, 2.8e5)["roll_stiffness_bar"][0] * 180.0 / math.pi
+    results = {e: kc_result(sedan, 'front', e, steps=KC_STEPS) for e in
+               ('opposite_wheel_travel', 'opposite_wheel_travel_no_bar')}
+    k_bar = derived_metrics(results, 2.8e5)['roll_stiffness_bar'][0] * 180.0 / math.pi
     npt.assert_allclose(moment / phi, k_bar, rtol=0.02)
 
 
 def test_tire_loads_follow_the_wheel_centres_pinocchio_computes(model):
-    """The model's own wheel-centre kinematics (used per step for speed) against
-    Pinocchio's forward kinematics: the tire load C_z (R0 - h) - c dh/dt at each wheel."""
+    """
+    The model's own wheel-centre kinematics (used per step for speed) against
+    Pinocchio's forward kinematics: the tire load C_z (R0 - h) - c dh/dt at each wheel.
+    """
     rng = np.random.default_rng(3)
     q = pin.neutral(model.model)
     q[0:3] = [1.0, -2.0, -0.015]  # every tire on the ground
@@ -111,10 +117,12 @@ def _free_flight_drift(sedan, h: float) -> tuple[float, float]:
 
 
 def test_free_flight_conserves_momentum_to_the_integration_error(sedan):
-    """No road, no gravity: suspension, dampers and wheel spin are internal forces, so the
+    """
+    No road, no gravity: suspension, dampers and wheel spin are internal forces, so the
     centroidal momentum must stay constant. The semi-implicit Euler step on the body's
     local velocities conserves it only to O(h): the drift must be small and halve with the
-    step (a spurious external force would not vanish)."""
+    step (a spurious external force would not vanish).
+    """
     coarse = _free_flight_drift(sedan, 0.002)
     fine = _free_flight_drift(sedan, 0.001)
     for c, f in zip(coarse, fine):
@@ -123,11 +131,13 @@ def test_free_flight_conserves_momentum_to_the_integration_error(sedan):
 
 
 def test_a_dropped_car_settles_on_the_static_wheel_loads(sedan, model):
-    """Dropped 20 mm at rest, the car comes to rest with the loads of static_wheel_loads.
+    """
+    Dropped 20 mm at rest, the car comes to rest with the loads of static_wheel_loads.
     Tolerance 0.2 %: the data's spring preloads hold the rear about 6 mm from design
     height (K&C pad load at design 3970 N vs the 3815 N static load), which pitches the
     body by about 0.002 rad and moves the CoG about 1 mm over the contact points:
-    m g 1 mm / L / 2 = 3 N a wheel, 0.1 %. The vertical balance itself is exact."""
+    m g 1 mm / L / 2 = 3 N a wheel, 0.1 %. The vertical balance itself is exact.
+    """
     front, rear = static_wheel_loads(sedan)
     q, v = model.initial_state(0.0)
     q[2] += 0.02
@@ -149,23 +159,25 @@ def test_a_dropped_car_settles_on_the_static_wheel_loads(sedan, model):
 def test_a_non_finite_state_is_an_error_naming_configuration_event_and_time(model):
     steering = OpenLoopSteering(lambda t: math.nan if t > 0.2 else 0.0)
     with pytest.raises(SolverError) as err:
-        simulate(model, steering, None, 1.0, event="step_steer", initial_speed=20.0)
+        simulate(model, steering, None, 1.0, event='step_steer', initial_speed=20.0)
     assert str(err.value) == ("configuration 'baseline', event 'step_steer', t = 0.210 s: "
                               "the state became non-finite")
 
 
 def test_the_step_converges_with_the_step_size(model):
-    """Steps of 1, 2.5 and 5 ms on a step steer of about 4 m/s^2: the steady state is the
+    """
+    Steps of 1, 2.5 and 5 ms on a step steer of about 4 m/s^2: the steady state is the
     same, and the peak yaw rate converges at first order (semi-implicit Euler): its error
     against the 1 ms run grows in proportion to h - 1 ms, so the 5 ms error is
-    (5 - 1)/(2.5 - 1) = 2.7 times the 2.5 ms error (2.0 .. 3.4 accepted)."""
+    (5 - 1)/(2.5 - 1) = 2.7 times the 2.5 ms error (2.0 .. 3.4 accepted).
+    """
     results = {}
     for h in (0.001, 0.0025, 0.005):
         steering = OpenLoopSteering(times=[0.0, 0.2, 0.3, 3.0], angles=[0.0, 0.0, 0.4, 0.4])
         speed = SpeedController(lambda t: 27.8, model.total_mass, 0.33)
-        trace = simulate(model, steering, speed, 2.5, event="step_steer", initial_speed=27.8,
+        trace = simulate(model, steering, speed, 2.5, event='step_steer', initial_speed=27.8,
                          record_every=int(round(0.01 / h)), h=h)
-        results[h] = trace.channels()["yaw_rate"]
+        results[h] = trace.channels()['yaw_rate']
     fine = results[0.001]
     for h in (0.0025, 0.005):
         npt.assert_allclose(results[h][-1], fine[-1], rtol=1e-3)
@@ -174,11 +186,13 @@ def test_the_step_converges_with_the_step_size(model):
     assert e5 < 0.02 * fine.max()
 
 
-@pytest.mark.parametrize("study", ["sedan", "hmmwv"])
+@pytest.mark.parametrize('study', ['sedan', 'hmmwv'])
 def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
-    """Body height and pitch of the start are those at which the tires carry the static
-    wheel loads (the wheel-centre heights of the data need not be the loaded radius)."""
-    config = load_study(STUDIES / f"{study}.yaml").configurations["baseline"]
+    """
+    Body height and pitch of the start are those at which the tires carry the static
+    wheel loads (the wheel-centre heights of the data need not be the loaded radius).
+    """
+    config = load_study(STUDIES / f'{study}.yaml').configurations['baseline']
     vehicle = VehicleModel(config)
     q, v = vehicle.initial_state(0.0)
     _, wheel, _ = vehicle.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, 0.005)
@@ -187,8 +201,10 @@ def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
 
 
 def _suspension_potential(maps, z: np.ndarray) -> float:
-    """Sum over the wheels of the work of the wheel-force map from the grid start to z
-    (exact for the piecewise-linear map, with its linear extrapolation)."""
+    """
+    Sum over the wheels of the work of the wheel-force map from the grid start to z
+    (exact for the piecewise-linear map, with its linear extrapolation).
+    """
     total = 0.0
     for w in range(4):
         force = maps.travel_table[0, w]
@@ -221,11 +237,13 @@ def _energy_drift(vehicle, h: float) -> float:
 
 
 def test_free_flight_without_dampers_conserves_energy():
-    """The HMMWV (no anti-roll bar: its suspension forces derive from the wheel-force
+    """
+    The HMMWV (no anti-roll bar: its suspension forces derive from the wheel-force
     maps alone) in free flight without dampers, road and gravity: kinetic energy plus
     the maps' potential stays constant but for the symplectic step's bounded O(h) error,
-    which halves with the step."""
-    config = load_study(STUDIES / "hmmwv.yaml").configurations["baseline"]
+    which halves with the step.
+    """
+    config = load_study(STUDIES / 'hmmwv.yaml').configurations['baseline']
     vehicle = VehicleModel(config, options=Options(road=False, gravity=False, dampers=False))
     coarse, fine = _energy_drift(vehicle, 0.002), _energy_drift(vehicle, 0.001)
     assert coarse < 1e-3

@@ -1,4 +1,5 @@
-"""Linear single-track (bicycle) model, thesis 3.1.1 eqs. 1-2.
+"""
+Linear single-track (bicycle) model, thesis 3.1.1 eqs. 1-2.
 
 Steady state (thesis eq. 1, Gillespie "Fundamentals of Vehicle Dynamics"
 eq. 6-7)::
@@ -35,8 +36,8 @@ Vehicles", ch. 5) with states lateral velocity v (m/s) and yaw rate r
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,7 +50,8 @@ from vd_solvers.errors import BeyondLimitError
 
 @dataclass(frozen=True)
 class SteadyStateResult:
-    """Steady-state cornering of the linear single track at one point.
+    """
+    Steady-state cornering of the linear single track at one point.
 
     Angles in rad, ISO 8855 signs (left turn positive); slip angles in the
     tire model's convention (positive in a left turn).
@@ -81,7 +83,8 @@ class BicycleResult:
 # Holds numpy arrays, whose element-wise == makes a generated __eq__ useless.
 @dataclass(frozen=True, eq=False)
 class StateSpace:
-    """x' = A x + B delta, y = C x + D delta.
+    """
+    x' = A x + B delta, y = C x + D delta.
 
     States x = (v, r): lateral velocity (m/s) and yaw rate (rad/s); input
     delta: road-wheel steer angle (rad); outputs y = (r, a_y) with a_y the
@@ -97,7 +100,8 @@ class StateSpace:
 # Holds numpy arrays, whose element-wise == makes a generated __eq__ useless.
 @dataclass(frozen=True, eq=False)
 class StepResponse:
-    """Response to a steer step applied at t = 0 from straight running.
+    """
+    Response to a steer step applied at t = 0 from straight running.
 
     All arrays have shape (n,); SI units, ISO 8855 signs.
     """
@@ -112,7 +116,8 @@ STEP_RESPONSE_SAMPLES = 1001  # default time samples of a step response
 
 
 def axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
-    """Front and rear axle cornering stiffness C_af, C_ar, N/rad.
+    """
+    Front and rear axle cornering stiffness C_af, C_ar, N/rad.
 
     Two tires at the static wheel load N/2 (thesis eq. 7).
     """
@@ -122,13 +127,16 @@ def axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
 
 
 def effective_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
-    """Front and rear effective axle cornering stiffness C_af, C_ar, N/rad
-    (:func:`~vd_solvers.analytical.budget.effective_axle_cornering_stiffness`)."""
+    """
+    Front and rear effective axle cornering stiffness C_af, C_ar, N/rad
+    (:func:`~vd_solvers.analytical.budget.effective_axle_cornering_stiffness`).
+    """
     return effective_axle_cornering_stiffness(p)
 
 
 def understeer_gradient(p: VehicleParams) -> float:
-    """Understeer gradient K, rad/(m/s^2) (thesis eq. 2 divided by g).
+    """
+    Understeer gradient K, rad/(m/s^2) (thesis eq. 2 divided by g).
 
     K = (N_f/C_af - N_r/C_ar)/g with the effective axle cornering
     stiffnesses; it equals the total of the understeer budget. Positive:
@@ -149,7 +157,8 @@ def understeer_gradient_deg_per_g(p: VehicleParams) -> float:
 
 
 def steer_angle(p: VehicleParams, radius: ArrayLike, speed: ArrayLike) -> np.ndarray:
-    """Steady-state road-wheel steer angle, rad (thesis eq. 1).
+    """
+    Steady-state road-wheel steer angle, rad (thesis eq. 1).
 
     ``radius`` in m (positive for a left turn, nonzero), ``speed`` in m/s;
     both broadcast.  Above the critical speed of an oversteering vehicle the
@@ -161,19 +170,21 @@ def steer_angle(p: VehicleParams, radius: ArrayLike, speed: ArrayLike) -> np.nda
 
 
 def characteristic_speed(p: VehicleParams) -> float:
-    """Characteristic speed sqrt(L/K), m/s, of an understeering vehicle.
+    """
+    Characteristic speed sqrt(L/K), m/s, of an understeering vehicle.
 
     At this speed the yaw-rate gain peaks at half the neutral-steer value
     V/L (Gillespie eq. 6-13).  Raises ValueError unless K > 0.
     """
     k = understeer_gradient(p)
     if k <= 0.0:
-        raise ValueError(f"characteristic speed needs understeer (K > 0), got K = {k!r} rad/(m/s^2)")
+        raise ValueError(f'characteristic speed needs understeer (K > 0), got K = {k!r} rad/(m/s^2)')
     return math.sqrt(p.wheelbase / k)
 
 
 def critical_speed(p: VehicleParams) -> float:
-    """Critical speed sqrt(-L/K), m/s, of an oversteering vehicle.
+    """
+    Critical speed sqrt(-L/K), m/s, of an oversteering vehicle.
 
     Above it the linear vehicle is directionally unstable: the gain
     denominator L + K V^2 vanishes (Gillespie eq. 6-16).  Raises ValueError
@@ -181,12 +192,13 @@ def critical_speed(p: VehicleParams) -> float:
     """
     k = understeer_gradient(p)
     if k >= 0.0:
-        raise ValueError(f"critical speed needs oversteer (K < 0), got K = {k!r} rad/(m/s^2)")
+        raise ValueError(f'critical speed needs oversteer (K < 0), got K = {k!r} rad/(m/s^2)')
     return math.sqrt(-p.wheelbase / k)
 
 
 def yaw_rate_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
-    """Steady-state yaw-rate gain r/delta = V/(L + K V^2), 1/s.
+    """
+    Steady-state yaw-rate gain r/delta = V/(L + K V^2), 1/s.
 
     ``speed`` in m/s, any shape (Gillespie eq. 6-15).
     """
@@ -195,7 +207,8 @@ def yaw_rate_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
 
 
 def lateral_acceleration_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
-    """Steady-state lateral-acceleration gain a_y/delta = V^2/(L + K V^2), m/s^2/rad.
+    """
+    Steady-state lateral-acceleration gain a_y/delta = V^2/(L + K V^2), m/s^2/rad.
 
     ``speed`` in m/s, any shape (Gillespie eq. 6-17).
     """
@@ -204,7 +217,8 @@ def lateral_acceleration_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
 
 
 def sideslip_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
-    """Steady-state COG sideslip gain beta/delta, rad/rad.
+    """
+    Steady-state COG sideslip gain beta/delta, rad/rad.
 
     beta = b/R - alpha_r with alpha_r = m a_y a/(L C_ar) (Gillespie eq.
     6-20), hence beta/delta = (b - m a V^2/(L C_ar))/(L + K V^2).  Positive
@@ -241,7 +255,7 @@ def steady_state(p: VehicleParams, radius: float, speed: float) -> SteadyStateRe
 def state_space(p: VehicleParams, speed: float) -> StateSpace:
     """State matrices of the linear single track at forward ``speed`` > 0, m/s."""
     if not speed > 0.0:
-        raise ValueError(f"speed must be positive for the transient model, got {speed!r}")
+        raise ValueError(f'speed must be positive for the transient model, got {speed!r}')
     c_front, c_rear = effective_cornering_stiffness(p)
     m, izz, u = p.mass, p.yaw_inertia, speed
     a, b = p.cog_to_front_axle, p.cog_to_rear_axle
@@ -260,7 +274,8 @@ def state_space(p: VehicleParams, speed: float) -> StateSpace:
 
 
 def bicycle_response(p: VehicleParams, speed: float) -> BicycleResult:
-    """Steady-state gains and yaw-mode frequency/damping at ``speed``, m/s.
+    """
+    Steady-state gains and yaw-mode frequency/damping at ``speed``, m/s.
 
     Raises BeyondLimitError at or above the critical speed, where the yaw
     mode has no natural frequency because the vehicle is unstable.
@@ -284,7 +299,8 @@ def steer_step_response(
     duration: float,
     samples: int = STEP_RESPONSE_SAMPLES,
 ) -> StepResponse:
-    """Linear response to a road-wheel steer step ``steer`` (rad) at t = 0.
+    """
+    Linear response to a road-wheel steer step ``steer`` (rad) at t = 0.
 
     ``speed`` in m/s (below any critical speed), ``duration`` in s, sampled at
     ``samples`` equally spaced instants from 0.  A step is constant between
@@ -292,9 +308,9 @@ def steer_step_response(
     """
     _mode(p, speed)  # refuse the unstable case before integrating it
     if not duration > 0.0:
-        raise ValueError(f"duration must be positive, got {duration!r}")
+        raise ValueError(f'duration must be positive, got {duration!r}')
     if samples < 2:
-        raise ValueError(f"samples must be at least 2, got {samples!r}")
+        raise ValueError(f'samples must be at least 2, got {samples!r}')
     ss = state_space(p, speed)
     time = np.linspace(0.0, duration, samples)
     _, y, x = signal.lsim((ss.a, ss.b, ss.c, ss.d), U=np.full(samples, float(steer)), T=time)
@@ -302,7 +318,8 @@ def steer_step_response(
 
 
 def _mode(p: VehicleParams, speed: float) -> tuple[float, float]:
-    """Natural frequency (rad/s) and damping ratio of the state matrix.
+    """
+    Natural frequency (rad/s) and damping ratio of the state matrix.
 
     The characteristic polynomial is s^2 - tr(A) s + det(A) = s^2 + 2 zeta
     w_n s + w_n^2; det(A) <= 0 means a real positive root (oversteer at or
@@ -312,7 +329,7 @@ def _mode(p: VehicleParams, speed: float) -> tuple[float, float]:
     det = float(np.linalg.det(a_matrix))
     if det <= 0.0:
         raise BeyondLimitError(
-            f"single track unstable at {speed!r} m/s: at or above the critical speed (det A = {det:.3g})"
+            f'single track unstable at {speed!r} m/s: at or above the critical speed (det A = {det:.3g})'
         )
     natural_frequency = math.sqrt(det)
     return natural_frequency, -float(np.trace(a_matrix)) / (2.0 * natural_frequency)
@@ -325,12 +342,12 @@ def _gain_denominator(p: VehicleParams, speed: np.ndarray) -> np.ndarray:
 def _nonzero_radius(radius: ArrayLike) -> np.ndarray:
     radius = np.asarray(radius, dtype=float)
     if np.any(radius == 0.0) or not np.all(np.isfinite(radius)):
-        raise ValueError(f"radius must be finite and nonzero, got {radius!r}")
+        raise ValueError(f'radius must be finite and nonzero, got {radius!r}')
     return radius
 
 
 def _non_negative_speed(speed: ArrayLike) -> np.ndarray:
     speed = np.asarray(speed, dtype=float)
     if np.any(speed < 0.0) or not np.all(np.isfinite(speed)):
-        raise ValueError(f"speed must be finite and non-negative, got {speed!r}")
+        raise ValueError(f'speed must be finite and non-negative, got {speed!r}')
     return speed

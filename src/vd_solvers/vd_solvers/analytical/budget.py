@@ -1,4 +1,5 @@
-"""Understeer-gradient budget and effective axle cornering stiffness.
+"""
+Understeer-gradient budget and effective axle cornering stiffness.
 
 The linear-range understeer gradient of a car is the sum of the tires' own
 term and of every mechanism that steers or cambers the wheels in proportion to
@@ -40,18 +41,18 @@ rigid axle (all compliance zero) C_eff is the bare tire's C itself.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 from vd_solvers.analytical.params import AxleCompliance, VehicleParams
 from vd_solvers.analytical.two_track import roll_geometry
 from vd_solvers.errors import SolverError
 
 #: budget terms in the order Gillespie tabulates them
-TERMS = ("tire", "load_transfer", "roll_steer", "lateral_compliance_steer", "aligning_torque",
-         "camber")
+TERMS = ('tire', 'load_transfer', 'roll_steer', 'lateral_compliance_steer', 'aligning_torque',
+         'camber')
 #: the source of every compliance term of a parameter set without K&C results
-BARE_TIRE = "bare tire: no K&C results"
+BARE_TIRE = 'bare tire: no K&C results'
 
 
 @dataclass(frozen=True)
@@ -85,7 +86,7 @@ class UndersteerBudget:
 
 def _axle(p: VehicleParams, axle: str) -> tuple[float, float, AxleCompliance]:
     """Static axle load N (N), bare axle cornering stiffness (N/rad), compliance."""
-    if axle == "front":
+    if axle == 'front':
         load, tire, comp = p.axle_load_front, p.tire_front, p.compliance_front
     else:
         load, tire, comp = p.axle_load_rear, p.tire_rear, p.compliance_rear
@@ -99,11 +100,11 @@ def compliance_slip(p: VehicleParams, axle: str, roll_gradient: float) -> dict[s
     wheel_stiffness = stiffness / 2.0
     lean = c.roll_camber * roll_gradient - c.lateral_compliance_camber * force
     return {
-        "load_transfer": 0.0,
-        "roll_steer": -c.roll_steer * roll_gradient,
-        "lateral_compliance_steer": -c.lateral_compliance_steer * force,
-        "aligning_torque": c.aligning_torque_compliance_steer * c.pneumatic_trail * force,
-        "camber": -c.camber_stiffness / wheel_stiffness * lean,
+        'load_transfer': 0.0,
+        'roll_steer': -c.roll_steer * roll_gradient,
+        'lateral_compliance_steer': -c.lateral_compliance_steer * force,
+        'aligning_torque': c.aligning_torque_compliance_steer * c.pneumatic_trail * force,
+        'camber': -c.camber_stiffness / wheel_stiffness * lean,
     }
 
 
@@ -117,11 +118,11 @@ def _roll_gradient(p: VehicleParams) -> float:
 def understeer_budget(p: VehicleParams) -> UndersteerBudget:
     """The budget of ``p`` (module doc); each term names its sources."""
     rho = _roll_gradient(p)
-    load_f, c_f, comp_f = _axle(p, "front")
-    load_r, c_r, comp_r = _axle(p, "rear")
-    slip_f = compliance_slip(p, "front", rho)
-    slip_r = compliance_slip(p, "rear", rho)
-    terms = [BudgetTerm("tire", load_f / c_f / p.g, load_r / c_r / p.g,
+    load_f, c_f, comp_f = _axle(p, 'front')
+    load_r, c_r, comp_r = _axle(p, 'rear')
+    slip_f = compliance_slip(p, 'front', rho)
+    slip_r = compliance_slip(p, 'rear', rho)
+    terms = [BudgetTerm('tire', load_f / c_f / p.g, load_r / c_r / p.g,
                         f"front: {p.sources.get('tire_front', 'tire_front')}; "
                         f"rear: {p.sources.get('tire_rear', 'tire_rear')}",
                         (load_f / c_f - load_r / c_r) / p.g)]
@@ -132,28 +133,29 @@ def understeer_budget(p: VehicleParams) -> UndersteerBudget:
 
 
 _TERM_FIELDS = {
-    "roll_steer": ("roll_steer",),
-    "lateral_compliance_steer": ("lateral_compliance_steer",),
-    "aligning_torque": ("aligning_torque_compliance_steer", "pneumatic_trail"),
-    "camber": ("roll_camber", "lateral_compliance_camber", "camber_stiffness"),
+    'roll_steer': ('roll_steer',),
+    'lateral_compliance_steer': ('lateral_compliance_steer',),
+    'aligning_torque': ('aligning_torque_compliance_steer', 'pneumatic_trail'),
+    'camber': ('roll_camber', 'lateral_compliance_camber', 'camber_stiffness'),
 }
 
 
 def _source(p: VehicleParams, name: str, front: AxleCompliance, rear: AxleCompliance) -> str:
-    if name == "load_transfer":
-        return "second order in a_y: zero in the linear range (two-track model at the limit)"
+    if name == 'load_transfer':
+        return 'second order in a_y: zero in the linear range (two-track model at the limit)'
     parts = []
-    for axle, comp in (("front", front), ("rear", rear)):
+    for axle, comp in (('front', front), ('rear', rear)):
         found = [comp.sources[f] for f in _TERM_FIELDS[name] if f in comp.sources]
         parts.append(f"{axle}: {', '.join(found) if found else BARE_TIRE}")
-    if name in ("roll_steer", "camber") and any(comp.sources for comp in (front, rear)):
+    if name in ('roll_steer', 'camber') and any(comp.sources for comp in (front, rear)):
         parts.append("roll gradient from roll stiffness "
                      f"{p.sources.get('roll_stiffness_front', 'roll_stiffness_front')}")
-    return "; ".join(parts)
+    return '; '.join(parts)
 
 
 def effective_axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
-    """Front and rear effective axle cornering stiffness, N/rad (module doc).
+    """
+    Front and rear effective axle cornering stiffness, N/rad (module doc).
 
     The bare tires' value (two tires at the static wheel load, thesis eq. 7)
     for a rigid axle; SolverError if the compliance leaves no positive
@@ -161,7 +163,7 @@ def effective_axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
     """
     rho = None
     out = []
-    for axle in ("front", "rear"):
+    for axle in ('front', 'rear'):
         load, stiffness, comp = _axle(p, axle)
         if comp.is_rigid:
             out.append(stiffness)
@@ -178,5 +180,5 @@ def effective_axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
     return out[0], out[1]
 
 
-__all__ = ["TERMS", "BARE_TIRE", "BudgetTerm", "UndersteerBudget", "compliance_slip",
-           "understeer_budget", "effective_axle_cornering_stiffness"]
+__all__ = ['TERMS', 'BARE_TIRE', 'BudgetTerm', 'UndersteerBudget', 'compliance_slip',
+           'understeer_budget', 'effective_axle_cornering_stiffness']

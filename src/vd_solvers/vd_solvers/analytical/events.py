@@ -1,4 +1,5 @@
-"""Events of the analytical rung: steady-state circular (ISO 4138 constant radius),
+"""
+Events of the analytical rung: steady-state circular (ISO 4138 constant radius),
 handling diagram, and the linear step steer (ISO 7401) of the bicycle model.
 
 ``run_event(config, event, model, params)`` returns an :class:`EventOutcome`
@@ -9,8 +10,8 @@ cached (``kc_link.py``); the understeer budget is part of every result.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
+import math
 
 import numpy as np
 
@@ -26,32 +27,32 @@ from vd_solvers.results import Channel, EventOutcome, Metric
 
 G = 9.80665
 DEG = 180.0 / math.pi
-MODELS = ("bicycle", "two_track")
+MODELS = ('bicycle', 'two_track')
 
 _SWEEP = {
-    "radius": Param("length", 100.0, "circle radius (ISO 4138 constant-radius method)",
+    'radius': Param('length', 100.0, 'circle radius (ISO 4138 constant-radius method)',
                     minimum=1.0),
-    "steps": Param("integer", 41, "number of lateral-acceleration steps", minimum=3,
+    'steps': Param('integer', 41, 'number of lateral-acceleration steps', minimum=3,
                    maximum=2001),
-    "max_lateral_acceleration": Param("acceleration", 6.0, "end of the bicycle model's sweep "
+    'max_lateral_acceleration': Param('acceleration', 6.0, "end of the bicycle model's sweep "
                                       "(the two-track model goes to its limit)", minimum=0.1),
-    "speed": Param("velocity", 100.0 / 3.6, "speed of the reported gains", minimum=0.1),
+    'speed': Param('velocity', 100.0 / 3.6, 'speed of the reported gains', minimum=0.1),
 }
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
-    "steady_state_circular": _SWEEP,
-    "handling_diagram": _SWEEP,
-    "step_steer": {
-        "speed": Param("velocity", 100.0 / 3.6, "constant speed", minimum=0.1),
-        "lateral_acceleration": Param("acceleration", 4.0, "steady-state lateral acceleration "
-                                      "the steer step aims at (ISO 7401: 4 m/s^2)", minimum=0.01),
-        "duration": Param("time", 3.0, "simulated time", minimum=0.1, maximum=60.0),
-        "steps": Param("integer", 301, "output samples", minimum=10, maximum=100001),
+    'steady_state_circular': _SWEEP,
+    'handling_diagram': _SWEEP,
+    'step_steer': {
+        'speed': Param('velocity', 100.0 / 3.6, 'constant speed', minimum=0.1),
+        'lateral_acceleration': Param('acceleration', 4.0, 'steady-state lateral acceleration '
+                                      'the steer step aims at (ISO 7401: 4 m/s^2)', minimum=0.01),
+        'duration': Param('time', 3.0, 'simulated time', minimum=0.1, maximum=60.0),
+        'steps': Param('integer', 301, 'output samples', minimum=10, maximum=100001),
     },
 }
 EVENT_MODELS: Mapping[str, tuple[str, ...]] = {
-    "steady_state_circular": MODELS,
-    "handling_diagram": MODELS,
-    "step_steer": ("bicycle",),
+    'steady_state_circular': MODELS,
+    'handling_diagram': MODELS,
+    'step_steer': ('bicycle',),
 }
 
 
@@ -69,42 +70,44 @@ def run_event(config: Configuration, event: str, model: str,
     try:
         kc = try_kc_inputs(config, static_wheel_loads(config))
     except SolverError as err:
-        raise SolverError(f"{label}: K&C results: {err}") from err
+        raise SolverError(f'{label}: K&C results: {err}') from err
     if isinstance(kc, str):
         p = vehicle_params(config)
-        kc_notes = [f"bare tire and design targets: {kc}"]
+        kc_notes = [f'bare tire and design targets: {kc}']
     else:
         p = vehicle_params(config, kc.suspension, kc.compliance)
-        kc_notes = [f"roll stiffness, roll centres and compliance from the K&C model "
-                    f"(data hash {config.data_hash})"]
+        kc_notes = [f'roll stiffness, roll centres and compliance from the K&C model '
+                    f'(data hash {config.data_hash})']
     try:
-        if event == "step_steer":
+        if event == 'step_steer':
             metrics, channels, notes = _step_steer(p, values)
-        elif model == "bicycle":
+        elif model == 'bicycle':
             metrics, channels, notes = _bicycle_sweep(p, values)
         else:
             metrics, channels, notes = _two_track_sweep(p, values)
     except SolverError as err:
-        raise SolverError(f"{label}: {err}") from err
-    notes = [*notes, *kc_notes, *(f"{k}: {v}" for k, v in sorted(p.sources.items()))]
-    return EventOutcome(event=event, configuration=config.name, model=model, fidelity="rigid",
-                        axle="", data_hash=config.data_hash, metrics=metrics, channels=channels,
+        raise SolverError(f'{label}: {err}') from err
+    notes = [*notes, *kc_notes, *(f'{k}: {v}' for k, v in sorted(p.sources.items()))]
+    return EventOutcome(event=event, configuration=config.name, model=model, fidelity='rigid',
+                        axle='', data_hash=config.data_hash, metrics=metrics, channels=channels,
                         notes=tuple(notes))
 
 
 def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
-    """The understeer budget: ``understeer_budget_<term>`` in rad/(m/s^2) and
-    ``..._deg_per_g``, each with its source, and the total."""
+    """
+    The understeer budget: ``understeer_budget_<term>`` in rad/(m/s^2) and
+    ``..._deg_per_g``, each with its source, and the total.
+    """
     budget = understeer_budget(p)
     metrics = {}
     for term in budget.terms:
-        metrics[f"understeer_budget_{term.name}"] = Metric(term.value, "rad/(m/s^2)", term.source)
-        metrics[f"understeer_budget_{term.name}_deg_per_g"] = Metric(term.value * DEG * G, "deg/g",
+        metrics[f'understeer_budget_{term.name}'] = Metric(term.value, 'rad/(m/s^2)', term.source)
+        metrics[f'understeer_budget_{term.name}_deg_per_g'] = Metric(term.value * DEG * G, 'deg/g',
                                                                       term.source)
-    metrics["understeer_budget_total"] = Metric(budget.total, "rad/(m/s^2)",
-                                                "sum of the terms " + ", ".join(TERMS))
-    metrics["understeer_budget_total_deg_per_g"] = Metric(budget.total * DEG * G, "deg/g",
-                                                          "sum of the terms " + ", ".join(TERMS))
+    metrics['understeer_budget_total'] = Metric(budget.total, 'rad/(m/s^2)',
+                                                'sum of the terms ' + ', '.join(TERMS))
+    metrics['understeer_budget_total_deg_per_g'] = Metric(budget.total * DEG * G, 'deg/g',
+                                                          'sum of the terms ' + ', '.join(TERMS))
     return metrics
 
 
@@ -112,142 +115,142 @@ def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]
     k = bicycle.understeer_gradient(p)
     c_f, c_r = bicycle.axle_cornering_stiffness(p)
     e_f, e_r = bicycle.effective_cornering_stiffness(p)
-    k_source = ("effective axle cornering stiffness: tires with K&C compliance"
+    k_source = ('effective axle cornering stiffness: tires with K&C compliance'
                 if not (p.compliance_front.is_rigid and p.compliance_rear.is_rigid)
-                else "bare tire: no K&C results")
+                else 'bare tire: no K&C results')
     metrics = {
-        "understeer_gradient": Metric(k, "rad/(m/s^2)", k_source),
-        "understeer_gradient_deg_per_g": Metric(k * DEG * G, "deg/g", k_source),
-        "cornering_stiffness_front_axle": Metric(c_f, "N/rad", p.sources.get("tire_front", "")),
-        "cornering_stiffness_rear_axle": Metric(c_r, "N/rad", p.sources.get("tire_rear", "")),
-        "effective_cornering_stiffness_front_axle": Metric(e_f, "N/rad", k_source),
-        "effective_cornering_stiffness_rear_axle": Metric(e_r, "N/rad", k_source),
+        'understeer_gradient': Metric(k, 'rad/(m/s^2)', k_source),
+        'understeer_gradient_deg_per_g': Metric(k * DEG * G, 'deg/g', k_source),
+        'cornering_stiffness_front_axle': Metric(c_f, 'N/rad', p.sources.get('tire_front', '')),
+        'cornering_stiffness_rear_axle': Metric(c_r, 'N/rad', p.sources.get('tire_rear', '')),
+        'effective_cornering_stiffness_front_axle': Metric(e_f, 'N/rad', k_source),
+        'effective_cornering_stiffness_rear_axle': Metric(e_r, 'N/rad', k_source),
         **budget_metrics(p),
-        "mass": Metric(p.mass, "kg", p.sources.get("mass", "")),
-        "cog_to_front_axle": Metric(p.cog_to_front_axle, "m"),
-        "cog_height": Metric(p.cog_height, "m"),
+        'mass': Metric(p.mass, 'kg', p.sources.get('mass', '')),
+        'cog_to_front_axle': Metric(p.cog_to_front_axle, 'm'),
+        'cog_height': Metric(p.cog_height, 'm'),
     }
     if k > 0.0:
         v = bicycle.characteristic_speed(p)
-        metrics["characteristic_speed"] = Metric(v, "m/s")
-        metrics["characteristic_speed_kmh"] = Metric(v * 3.6, "km/h")
+        metrics['characteristic_speed'] = Metric(v, 'm/s')
+        metrics['characteristic_speed_kmh'] = Metric(v * 3.6, 'km/h')
     elif k < 0.0:
         v = bicycle.critical_speed(p)
-        metrics["critical_speed"] = Metric(v, "m/s")
-        metrics["critical_speed_kmh"] = Metric(v * 3.6, "km/h")
+        metrics['critical_speed'] = Metric(v, 'm/s')
+        metrics['critical_speed_kmh'] = Metric(v * 3.6, 'km/h')
     try:
         response = bicycle.bicycle_response(p, speed)
     except BeyondLimitError:
         return metrics
     metrics.update({
-        "gain_speed": Metric(speed, "m/s"),
-        "yaw_rate_gain": Metric(response.yaw_rate_gain, "1/s"),
-        "lateral_acceleration_gain": Metric(response.lateral_acceleration_gain, "m/s^2/rad"),
-        "sideslip_gain": Metric(response.sideslip_gain, "rad/rad"),
-        "natural_frequency": Metric(response.natural_frequency / (2.0 * math.pi), "Hz"),
-        "damping_ratio": Metric(response.damping_ratio, "-"),
+        'gain_speed': Metric(speed, 'm/s'),
+        'yaw_rate_gain': Metric(response.yaw_rate_gain, '1/s'),
+        'lateral_acceleration_gain': Metric(response.lateral_acceleration_gain, 'm/s^2/rad'),
+        'sideslip_gain': Metric(response.sideslip_gain, 'rad/rad'),
+        'natural_frequency': Metric(response.natural_frequency / (2.0 * math.pi), 'Hz'),
+        'damping_ratio': Metric(response.damping_ratio, '-'),
     })
     return metrics
 
 
 def _bicycle_sweep(p: VehicleParams, v: Mapping[str, float]):
-    radius = v["radius"]
-    a_y = np.linspace(0.0, v["max_lateral_acceleration"], int(v["steps"]))
+    radius = v['radius']
+    a_y = np.linspace(0.0, v['max_lateral_acceleration'], int(v['steps']))
     speed = np.sqrt(a_y * radius)
     points = [bicycle.steady_state(p, radius, float(s)) for s in speed]
     channels = {
-        "lateral_acceleration": Channel("m/s^2", a_y),
-        "speed": Channel("m/s", speed),
-        "steer_angle": Channel("rad", np.array([q.steer_angle for q in points])),
-        "yaw_rate": Channel("rad/s", np.array([q.yaw_rate for q in points])),
-        "sideslip": Channel("rad", np.array([q.sideslip for q in points])),
-        "slip_angle_front": Channel("rad", np.array([q.slip_angle_front for q in points])),
-        "slip_angle_rear": Channel("rad", np.array([q.slip_angle_rear for q in points])),
+        'lateral_acceleration': Channel('m/s^2', a_y),
+        'speed': Channel('m/s', speed),
+        'steer_angle': Channel('rad', np.array([q.steer_angle for q in points])),
+        'yaw_rate': Channel('rad/s', np.array([q.yaw_rate for q in points])),
+        'sideslip': Channel('rad', np.array([q.sideslip for q in points])),
+        'slip_angle_front': Channel('rad', np.array([q.slip_angle_front for q in points])),
+        'slip_angle_rear': Channel('rad', np.array([q.slip_angle_rear for q in points])),
     }
-    channels["slip_angle_difference"] = Channel(
-        "rad", channels["slip_angle_front"].values - channels["slip_angle_rear"].values)
-    metrics = _common_bicycle_metrics(p, v["speed"])
-    metrics["radius"] = Metric(radius, "m")
+    channels['slip_angle_difference'] = Channel(
+        'rad', channels['slip_angle_front'].values - channels['slip_angle_rear'].values)
+    metrics = _common_bicycle_metrics(p, v['speed'])
+    metrics['radius'] = Metric(radius, 'm')
     notes = ["linear single-track model (thesis eqs. 1-2): no limit; swept to "
              f"{v['max_lateral_acceleration']:.3g} m/s^2"]
     return metrics, channels, notes
 
 
 def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
-    radius = v["radius"]
-    diagram = two_track.handling_diagram(p, radius, int(v["steps"]))
+    radius = v['radius']
+    diagram = two_track.handling_diagram(p, radius, int(v['steps']))
     geometry = two_track.roll_geometry(p)
     k_lin = two_track.understeer_gradient_linear(p)
     limit = diagram.limit
     channels = {
-        "lateral_acceleration": Channel("m/s^2", diagram.lateral_acceleration),
-        "speed": Channel("m/s", diagram.speed),
-        "steer_angle": Channel("rad", diagram.steer_angle),
-        "slip_angle_front": Channel("rad", diagram.slip_angle_front),
-        "slip_angle_rear": Channel("rad", diagram.slip_angle_rear),
-        "slip_angle_difference": Channel("rad", diagram.slip_angle_difference),
-        "roll_angle": Channel("rad", diagram.roll_angle),
+        'lateral_acceleration': Channel('m/s^2', diagram.lateral_acceleration),
+        'speed': Channel('m/s', diagram.speed),
+        'steer_angle': Channel('rad', diagram.steer_angle),
+        'slip_angle_front': Channel('rad', diagram.slip_angle_front),
+        'slip_angle_rear': Channel('rad', diagram.slip_angle_rear),
+        'slip_angle_difference': Channel('rad', diagram.slip_angle_difference),
+        'roll_angle': Channel('rad', diagram.roll_angle),
         # kinematic steady-state sideslip at the COG, as in the bicycle model
-        "sideslip": Channel("rad", p.cog_to_rear_axle / radius - diagram.slip_angle_rear),
-        "lateral_force_front_axle": Channel("N", diagram.axle_force_front),
-        "lateral_force_rear_axle": Channel("N", diagram.axle_force_rear),
+        'sideslip': Channel('rad', p.cog_to_rear_axle / radius - diagram.slip_angle_rear),
+        'lateral_force_front_axle': Channel('N', diagram.axle_force_front),
+        'lateral_force_rear_axle': Channel('N', diagram.axle_force_rear),
     }
     for i, wheel in enumerate(two_track.WHEELS):
-        channels[f"wheel_load_{wheel}"] = Channel("N", diagram.wheel_loads[:, i])
+        channels[f'wheel_load_{wheel}'] = Channel('N', diagram.wheel_loads[:, i])
     metrics = {
-        "max_lateral_acceleration": Metric(limit.lateral_acceleration, "m/s^2"),
-        "max_lateral_acceleration_g": Metric(limit.lateral_acceleration / G, "g"),
-        "limit_speed": Metric(limit.speed, "m/s"),
-        "limiting_axle_is_rear": Metric(1.0 if limit.limiting_axle == "rear" else 0.0, "-"),
-        "understeer_gradient_linear": Metric(k_lin, "rad/(m/s^2)"),
-        "understeer_gradient_linear_deg_per_g": Metric(k_lin * DEG * G, "deg/g"),
-        "roll_gradient": Metric(geometry.roll_gradient * DEG * G, "deg/g"),
-        "roll_stiffness_front": Metric(p.roll_stiffness_front, "N*m/rad",
-                                       p.sources.get("roll_stiffness_front", "")),
-        "roll_stiffness_rear": Metric(p.roll_stiffness_rear, "N*m/rad",
-                                      p.sources.get("roll_stiffness_rear", "")),
-        "roll_centre_height_front": Metric(p.roll_centre_height_front, "m",
-                                           p.sources.get("roll_centre_height_front", "")),
-        "roll_centre_height_rear": Metric(p.roll_centre_height_rear, "m",
-                                          p.sources.get("roll_centre_height_rear", "")),
-        "radius": Metric(radius, "m"),
+        'max_lateral_acceleration': Metric(limit.lateral_acceleration, 'm/s^2'),
+        'max_lateral_acceleration_g': Metric(limit.lateral_acceleration / G, 'g'),
+        'limit_speed': Metric(limit.speed, 'm/s'),
+        'limiting_axle_is_rear': Metric(1.0 if limit.limiting_axle == 'rear' else 0.0, '-'),
+        'understeer_gradient_linear': Metric(k_lin, 'rad/(m/s^2)'),
+        'understeer_gradient_linear_deg_per_g': Metric(k_lin * DEG * G, 'deg/g'),
+        'roll_gradient': Metric(geometry.roll_gradient * DEG * G, 'deg/g'),
+        'roll_stiffness_front': Metric(p.roll_stiffness_front, 'N*m/rad',
+                                       p.sources.get('roll_stiffness_front', '')),
+        'roll_stiffness_rear': Metric(p.roll_stiffness_rear, 'N*m/rad',
+                                      p.sources.get('roll_stiffness_rear', '')),
+        'roll_centre_height_front': Metric(p.roll_centre_height_front, 'm',
+                                           p.sources.get('roll_centre_height_front', '')),
+        'roll_centre_height_rear': Metric(p.roll_centre_height_rear, 'm',
+                                          p.sources.get('roll_centre_height_rear', '')),
+        'radius': Metric(radius, 'm'),
         **budget_metrics(p),
     }
-    notes = [f"limit: {limit.behaviour} at {limit.lateral_acceleration:.3f} m/s^2 "
-             f"({limit.lateral_acceleration / G:.3f} g), {limit.limiting_axle} axle, "
-             f"{limit.cause}; the model has no steady state beyond it"]
+    notes = [f'limit: {limit.behaviour} at {limit.lateral_acceleration:.3f} m/s^2 '
+             f'({limit.lateral_acceleration / G:.3f} g), {limit.limiting_axle} axle, '
+             f'{limit.cause}; the model has no steady state beyond it']
     lift = two_track.wheel_lift_onset(p)
     if lift is not None and lift[1] < abs(limit.lateral_acceleration):
-        metrics["wheel_lift_lateral_acceleration"] = Metric(lift[1], "m/s^2")
-        notes.append(f"inner {lift[0]} wheel lifts at {lift[1]:.3f} m/s^2 ({lift[1] / G:.3f} g); "
-                     "from there the outer wheel carries the axle load up to the limit")
+        metrics['wheel_lift_lateral_acceleration'] = Metric(lift[1], 'm/s^2')
+        notes.append(f'inner {lift[0]} wheel lifts at {lift[1]:.3f} m/s^2 ({lift[1] / G:.3f} g); '
+                     'from there the outer wheel carries the axle load up to the limit')
     return metrics, channels, notes
 
 
 def _step_steer(p: VehicleParams, v: Mapping[str, float]):
-    speed = v["speed"]
+    speed = v['speed']
     response = bicycle.bicycle_response(p, speed)
-    steer = v["lateral_acceleration"] / response.lateral_acceleration_gain
-    step = bicycle.steer_step_response(p, speed, steer, v["duration"], int(v["steps"]))
+    steer = v['lateral_acceleration'] / response.lateral_acceleration_gain
+    step = bicycle.steer_step_response(p, speed, steer, v['duration'], int(v['steps']))
     r_ss = response.yaw_rate_gain * steer
     peak = float(np.max(step.yaw_rate))
     reached = np.nonzero(step.yaw_rate >= 0.9 * r_ss)[0]
     channels = {
-        "time": Channel("s", step.time),
-        "steer_angle": Channel("rad", np.full_like(step.time, steer)),
-        "yaw_rate": Channel("rad/s", step.yaw_rate),
-        "lateral_acceleration": Channel("m/s^2", step.lateral_acceleration),
-        "lateral_velocity": Channel("m/s", step.lateral_velocity),
+        'time': Channel('s', step.time),
+        'steer_angle': Channel('rad', np.full_like(step.time, steer)),
+        'yaw_rate': Channel('rad/s', step.yaw_rate),
+        'lateral_acceleration': Channel('m/s^2', step.lateral_acceleration),
+        'lateral_velocity': Channel('m/s', step.lateral_velocity),
     }
     metrics = _common_bicycle_metrics(p, speed)
     metrics.update({
-        "steer_step": Metric(steer, "rad"),
-        "steady_state_yaw_rate": Metric(r_ss, "rad/s"),
-        "peak_yaw_rate": Metric(peak, "rad/s"),
-        "yaw_rate_overshoot": Metric(100.0 * (peak / r_ss - 1.0), "%"),
-        "yaw_rate_response_time_90": Metric(float(step.time[reached[0]]) if reached.size
-                                            else float("nan"), "s"),
+        'steer_step': Metric(steer, 'rad'),
+        'steady_state_yaw_rate': Metric(r_ss, 'rad/s'),
+        'peak_yaw_rate': Metric(peak, 'rad/s'),
+        'yaw_rate_overshoot': Metric(100.0 * (peak / r_ss - 1.0), '%'),
+        'yaw_rate_response_time_90': Metric(float(step.time[reached[0]]) if reached.size
+                                            else float('nan'), 's'),
     })
-    notes = ["linear single-track model; ideal steer step at t = 0 (ISO 7401 uses a ramp "
-             "of 0.1-0.2 s, the full-vehicle model will)"]
+    notes = ['linear single-track model; ideal steer step at t = 0 (ISO 7401 uses a ramp '
+             'of 0.1-0.2 s, the full-vehicle model will)']
     return metrics, channels, notes

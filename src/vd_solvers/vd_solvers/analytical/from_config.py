@@ -1,4 +1,5 @@
-"""Build the analytical models' parameters from a resolved configuration.
+"""
+Build the analytical models' parameters from a resolved configuration.
 
 What the data describes in more detail than the simple models need is
 derived here, and every value says where it came from (``VehicleParams.sources``):
@@ -54,19 +55,19 @@ class MassProperties:
 
 
 def mass_properties(config: Configuration) -> MassProperties:
-    mass = config.group("mass")
-    m_s = mass.scalar("sprung_mass")
-    x_s, y_s, z_s = mass.point("sprung_cog")
-    m_uf = 2.0 * mass.scalar("unsprung_mass_front")
-    m_ur = 2.0 * mass.scalar("unsprung_mass_rear")
-    x_uf, y_uf, z_uf = config.group("front_hardpoints").point("points.wheel_centre")
-    x_ur, y_ur, z_ur = config.group("rear_hardpoints").point("points.wheel_centre")
+    mass = config.group('mass')
+    m_s = mass.scalar('sprung_mass')
+    x_s, y_s, z_s = mass.point('sprung_cog')
+    m_uf = 2.0 * mass.scalar('unsprung_mass_front')
+    m_ur = 2.0 * mass.scalar('unsprung_mass_rear')
+    x_uf, y_uf, z_uf = config.group('front_hardpoints').point('points.wheel_centre')
+    x_ur, y_ur, z_ur = config.group('rear_hardpoints').point('points.wheel_centre')
     m = m_s + m_uf + m_ur
     # unsprung masses at the wheel centres (left and right: their mean y is zero)
     x_g = (m_s * x_s + m_uf * x_uf + m_ur * x_ur) / m
     y_g = m_s * y_s / m
     z_g = (m_s * z_s + m_uf * z_uf + m_ur * z_ur) / m
-    izz = (mass.scalar("sprung_inertia.izz") + m_s * ((x_s - x_g) ** 2 + (y_s - y_g) ** 2)
+    izz = (mass.scalar('sprung_inertia.izz') + m_s * ((x_s - x_g) ** 2 + (y_s - y_g) ** 2)
            + m_uf * ((x_uf - x_g) ** 2 + y_uf ** 2 + y_g ** 2)
            + m_ur * ((x_ur - x_g) ** 2 + y_ur ** 2 + y_g ** 2))
     return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur, x_uf)
@@ -75,7 +76,7 @@ def mass_properties(config: Configuration) -> MassProperties:
 def static_wheel_loads(config: Configuration) -> tuple[float, float]:
     """Static vertical load of one front and one rear wheel, N."""
     mp = mass_properties(config)
-    wheelbase = config.group("geometry").scalar("wheelbase")
+    wheelbase = config.group('geometry').scalar('wheelbase')
     a = mp.cog_to_front_axle
     weight = mp.mass * STANDARD_GRAVITY
     return weight * (wheelbase - a) / wheelbase / 2.0, weight * a / wheelbase / 2.0
@@ -84,47 +85,47 @@ def static_wheel_loads(config: Configuration) -> tuple[float, float]:
 def vehicle_params(config: Configuration,
                    suspension: Mapping[str, AxleSuspension] | None = None,
                    compliance: Mapping[str, AxleCompliance] | None = None) -> VehicleParams:
-    mass = config.group("mass")
-    geo = config.group("geometry")
-    targets = config.group("targets")
-    wheelbase = geo.scalar("wheelbase")
+    mass = config.group('mass')
+    geo = config.group('geometry')
+    targets = config.group('targets')
+    wheelbase = geo.scalar('wheelbase')
     mp = mass_properties(config)
     m, x_g, z_g, izz = mp.mass, mp.cog_x, mp.cog_height, mp.yaw_inertia
     m_uf, m_ur, z_uf, z_ur = (mp.unsprung_front, mp.unsprung_rear, mp.unsprung_height_front,
                               mp.unsprung_height_rear)
-    t_f, t_r = geo.scalar("track_front"), geo.scalar("track_rear")
+    t_f, t_r = geo.scalar('track_front'), geo.scalar('track_rear')
     a = mp.cog_to_front_axle
     fz_front, fz_rear = static_wheel_loads(config)
-    tire_front, src_tf = _fit(config, "front_tire", fz_front)
-    tire_rear, src_tr = _fit(config, "rear_tire", fz_rear)
-    mass_src = f"{mass.file} (sprung) + unsprung masses at the wheel centres"
+    tire_front, src_tf = _fit(config, 'front_tire', fz_front)
+    tire_rear, src_tr = _fit(config, 'rear_tire', fz_rear)
+    mass_src = f'{mass.file} (sprung) + unsprung masses at the wheel centres'
     sources = {
-        "mass": mass_src, "cog_to_front_axle": mass_src, "cog_height": mass_src,
-        "yaw_inertia": f"{mass.file} sprung_inertia.izz + parallel-axis unsprung terms",
-        "wheelbase": geo.file, "track_front": geo.file, "track_rear": geo.file,
-        "tire_front": src_tf, "tire_rear": src_tr,
-        "unsprung_mass_front": mass.file, "unsprung_mass_rear": mass.file,
-        "unsprung_cog_height_front": "front_hardpoints wheel_centre z",
-        "unsprung_cog_height_rear": "rear_hardpoints wheel_centre z",
+        'mass': mass_src, 'cog_to_front_axle': mass_src, 'cog_height': mass_src,
+        'yaw_inertia': f'{mass.file} sprung_inertia.izz + parallel-axis unsprung terms',
+        'wheelbase': geo.file, 'track_front': geo.file, 'track_rear': geo.file,
+        'tire_front': src_tf, 'tire_rear': src_tr,
+        'unsprung_mass_front': mass.file, 'unsprung_mass_rear': mass.file,
+        'unsprung_cog_height_front': 'front_hardpoints wheel_centre z',
+        'unsprung_cog_height_rear': 'rear_hardpoints wheel_centre z',
     }
     roll = {}
-    for axle in ("front", "rear"):
+    for axle in ('front', 'rear'):
         kc = (suspension or {}).get(axle)
         if kc is not None:
-            roll[f"roll_stiffness_{axle}"] = kc.roll_stiffness
-            roll[f"roll_centre_height_{axle}"] = kc.roll_centre_height
-            sources[f"roll_stiffness_{axle}"] = kc.source
-            sources[f"roll_centre_height_{axle}"] = kc.source
+            roll[f'roll_stiffness_{axle}'] = kc.roll_stiffness
+            roll[f'roll_centre_height_{axle}'] = kc.roll_centre_height
+            sources[f'roll_stiffness_{axle}'] = kc.source
+            sources[f'roll_centre_height_{axle}'] = kc.source
         else:
-            for key in (f"roll_stiffness_{axle}", f"roll_centre_height_{axle}"):
+            for key in (f'roll_stiffness_{axle}', f'roll_centre_height_{axle}'):
                 roll[key] = targets.scalar(key)
-                sources[key] = f"design target {targets.values[key].source}"
+                sources[key] = f'design target {targets.values[key].source}'
     comp = {}
-    for axle in ("front", "rear"):
+    for axle in ('front', 'rear'):
         given = (compliance or {}).get(axle)
-        comp[f"compliance_{axle}"] = given if given is not None else AxleCompliance()
-        sources[f"compliance_{axle}"] = (
-            "; ".join(dict.fromkeys(given.sources.values())) if given is not None and given.sources
+        comp[f'compliance_{axle}'] = given if given is not None else AxleCompliance()
+        sources[f'compliance_{axle}'] = (
+            '; '.join(dict.fromkeys(given.sources.values())) if given is not None and given.sources
             else BARE_TIRE)
     return VehicleParams(
         mass=m, wheelbase=wheelbase, cog_to_front_axle=a, track_front=t_f, track_rear=t_r,

@@ -1,4 +1,5 @@
-"""What the analytical rung takes from the K&C rung of the same configuration.
+"""
+What the analytical rung takes from the K&C rung of the same configuration.
 
 Per axle, from K&C events run on demand and cached by data hash
 (:func:`vd_solvers.kc.cache.kc_result`, each event with its default
@@ -23,8 +24,8 @@ top towards +y, at zero slip). The K&C metrics leave in engineering units
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
@@ -34,7 +35,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 
 #: K&C events the analytical rung needs, per axle
-KC_EVENTS = ("parallel_wheel_travel", "opposite_wheel_travel", "lateral_force", "aligning_torque")
+KC_EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force', 'aligning_torque')
 #: step of the central difference of the lateral force in camber, rad
 CAMBER_STEP = 1e-6
 
@@ -59,7 +60,8 @@ class KCInputs:
 
 
 def camber_stiffness(mf: MagicFormula, fz: float) -> float:
-    """Lateral force towards +y per rad of lean of the wheel top towards +y, N/rad.
+    """
+    Lateral force towards +y per rad of lean of the wheel top towards +y, N/rad.
 
     The .tir inclination angle (ISO 8855) is positive with the top to the
     right (-y), so the lean towards +y is -gamma; central difference at zero
@@ -70,7 +72,8 @@ def camber_stiffness(mf: MagicFormula, fz: float) -> float:
 
 
 def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInputs:
-    """K&C roll properties and compliance of ``config`` (module doc).
+    """
+    K&C roll properties and compliance of ``config`` (module doc).
 
     ``static_loads``: static load of one front and one rear wheel, N.
     Raises SolverError / DataError when the configuration has no K&C model.
@@ -79,56 +82,58 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
     from vd_solvers.kc.metrics import derived_metrics
 
     suspension, compliance = {}, {}
-    for axle, fz in zip(("front", "rear"), static_loads):
+    for axle, fz in zip(('front', 'rear'), static_loads):
         model = kc_model(config, axle)
         results = {event: kc_result(config, axle, event) for event in KC_EVENTS}
         m = derived_metrics(results, model.inp.tire_vertical_stiffness)
-        tag = f"data hash {config.data_hash}"
+        tag = f'data hash {config.data_hash}'
         suspension[axle] = AxleSuspension(
-            m["roll_stiffness"][0] * DEG, m["roll_centre_height_kinematic"][0],
-            f"K&C {axle} axle (opposite and parallel wheel travel, {tag})")
-        group = config.group(f"{axle}_tire")
+            m['roll_stiffness'][0] * DEG, m['roll_centre_height_kinematic'][0],
+            f'K&C {axle} axle (opposite and parallel wheel travel, {tag})')
+        group = config.group(f'{axle}_tire')
         mf = MagicFormula(tire_properties(group))
-        tir = group.text("file")
+        tir = group.text('file')
 
         def kc(metric: str, event: str) -> str:
             value, unit = m[metric]
-            return f"K&C {axle} {event} {metric} {value:.4g} {unit} ({tag})"
+            return f'K&C {axle} {event} {metric} {value:.4g} {unit} ({tag})'
 
         compliance[axle] = AxleCompliance(
-            lateral_compliance_steer=m["lateral_compliance_steer"][0] / DEG / 1e3,
-            lateral_compliance_camber=m["lateral_compliance_camber"][0] / DEG / 1e3,
-            roll_steer=m["roll_steer"][0],
-            roll_camber=m["roll_camber"][0],
-            aligning_torque_compliance_steer=m["aligning_torque_compliance_steer"][0] / DEG / 1e3,
+            lateral_compliance_steer=m['lateral_compliance_steer'][0] / DEG / 1e3,
+            lateral_compliance_camber=m['lateral_compliance_camber'][0] / DEG / 1e3,
+            roll_steer=m['roll_steer'][0],
+            roll_camber=m['roll_camber'][0],
+            aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0] / DEG / 1e3,
             pneumatic_trail=float(mf.pneumatic_trail(fz)),
             camber_stiffness=camber_stiffness(mf, fz),
             sources={
-                "lateral_compliance_steer": kc("lateral_compliance_steer", "lateral_force"),
-                "lateral_compliance_camber": kc("lateral_compliance_camber", "lateral_force"),
-                "roll_steer": kc("roll_steer", "opposite_wheel_travel"),
-                "roll_camber": kc("roll_camber", "opposite_wheel_travel"),
-                "aligning_torque_compliance_steer": kc("aligning_torque_compliance_steer",
-                                                       "aligning_torque"),
-                "pneumatic_trail": f"{tir} pneumatic trail at {fz:.0f} N, zero slip",
-                "camber_stiffness": f"{tir} camber stiffness at {fz:.0f} N, zero slip",
+                'lateral_compliance_steer': kc('lateral_compliance_steer', 'lateral_force'),
+                'lateral_compliance_camber': kc('lateral_compliance_camber', 'lateral_force'),
+                'roll_steer': kc('roll_steer', 'opposite_wheel_travel'),
+                'roll_camber': kc('roll_camber', 'opposite_wheel_travel'),
+                'aligning_torque_compliance_steer': kc('aligning_torque_compliance_steer',
+                                                       'aligning_torque'),
+                'pneumatic_trail': f'{tir} pneumatic trail at {fz:.0f} N, zero slip',
+                'camber_stiffness': f'{tir} camber stiffness at {fz:.0f} N, zero slip',
             })
     return KCInputs(suspension, compliance)
 
 
 def try_kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInputs | str:
-    """:func:`kc_inputs`, or why the configuration has no K&C model (its data
+    """
+    :func:`kc_inputs`, or why the configuration has no K&C model (its data
     cannot be assembled into one). A K&C event that fails on a model that
-    could be assembled is an error, not a reason to drop the K&C values."""
+    could be assembled is an error, not a reason to drop the K&C values.
+    """
     from vd_solvers.kc.cache import kc_model
 
     try:
-        for axle in ("front", "rear"):
+        for axle in ('front', 'rear'):
             kc_model(config, axle)
     except (SolverError, DataError, KeyError) as err:
-        return f"no K&C model ({err})"
+        return f'no K&C model ({err})'
     return kc_inputs(config, static_loads)
 
 
-__all__ = ["KC_EVENTS", "AxleSuspension", "KCInputs", "camber_stiffness", "kc_inputs",
-           "try_kc_inputs"]
+__all__ = ['KC_EVENTS', 'AxleSuspension', 'KCInputs', 'camber_stiffness', 'kc_inputs',
+           'try_kc_inputs']

@@ -1,4 +1,5 @@
-"""Vehicle parameter set of the bicycle and two-track models (thesis 3.1).
+"""
+Vehicle parameter set of the bicycle and two-track models (thesis 3.1).
 
 One frozen :class:`VehicleParams` carries everything both analytical models
 need: mass and its position, tracks, roll centres and roll stiffnesses
@@ -15,9 +16,9 @@ y left, z up).  Distances along x are measured rearward from the front axle.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
+import math
 from types import MappingProxyType
 
 from vd_solvers.tire.simple import SimpleTire
@@ -34,7 +35,8 @@ _CURVATURE_MAX = 1.0  # exclusive
 
 @dataclass(frozen=True)
 class AxleCompliance:
-    """Linear steer and camber changes of one axle's wheels (K&C) and the tire
+    """
+    Linear steer and camber changes of one axle's wheels (K&C) and the tire
     properties that turn them into slip (all zero: a rigid, bare-tire axle).
 
     Signs (ISO 8855, per wheel; the left and right wheel are mirror images):
@@ -56,6 +58,7 @@ class AxleCompliance:
         camber_stiffness: lateral force towards the side the wheel top leans,
             per rad of lean, at the static wheel load, N/rad.
         sources: provenance per attribute name (not part of equality).
+
     """
 
     lateral_compliance_steer: float = 0.0
@@ -83,7 +86,8 @@ class AxleCompliance:
 
 @dataclass(frozen=True)
 class VehicleParams:
-    """Parameters of the analytical vehicle models.
+    """
+    Parameters of the analytical vehicle models.
 
     Attributes:
         mass: total vehicle mass m, kg (sprung + unsprung).
@@ -111,6 +115,7 @@ class VehicleParams:
         compliance_rear: compliance steer/camber of the rear axle.
         sources: provenance per field name, e.g. ``{"mass": "vehicle.xlsx
             Overview!C4"}``; filled by the vehicle-data adapter.
+
     """
 
     mass: float
@@ -139,42 +144,42 @@ class VehicleParams:
 
     def __post_init__(self) -> None:
         _check_finite(self)
-        _require(self.mass > 0.0, "mass", "must be positive", self.mass)
-        _require(self.wheelbase > 0.0, "wheelbase", "must be positive", self.wheelbase)
+        _require(self.mass > 0.0, 'mass', 'must be positive', self.mass)
+        _require(self.wheelbase > 0.0, 'wheelbase', 'must be positive', self.wheelbase)
         _require(
             0.0 < self.cog_to_front_axle < self.wheelbase,
-            "cog_to_front_axle",
-            f"must lie strictly between 0 and the wheelbase {self.wheelbase}",
+            'cog_to_front_axle',
+            f'must lie strictly between 0 and the wheelbase {self.wheelbase}',
             self.cog_to_front_axle,
         )
-        for name in ("track_front", "track_rear", "cog_height", "yaw_inertia", "g"):
-            _require(getattr(self, name) > 0.0, name, "must be positive", getattr(self, name))
+        for name in ('track_front', 'track_rear', 'cog_height', 'yaw_inertia', 'g'):
+            _require(getattr(self, name) > 0.0, name, 'must be positive', getattr(self, name))
         for name in (
-            "roll_stiffness_front",
-            "roll_stiffness_rear",
-            "unsprung_mass_front",
-            "unsprung_mass_rear",
-            "unsprung_cog_height_front",
-            "unsprung_cog_height_rear",
+            'roll_stiffness_front',
+            'roll_stiffness_rear',
+            'unsprung_mass_front',
+            'unsprung_mass_rear',
+            'unsprung_cog_height_front',
+            'unsprung_cog_height_rear',
         ):
-            _require(getattr(self, name) >= 0.0, name, "must not be negative", getattr(self, name))
+            _require(getattr(self, name) >= 0.0, name, 'must not be negative', getattr(self, name))
         # The sprung body must keep mass and lie between the axles, otherwise
         # the sprung axle split of eq. 4 is meaningless.
         sprung = self.mass - self.unsprung_mass_front - self.unsprung_mass_rear
-        _require(sprung > 0.0, "unsprung_mass_front + unsprung_mass_rear", "leaves no sprung mass", sprung)
+        _require(sprung > 0.0, 'unsprung_mass_front + unsprung_mass_rear', 'leaves no sprung mass', sprung)
         sprung_x = (self.mass * self.cog_to_front_axle - self.unsprung_mass_rear * self.wheelbase) / sprung
         _require(
             0.0 < sprung_x < self.wheelbase,
-            "unsprung_mass_front/unsprung_mass_rear",
-            "put the sprung COG outside the wheelbase",
+            'unsprung_mass_front/unsprung_mass_rear',
+            'put the sprung COG outside the wheelbase',
             sprung_x,
         )
-        for name in ("compliance_front", "compliance_rear"):
+        for name in ('compliance_front', 'compliance_rear'):
             if not isinstance(getattr(self, name), AxleCompliance):
-                raise ValueError(f"{name} must be an AxleCompliance, "
-                                 f"got {type(getattr(self, name)).__name__}")
-        _check_tire("tire_front", self.tire_front, self.axle_load_front / 2.0)
-        _check_tire("tire_rear", self.tire_rear, self.axle_load_rear / 2.0)
+                raise ValueError(f'{name} must be an AxleCompliance, '
+                                 f'got {type(getattr(self, name)).__name__}')
+        _check_tire('tire_front', self.tire_front, self.axle_load_front / 2.0)
+        _check_tire('tire_rear', self.tire_rear, self.axle_load_rear / 2.0)
         # Freeze the provenance too, so the whole parameter set is immutable.
         _freeze_sources(self)
 
@@ -209,40 +214,40 @@ def _check_finite(params: object) -> None:
     for f in fields(params):  # type: ignore[arg-type]
         value = getattr(params, f.name)
         if isinstance(value, (int, float)) and not math.isfinite(value):
-            raise ValueError(f"{f.name} must be finite, got {value!r}")
+            raise ValueError(f'{f.name} must be finite, got {value!r}')
 
 
 def _freeze_sources(params: object) -> None:
     """``params.sources`` may name only its fields; frozen to a read-only mapping."""
-    known = {f.name for f in fields(params)} - {"sources"}  # type: ignore[arg-type]
+    known = {f.name for f in fields(params)} - {'sources'}  # type: ignore[arg-type]
     for key in params.sources:  # type: ignore[attr-defined]
-        _require(key in known, "sources", f"names unknown field {key!r}", key)
-    object.__setattr__(params, "sources", MappingProxyType(dict(params.sources)))  # type: ignore[attr-defined]
+        _require(key in known, 'sources', f'names unknown field {key!r}', key)
+    object.__setattr__(params, 'sources', MappingProxyType(dict(params.sources)))  # type: ignore[attr-defined]
 
 
 def _require(ok: bool, name: str, message: str, value: object) -> None:
     if not ok:
-        raise ValueError(f"{name} {message}, got {value!r}")
+        raise ValueError(f'{name} {message}, got {value!r}')
 
 
 def _check_tire(name: str, tire: object, static_load: float) -> None:
     """Reject tires the analytical models cannot use, naming the field."""
     if not isinstance(tire, SimpleTire):
-        raise ValueError(f"{name} must be a SimpleTire, got {type(tire).__name__}")
-    _require(tire.fz0 > 0.0, f"{name}.fz0", "must be positive", tire.fz0)
+        raise ValueError(f'{name} must be a SimpleTire, got {type(tire).__name__}')
+    _require(tire.fz0 > 0.0, f'{name}.fz0', 'must be positive', tire.fz0)
     _require(
         _SHAPE_MIN < tire.shape < _SHAPE_MAX,
-        f"{name}.shape",
-        f"must lie strictly between {_SHAPE_MIN} and {_SHAPE_MAX} for a force peak",
+        f'{name}.shape',
+        f'must lie strictly between {_SHAPE_MIN} and {_SHAPE_MAX} for a force peak',
         tire.shape,
     )
-    _require(tire.curvature < _CURVATURE_MAX, f"{name}.curvature", f"must be below {_CURVATURE_MAX}", tire.curvature)
+    _require(tire.curvature < _CURVATURE_MAX, f'{name}.curvature', f'must be below {_CURVATURE_MAX}', tire.curvature)
     mu = float(tire.friction(static_load))
-    _require(mu > 0.0, name, f"gives no friction (mu0, mu1) at the static load {static_load:.1f} N", mu)
+    _require(mu > 0.0, name, f'gives no friction (mu0, mu1) at the static load {static_load:.1f} N', mu)
     stiffness = float(tire.cornering_stiffness(static_load))
     _require(
         stiffness > 0.0,
         name,
-        f"gives no cornering stiffness (c0, c1) at the static load {static_load:.1f} N",
+        f'gives no cornering stiffness (c0, c1) at the static load {static_load:.1f} N',
         stiffness,
     )

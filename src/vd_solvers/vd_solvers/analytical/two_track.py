@@ -1,4 +1,5 @@
-"""Steady-state two-track model with body roll, thesis 3.1.2 eqs. 3-9.
+"""
+Steady-state two-track model with body roll, thesis 3.1.2 eqs. 3-9.
 
 For a lateral acceleration a_y on a circle of radius R (V^2/R = a_y):
 
@@ -65,8 +66,8 @@ does when both inner wheels have lifted (rollover).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 from typing import Literal
 
 import numpy as np
@@ -77,10 +78,10 @@ from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.errors import BeyondLimitError, SolverError
 from vd_solvers.tire.simple import SimpleTire
 
-Axle = Literal["front", "rear"]
-LimitCause = Literal["saturation", "rollover"]
+Axle = Literal['front', 'rear']
+LimitCause = Literal['saturation', 'rollover']
 
-WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
+WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
 
 SLIP_TOLERANCE = 1e-13  # rad, root-finder tolerance; keeps force residuals ~1e-8 N
 PEAK_TOLERANCE = 1e-10  # rad, axle force peak search; the peak is flat, force error ~1e-15 relative
@@ -117,9 +118,9 @@ class CorneringLimit:
     @property
     def behaviour(self) -> str:
         """'limit understeer' (front saturates), 'limit oversteer' (rear) or 'rollover'."""
-        if self.cause == "rollover":
-            return "rollover"
-        return "limit understeer" if self.limiting_axle == "front" else "limit oversteer"
+        if self.cause == 'rollover':
+            return 'rollover'
+        return 'limit understeer' if self.limiting_axle == 'front' else 'limit oversteer'
 
 
 # Holds numpy arrays, whose element-wise == makes a generated __eq__ useless.
@@ -154,7 +155,8 @@ class TwoTrackPoint:
 # Holds numpy arrays, whose element-wise == makes a generated __eq__ useless.
 @dataclass(frozen=True, eq=False)
 class HandlingDiagram:
-    """Steady states from a_y = 0 up to the limit on one radius.
+    """
+    Steady states from a_y = 0 up to the limit on one radius.
 
     Arrays have shape (n,) or, per wheel in :data:`WHEELS` order, (n, 4).
     """
@@ -189,7 +191,8 @@ class HandlingDiagram:
 
 
 def roll_geometry(p: VehicleParams) -> RollGeometry:
-    """Sprung mass, its axle split, roll arm h1 and roll gradient (eq. 3).
+    """
+    Sprung mass, its axle split, roll arm h1 and roll gradient (eq. 3).
 
     Raises SolverError when K_phi <= m_s g h1: the roll stiffness cannot hold
     the body against the gravity moment of its own roll (roll instability).
@@ -210,8 +213,8 @@ def roll_geometry(p: VehicleParams) -> RollGeometry:
     net_stiffness = p.roll_stiffness - sprung * p.g * roll_arm
     if net_stiffness <= 0.0:
         raise SolverError(
-            f"roll instability: roll stiffness {p.roll_stiffness:.6g} N*m/rad does not exceed "
-            f"m_s g h1 = {sprung * p.g * roll_arm:.6g} N*m/rad (h1 = {roll_arm:.4g} m)"
+            f'roll instability: roll stiffness {p.roll_stiffness:.6g} N*m/rad does not exceed '
+            f'm_s g h1 = {sprung * p.g * roll_arm:.6g} N*m/rad (h1 = {roll_arm:.4g} m)'
         )
     return RollGeometry(
         sprung_mass=sprung,
@@ -225,13 +228,16 @@ def roll_geometry(p: VehicleParams) -> RollGeometry:
 
 
 def roll_angle(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
-    """Body roll angle, rad, any shape of a_y (m/s^2) (eq. 3; beyond an inner
-    wheel's lift the lifted axle resists no further roll, module doc)."""
+    """
+    Body roll angle, rad, any shape of a_y (m/s^2) (eq. 3; beyond an inner
+    wheel's lift the lifted axle resists no further roll, module doc).
+    """
     return _roll_state(p, lateral_acceleration)[0]
 
 
 def load_transfer(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
-    """Lateral load transfer per axle (front, rear), N, shape (..., 2) (eq. 4).
+    """
+    Lateral load transfer per axle (front, rear), N, shape (..., 2) (eq. 4).
 
     Signed like a_y: positive values load the right wheels. An axle whose
     inner wheel has lifted transfers its whole static load N/2.  Where both
@@ -250,11 +256,13 @@ def wheel_loads(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray
 
 
 def wheel_lift_onset(p: VehicleParams) -> tuple[Axle, float] | None:
-    """The axle whose inner wheel lifts first and the a_y (m/s^2, > 0) where it
-    does, from the linear load transfer of eq. 4; None if neither ever lifts."""
+    """
+    The axle whose inner wheel lifts first and the a_y (m/s^2, > 0) where it
+    does, from the linear load transfer of eq. 4; None if neither ever lifts.
+    """
     geometry = roll_geometry(p)
-    per_g = [(_linear_transfer(p, geometry, "front", 1.0), p.axle_load_front / 2.0, "front"),
-             (_linear_transfer(p, geometry, "rear", 1.0), p.axle_load_rear / 2.0, "rear")]
+    per_g = [(_linear_transfer(p, geometry, 'front', 1.0), p.axle_load_front / 2.0, 'front'),
+             (_linear_transfer(p, geometry, 'rear', 1.0), p.axle_load_rear / 2.0, 'rear')]
     onsets = [(cap / rate, axle) for rate, cap, axle in per_g if rate > 0.0]
     if not onsets:
         return None
@@ -270,9 +278,11 @@ def _linear_transfer(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: 
 
 
 def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: np.ndarray) -> np.ndarray:
-    """The part of the axle's load-transfer moment through its roll centre and
-    unsprung mass, N*m."""
-    if axle == "front":
+    """
+    The part of the axle's load-transfer moment through its roll centre and
+    unsprung mass, N*m.
+    """
+    if axle == 'front':
         return (geometry.sprung_mass_front * a_y * p.roll_centre_height_front
                 + p.unsprung_mass_front * a_y * p.unsprung_cog_height_front)
     return (geometry.sprung_mass_rear * a_y * p.roll_centre_height_rear
@@ -280,15 +290,16 @@ def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y:
 
 
 def _roll_stiffness(p: VehicleParams, axle: Axle) -> float:
-    return p.roll_stiffness_front if axle == "front" else p.roll_stiffness_rear
+    return p.roll_stiffness_front if axle == 'front' else p.roll_stiffness_rear
 
 
 def _track(p: VehicleParams, axle: Axle) -> float:
-    return p.track_front if axle == "front" else p.track_rear
+    return p.track_front if axle == 'front' else p.track_rear
 
 
 def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.ndarray, ...]:
-    """Roll angle (rad) and front and rear load transfer (N), signed like a_y.
+    """
+    Roll angle (rad) and front and rear load transfer (N), signed like a_y.
 
     Eqs. 3-4 up to an inner wheel's lift; beyond it the lifted axle's
     transfer stays at N/2 and the body rolls against the other axle alone
@@ -298,19 +309,19 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
     a_y = np.asarray(lateral_acceleration, dtype=float)
     sign, a = np.sign(a_y), np.abs(a_y)
     phi = geometry.roll_gradient * a
-    front = _linear_transfer(p, geometry, "front", a)
-    rear = _linear_transfer(p, geometry, "rear", a)
-    caps = {"front": p.axle_load_front / 2.0, "rear": p.axle_load_rear / 2.0}
+    front = _linear_transfer(p, geometry, 'front', a)
+    rear = _linear_transfer(p, geometry, 'rear', a)
+    caps = {'front': p.axle_load_front / 2.0, 'rear': p.axle_load_rear / 2.0}
     net = geometry.sprung_mass * p.g * geometry.roll_arm
-    lifted = {"front": front > caps["front"], "rear": rear > caps["rear"]}
-    first_front = front / caps["front"] >= rear / caps["rear"]
-    for axle, other, first in (("front", "rear", first_front), ("rear", "front", ~first_front)):
+    lifted = {'front': front > caps['front'], 'rear': rear > caps['rear']}
+    first_front = front / caps['front'] >= rear / caps['rear']
+    for axle, other, first in (('front', 'rear', first_front), ('rear', 'front', ~first_front)):
         case = lifted[axle] & first
         if not np.any(case):
             continue
         moment = caps[axle] * _track(p, axle) - _geometric_moment(p, geometry, axle, a)
         k_other = _roll_stiffness(p, other)
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide='ignore', invalid='ignore'):
             phi_lift = np.where(k_other > net,
                                 (geometry.sprung_mass * geometry.roll_arm * a - moment) / (k_other - net),
                                 np.nan)
@@ -320,7 +331,7 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
         phi = np.where(case, np.where(over, np.nan, phi_lift), phi)
         capped = np.where(over, np.nan, caps[axle])
         other_value = np.where(over, np.nan, other_transfer)
-        if axle == "front":
+        if axle == 'front':
             front, rear = np.where(case, capped, front), np.where(case, other_value, rear)
         else:
             rear, front = np.where(case, capped, rear), np.where(case, other_value, front)
@@ -328,7 +339,8 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
 
 
 def axle_lateral_force(tire: SimpleTire, loads: ArrayLike, alpha: ArrayLike) -> np.ndarray:
-    """Lateral force of an axle's two wheels at a common slip angle, N.
+    """
+    Lateral force of an axle's two wheels at a common slip angle, N.
 
     ``loads``: the two wheel loads (2,), N; ``alpha``: slip angle(s), rad,
     any shape (eqs. 6-9 summed over the wheels).
@@ -341,7 +353,8 @@ def axle_lateral_force(tire: SimpleTire, loads: ArrayLike, alpha: ArrayLike) -> 
 
 
 def tire_peak_slip(tire: SimpleTire, fz: ArrayLike) -> np.ndarray:
-    """Slip angle of the tire's force peak at load ``fz`` (N), rad.
+    """
+    Slip angle of the tire's force peak at load ``fz`` (N), rad.
 
     The peak is where C arctan(x) = pi/2 with x = B a - E (B a - arctan(B a)),
     so B a = u* solves (1 - E) u + E arctan(u) = tan(pi/(2 C)); u* does not
@@ -360,7 +373,8 @@ def tire_peak_slip(tire: SimpleTire, fz: ArrayLike) -> np.ndarray:
 
 
 def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
-    """Slip angle (rad) and force (N) of the axle's lateral force peak.
+    """
+    Slip angle (rad) and force (N) of the axle's lateral force peak.
 
     Each wheel's force rises up to its own peak slip and falls beyond it, so
     the sum peaks between the two wheels' peak slips; it is maximised there.
@@ -375,7 +389,7 @@ def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
     candidates = [low, high]
     if high - low > PEAK_TOLERANCE:
         found = optimize.minimize_scalar(
-            lambda alpha: -force(alpha), bounds=(low, high), method="bounded", options={"xatol": PEAK_TOLERANCE}
+            lambda alpha: -force(alpha), bounds=(low, high), method='bounded', options={'xatol': PEAK_TOLERANCE}
         )
         candidates.append(float(found.x))
     alpha_peak = max(candidates, key=force)
@@ -383,7 +397,8 @@ def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
 
 
 def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -> TwoTrackPoint:
-    """Steady state at ``lateral_acceleration`` (m/s^2) on ``radius`` (m).
+    """
+    Steady state at ``lateral_acceleration`` (m/s^2) on ``radius`` (m).
 
     a_y and the radius share their sign (a_y = V^2/R).  Raises
     BeyondLimitError naming the axle when an axle cannot produce the force
@@ -393,7 +408,7 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
     a_y = float(lateral_acceleration)
     radius = _check_radius(radius)
     if not math.isfinite(a_y) or a_y * radius < 0.0:
-        raise ValueError(f"lateral_acceleration {a_y!r} must be finite and share the sign of radius {radius!r}")
+        raise ValueError(f'lateral_acceleration {a_y!r} must be finite and share the sign of radius {radius!r}')
     loads = _checked_wheel_loads(p, a_y)
     front, rear = _axle_states(p, a_y, loads)
     tires = (p.tire_front, p.tire_front, p.tire_rear, p.tire_rear)
@@ -420,7 +435,8 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
 
 
 def max_lateral_acceleration(p: VehicleParams, radius: float) -> CorneringLimit:
-    """Largest a_y with a steady state on both axles, and the limiting axle.
+    """
+    Largest a_y with a steady state on both axles, and the limiting axle.
 
     Bisection on a_y between a solvable lower and an unsolvable upper bound
     until they are :data:`LIMIT_TOLERANCE` apart; the returned a_y is the
@@ -434,7 +450,7 @@ def max_lateral_acceleration(p: VehicleParams, radius: float) -> CorneringLimit:
     doublings = 0
     while violation is None:
         if doublings == LIMIT_MAX_DOUBLINGS:
-            raise SolverError(f"no cornering limit found up to {upper:.6g} m/s^2")
+            raise SolverError(f'no cornering limit found up to {upper:.6g} m/s^2')
         lower, upper, doublings = upper, 2.0 * upper, doublings + 1
         violation = _violation(p, upper)
     while upper - lower > LIMIT_TOLERANCE:
@@ -457,7 +473,7 @@ def max_lateral_acceleration(p: VehicleParams, radius: float) -> CorneringLimit:
 def handling_diagram(p: VehicleParams, radius: float, n: int = HANDLING_DIAGRAM_POINTS) -> HandlingDiagram:
     """Steady states at ``n`` equally spaced a_y from 0 to the limit on ``radius`` (m)."""
     if n < 2:
-        raise ValueError(f"n must be at least 2, got {n!r}")
+        raise ValueError(f'n must be at least 2, got {n!r}')
     limit = max_lateral_acceleration(p, radius)
     points = [steady_state(p, a_y, limit.radius) for a_y in np.linspace(0.0, limit.lateral_acceleration, n)]
 
@@ -466,22 +482,23 @@ def handling_diagram(p: VehicleParams, radius: float, n: int = HANDLING_DIAGRAM_
 
     return HandlingDiagram(
         radius=limit.radius,
-        lateral_acceleration=stack("lateral_acceleration"),
-        speed=stack("speed"),
-        steer_angle=stack("steer_angle"),
-        slip_angle_front=stack("slip_angle_front"),
-        slip_angle_rear=stack("slip_angle_rear"),
-        roll_angle=stack("roll_angle"),
-        wheel_loads=stack("wheel_loads"),
-        friction=stack("friction"),
-        cornering_stiffness=stack("cornering_stiffness"),
-        lateral_force=stack("lateral_force"),
+        lateral_acceleration=stack('lateral_acceleration'),
+        speed=stack('speed'),
+        steer_angle=stack('steer_angle'),
+        slip_angle_front=stack('slip_angle_front'),
+        slip_angle_rear=stack('slip_angle_rear'),
+        roll_angle=stack('roll_angle'),
+        wheel_loads=stack('wheel_loads'),
+        friction=stack('friction'),
+        cornering_stiffness=stack('cornering_stiffness'),
+        lateral_force=stack('lateral_force'),
         limit=limit,
     )
 
 
 def understeer_gradient_linear(p: VehicleParams, fit_limit: float = LINEAR_FIT_LIMIT) -> float:
-    """Linear-range understeer gradient d(alpha_f - alpha_r)/d(a_y), rad/(m/s^2).
+    """
+    Linear-range understeer gradient d(alpha_f - alpha_r)/d(a_y), rad/(m/s^2).
 
     Thesis eq. 2 evaluated on the two-track model: the slope at a_y -> 0 of
     alpha_f - alpha_r, fitted on a_y in (0, ``fit_limit``] m/s^2.  Left/right
@@ -490,7 +507,7 @@ def understeer_gradient_linear(p: VehicleParams, fit_limit: float = LINEAR_FIT_L
     load transfer and tire nonlinearity into the slope.
     """
     if not fit_limit > 0.0:
-        raise ValueError(f"fit_limit must be positive, got {fit_limit!r}")
+        raise ValueError(f'fit_limit must be positive, got {fit_limit!r}')
     a_y = fit_limit * np.arange(1, LINEAR_FIT_SAMPLES + 1) / LINEAR_FIT_SAMPLES
     difference = np.array([np.subtract(*_slip_angles(p, a, _checked_wheel_loads(p, a))) for a in a_y])
     basis = np.stack([a_y, a_y**3, a_y**5], axis=1)
@@ -501,7 +518,7 @@ def understeer_gradient_linear(p: VehicleParams, fit_limit: float = LINEAR_FIT_L
 def _check_radius(radius: float) -> float:
     radius = float(radius)
     if radius == 0.0 or not math.isfinite(radius):
-        raise ValueError(f"radius must be finite and nonzero, got {radius!r}")
+        raise ValueError(f'radius must be finite and nonzero, got {radius!r}')
     return radius
 
 
@@ -510,10 +527,10 @@ def _checked_wheel_loads(p: VehicleParams, a_y: float) -> np.ndarray:
     loads = wheel_loads(p, a_y)
     if not np.all(np.isfinite(loads)):
         lift = wheel_lift_onset(p)
-        axle = lift[0] if lift is not None else "front"
+        axle = lift[0] if lift is not None else 'front'
         raise BeyondLimitError(
-            f"the vehicle rolls over at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): after the inner "
-            f"{axle} wheel, the other inner wheel lifts too")
+            f'the vehicle rolls over at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): after the inner '
+            f'{axle} wheel, the other inner wheel lifts too')
     return loads
 
 
@@ -525,14 +542,14 @@ class _AxleState:
 
 
 def _required_forces(p: VehicleParams, a_y: float) -> tuple[float, float]:
-    """m a_y b/L and m a_y a/L, N."""
+    """M a_y b/L and m a_y a/L, N."""
     return (p.mass * a_y * p.cog_to_rear_axle / p.wheelbase,
             p.mass * a_y * p.cog_to_front_axle / p.wheelbase)
 
 
 def _compliance(p: VehicleParams, axle: Axle, a_y: float, required: float) -> tuple[float, float]:
     """Steer change of the axle's wheels (rad, + left) and camber thrust per wheel (N)."""
-    c = p.compliance_front if axle == "front" else p.compliance_rear
+    c = p.compliance_front if axle == 'front' else p.compliance_rear
     if c.is_rigid:
         return 0.0, 0.0
     phi = float(roll_angle(p, a_y))
@@ -546,7 +563,7 @@ def _compliance(p: VehicleParams, axle: Axle, a_y: float, required: float) -> tu
 def _axle_states(p: VehicleParams, a_y: float, loads: np.ndarray) -> tuple[_AxleState, _AxleState]:
     """Front and rear axle states that carry m a_y b/L and m a_y a/L."""
     out = []
-    for axle, tire, pair, required in zip(("front", "rear"), (p.tire_front, p.tire_rear),
+    for axle, tire, pair, required in zip(('front', 'rear'), (p.tire_front, p.tire_rear),
                                           (loads[:2], loads[2:]), _required_forces(p, a_y)):
         steer, thrust = _compliance(p, axle, a_y, required)
         tire_slip = _axle_slip(p, axle, tire, pair, required - 2.0 * thrust, a_y)
@@ -563,7 +580,8 @@ def _slip_angles(p: VehicleParams, a_y: float, loads: np.ndarray) -> tuple[float
 def _axle_slip(
     p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray, required: float, a_y: float
 ) -> float:
-    """Slip angle giving the tire force ``required`` (N, signed), rad.
+    """
+    Slip angle giving the tire force ``required`` (N, signed), rad.
 
     The axle is symmetric in slip, so the magnitude is solved on [0,
     alpha_peak], where the force rises monotonically, and given the sign.
@@ -573,8 +591,8 @@ def _axle_slip(
     magnitude = abs(required)
     if magnitude > force_peak:
         raise BeyondLimitError(
-            f"{axle} axle saturates at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): "
-            f"needs {magnitude:.1f} N, peak {force_peak:.1f} N at {math.degrees(alpha_peak):.2f} deg"
+            f'{axle} axle saturates at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): '
+            f'needs {magnitude:.1f} N, peak {force_peak:.1f} N at {math.degrees(alpha_peak):.2f} deg'
         )
 
     def residual(alpha: float) -> float:
@@ -585,18 +603,21 @@ def _axle_slip(
 
 
 def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray, a_y: float) -> None:
-    """SolverError when eqs. 6-7 leave their physical range at these loads
-    (a lifted wheel, load 0, carries nothing and is not checked)."""
+    """
+    SolverError when eqs. 6-7 leave their physical range at these loads
+    (a lifted wheel, load 0, carries nothing and is not checked).
+    """
     on = loads[loads > 0.0]
     if np.any(tire.friction(on) <= 0.0) or np.any(tire.cornering_stiffness(on) <= 0.0):
         raise SolverError(
-            f"{axle} tire model gives no friction or cornering stiffness at wheel loads "
-            f"{loads[0]:.1f} N, {loads[1]:.1f} N (a_y = {a_y:.6g} m/s^2)"
+            f'{axle} tire model gives no friction or cornering stiffness at wheel loads '
+            f'{loads[0]:.1f} N, {loads[1]:.1f} N (a_y = {a_y:.6g} m/s^2)'
         )
 
 
 def _violation(p: VehicleParams, a_y: float) -> tuple[Axle, LimitCause] | None:
-    """The constraint a_y (>= 0, m/s^2) breaks first, or None if solvable.
+    """
+    The constraint a_y (>= 0, m/s^2) breaks first, or None if solvable.
 
     Rollover (both inner wheels off the ground) is checked first because the
     axle forces are undefined after it; between two saturated axles the one
@@ -605,13 +626,13 @@ def _violation(p: VehicleParams, a_y: float) -> tuple[Axle, LimitCause] | None:
     loads = wheel_loads(p, a_y)
     if not np.all(np.isfinite(loads)):
         lift = wheel_lift_onset(p)
-        return (lift[0] if lift is not None else "front"), "rollover"
+        return (lift[0] if lift is not None else 'front'), 'rollover'
     shortfalls: list[tuple[float, Axle]] = []
-    for axle, tire, pair, required in zip(("front", "rear"), (p.tire_front, p.tire_rear),
+    for axle, tire, pair, required in zip(('front', 'rear'), (p.tire_front, p.tire_rear),
                                           (loads[:2], loads[2:]), _required_forces(p, a_y)):
         _check_tire_range(p, axle, tire, pair, a_y)
         _, thrust = _compliance(p, axle, a_y, required)
         _, force_peak = axle_peak(tire, pair)
         shortfalls.append(((abs(required - 2.0 * thrust) - force_peak) / required, axle))
     shortfall, axle = max(shortfalls)
-    return (axle, "saturation") if shortfall > 0.0 else None
+    return (axle, 'saturation') if shortfall > 0.0 else None

@@ -1,4 +1,5 @@
-"""The 3D two-node beam element (12 DOF), Timoshenko.
+"""
+The 3D two-node beam element (12 DOF), Timoshenko.
 
 Node DOFs (u_x, u_y, u_z, theta_x, theta_y, theta_z); element DOFs node a then
 node b. Local x runs from a to b; local z is the projection of the reference
@@ -70,7 +71,7 @@ def local_stiffness(length: float, material: Material, section: Section) -> np.n
 
 
 def element_stiffness(a: np.ndarray, b: np.ndarray, material: Material, section: Section,
-                      what: str = "beam") -> np.ndarray:
+                      what: str = 'beam') -> np.ndarray:
     """12 x 12 element stiffness in vehicle axes between points ``a`` and ``b`` (m)."""
     axes, length = local_axes(a, b, what)
     t = np.kron(np.eye(4), axes)

@@ -1,4 +1,5 @@
-"""A flexible component as a frame of beam elements generated from hard points,
+"""
+A flexible component as a frame of beam elements generated from hard points,
 statically condensed to its attachment nodes.
 
 Geometry is never drawn by hand: a component names its attachment points
@@ -52,7 +53,8 @@ class ShapePoint:
 
 @dataclass(frozen=True)
 class Condensed:
-    """A component reduced to its attachment nodes.
+    """
+    A component reduced to its attachment nodes.
 
     ``stiffness`` (6n, 6n) acts on node DOFs (u_x, u_y, u_z, th_x, th_y, th_z)
     in vehicle axes, node order ``nodes``; ``positions`` (n, 3) m.
@@ -65,7 +67,7 @@ class Condensed:
     mass: float
     cog: np.ndarray
     elements: int = 0
-    source: str = ""
+    source: str = ''
     full: "Frame | None" = field(default=None, compare=False, repr=False)
     #: further hard-point names that coincide with a node (e.g. spring and damper seat)
     aliases: Mapping[str, str] = field(default_factory=dict)
@@ -92,7 +94,8 @@ def build(name: str, points: Mapping[str, np.ndarray], members: Sequence[tuple[s
           attachments: Sequence[str] = (), shape_points: Sequence[ShapePoint] = (),
           elements_per_member: int = 1,
           member_sections: Mapping[tuple[str, str], Section] | None = None) -> Condensed:
-    """FE frame of component ``name`` and its condensation.
+    """
+    FE frame of component ``name`` and its condensation.
 
     ``members``: pairs of point names joined by beams; ``attachments``: further
     point names that must be nodes (bracketed to the nearest member if off it).
@@ -197,10 +200,10 @@ def build(name: str, points: Mapping[str, np.ndarray], members: Sequence[tuple[s
     frame = Frame(xyz, tuple((i, j) for i, j, _ in elements), k_full, tuple(masters))
     cog = moment / mass if mass > 0.0 else xyz[: len(order)].mean(axis=0)
     return Condensed(name, tuple(order), xyz[: len(order)].copy(), k_red, mass, cog,
-                     len(elements), f"beam frame of {len(elements)} elements", frame, aliases)
+                     len(elements), f'beam frame of {len(elements)} elements', frame, aliases)
 
 
-def condense(k_full: np.ndarray, master_nodes: np.ndarray, name: str = "component") -> np.ndarray:
+def condense(k_full: np.ndarray, master_nodes: np.ndarray, name: str = 'component') -> np.ndarray:
     """Guyan reduction of ``k_full`` (6N, 6N) to the DOFs of ``master_nodes``."""
     n = k_full.shape[0] // 6
     m = np.concatenate([np.arange(6 * i, 6 * i + 6) for i in master_nodes])
@@ -234,7 +237,8 @@ def check_rigid_modes(stiffness: np.ndarray, name: str) -> None:
 
 
 def clamped(stiffness: np.ndarray, reference: int = 0) -> np.ndarray:
-    """The free-free node stiffness with node ``reference`` clamped: (6n-6, 6n-6).
+    """
+    The free-free node stiffness with node ``reference`` clamped: (6n-6, 6n-6).
 
     This is the stiffness the K&C model uses on deformations measured in the
     reference node's frame (exact for a matrix whose null space is the rigid modes).

@@ -1,4 +1,5 @@
-"""Reduced stiffness matrices brought from an FE tool (thesis: "other solvers
+"""
+Reduced stiffness matrices brought from an FE tool (thesis: "other solvers
 like Nastran"), and the mirror image of a node stiffness.
 
 Two formats, both describing one component's free-free stiffness on its
@@ -62,51 +63,52 @@ def _check_matrix(name: str, k: np.ndarray, what: str) -> np.ndarray:
 
 
 def from_plain(name: str, raw: object, *, what: str, factors: Mapping[str, float]) -> Condensed:
-    """A component from the plain format, already parsed to Python objects.
+    """
+    A component from the plain format, already parsed to Python objects.
 
     ``factors``: SI factors of the file's units for length, force, angle, mass.
     """
     if not isinstance(raw, Mapping):
-        raise SolverError(f"{what}: expected a mapping with nodes and stiffness")
-    nodes = raw.get("nodes")
+        raise SolverError(f'{what}: expected a mapping with nodes and stiffness')
+    nodes = raw.get('nodes')
     if not isinstance(nodes, Mapping) or len(nodes) < 2:
         raise SolverError(f"{what}: 'nodes' must map at least two hard points to [x, y, z]")
     names = tuple(str(n) for n in nodes)
     try:
         xyz = np.array([[float(c) for c in nodes[n]] for n in nodes], dtype=float)
-        k = np.array(raw.get("stiffness"), dtype=float)
+        k = np.array(raw.get('stiffness'), dtype=float)
     except (TypeError, ValueError):
-        raise SolverError(f"{what}: nodes and stiffness must hold numbers") from None
+        raise SolverError(f'{what}: nodes and stiffness must hold numbers') from None
     if xyz.shape != (len(names), 3):
-        raise SolverError(f"{what}: every node needs three coordinates")
+        raise SolverError(f'{what}: every node needs three coordinates')
     size = 6 * len(names)
     if k.shape != (size, size):
         raise SolverError(f"{what}: stiffness must be {size} x {size} for {len(names)} nodes, "
                           f"found {'x'.join(str(d) for d in k.shape)}")
-    length, force, angle = factors["length"], factors["force"], factors["angle"]
+    length, force, angle = factors['length'], factors['force'], factors['angle']
     k = _check_matrix(name, k * dof_scales(len(names), length, force, angle), what)
-    mass = float(raw.get("mass", 0.0)) * factors.get("mass", 1.0)
+    mass = float(raw.get('mass', 0.0)) * factors.get('mass', 1.0)
     if not (np.isfinite(mass) and mass >= 0.0):
-        raise SolverError(f"{what}: mass must be >= 0")
-    cog = np.array(raw["cog"], dtype=float) * length if "cog" in raw else xyz.mean(axis=0) * length
-    return Condensed(name, names, xyz * length, k, mass, cog, 0, f"imported {what}")
+        raise SolverError(f'{what}: mass must be >= 0')
+    cog = np.array(raw['cog'], dtype=float) * length if 'cog' in raw else xyz.mean(axis=0) * length
+    return Condensed(name, names, xyz * length, k, mass, cog, 0, f'imported {what}')
 
 
 def _fields(line: str) -> list[str]:
     """Fields of one bulk-data line: free (commas), large (DMIG*, 16) or small (8)."""
-    if "," in line:
-        return [f.strip() for f in line.split(",")]
-    line = line.rstrip("\n")
-    if line[:8].rstrip().endswith("*") or line.startswith("*"):
+    if ',' in line:
+        return [f.strip() for f in line.split(',')]
+    line = line.rstrip('\n')
+    if line[:8].rstrip().endswith('*') or line.startswith('*'):
         return [line[:8].strip()] + [line[8 + 16 * i: 24 + 16 * i].strip() for i in range(4)]
     return [line[8 * i: 8 * i + 8].strip() for i in range(9)]
 
 
 def _number(text: str, what: str) -> float:
-    t = text.strip().upper().replace("D", "E")
-    if t and "E" not in t and ("+" in t[1:] or "-" in t[1:]):  # Nastran 1.2-3 = 1.2E-3
-        i = max(t.rfind("+", 1), t.rfind("-", 1))
-        t = t[:i] + "E" + t[i:]
+    t = text.strip().upper().replace('D', 'E')
+    if t and 'E' not in t and ('+' in t[1:] or '-' in t[1:]):  # Nastran 1.2-3 = 1.2E-3
+        i = max(t.rfind('+', 1), t.rfind('-', 1))
+        t = t[:i] + 'E' + t[i:]
     try:
         return float(t)
     except ValueError:
@@ -117,16 +119,16 @@ def _cards(text: str) -> list[list[str]]:
     """Bulk-data cards with continuations joined (``+``/``*`` continuation lines)."""
     cards: list[list[str]] = []
     for raw in text.splitlines():
-        if not raw.strip() or raw.lstrip().startswith("$"):
+        if not raw.strip() or raw.lstrip().startswith('$'):
             continue
         fields = _fields(raw)
         head = fields[0]
-        if head.startswith(("+", "*")) or head == "":
+        if head.startswith(('+', '*')) or head == '':
             if not cards:
                 continue
             cards[-1].extend(fields[1:])
         else:
-            cards.append([head.rstrip("*").upper()] + fields[1:])
+            cards.append([head.rstrip('*').upper()] + fields[1:])
     return cards
 
 
@@ -134,10 +136,10 @@ def from_dmig(name: str, text: str, *, matrix: str, grids: Mapping[int, str], wh
               factors: Mapping[str, float]) -> Condensed:
     """A component from a Nastran punch file's DMIG matrix ``matrix``."""
     cards = _cards(text)
-    header = [c for c in cards if c[0] == "DMIG" and c[1].upper() == matrix.upper()
-              and c[2] in ("0", "")]
+    header = [c for c in cards if c[0] == 'DMIG' and c[1].upper() == matrix.upper()
+              and c[2] in ('0', '')]
     if not header:
-        found = sorted({c[1] for c in cards if c[0] == "DMIG"})
+        found = sorted({c[1] for c in cards if c[0] == 'DMIG'})
         raise SolverError(f"{what}: no DMIG matrix '{matrix}' (found: {', '.join(found) or 'none'})")
     try:
         ifo = int(header[0][3])
@@ -168,12 +170,12 @@ def from_dmig(name: str, text: str, *, matrix: str, grids: Mapping[int, str], wh
         return 6 * index[grid] + comp - 1
 
     for c in cards:
-        if c[0] != "DMIG" or c[1].upper() != matrix.upper() or c[2] in ("0", ""):
+        if c[0] != 'DMIG' or c[1].upper() != matrix.upper() or c[2] in ('0', ''):
             continue
         fields = [f for f in c[2:]]
         col = dof(fields[0], fields[1])
         # GJ CJ, then (G, C, A[, B]) per entry; B is blank for real matrices
-        cells = [f for f in fields[2:] if f != ""]
+        cells = [f for f in fields[2:] if f != '']
         if len(cells) % 3:
             raise SolverError(f"{what}: DMIG '{matrix}' column {fields[0]}-{fields[1]}: entries "
                               "must come as GRID, component, value")
@@ -183,17 +185,17 @@ def from_dmig(name: str, text: str, *, matrix: str, grids: Mapping[int, str], wh
             seen[row, col] = True
     if ifo == 6:  # one triangle given: complete the other
         k = k + np.where((seen & ~seen.T).T, k.T, 0.0)
-    k = _check_matrix(name, k * dof_scales(len(order), factors["length"], factors["force"],
-                                           factors["angle"]), what)
+    k = _check_matrix(name, k * dof_scales(len(order), factors['length'], factors['force'],
+                                           factors['angle']), what)
     positions = {}
     for c in cards:
-        if c[0] == "GRID":
+        if c[0] == 'GRID':
             try:
                 gid = int(c[1])
             except ValueError:
                 continue
             if gid in index:
-                positions[gid] = np.array([_number(v, what) for v in c[3:6]]) * factors["length"]
+                positions[gid] = np.array([_number(v, what) for v in c[3:6]]) * factors['length']
     names = tuple(grids[g] for g in order)
     # without GRID cards the positions are unknown (NaN): the nodes then sit on their hard points
     xyz = np.array([positions.get(g, np.full(3, np.nan)) for g in order])

@@ -1,4 +1,5 @@
-"""The numerical model of one axle on the K&C rig.
+"""
+The numerical model of one axle on the K&C rig.
 
 :func:`assemble` turns a :class:`~.model.SuspensionInput` and its template
 into a :class:`System`: parts with poses (p, R), markers, primitives
@@ -28,13 +29,11 @@ from typing import Union
 import numpy as np
 
 from vd_solvers.errors import SolverError
-
-from .bushing import Measure, bushing_frame, bushing_measures, side_frame
 from vd_solvers.flex.component import Condensed, build, clamped
 from vd_solvers.flex.imported import mirror_stiffness
 
-from .forces import (EnergyLaw, LinearLaw, MatrixLaw, StopLaw, TorsionLaw, spring_law,
-                     stiffness_law)
+from .bushing import Measure, bushing_frame, bushing_measures, side_frame
+from .forces import EnergyLaw, LinearLaw, MatrixLaw, StopLaw, TorsionLaw, spring_law, stiffness_law
 from .joints import (
     GROUND,
     PAIRS,
@@ -50,19 +49,28 @@ from .joints import (
     vector,
 )
 from .model import SIDES, FlexSpec, Side, SuspensionInput, mirror, validate
-from .templates import (ARB_POINTS, STEERING, SUBFRAME_POINTS, TEMPLATES, LinkDef, PartDef,
-                        SuspensionTemplate, Topology)
+from .templates import (
+    ARB_POINTS,
+    STEERING,
+    SUBFRAME_POINTS,
+    TEMPLATES,
+    LinkDef,
+    PartDef,
+    SuspensionTemplate,
+    Topology,
+)
 
 GRAVITY = 9.80665  # m/s^2, standard gravity
-RACK = "rack"
-BAR = "anti_roll_bar"
-SUBFRAME = "subframe"
+RACK = 'rack'
+BAR = 'anti_roll_bar'
+SUBFRAME = 'subframe'
 _EYE = np.eye(3)
 
 
 @dataclass(frozen=True)
 class LoadCase:
-    """Rig inputs of one step; index 0 = left, 1 = right wheel.
+    """
+    Rig inputs of one step; index 0 = left, 1 = right wheel.
 
     ``pad``: contact-point height change from design (m); ``contact_force``:
     force on the tire at the contact point (N, vehicle axes); ``centre_force``:
@@ -198,13 +206,15 @@ class System:
         )
 
     def _markers(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """World value (M, 3), rotation lever (M, 3) and pose Jacobian
-        (M, 3, 6) of all markers: points first, then vectors."""
+        """
+        World value (M, 3), rotation lever (M, 3) and pose Jacobian
+        (M, 3, 6) of all markers: points first, then vectors.
+        """
         # The ground is an extra part n_parts in the identity pose; its
         # columns are dropped after assembly.
         p = np.vstack((state.p, np.zeros((1, 3))))
         R = np.concatenate((state.R, _EYE[None]))
-        lever = np.einsum("nij,nj->ni", R[self._marker_part], self._marker_local)
+        lever = np.einsum('nij,nj->ni', R[self._marker_part], self._marker_local)
         world = lever + self._is_point[:, None] * p[self._marker_part]
         jac = self._jac_template.copy()
         jac[:, :, 3:] = -_skew(lever)
@@ -233,8 +243,10 @@ class System:
     # -- static scatter indices ------------------------------------------------
     def _build_scatter(self, pt_part: np.ndarray, pt_local: np.ndarray,
                        vec_part: np.ndarray, vec_local: np.ndarray) -> None:
-        """Combined marker table and the static indices that scatter slot
-        gradients into D and second-order blocks into the tangent."""
+        """
+        Combined marker table and the static indices that scatter slot
+        gradients into D and second-order blocks into the tangent.
+        """
         self._n_points = pt_part.shape[0]
         self._marker_part = np.concatenate((pt_part, vec_part))
         self._marker_local = np.concatenate((pt_local, vec_local)).reshape(-1, 3)
@@ -283,7 +295,7 @@ class System:
         x, grads, hess = self._kernels(world)
         g_slot = np.concatenate(grads)
         j_slot = jac[self._slot_marker]
-        d_vals = np.einsum("si,sij->sj", g_slot, j_slot)
+        d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
         import scipy.sparse
 
         d = scipy.sparse.csr_matrix((d_vals.ravel(), (self._d_rows, self._d_cols)),
@@ -308,8 +320,10 @@ class System:
         )
 
     def second_order(self, so_vals: np.ndarray, weights: np.ndarray) -> np.ndarray:
-        """sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof) from the unweighted
-        blocks ``so_vals`` of an evaluation and primitive weights (n_prim,)."""
+        """
+        sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof) from the unweighted
+        blocks ``so_vals`` of an evaluation and primitive weights (n_prim,).
+        """
         nc = self._nc
         so = np.bincount(self._so_idx, so_vals * weights[self._so_prim], minlength=nc * nc)
         return so.reshape(nc, nc)[: self.n_dof, : self.n_dof]
@@ -342,7 +356,8 @@ class System:
     def _applied(
         self, state: State, world: np.ndarray, vec: np.ndarray, load: LoadCase
     ) -> tuple[np.ndarray, np.ndarray]:
-        """Generalised applied force Q (n_dof,) and the tangent of -Q.
+        """
+        Generalised applied force Q (n_dof,) and the tangent of -Q.
 
         Forces act on the upright at the current contact point and wheel
         centre. The tangent treats both as material points (exact for the
@@ -368,8 +383,10 @@ class System:
 
 
 def contact_direction(axis: np.ndarray) -> np.ndarray:
-    """Unit vector (n, 3) from wheel centre to contact point: the road normal
-    (+z) projected into the wheel plane of spin axis ``axis`` (n, 3), negated."""
+    """
+    Unit vector (n, 3) from wheel centre to contact point: the road normal
+    (+z) projected into the wheel plane of spin axis ``axis`` (n, 3), negated.
+    """
     up = np.array([0.0, 0.0, 1.0]) - axis[:, 2:3] * axis
     return -up / np.linalg.norm(up, axis=1, keepdims=True)
 
@@ -392,7 +409,7 @@ class Evaluation:
     so_vals: np.ndarray  # unweighted second-order blocks of the primitives
 
     def force_residual(self, lam: np.ndarray) -> np.ndarray:
-        """grad V - Q + J^T lambda (n_dof,), N and N*m."""
+        """Grad V - Q + J^T lambda (n_dof,), N and N*m."""
         return self.measure_jacobian.T @ self.d1 - self.q_ext + self.jacobian.T @ lam
 
     def tangent(self, lam: np.ndarray) -> np.ndarray:
@@ -417,10 +434,12 @@ def _skew(w: np.ndarray) -> np.ndarray:
 
 
 def _chart(g: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """Second-order rotation term of G.(R s) in exponential coordinates:
-    sym(G w^T) - (G.w) I, for G (n, 3) and w = R s (n, 3)."""
+    """
+    Second-order rotation term of G.(R s) in exponential coordinates:
+    sym(G w^T) - (G.w) I, for G (n, 3) and w = R s (n, 3).
+    """
     outer = g[:, :, None] * w[:, None, :]
-    return 0.5 * (outer + outer.transpose(0, 2, 1)) - np.einsum("ni,ni->n", g, w)[:, None, None] * _EYE
+    return 0.5 * (outer + outer.transpose(0, 2, 1)) - np.einsum('ni,ni->n', g, w)[:, None, None] * _EYE
 
 
 # --- building ---------------------------------------------------------------
@@ -459,7 +478,7 @@ class _Builder:
 
     def energy(self, ms: list[MeasureLike], law: EnergyLaw) -> np.ndarray:
         if len(ms) != law.size:
-            raise SolverError("internal: law size does not match its measures")
+            raise SolverError('internal: law size does not match its measures')
         first = len(self.measures)
         for m in ms:
             measure = self._measure(m)
@@ -489,7 +508,7 @@ class _Builder:
             if name == GROUND:
                 return ground
             if name not in index:
-                raise SolverError(f"internal: unknown part {name!r}")
+                raise SolverError(f'internal: unknown part {name!r}')
             return index[name]
 
         pt_part = np.array([part_of(m.part) for m in points], dtype=int)
@@ -510,7 +529,7 @@ class _Builder:
             slot_idx = tuple(
                 np.array(
                     [
-                        points[prims[i].markers[s]] if t == "p"  # type: ignore[index]
+                        points[prims[i].markers[s]] if t == 'p'  # type: ignore[index]
                         else len(points) + vectors[prims[i].markers[s]]  # type: ignore[index]
                         for i in members
                     ],
@@ -555,7 +574,7 @@ class _OutputsFactory:
     def __init__(self) -> None:
         self.wheels: dict[Side, tuple[str, PointRef, VectorRef, float]] = {}
         self.pad_rows: dict[Side, int] = {}
-        self.tracked: dict[Side, dict[str, PointRef]] = {"left": {}, "right": {}}
+        self.tracked: dict[Side, dict[str, PointRef]] = {'left': {}, 'right': {}}
         self.spring: dict[Side, int] = {}
         self.spring_length: dict[Side, Primitive] = {}
         self.damper: dict[Side, Primitive] = {}
@@ -613,16 +632,16 @@ def assemble(inp: SuspensionInput) -> System:
     template = TEMPLATES.get(inp.template)
     if template is None:
         raise SolverError(
-            f"unknown suspension template {inp.template!r}; known: {sorted(TEMPLATES)}"
+            f'unknown suspension template {inp.template!r}; known: {sorted(TEMPLATES)}'
         )
     required = template.required_points + (ARB_POINTS if inp.stabilizer is not None else ()) \
         + (SUBFRAME_POINTS if SUBFRAME in inp.flexible else ())
     for name in required:
         if name not in inp.hardpoints:
-            raise SolverError(f"template {template.name!r}: hard point {name!r} is missing")
+            raise SolverError(f'template {template.name!r}: hard point {name!r} is missing')
         value = np.asarray(inp.hardpoints[name], dtype=float)
         if value.shape != (3,) or not np.all(np.isfinite(value)):
-            raise SolverError(f"hard point {name!r} must be 3 finite coordinates (m)")
+            raise SolverError(f'hard point {name!r} must be 3 finite coordinates (m)')
     topo = template.topology()
     _check_keys(inp, topo)
     return _Assembly(inp, template, topo).run()
@@ -636,21 +655,21 @@ def _check_keys(inp: SuspensionInput, topo: Topology) -> None:
     for name in inp.bushings:
         if name not in connections:
             raise SolverError(
-                f"bushing {name!r} does not name a connection; known: {sorted(connections)}"
+                f'bushing {name!r} does not name a connection; known: {sorted(connections)}'
             )
-    masses = {p.name for p in topo.parts} | {link.name for link in topo.links} | {"wheel"}
+    masses = {p.name for p in topo.parts} | {link.name for link in topo.links} | {'wheel'}
     for name in inp.masses:
         if name not in masses:
-            raise SolverError(f"mass {name!r} names no part; known: {sorted(masses)}")
+            raise SolverError(f'mass {name!r} names no part; known: {sorted(masses)}')
     known = topo.flexible_components(inp.stabilizer is not None)
     for name in inp.flexible:
         if name not in known:
             raise SolverError(f"unknown flexible component {name!r} (components of template "
                               f"{inp.template!r}: {', '.join(known)})")
-    universals = {j.point for j in topo.joints if j.kind == "universal"}
+    universals = {j.point for j in topo.joints if j.kind == 'universal'}
     for name in inp.joint_axes:
         if name not in universals:
-            raise SolverError(f"joint_axes {name!r} is not a universal joint; known: {sorted(universals)}")
+            raise SolverError(f'joint_axes {name!r} is not a universal joint; known: {sorted(universals)}')
 
 
 class _Assembly:
@@ -687,13 +706,15 @@ class _Assembly:
         return mirror(self.inp.hardpoints[name], side)
 
     def at(self, part: str, point_name: str, side: Side) -> str:
-        """The part that carries hard point ``point_name`` of ``part``: the part
+        """
+        The part that carries hard point ``point_name`` of ``part``: the part
         itself, or the node of a flexible component at that point (its
-        reference node if the point is no node of it)."""
+        reference node if the point is no node of it).
+        """
         resolved = self.resolve(part, side)
         if resolved == GROUND:
-            carried = self.nodes.get((SUBFRAME, "left"), {})
-            return carried.get(f"{point_name}.{side}", GROUND)
+            carried = self.nodes.get((SUBFRAME, 'left'), {})
+            return carried.get(f'{point_name}.{side}', GROUND)
         nodes = self.nodes.get((part, side))
         if nodes is None:
             return resolved
@@ -704,7 +725,7 @@ class _Assembly:
             return GROUND
         if part == STEERING:
             return RACK if self.steered else GROUND
-        return f"{part}.{side}"
+        return f'{part}.{side}'
 
     def _gravity(self, part: str, at: np.ndarray, mass: float) -> None:
         if part == GROUND or mass == 0.0:
@@ -735,11 +756,11 @@ class _Assembly:
         inp = self.inp
         steering = inp.steering
         assert steering is not None
-        inner = self.hp("tierod_inner", "left")
+        inner = self.hp('tierod_inner', 'left')
         centre = np.array([inner[0], 0.0, inner[2]])
         self.b.part(RACK, centre)
         y = np.array([0.0, 1.0, 0.0])
-        for prim in joint_constraints("translational", GROUND, RACK, centre, y):
+        for prim in joint_constraints('translational', GROUND, RACK, centre, y):
             self.b.constrain(prim)
         travel = Primitive(PrimKind.COMP, (point(RACK, centre), point(GROUND, centre)), (0.0, 1.0, 0.0))
         compliance = steering.rack_compliance()
@@ -750,7 +771,7 @@ class _Assembly:
             self.out.rack_measure = int(self.b.energy([travel], law)[0])
             self.out.elastic.append(self.out.rack_measure)
         # A rack ahead of the wheel centre steers left when moving left.
-        ahead = inp.hardpoints["tierod_outer"][0] > inp.hardpoints["wheel_centre"][0]
+        ahead = inp.hardpoints['tierod_outer'][0] > inp.hardpoints['wheel_centre'][0]
         self.out.steer_sign = 1.0 if ahead else -1.0
 
     def _corner(self, side: Side) -> None:
@@ -769,7 +790,7 @@ class _Assembly:
             axis = cross = None
             if j.axis is not None:
                 axis = self.hp(j.axis[1], side) - self.hp(j.axis[0], side)
-            if j.kind == "universal":
+            if j.kind == 'universal':
                 given = inp.joint_axes.get(j.point)
                 if given is not None:
                     cross = (mirror(given[0], side), mirror(given[1], side))
@@ -778,10 +799,10 @@ class _Assembly:
                     # only stops the link's spin about its own axis.
                     cross = perpendicular_basis(axis)  # type: ignore[arg-type]
             kind = j.kind
-            if kind == "inline" and (j.inboard in inp.flexible or j.outboard in inp.flexible):
+            if kind == 'inline' and (j.inboard in inp.flexible or j.outboard in inp.flexible):
                 # The in-line rear pivot only avoids a redundant constraint on a rigid arm;
                 # a flexible arm needs its pivot held in place, as its bushing sleeve is.
-                kind = "spherical"
+                kind = 'spherical'
             self._connection(kind, j.point, a, c, at, side, axis, cross)
         for link in topo.links:
             self._link(link, side)
@@ -791,8 +812,10 @@ class _Assembly:
             self._bar_arm(side)
 
     def _link(self, link: LinkDef, side: Side) -> None:
-        """Distance constraint, or a rigid link part when an end has a bushing
-        (its spin about its own axis is then held by the bushing)."""
+        """
+        Distance constraint, or a rigid link part when an end has a bushing
+        (its spin about its own axis is then held by the bushing).
+        """
         inp, b = self.inp, self.b
         a = self.at(link.inboard, link.inboard_point, side)
         c = self.at(link.outboard, link.outboard_point, side)
@@ -808,14 +831,14 @@ class _Assembly:
         if not any(name in inp.bushings for name, _, _ in ends):
             b.constrain(Primitive(PrimKind.DIST, (point(a, pa), point(c, pc))))
             return
-        body = b.part(f"{link.name}.{side}", 0.5 * (pa + pc))
+        body = b.part(f'{link.name}.{side}', 0.5 * (pa + pc))
         for name, part, at in ends:
-            self._connection("spherical", name, part, body, at, side)
+            self._connection('spherical', name, part, body, at, side)
 
     def _wheel(self, side: Side) -> None:
         inp, b = self.inp, self.b
-        upright = self.at(self.topo.wheel_part, "wheel_centre", side)
-        centre = self.hp("wheel_centre", side)
+        upright = self.at(self.topo.wheel_part, 'wheel_centre', side)
+        centre = self.hp('wheel_centre', side)
         toe, camber = inp.toe, inp.camber
         # Outward spin axis from ISO toe (+ = toe-in) and camber (+ = top out).
         left = np.array([np.sin(toe) * np.cos(camber), np.cos(toe) * np.cos(camber), -np.sin(camber)])
@@ -824,7 +847,7 @@ class _Assembly:
         row = b.constrain(Primitive(PrimKind.CPZ, (pc, va), (inp.tire_radius,)))
         self.out.pad_rows[side] = row
         self.out.wheels[side] = (upright, pc, va, inp.tire_radius)
-        self._gravity(upright, centre, inp.masses.get("wheel", 0.0))
+        self._gravity(upright, centre, inp.masses.get('wheel', 0.0))
 
     def _force_lines(self, side: Side) -> None:
         inp, topo, b = self.inp, self.topo, self.b
@@ -851,13 +874,13 @@ class _Assembly:
 
     def _bar_arm(self, side: Side) -> None:
         b = self.b
-        pivot = self.hp("arb_pivot", side)
-        upper = self.hp("arb_link_upper", side)
-        arm = b.part(f"arb_arm.{side}", pivot)
-        for prim in joint_constraints("revolute", GROUND, arm, pivot, np.array([0.0, 1.0, 0.0])):
+        pivot = self.hp('arb_pivot', side)
+        upper = self.hp('arb_link_upper', side)
+        arm = b.part(f'arb_arm.{side}', pivot)
+        for prim in joint_constraints('revolute', GROUND, arm, pivot, np.array([0.0, 1.0, 0.0])):
             b.constrain(prim)
-        lower_part = self.at(self.topo.arb_part, "arb_link_lower", side)
-        lower = self.hp("arb_link_lower", side)
+        lower_part = self.at(self.topo.arb_part, 'arb_link_lower', side)
+        lower = self.hp('arb_link_lower', side)
         row = b.constrain(Primitive(PrimKind.DIST, (point(lower_part, lower), point(arm, upper))))
         self.out.droplink_rows[side] = row
         self.out.arb_arms[side] = arm
@@ -868,7 +891,7 @@ class _Assembly:
         # sin(psi_left - psi_right) for rotations psi about y of the two arms.
         twist = Primitive(
             PrimKind.DOT,
-            (vector("arb_arm.left", np.array([0.0, 0.0, 1.0])), vector("arb_arm.right", np.array([1.0, 0.0, 0.0]))),
+            (vector('arb_arm.left', np.array([0.0, 0.0, 1.0])), vector('arb_arm.right', np.array([1.0, 0.0, 0.0]))),
         )
         self.out.arb_twist = int(self.b.energy([twist], TorsionLaw(stab.torsional_stiffness))[0])
         self.out.elastic.append(self.out.arb_twist)
@@ -889,13 +912,13 @@ class _Assembly:
         owner.setdefault(topo.damper.lower, topo.damper.part)
         owner.update(topo.tracked)
         if inp.stabilizer is not None:
-            owner["arb_link_lower"] = topo.arb_part
+            owner['arb_link_lower'] = topo.arb_part
         tracked = self.out.tracked[side]
         for name in inp.hardpoints:
             part = owner.get(name, GROUND)
-            if name == "arb_link_upper" and inp.stabilizer is not None:
-                resolved = (self.nodes[(BAR, "left")][f"arb_link_upper.{side}"]
-                            if BAR in inp.flexible else f"arb_arm.{side}")
+            if name == 'arb_link_upper' and inp.stabilizer is not None:
+                resolved = (self.nodes[(BAR, 'left')][f'arb_link_upper.{side}']
+                            if BAR in inp.flexible else f'arb_arm.{side}')
             else:
                 resolved = self.at(part, name, side)
             ref = point(resolved, self.hp(name, side))
@@ -904,14 +927,16 @@ class _Assembly:
 
     # -- flexible components ------------------------------------------------------
     def _attachments(self, part: str) -> list[str]:
-        """Hard points of other elements that act on ``part`` (spring and damper
-        seats, the drop-link mount): they must be nodes of its FE frame."""
+        """
+        Hard points of other elements that act on ``part`` (spring and damper
+        seats, the drop-link mount): they must be nodes of its FE frame.
+        """
         topo, out = self.topo, []
         for line in (topo.spring, topo.damper):
             if line.part == part:
                 out.append(line.lower)
         if self.inp.stabilizer is not None and topo.arb_part == part:
-            out.append("arb_link_lower")
+            out.append('arb_link_lower')
         return out
 
     def _component(self, name: str, points: list[str], members, attachments=()) -> Condensed:
@@ -932,7 +957,8 @@ class _Assembly:
 
     def _embed(self, comp: Condensed, side: Side, key: tuple[str, Side],
                positions: np.ndarray, stiffness: np.ndarray, cog: np.ndarray) -> dict[str, str]:
-        """Node parts of a condensed component and its co-rotational potential.
+        """
+        Node parts of a condensed component and its co-rotational potential.
 
         Deformations are measured in the frame of the first node (the
         reference): per other node, its displacement relative to the point of
@@ -943,7 +969,7 @@ class _Assembly:
         node clamped (exact for a matrix whose null space is the rigid modes).
         """
         b = self.b
-        nodes = {n: b.part(f"{key[0]}.{key[1]}@{n}", positions[i])
+        nodes = {n: b.part(f'{key[0]}.{key[1]}@{n}', positions[i])
                  for i, n in enumerate(comp.nodes)}
         ref = nodes[comp.nodes[0]]
         measures = []
@@ -960,8 +986,8 @@ class _Assembly:
     def _flex_part(self, part: PartDef, side: Side) -> None:
         members = self.topo.frames.get(part.name)
         if members is None:
-            raise SolverError(f"template {self.template.name!r} has no beam frame for part "
-                              f"{part.name!r}; it cannot be made flexible")
+            raise SolverError(f'template {self.template.name!r} has no beam frame for part '
+                              f'{part.name!r}; it cannot be made flexible')
         extra = [p for p in part.points + tuple(self._attachments(part.name))
                  if p not in {n for m in members for n in m}]
         points = list(dict.fromkeys([n for m in members for n in m] + extra))
@@ -970,81 +996,87 @@ class _Assembly:
 
     def _place(self, comp: Condensed, name: str, side: Side) -> dict[str, str]:
         positions = np.array([mirror(p, side) for p in comp.positions])
-        stiffness = comp.stiffness if side == "left" else mirror_stiffness(comp.stiffness)
+        stiffness = comp.stiffness if side == 'left' else mirror_stiffness(comp.stiffness)
         return self._embed(comp, side, (name, side), positions, stiffness, mirror(comp.cog, side))
 
     def _flex_link(self, link: LinkDef, side: Side, a: str, c: str,
                    pa: np.ndarray, pc: np.ndarray) -> None:
-        """A flexible two-force link: a beam between its ball joints. Ideal ball
+        """
+        A flexible two-force link: a beam between its ball joints. Ideal ball
         joints at both ends would leave its spin about its own axis free, so the
         inboard joint is a universal joint whose cross is normal to the link (it
-        only stops the spin, which carries no load)."""
+        only stops the spin, which carries no load).
+        """
         comp = self._component(link.name, [link.inboard_point, link.outboard_point],
                                [(link.inboard_point, link.outboard_point)])
         nodes = self._place(comp, link.name, side)
         inner, outer = nodes[link.inboard_point], nodes[link.outboard_point]
         axis = pc - pa
-        self._connection("universal", link.inboard_point, a, inner, pa, side, axis,
+        self._connection('universal', link.inboard_point, a, inner, pa, side, axis,
                          perpendicular_basis(axis))
-        self._connection("spherical", link.outboard_point, outer, c, pc, side)
+        self._connection('spherical', link.outboard_point, outer, c, pc, side)
 
     def _flex_subframe(self) -> None:
-        """A subframe carrying the template's body-side pivots of both sides: per side a
+        """
+        A subframe carrying the template's body-side pivots of both sides: per side a
         rail from the front mount through the carried points to the rear mount, and
         cross-members joining each carried point to its mirror image. The mounts are
         bolted to the body (fixed joints); the carried joints and bushings attach to the
-        subframe's nodes instead of the body."""
+        subframe's nodes instead of the body.
+        """
         spec = self.inp.flexible[SUBFRAME]
         if spec.imported is not None:
-            raise SolverError("subframe: an imported stiffness is not supported for the subframe")
+            raise SolverError('subframe: an imported stiffness is not supported for the subframe')
         carried = self.topo.subframe_points
-        chain = ("subframe_front",) + carried + ("subframe_rear",)
-        points = {f"{n}.{s}": mirror(self.inp.hardpoints[n], s) for s in SIDES for n in chain}
-        members = [(f"{a}.{s}", f"{b}.{s}") for s in SIDES for a, b in zip(chain, chain[1:])]
-        members += [(f"{n}.left", f"{n}.right") for n in carried]
+        chain = ('subframe_front',) + carried + ('subframe_rear',)
+        points = {f'{n}.{s}': mirror(self.inp.hardpoints[n], s) for s in SIDES for n in chain}
+        members = [(f'{a}.{s}', f'{b}.{s}') for s in SIDES for a, b in zip(chain, chain[1:])]
+        members += [(f'{n}.left', f'{n}.right') for n in carried]
         comp = build(SUBFRAME, points, members, spec.material, spec.section,  # type: ignore[arg-type]
                      elements_per_member=spec.elements_per_member)
         self.out.components.append(comp)
-        nodes = self._embed(comp, "left", (SUBFRAME, "left"), comp.positions, comp.stiffness,
+        nodes = self._embed(comp, 'left', (SUBFRAME, 'left'), comp.positions, comp.stiffness,
                             comp.cog)
         for s in SIDES:
-            for mount in ("subframe_front", "subframe_rear"):
-                name = f"{mount}.{s}"
-                for prim in joint_constraints("fixed", GROUND, nodes[name], points[name]):
+            for mount in ('subframe_front', 'subframe_rear'):
+                name = f'{mount}.{s}'
+                for prim in joint_constraints('fixed', GROUND, nodes[name], points[name]):
                     self.b.constrain(prim)
 
     def _flex_bar(self) -> None:
-        """The anti-roll bar as a beam frame: drop-link end, arm, body mount
+        """
+        The anti-roll bar as a beam frame: drop-link end, arm, body mount
         (pivot), torsion part across to the other side. The mounts are ball
-        joints on the body; the drop links are distance constraints."""
+        joints on the body; the drop links are distance constraints.
+        """
         spec = self.inp.flexible[BAR]
-        names = {s: (f"arb_link_upper.{s}", f"arb_pivot.{s}") for s in SIDES}
-        points = {f"{n}.{s}": mirror(self.inp.hardpoints[n], s) for s in SIDES
-                  for n in ("arb_link_upper", "arb_pivot")}
-        members = [names["left"], (names["left"][1], names["right"][1]),
-                   (names["right"][1], names["right"][0])]
+        names = {s: (f'arb_link_upper.{s}', f'arb_pivot.{s}') for s in SIDES}
+        points = {f'{n}.{s}': mirror(self.inp.hardpoints[n], s) for s in SIDES
+                  for n in ('arb_link_upper', 'arb_pivot')}
+        members = [names['left'], (names['left'][1], names['right'][1]),
+                   (names['right'][1], names['right'][0])]
         if spec.imported is not None:
-            raise SolverError("anti_roll_bar: an imported stiffness is not supported for the bar")
+            raise SolverError('anti_roll_bar: an imported stiffness is not supported for the bar')
         shapes = []
         for sp in spec.shape_points:
-            if (sp.start, sp.end) != ("arb_link_upper", "arb_pivot"):
-                raise SolverError("anti_roll_bar: shape points lie on the arm, from "
-                                  "arb_link_upper to arb_pivot")
-            shapes.append(type(sp)(names["left"][0], names["left"][1], sp.fraction, sp.offset))
-            shapes.append(type(sp)(names["right"][1], names["right"][0], 1.0 - sp.fraction,
-                                   tuple(mirror(np.asarray(sp.offset), "right"))))
+            if (sp.start, sp.end) != ('arb_link_upper', 'arb_pivot'):
+                raise SolverError('anti_roll_bar: shape points lie on the arm, from '
+                                  'arb_link_upper to arb_pivot')
+            shapes.append(type(sp)(names['left'][0], names['left'][1], sp.fraction, sp.offset))
+            shapes.append(type(sp)(names['right'][1], names['right'][0], 1.0 - sp.fraction,
+                                   tuple(mirror(np.asarray(sp.offset), 'right'))))
         arm = spec.arm_section or spec.section
         comp = build(BAR, points, members, spec.material, spec.section,  # type: ignore[arg-type]
                      shape_points=shapes, elements_per_member=spec.elements_per_member,
-                     member_sections={names["left"]: arm, members[2]: arm})
+                     member_sections={names['left']: arm, members[2]: arm})
         self.out.components.append(comp)
-        nodes = self._embed(comp, "left", (BAR, "left"), comp.positions, comp.stiffness, comp.cog)
+        nodes = self._embed(comp, 'left', (BAR, 'left'), comp.positions, comp.stiffness, comp.cog)
         for side in SIDES:
             upper, pivot = names[side]
-            for prim in joint_constraints("spherical", GROUND, nodes[pivot], points[pivot]):
+            for prim in joint_constraints('spherical', GROUND, nodes[pivot], points[pivot]):
                 self.b.constrain(prim)
-            lower = self.hp("arb_link_lower", side)
-            lower_part = self.at(self.topo.arb_part, "arb_link_lower", side)
+            lower = self.hp('arb_link_lower', side)
+            lower_part = self.at(self.topo.arb_part, 'arb_link_lower', side)
             row = self.b.constrain(Primitive(PrimKind.DIST, (point(lower_part, lower),
                                                              point(nodes[upper], points[upper]))))
             self.out.droplink_rows[side] = row
@@ -1065,10 +1097,10 @@ def _check_imported(name: str, comp: Condensed, hardpoints: dict[str, np.ndarray
     for i, n in zip(order, hardpoints):
         gap = float(np.linalg.norm(comp.positions[i] - hardpoints[n]))
         if np.isfinite(gap) and gap > IMPORT_POSITION_TOL:
-            raise SolverError(f"flexible component {name!r}: imported node {n} lies "
-                              f"{gap * 1e3:.1f} mm from the hard point (more than "
-                              f"{IMPORT_POSITION_TOL * 1e3:g} mm): the stiffness belongs to "
-                              "other geometry")
+            raise SolverError(f'flexible component {name!r}: imported node {n} lies '
+                              f'{gap * 1e3:.1f} mm from the hard point (more than '
+                              f'{IMPORT_POSITION_TOL * 1e3:g} mm): the stiffness belongs to '
+                              'other geometry')
     dofs = np.concatenate([np.arange(6 * i, 6 * i + 6) for i in order])
     positions = np.array([hardpoints[n] for n in hardpoints])
     cog = comp.cog if np.all(np.isfinite(comp.cog)) else positions.mean(axis=0)

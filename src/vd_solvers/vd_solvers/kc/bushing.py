@@ -1,4 +1,5 @@
-"""Six-direction bushings: frame, deflection measures and mirroring.
+"""
+Six-direction bushings: frame, deflection measures and mirroring.
 
 A bushing joins part a (inboard, usually the body) and part b at one hard
 point. Its frame (e1, e2, e3) is fixed to a; b carries a copy (f1, f2, f3)
@@ -25,10 +26,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .joints import PrimKind, Primitive, perpendicular_basis, point, unit, vector
+from .joints import Primitive, PrimKind, perpendicular_basis, point, unit, vector
 from .model import Side, mirror
 
-DIRECTIONS: tuple[str, ...] = ("x", "y", "z", "rx", "ry", "rz")
+DIRECTIONS: tuple[str, ...] = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 MIRROR_SIGNS = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 # Small-angle rotation about e_i: (e_k . f_j - e_j . f_k)/2 with (i, j, k) cyclic.
@@ -41,16 +42,16 @@ def bushing_frame(axial: np.ndarray | None) -> np.ndarray:
     """Left-side bushing frame, columns (e1, e2, e3) in the vehicle frame (3, 3)."""
     if axial is None:
         return np.eye(3)
-    e3 = unit(np.asarray(axial, dtype=float), "bushing axial direction")
+    e3 = unit(np.asarray(axial, dtype=float), 'bushing axial direction')
     e1, e2 = perpendicular_basis(e3)
     return np.column_stack((e1, e2, e3))
 
 
 def side_frame(left_frame: np.ndarray, side: Side) -> tuple[np.ndarray, np.ndarray]:
     """Frame (3, 3) and measure signs (6,) of the bushing on ``side``."""
-    if side == "left":
+    if side == 'left':
         return left_frame, np.ones(6)
-    e1, e2, e3 = (mirror(left_frame[:, k], "right") for k in range(3))
+    e1, e2, e3 = (mirror(left_frame[:, k], 'right') for k in range(3))
     return np.column_stack((e1, -e2, e3)), MIRROR_SIGNS
 
 

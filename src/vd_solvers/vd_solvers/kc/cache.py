@@ -1,4 +1,5 @@
-"""K&C results on demand, cached by the configuration's data hash.
+"""
+K&C results on demand, cached by the configuration's data hash.
 
 The lower rungs (effective axle characteristics of the bicycle and two-track
 models) and the full-vehicle rung (its suspension maps) need K&C results of the
@@ -17,20 +18,20 @@ holds at most ``MAX_ENTRIES`` results (least recently used go first).
 from __future__ import annotations
 
 from collections import OrderedDict
-from dataclasses import replace
 from threading import Lock
 
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
 
-from .model import without_bar
 from .events import EventResult, KCModel
+from .model import without_bar
 
 #: results kept per process
 MAX_ENTRIES = 256
 from .from_config import FIDELITIES  # noqa: E402  (fidelities the K&C model offers)
+
 #: the opposite-wheel-travel run without the anti-roll bar (roll stiffness split)
-NO_BAR = "opposite_wheel_travel_no_bar"
+NO_BAR = 'opposite_wheel_travel_no_bar'
 
 _results: OrderedDict[tuple, EventResult] = OrderedDict()
 _models: OrderedDict[tuple, KCModel] = OrderedDict()
@@ -45,7 +46,7 @@ def _remember(store: OrderedDict, key: tuple, value):
     return value
 
 
-def kc_model(config: Configuration, axle: str, fidelity: str = "rigid") -> KCModel:
+def kc_model(config: Configuration, axle: str, fidelity: str = 'rigid') -> KCModel:
     """The assembled K&C model of ``axle`` of ``config`` (cached by data hash)."""
     from .from_config import suspension_input
 
@@ -64,9 +65,10 @@ def kc_model(config: Configuration, axle: str, fidelity: str = "rigid") -> KCMod
         return _remember(_models, key, model)
 
 
-def kc_result(config: Configuration, axle: str, event: str, fidelity: str = "rigid",
+def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rigid',
               **params: float) -> EventResult:
-    """One K&C event of ``config`` on ``axle``: cached, or computed now.
+    """
+    One K&C event of ``config`` on ``axle``: cached, or computed now.
 
     ``event`` is a K&C event name or ``opposite_wheel_travel_no_bar`` (the same
     sweep with the anti-roll bar removed; SolverError if the axle has none).
@@ -83,7 +85,7 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = "rig
         if model.inp.stabilizer is None:
             raise SolverError(f"configuration '{config.name}', axle '{axle}': no anti-roll bar")
         bare = KCModel(without_bar(model.inp), model.label, solved=True)
-        result = bare.run("opposite_wheel_travel", **params)
+        result = bare.run('opposite_wheel_travel', **params)
     else:
         result = model.run(event, **params)
     with _lock:
@@ -97,4 +99,4 @@ def clear() -> None:
         _models.clear()
 
 
-__all__ = ["kc_result", "kc_model", "clear", "MAX_ENTRIES", "FIDELITIES", "NO_BAR"]
+__all__ = ['kc_result', 'kc_model', 'clear', 'MAX_ENTRIES', 'FIDELITIES', 'NO_BAR']

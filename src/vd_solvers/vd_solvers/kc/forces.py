@@ -1,4 +1,5 @@
-"""Elastic force elements as potentials of one scalar deflection.
+"""
+Elastic force elements as potentials of one scalar deflection.
 
 Each element contributes V(delta) with delta = measure - reference, where
 the measure is a length (springs, stops), a coordinate (gravity, rack), a
@@ -41,7 +42,8 @@ class EnergyLaw(Protocol):
 
 @dataclass(frozen=True)
 class LinearLaw:
-    """V = f*delta + k*delta^2/2 for arrays ``stiffness`` k and ``force`` f.
+    """
+    V = f*delta + k*delta^2/2 for arrays ``stiffness`` k and ``force`` f.
 
     Gravity is k = 0, f = m*g on the height of a centre of mass; a preloaded
     linear element has f = its force at the reference.
@@ -72,7 +74,8 @@ class CurveLaw:
 
 @dataclass(frozen=True)
 class SpringLaw:
-    """Coil spring on its length L; delta = L - L_design.
+    """
+    Coil spring on its length L; delta = L - L_design.
 
     The compression from the free length is c = c_design - delta and the
     compression force F(c) = rate*c or ``curve``(c).
@@ -103,7 +106,8 @@ class SpringLaw:
 
 
 def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:
-    """The spring's law, its design compression found from free length or preload.
+    """
+    The spring's law, its design compression found from free length or preload.
 
     Raises SolverError when a curve cannot deliver the requested preload.
     """
@@ -116,7 +120,7 @@ def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:
         assert curve is not None  # validated: exactly one of rate and curve
         preload = spec.preload or 0.0
         if np.any(np.diff(curve.y) <= 0.0):
-            raise SolverError("spring curve must be strictly increasing to place a preload")
+            raise SolverError('spring curve must be strictly increasing to place a preload')
         # Invert the polyline (linear extrapolation beyond the ends, as value()).
         y, x = curve.y, curve.x
         i = int(np.clip(np.searchsorted(y, preload) - 1, 0, y.size - 2))
@@ -126,7 +130,8 @@ def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:
 
 @dataclass(frozen=True)
 class StopLaw:
-    """Bump (``direction`` = -1) or rebound (+1) stop on a length, delta = L - L_design.
+    """
+    Bump (``direction`` = -1) or rebound (+1) stop on a length, delta = L - L_design.
 
     The stop engages when direction*delta exceeds ``clearance``; its own
     compression s = direction*delta - clearance carries the force curve(s).
@@ -142,7 +147,7 @@ class StopLaw:
     def __post_init__(self) -> None:
         c = self.curve
         if c.x[0] > 0.0:
-            object.__setattr__(self, "curve", Curve(np.r_[0.0, c.x], np.r_[0.0, c.y]))
+            object.__setattr__(self, 'curve', Curve(np.r_[0.0, c.x], np.r_[0.0, c.y]))
 
     def evaluate(self, delta: np.ndarray) -> Triple:
         s = self.direction * delta - self.clearance
@@ -164,7 +169,7 @@ class TorsionLaw:
 
     def evaluate(self, delta: np.ndarray) -> Triple:
         if np.any(np.abs(delta) > _MAX_TWIST_SINE):
-            raise SolverError("anti-roll bar twisted beyond its range")
+            raise SolverError('anti-roll bar twisted beyond its range')
         k = self.stiffness
         twist = np.arcsin(delta)
         c2 = 1.0 - delta * delta
@@ -175,7 +180,8 @@ class TorsionLaw:
 
 @dataclass(frozen=True, eq=False)
 class MatrixLaw:
-    """V = delta^T K delta / 2 with a full symmetric ``matrix`` K (n, n).
+    """
+    V = delta^T K delta / 2 with a full symmetric ``matrix`` K (n, n).
 
     The condensed stiffness of a flexible component on its deformation
     measures. ``evaluate`` returns the per-measure split delta_i (K delta)_i / 2

@@ -1,4 +1,5 @@
-"""Build a K&C suspension input from a resolved configuration, and run its events.
+"""
+Build a K&C suspension input from a resolved configuration, and run its events.
 
 Every value comes from the configuration's groups of that axle
 (``<axle>_hardpoints``, ``_spring``, ``_damper``, ``_bump_stop``,
@@ -9,9 +10,8 @@ design ride height); its vertical stiffness is the .tir's VERTICAL_STIFFNESS.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import replace
+import math
 
 import numpy as np
 
@@ -21,50 +21,59 @@ from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
-from .model import without_bar
 from .events import EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
-from .model import (Bushing, Curve, DamperSpec, FlexSpec, SpringSpec, StabilizerSpec,
-                    SteeringSpec, StopSpec, SuspensionInput)
+from .model import (
+    Bushing,
+    Curve,
+    DamperSpec,
+    FlexSpec,
+    SpringSpec,
+    StabilizerSpec,
+    SteeringSpec,
+    StopSpec,
+    SuspensionInput,
+    without_bar,
+)
 
-FIDELITIES = ("rigid", "flexible")
+FIDELITIES = ('rigid', 'flexible')
 
 DEG = 180.0 / math.pi
-SIX = ("x", "y", "z", "rx", "ry", "rz")
+SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 #: event -> its parameters (SI), as ``vd run --param`` takes them
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
-    "parallel_wheel_travel": {
-        "travel_min": Param("length", -0.08, "lowest pad travel (rebound)", maximum=0.0),
-        "travel_max": Param("length", 0.08, "highest pad travel (bump)", minimum=0.0),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+    'parallel_wheel_travel': {
+        'travel_min': Param('length', -0.08, 'lowest pad travel (rebound)', maximum=0.0),
+        'travel_max': Param('length', 0.08, 'highest pad travel (bump)', minimum=0.0),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
-    "opposite_wheel_travel": {
-        "amplitude": Param("length", 0.08, "left pad +a..-a, right pad opposite", minimum=0.001),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+    'opposite_wheel_travel': {
+        'amplitude': Param('length', 0.08, 'left pad +a..-a, right pad opposite', minimum=0.001),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
-    "lateral_force": {
-        "force_min": Param("force", -4000.0, "lowest force along +y at both contact patches",
+    'lateral_force': {
+        'force_min': Param('force', -4000.0, 'lowest force along +y at both contact patches',
                            maximum=0.0),
-        "force_max": Param("force", 4000.0, "highest force", minimum=0.0),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+        'force_max': Param('force', 4000.0, 'highest force', minimum=0.0),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
-    "longitudinal_force": {
-        "force_min": Param("force", -4000.0, "braking force at the contact patch (negative)",
+    'longitudinal_force': {
+        'force_min': Param('force', -4000.0, 'braking force at the contact patch (negative)',
                            maximum=0.0),
-        "force_max": Param("force", 4000.0, "traction force at the wheel centre", minimum=0.0),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+        'force_max': Param('force', 4000.0, 'traction force at the wheel centre', minimum=0.0),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
-    "steering": {
-        "steering_wheel_angle": Param("angle", 0.0, "sweep +-angle; 0 = lock to lock",
+    'steering': {
+        'steering_wheel_angle': Param('angle', 0.0, 'sweep +-angle; 0 = lock to lock',
                                       minimum=0.0),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
-    "aligning_torque": {
-        "moment_min": Param("torque", -200.0, "lowest moment about +z at both contact patches",
+    'aligning_torque': {
+        'moment_min': Param('torque', -200.0, 'lowest moment about +z at both contact patches',
                             maximum=0.0),
-        "moment_max": Param("torque", 200.0, "highest moment", minimum=0.0),
-        "steps": Param("integer", 101, "steps", minimum=3, maximum=2001),
+        'moment_max': Param('torque', 200.0, 'highest moment', minimum=0.0),
+        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
     },
 }
 
@@ -78,89 +87,91 @@ def _optional(config: Configuration, name: str) -> GroupData | None:
     return config.groups.get(name)
 
 
-def suspension_input(config: Configuration, axle: str, fidelity: str = "rigid") -> SuspensionInput:
-    """The K&C input of ``axle`` ('front' or 'rear') of ``config``.
+def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') -> SuspensionInput:
+    """
+    The K&C input of ``axle`` ('front' or 'rear') of ``config``.
 
     ``fidelity`` 'flexible' makes the components of the ``<axle>_flex`` group
     flexible (the configuration's ``flexible_components`` if it names any on
-    this axle, else all of them); 'rigid' uses their ``rigid_mass`` only."""
+    this axle, else all of them); 'rigid' uses their ``rigid_mass`` only.
+    """
     if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', axle '{axle}': unknown fidelity "
                           f"'{fidelity}' (fidelities: {', '.join(FIDELITIES)})")
-    hp = config.group(f"{axle}_hardpoints")
-    points = {k.split(".", 1)[1]: np.asarray(v.si, dtype=float)
-              for k, v in hp.values.items() if k.startswith("points.")}
-    spring_g = config.group(f"{axle}_spring")
+    hp = config.group(f'{axle}_hardpoints')
+    points = {k.split('.', 1)[1]: np.asarray(v.si, dtype=float)
+              for k, v in hp.values.items() if k.startswith('points.')}
+    spring_g = config.group(f'{axle}_spring')
     spring = SpringSpec(
-        rate=spring_g.get_scalar("rate"),
-        curve=_curve(spring_g, "curve") if spring_g.has("curve") else None,
-        free_length=spring_g.get_scalar("free_length"),
-        preload=spring_g.get_scalar("preload"))
-    damper_g = config.group(f"{axle}_damper")
-    damper = DamperSpec(_curve(damper_g, "curve", damper_g.get_scalar("scale", 1.0) or 1.0))
+        rate=spring_g.get_scalar('rate'),
+        curve=_curve(spring_g, 'curve') if spring_g.has('curve') else None,
+        free_length=spring_g.get_scalar('free_length'),
+        preload=spring_g.get_scalar('preload'))
+    damper_g = config.group(f'{axle}_damper')
+    damper = DamperSpec(_curve(damper_g, 'curve', damper_g.get_scalar('scale', 1.0) or 1.0))
     stops = {}
-    for kind in ("bump_stop", "rebound_stop"):
-        g = config.group(f"{axle}_{kind}")
-        stops[kind] = StopSpec(g.scalar("clearance"), _curve(g, "curve"))
+    for kind in ('bump_stop', 'rebound_stop'):
+        g = config.group(f'{axle}_{kind}')
+        stops[kind] = StopSpec(g.scalar('clearance'), _curve(g, 'curve'))
     bushings = {}
-    bush_g = _optional(config, f"{axle}_bushings")
+    bush_g = _optional(config, f'{axle}_bushings')
     if bush_g is not None:
-        names = sorted({k.split(".")[1] for k in bush_g.values if k.startswith("connections.")})
+        names = sorted({k.split('.')[1] for k in bush_g.values if k.startswith('connections.')})
         for name in names:
-            base = f"connections.{name}"
-            stiffness = tuple(bush_g.scalar(f"{base}.stiffness.{d}") for d in SIX)
-            damping = tuple(bush_g.get_scalar(f"{base}.damping.{d}", 0.0) or 0.0 for d in SIX)
-            axis = bush_g.point(f"{base}.axis") if bush_g.has(f"{base}.axis") else None
+            base = f'connections.{name}'
+            stiffness = tuple(bush_g.scalar(f'{base}.stiffness.{d}') for d in SIX)
+            damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0 for d in SIX)
+            axis = bush_g.point(f'{base}.axis') if bush_g.has(f'{base}.axis') else None
             bushings[name] = Bushing(stiffness, damping,  # type: ignore[arg-type]
                                      None if axis is None else np.asarray(axis, dtype=float))
     stabilizer = None
-    stab_g = _optional(config, f"{axle}_stabilizer")
+    stab_g = _optional(config, f'{axle}_stabilizer')
     if stab_g is not None:
-        missing = [p for p in ("arb_link_lower", "arb_link_upper", "arb_pivot") if p not in points]
+        missing = [p for p in ('arb_link_lower', 'arb_link_upper', 'arb_pivot') if p not in points]
         if missing:
             raise SolverError(f"{axle}_stabilizer is given but {hp.file} lacks the anti-roll-bar "
                               f"hard points {', '.join(missing)}")
         stabilizer = StabilizerSpec(bar_stiffness(stab_g))
     steering = None
-    if axle == "front" and "steering" in config.groups:
-        s = config.group("steering")
-        steering = SteeringSpec(rack_ratio=s.scalar("rack_ratio"),
-                                rack_travel_limit=s.scalar("rack_travel_limit"),
-                                rack_stiffness=s.get_scalar("rack_stiffness"),
-                                column_stiffness=s.get_scalar("column_stiffness"))
-    align = config.group(f"{axle}_alignment")
-    tire = config.group(f"{axle}_tire")
+    if axle == 'front' and 'steering' in config.groups:
+        s = config.group('steering')
+        steering = SteeringSpec(rack_ratio=s.scalar('rack_ratio'),
+                                rack_travel_limit=s.scalar('rack_travel_limit'),
+                                rack_stiffness=s.get_scalar('rack_stiffness'),
+                                column_stiffness=s.get_scalar('column_stiffness'))
+    align = config.group(f'{axle}_alignment')
+    tire = config.group(f'{axle}_tire')
     front_load, rear_load = static_wheel_loads(config)
-    unsprung = config.group("mass").scalar(f"unsprung_mass_{axle}")
-    masses: dict[str, float] = {"wheel": unsprung}
+    unsprung = config.group('mass').scalar(f'unsprung_mass_{axle}')
+    masses: dict[str, float] = {'wheel': unsprung}
     flexible: dict[str, FlexSpec] = {}
-    flex_g = _optional(config, f"{axle}_flex")
+    flex_g = _optional(config, f'{axle}_flex')
     specs = flex_specs(flex_g) if flex_g is not None else {}
     for name, (_, rigid_mass) in specs.items():
-        if rigid_mass and name not in ("anti_roll_bar", "subframe"):
+        if rigid_mass and name not in ('anti_roll_bar', 'subframe'):
             masses[name] = rigid_mass
     # The corner's unsprung mass (mass group) holds the parts: the wheel-centre lump is
     # what the parts' own masses leave of it, so the axle's total mass stays the data's.
-    parts = sum(m for k, m in masses.items() if k != "wheel")
+    parts = sum(m for k, m in masses.items() if k != 'wheel')
     if parts >= unsprung:
         raise SolverError(f"configuration '{config.name}': the {axle} parts' rigid_mass "
                           f"({parts:.1f} kg, {flex_g.file if flex_g else ''}) must be below the "
                           f"unsprung mass per corner ({unsprung:.1f} kg, mass group)")
-    masses["wheel"] = unsprung - parts
-    if fidelity == "flexible":
+    masses['wheel'] = unsprung - parts
+    if fidelity == 'flexible':
         if not specs:
             raise SolverError(f"configuration '{config.name}': the {axle} axle has no flexible "
                               f"components (no {axle}_flex group); run it rigid or add the group")
         chosen = [c for c in config.flexible_components if c in specs] or sorted(specs)
         flexible = {c: specs[c][0] for c in chosen}
     return SuspensionInput(
-        template=hp.text("template"), axle=axle, hardpoints=points, spring=spring,  # type: ignore[arg-type]
-        tire_radius=points["wheel_centre"][2],
-        tire_vertical_stiffness=tire.scalar("tir.VERTICAL.VERTICAL_STIFFNESS"),
-        corner_load=front_load if axle == "front" else rear_load,
-        damper=damper, bump_stop=stops["bump_stop"], rebound_stop=stops["rebound_stop"],
+        template=hp.text('template'), axle=axle, hardpoints=points, spring=spring,  # type: ignore[arg-type]
+        tire_radius=points['wheel_centre'][2],
+        tire_vertical_stiffness=tire.scalar('tir.VERTICAL.VERTICAL_STIFFNESS'),
+        corner_load=front_load if axle == 'front' else rear_load,
+        damper=damper, bump_stop=stops['bump_stop'], rebound_stop=stops['rebound_stop'],
         bushings=bushings, stabilizer=stabilizer, steering=steering,
-        camber=align.scalar("camber"), toe=align.scalar("toe"), masses=masses,
+        camber=align.scalar('camber'), toe=align.scalar('toe'), masses=masses,
         flexible=flexible)
 
 
@@ -170,59 +181,59 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
     from vd_solvers.flex.component import ShapePoint
 
     materials = {}
-    for name in sorted({k.split(".")[1] for k in group.values if k.startswith("materials.")}):
-        base = f"materials.{name}"
-        e, rho = group.scalar(f"{base}.youngs_modulus"), group.scalar(f"{base}.density")
-        g_mod = group.get_scalar(f"{base}.shear_modulus")
+    for name in sorted({k.split('.')[1] for k in group.values if k.startswith('materials.')}):
+        base = f'materials.{name}'
+        e, rho = group.scalar(f'{base}.youngs_modulus'), group.scalar(f'{base}.density')
+        g_mod = group.get_scalar(f'{base}.shear_modulus')
         try:
             materials[name] = (sec.Material(e, g_mod, rho) if g_mod is not None else
-                               sec.Material.from_poisson(e, group.scalar(f"{base}.poissons_ratio"),
+                               sec.Material.from_poisson(e, group.scalar(f'{base}.poissons_ratio'),
                                                          rho))
         except SolverError as err:
-            raise SolverError(f"{group.file}: {base}: {err}") from None
+            raise SolverError(f'{group.file}: {base}: {err}') from None
 
     def section(name: str, nu: float):
-        base = f"sections.{name}"
-        shape = group.text(f"{base}.shape")
-        get = lambda k: group.scalar(f"{base}.{k}")  # noqa: E731
+        base = f'sections.{name}'
+        shape = group.text(f'{base}.shape')
+        get = lambda k: group.scalar(f'{base}.{k}')  # noqa: E731
         try:
-            if shape == "solid_round":
-                return sec.solid_round(get("diameter"), nu)
-            if shape == "tube":
-                return sec.tube(get("outer_diameter"), get("wall"), nu)
-            if shape == "rectangle":
-                return sec.rectangle(get("width"), get("height"), nu)
-            if shape == "i_beam":
-                return sec.i_beam(get("height"), get("flange_width"), get("flange_thickness"),
-                                  get("web_thickness"))
-            return sec.Section(get("area"), get("iy"), get("iz"), get("torsion_constant"),
-                               group.get_scalar(f"{base}.shear_area_y"),
-                               group.get_scalar(f"{base}.shear_area_z"))
+            if shape == 'solid_round':
+                return sec.solid_round(get('diameter'), nu)
+            if shape == 'tube':
+                return sec.tube(get('outer_diameter'), get('wall'), nu)
+            if shape == 'rectangle':
+                return sec.rectangle(get('width'), get('height'), nu)
+            if shape == 'i_beam':
+                return sec.i_beam(get('height'), get('flange_width'), get('flange_thickness'),
+                                  get('web_thickness'))
+            return sec.Section(get('area'), get('iy'), get('iz'), get('torsion_constant'),
+                               group.get_scalar(f'{base}.shear_area_y'),
+                               group.get_scalar(f'{base}.shear_area_z'))
         except SolverError as err:
-            raise SolverError(f"{group.file}: {base}: {err}") from None
+            raise SolverError(f'{group.file}: {base}: {err}') from None
 
     out: dict[str, tuple[FlexSpec, float]] = {}
-    for comp in sorted({k.split(".")[1] for k in group.values if k.startswith("components.")}):
-        base = f"components.{comp}"
-        rigid_mass = group.get_scalar(f"{base}.rigid_mass", 0.0) or 0.0
-        source = f"{group.file} {base}"
-        if group.has(f"{base}.imported.content"):
+    for comp in sorted({k.split('.')[1] for k in group.values if k.startswith('components.')}):
+        base = f'components.{comp}'
+        rigid_mass = group.get_scalar(f'{base}.rigid_mass', 0.0) or 0.0
+        source = f'{group.file} {base}'
+        if group.has(f'{base}.imported.content'):
             spec = FlexSpec(imported=_imported(group, comp, base), source=source)
         else:
-            material = materials[group.text(f"{base}.material")]
+            material = materials[group.text(f'{base}.material')]
             nu = material.poissons_ratio
             shapes = tuple(
-                ShapePoint(group.text(f"{base}.shape_points.{sp}.from"),
-                           group.text(f"{base}.shape_points.{sp}.to"),
-                           group.scalar(f"{base}.shape_points.{sp}.fraction"),
-                           tuple(group.point(f"{base}.shape_points.{sp}.offset"))
-                           if group.has(f"{base}.shape_points.{sp}.offset") else (0.0, 0.0, 0.0))
-                for sp in sorted({k.split(".")[3] for k in group.values
-                                  if k.startswith(f"{base}.shape_points.")}))
-            arm = (section(group.text(f"{base}.arm_section"), nu)
-                   if group.has(f"{base}.arm_section") else None)
-            spec = FlexSpec(material, section(group.text(f"{base}.section"), nu), shapes,
-                            int(group.scalar(f"{base}.elements_per_member")), arm,
+                ShapePoint(group.text(f'{base}.shape_points.{sp}.from'),
+                           group.text(f'{base}.shape_points.{sp}.to'),
+                           group.scalar(f'{base}.shape_points.{sp}.fraction'),
+                           tuple(group.point(f'{base}.shape_points.{sp}.offset'))
+                           if group.has(f'{base}.shape_points.{sp}.offset') else (0.0, 0.0, 0.0))
+                for sp in sorted({k.split('.')[3] for k in group.values
+                                  if k.startswith(f'{base}.shape_points.')}))
+            arm = (section(group.text(f'{base}.arm_section'), nu)
+                   if group.has(f'{base}.arm_section') else None)
+            spec = FlexSpec(material, section(group.text(f'{base}.section'), nu), shapes,
+                            int(group.scalar(f'{base}.elements_per_member')), arm,
                             source=source)
         out[comp] = (spec, rigid_mass)
     return out
@@ -235,78 +246,82 @@ def _imported(group: GroupData, comp: str, base: str):
     from vd_data_server.units import si_factor
     from vd_solvers.flex.imported import from_dmig, from_plain
 
-    rel = group.text(f"{base}.imported.file")
-    text = group.text(f"{base}.imported.content")
-    what = f"{rel} ({group.file} {base}.imported)"
-    if group.text(f"{base}.imported.format") == "plain":
+    rel = group.text(f'{base}.imported.file')
+    text = group.text(f'{base}.imported.content')
+    what = f'{rel} ({group.file} {base}.imported)'
+    if group.text(f'{base}.imported.format') == 'plain':
         try:
             raw = yaml.safe_load(text)
         except yaml.YAMLError as err:
-            raise SolverError(f"{what}: not valid YAML ({err.__class__.__name__})") from None
-        units = (raw or {}).get("units", {}) if isinstance(raw, dict) else {}
+            raise SolverError(f'{what}: not valid YAML ({err.__class__.__name__})') from None
+        units = (raw or {}).get('units', {}) if isinstance(raw, dict) else {}
     else:
         raw = None
-        units = {q: group.text(f"{base}.imported.{q}_unit") for q in ("length", "force")
-                 if group.has(f"{base}.imported.{q}_unit")}
+        units = {q: group.text(f'{base}.imported.{q}_unit') for q in ('length', 'force')
+                 if group.has(f'{base}.imported.{q}_unit')}
     try:
         factors = {q: si_factor(str(units.get(q, d)), q) for q, d in
-                   (("length", "m"), ("force", "N"), ("angle", "rad"), ("mass", "kg"))}
+                   (('length', 'm'), ('force', 'N'), ('angle', 'rad'), ('mass', 'kg'))}
     except (ValueError, AttributeError) as err:
-        raise SolverError(f"{what}: units: {err}") from None
+        raise SolverError(f'{what}: units: {err}') from None
     if raw is not None:
         return from_plain(comp, raw, what=what, factors=factors)
     grids = {}
     for k, v in group.values.items():
-        if k.startswith(f"{base}.imported.grids."):
+        if k.startswith(f'{base}.imported.grids.'):
             try:
-                grids[int(k.rsplit(".", 1)[1])] = str(v.si)
+                grids[int(k.rsplit('.', 1)[1])] = str(v.si)
             except ValueError:
                 raise SolverError(f"{what}: GRID id '{k.rsplit('.', 1)[1]}' is not a whole "
                                   "number") from None
-    return from_dmig(comp, text, matrix=group.text(f"{base}.imported.matrix"), grids=grids,
+    return from_dmig(comp, text, matrix=group.text(f'{base}.imported.matrix'), grids=grids,
                      what=what, factors=factors)
 
 
 def bar_stiffness(group: GroupData) -> float:
-    """Torsional stiffness of the anti-roll bar, N*m/rad: given, or G*J/L of a
-    solid round bar (J = pi r^4 / 2)."""
-    given = group.get_scalar("torsional_stiffness")
+    """
+    Torsional stiffness of the anti-roll bar, N*m/rad: given, or G*J/L of a
+    solid round bar (J = pi r^4 / 2).
+    """
+    given = group.get_scalar('torsional_stiffness')
     if given is not None:
         return given
-    r = group.scalar("bar_radius")
-    return group.scalar("shear_modulus") * math.pi * r ** 4 / 2.0 / group.scalar("torsion_length")
+    r = group.scalar('bar_radius')
+    return group.scalar('shear_modulus') * math.pi * r ** 4 / 2.0 / group.scalar('torsion_length')
 
 
 def _event_kwargs(event: str, values: Mapping[str, float]) -> dict[str, float]:
-    kwargs: dict[str, float] = {k: (int(v) if k == "steps" else v) for k, v in values.items()}
-    if event == "steering" and kwargs.get("steering_wheel_angle", 0.0) == 0.0:
-        kwargs.pop("steering_wheel_angle", None)
+    kwargs: dict[str, float] = {k: (int(v) if k == 'steps' else v) for k, v in values.items()}
+    if event == 'steering' and kwargs.get('steering_wheel_angle', 0.0) == 0.0:
+        kwargs.pop('steering_wheel_angle', None)
     return kwargs
 
 
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
                  progress: Callable[[float, str], None] | None = None,
-                 fidelity: str = "rigid") -> EventOutcome:
-    """One K&C event on one axle, with the derived metrics that event supports.
+                 fidelity: str = 'rigid') -> EventOutcome:
+    """
+    One K&C event on one axle, with the derived metrics that event supports.
 
     ``progress(fraction, stage)`` is called per solved step (it may raise to cancel);
-    ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`)."""
+    ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`).
+    """
     label = f"configuration '{config.name}', event '{event}', axle '{axle}'"
     if event not in EVENT_PARAMS:
         raise SolverError(f"{label}: the K&C solver has no event '{event}' (events: "
                           f"{', '.join(EVENT_PARAMS)})")
-    if axle not in ("front", "rear"):
-        raise SolverError(f"{label}: K&C events need --axle front or rear")
+    if axle not in ('front', 'rear'):
+        raise SolverError(f'{label}: K&C events need --axle front or rear')
     values = parse_params(event, EVENT_PARAMS[event], params)
     try:
         inp = suspension_input(config, axle, fidelity)
     except SolverError as err:
-        raise SolverError(f"{label}: {err}") from None
-    if event == "steering" and inp.steering is None:
-        raise SolverError(f"{label}: the {axle} axle has no steering")
+        raise SolverError(f'{label}: {err}') from None
+    if event == 'steering' and inp.steering is None:
+        raise SolverError(f'{label}: the {axle} axle has no steering')
     model = KCModel(inp, label)
-    with_bar = event == "opposite_wheel_travel" and inp.stabilizer is not None
+    with_bar = event == 'opposite_wheel_travel' and inp.stabilizer is not None
     runs = 2 if with_bar else 1
 
     def on_step(run: int, stage: str) -> Callable[[int, int], None] | None:
@@ -314,55 +329,55 @@ def run_kc_event(config: Configuration, event: str, axle: str,
             return None
         return lambda done, total: progress((run + done / total) / runs, stage)
 
-    result = model.run(event, on_step(0, "solving"), **_event_kwargs(event, values))
+    result = model.run(event, on_step(0, 'solving'), **_event_kwargs(event, values))
     results = {event: result}
     if with_bar:
         bare = KCModel(without_bar(model.inp), label, solved=True)
-        results["opposite_wheel_travel_no_bar"] = bare.run(
-            event, on_step(1, "solving without the anti-roll bar"),
+        results['opposite_wheel_travel_no_bar'] = bare.run(
+            event, on_step(1, 'solving without the anti-roll bar'),
             **_event_kwargs(event, values))
     return _outcome(config, event, axle, inp, model, results, fidelity)
 
 
-def _outcome(config, event, axle, inp, model, results, fidelity="rigid") -> EventOutcome:
-    geo = config.group("geometry")
+def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> EventOutcome:
+    geo = config.group('geometry')
     mass_cog = _cog_height(config)
     metrics = {k: Metric(float(v), u) for k, (v, u) in derived_metrics(
         results, inp.tire_vertical_stiffness, cg_height=mass_cog,
-        wheelbase=geo.scalar("wheelbase")).items()}
+        wheelbase=geo.scalar('wheelbase')).items()}
     raw = results[event].channels
     channels = flatten_channels(raw)
-    if event == "lateral_force":
-        channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 1])
-    elif event == "aligning_torque":
-        channels["applied_moment"] = Channel("N*m", raw["contact_moment"][:, 0, 2])
-    elif event == "longitudinal_force":
-        channels["applied_force"] = Channel("N", raw["contact_force"][:, 0, 0]
-                                            + raw["centre_force"][:, 0, 0])
-    residual_c = float(np.max(raw["constraint_residual"]))
-    residual_f = float(np.max(raw["force_residual"]))
-    metrics["max_constraint_residual"] = Metric(residual_c, "m")
-    metrics["max_force_residual"] = Metric(residual_f, "N")
-    kind = "rigid" if fidelity == "rigid" else (
-        "flexible (" + ", ".join(sorted(inp.flexible)) + ")")
-    notes = [f"{kind} K&C, {inp.template} {axle}; joints to 1e-9 m, forces to 1e-6 N "
-             f"(worst step: {residual_c:.1e} m, {residual_f:.1e} N)",
-             f"spring preload at design: {model.inp.spring.preload or 0.0:.0f} N; corner load "
-             f"{inp.corner_load:.0f} N from the mass data"]
+    if event == 'lateral_force':
+        channels['applied_force'] = Channel('N', raw['contact_force'][:, 0, 1])
+    elif event == 'aligning_torque':
+        channels['applied_moment'] = Channel('N*m', raw['contact_moment'][:, 0, 2])
+    elif event == 'longitudinal_force':
+        channels['applied_force'] = Channel('N', raw['contact_force'][:, 0, 0]
+                                            + raw['centre_force'][:, 0, 0])
+    residual_c = float(np.max(raw['constraint_residual']))
+    residual_f = float(np.max(raw['force_residual']))
+    metrics['max_constraint_residual'] = Metric(residual_c, 'm')
+    metrics['max_force_residual'] = Metric(residual_f, 'N')
+    kind = 'rigid' if fidelity == 'rigid' else (
+        'flexible (' + ', '.join(sorted(inp.flexible)) + ')')
+    notes = [f'{kind} K&C, {inp.template} {axle}; joints to 1e-9 m, forces to 1e-6 N '
+             f'(worst step: {residual_c:.1e} m, {residual_f:.1e} N)',
+             f'spring preload at design: {model.inp.spring.preload or 0.0:.0f} N; corner load '
+             f'{inp.corner_load:.0f} N from the mass data']
     for comp in model.system.outputs.components:
-        metrics[f"component_mass.{comp.name}"] = Metric(comp.mass, "kg", comp.source)
-        for c, axis in enumerate("xyz"):
-            metrics[f"component_cog_{axis}.{comp.name}"] = Metric(float(comp.cog[c]), "m",
+        metrics[f'component_mass.{comp.name}'] = Metric(comp.mass, 'kg', comp.source)
+        for c, axis in enumerate('xyz'):
+            metrics[f'component_cog_{axis}.{comp.name}'] = Metric(float(comp.cog[c]), 'm',
                                                                  comp.source)
         rigid = inp.masses.get(comp.name)
         notes.append(f"{comp.name}: {comp.source}, FE mass {comp.mass:.2f} kg at "
                      f"({', '.join(f'{v * 1e3:.0f}' for v in comp.cog)}) mm"
-                     + (f"; rigid model {rigid:.2f} kg at the hard-point centroid"
-                        if rigid else ""))
+                     + (f'; rigid model {rigid:.2f} kg at the hard-point centroid'
+                        if rigid else ''))
     for name, mass in inp.masses.items():
-        if name != "wheel":
-            metrics[f"rigid_mass.{name}"] = Metric(mass, "kg", "rigid_mass of the flex data")
-    return EventOutcome(event=event, configuration=config.name, model="kc", fidelity=fidelity,
+        if name != 'wheel':
+            metrics[f'rigid_mass.{name}'] = Metric(mass, 'kg', 'rigid_mass of the flex data')
+    return EventOutcome(event=event, configuration=config.name, model='kc', fidelity=fidelity,
                         axle=axle, data_hash=config.data_hash, metrics=metrics,
                         channels=channels, notes=tuple(notes))
 
@@ -374,22 +389,22 @@ def _cog_height(config: Configuration) -> float:
 
 
 #: per-wheel channel suffixes, vector component names
-WHEEL = ("left", "right")
-XYZ = ("x", "y", "z")
-SIX_NAMES = ("x", "y", "z", "rx", "ry", "rz")
+WHEEL = ('left', 'right')
+XYZ = ('x', 'y', 'z')
+SIX_NAMES = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 _UNITS = {
-    "wheel_travel": "m", "pad_travel": "m", "wheel_centre": "m", "contact_point": "m",
-    "track": "m", "contact_force": "N", "centre_force": "N", "contact_moment": "N*m", "toe": "rad",
-    "camber": "rad",
-    "caster": "rad", "kingpin_inclination": "rad", "scrub_radius": "m",
-    "mechanical_trail": "m", "steer_angle": "rad", "pad_force": "N", "spring_length": "m",
-    "spring_force": "N", "damper_length": "m", "bump_stop_force": "N",
-    "bump_stop_deflection": "m", "rebound_stop_force": "N", "rebound_stop_deflection": "m",
-    "arb_twist": "rad", "arb_torque": "N*m", "arb_arm_angle": "rad", "droplink_force": "N",
-    "rack_travel": "m", "rack_force": "N", "steering_wheel_angle": "rad",
-    "elastic_energy": "J", "constraint_residual": "m", "force_residual": "N",
-    "iterations": "-", "camber_ground": "rad", "steering_axis_ground": "m",
+    'wheel_travel': 'm', 'pad_travel': 'm', 'wheel_centre': 'm', 'contact_point': 'm',
+    'track': 'm', 'contact_force': 'N', 'centre_force': 'N', 'contact_moment': 'N*m', 'toe': 'rad',
+    'camber': 'rad',
+    'caster': 'rad', 'kingpin_inclination': 'rad', 'scrub_radius': 'm',
+    'mechanical_trail': 'm', 'steer_angle': 'rad', 'pad_force': 'N', 'spring_length': 'm',
+    'spring_force': 'N', 'damper_length': 'm', 'bump_stop_force': 'N',
+    'bump_stop_deflection': 'm', 'rebound_stop_force': 'N', 'rebound_stop_deflection': 'm',
+    'arb_twist': 'rad', 'arb_torque': 'N*m', 'arb_arm_angle': 'rad', 'droplink_force': 'N',
+    'rack_travel': 'm', 'rack_force': 'N', 'steering_wheel_angle': 'rad',
+    'elastic_energy': 'J', 'constraint_residual': 'm', 'force_residual': 'N',
+    'iterations': '-', 'camber_ground': 'rad', 'steering_axis_ground': 'm',
 }
 
 
@@ -397,29 +412,29 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     """(n,), (n, 2), (n, 2, 3) and bushing (n, 2, 6) arrays -> named 1-D channels."""
     out: dict[str, Channel] = {}
     for name, array in raw.items():
-        base = name.split(".", 1)[0]
-        unit = _UNITS.get(base, "")
+        base = name.split('.', 1)[0]
+        unit = _UNITS.get(base, '')
         a = np.asarray(array, dtype=float)
         if a.ndim == 1:
             out[name] = Channel(unit, a)
         elif a.ndim == 2 and a.shape[1] == 2:
             for s, side in enumerate(WHEEL):
-                out[f"{name}_{side}"] = Channel(unit, a[:, s])
+                out[f'{name}_{side}'] = Channel(unit, a[:, s])
         elif a.ndim == 3 and a.shape[2] == 3:
             for s, side in enumerate(WHEEL):
                 for c, comp in enumerate(XYZ):
-                    out[f"{name}_{comp}_{side}"] = Channel(unit, a[:, s, c])
+                    out[f'{name}_{comp}_{side}'] = Channel(unit, a[:, s, c])
         elif a.ndim == 3 and a.shape[2] == 6:
-            kind = "force" if "force" in base else "deflection"
+            kind = 'force' if 'force' in base else 'deflection'
             for s, side in enumerate(WHEEL):
                 for c, comp in enumerate(SIX_NAMES):
-                    u = ("N" if c < 3 else "N*m") if kind == "force" else ("m" if c < 3 else "rad")
-                    out[f"{name}.{comp}_{side}"] = Channel(u, a[:, s, c])
+                    u = ('N' if c < 3 else 'N*m') if kind == 'force' else ('m' if c < 3 else 'rad')
+                    out[f'{name}.{comp}_{side}'] = Channel(u, a[:, s, c])
         elif a.ndim == 2:
             for c in range(a.shape[1]):
-                out[f"{name}_{c}"] = Channel(unit, a[:, c])
+                out[f'{name}_{c}'] = Channel(unit, a[:, c])
     return out
 
 
-__all__ = ["EVENT_PARAMS", "EVENTS", "run_kc_event", "run_suite", "suspension_input",
-           "bar_stiffness", "flatten_channels"]
+__all__ = ['EVENT_PARAMS', 'EVENTS', 'run_kc_event', 'run_suite', 'suspension_input',
+           'bar_stiffness', 'flatten_channels']

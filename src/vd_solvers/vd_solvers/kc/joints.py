@@ -1,4 +1,5 @@
-"""Kinematic primitives and the ideal joints built from them.
+"""
+Kinematic primitives and the ideal joints built from them.
 
 Every joint constraint and every elastic measure of the model is a linear
 combination of five scalar *primitives* of markers -- points and unit vectors
@@ -32,10 +33,10 @@ import numpy as np
 
 from vd_solvers.errors import SolverError
 
-GROUND = "body"  # the vehicle body: held by the rig, no degrees of freedom
+GROUND = 'body'  # the vehicle body: held by the rig, no degrees of freedom
 
 JointKind = Literal[
-    "spherical", "inline", "revolute", "universal", "cylindrical", "translational", "fixed"
+    'spherical', 'inline', 'revolute', 'universal', 'cylindrical', 'translational', 'fixed'
 ]
 
 # Two unit axes closer to parallel than this are treated as parallel when a
@@ -53,16 +54,16 @@ class PrimKind(Enum):
     CPZ = 4
 
 
-MarkerType = Literal["p", "v"]
+MarkerType = Literal['p', 'v']
 
 # Marker slots per primitive ("p" point, "v" unit vector) and the slot pairs
 # with non-zero marker-level second derivatives.
 SLOTS: dict[PrimKind, tuple[MarkerType, ...]] = {
-    PrimKind.COMP: ("p", "p"),
-    PrimKind.DOT: ("v", "v"),
-    PrimKind.DDOT: ("p", "p", "v"),
-    PrimKind.DIST: ("p", "p"),
-    PrimKind.CPZ: ("p", "v"),
+    PrimKind.COMP: ('p', 'p'),
+    PrimKind.DOT: ('v', 'v'),
+    PrimKind.DDOT: ('p', 'p', 'v'),
+    PrimKind.DIST: ('p', 'p'),
+    PrimKind.CPZ: ('p', 'v'),
 }
 PAIRS: dict[PrimKind, tuple[tuple[int, int], ...]] = {
     PrimKind.COMP: (),
@@ -94,8 +95,10 @@ Marker = Union[PointRef, VectorRef]
 
 @dataclass(frozen=True)
 class Primitive:
-    """One scalar primitive: ``markers`` in the order of ``SLOTS[kind]``;
-    ``param`` is c (3,) for COMP and (rho,) for CPZ, else empty."""
+    """
+    One scalar primitive: ``markers`` in the order of ``SLOTS[kind]``;
+    ``param`` is c (3,) for COMP and (rho,) for CPZ, else empty.
+    """
 
     kind: PrimKind
     markers: tuple[Marker, ...]
@@ -111,7 +114,7 @@ def vector(part: str, direction: np.ndarray) -> VectorRef:
     """Marker helper: unit vector along ``direction`` (3,) on ``part``."""
     n = float(np.linalg.norm(direction))
     if n == 0.0:
-        raise SolverError(f"zero-length axis on part {part!r}")
+        raise SolverError(f'zero-length axis on part {part!r}')
     return VectorRef(part, tuple(float(v) / n for v in direction))  # type: ignore[arg-type]
 
 
@@ -119,19 +122,20 @@ def unit(v: np.ndarray, what: str) -> np.ndarray:
     """``v`` normalised; SolverError naming ``what`` if it has no length."""
     n = float(np.linalg.norm(v))
     if not n > 1e-12:
-        raise SolverError(f"{what}: zero-length direction")
+        raise SolverError(f'{what}: zero-length direction')
     return np.asarray(v, dtype=float) / n
 
 
 def perpendicular_basis(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors n1, n2 with (n1, n2, axis) right-handed orthonormal.
+    """
+    Two unit vectors n1, n2 with (n1, n2, axis) right-handed orthonormal.
 
     n1 is the vehicle axis least aligned with ``axis``, orthogonalised, so the
     basis is deterministic and well conditioned for any direction.
     """
-    a = unit(axis, "joint axis")
+    a = unit(axis, 'joint axis')
     ref = np.eye(3)[int(np.argmin(np.abs(a)))]
-    n1 = unit(ref - (ref @ a) * a, "joint axis basis")
+    n1 = unit(ref - (ref @ a) * a, 'joint axis basis')
     return n1, np.cross(a, n1)
 
 
@@ -162,7 +166,8 @@ def joint_constraints(
     axis: np.ndarray | None = None,
     cross: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> list[Primitive]:
-    """Constraint rows of an ideal joint between ``part_a`` and ``part_b``.
+    """
+    Constraint rows of an ideal joint between ``part_a`` and ``part_b``.
 
     Each returned primitive must keep its design value. ``axis`` (3,) is the
     joint axis (in-line, revolute, cylindrical, translational); ``cross`` the
@@ -170,37 +175,37 @@ def joint_constraints(
     Row counts: spherical 3, inline 2, revolute 5, universal 4,
     cylindrical 4, translational 5, fixed 6.
     """
-    if kind == "spherical":
+    if kind == 'spherical':
         return _comp(part_a, part_b, at)
-    if kind == "fixed":
+    if kind == 'fixed':
         e = np.eye(3)
         rot = [
             Primitive(PrimKind.DOT, (vector(part_a, e[i]), vector(part_b, e[(i + 1) % 3])))
             for i in range(3)
         ]
         return _comp(part_a, part_b, at) + rot
-    if kind == "universal":
+    if kind == 'universal':
         if cross is None:
-            raise SolverError("universal joint needs its cross axes")
-        ca, cb = unit(cross[0], "universal axis"), unit(cross[1], "universal axis")
+            raise SolverError('universal joint needs its cross axes')
+        ca, cb = unit(cross[0], 'universal axis'), unit(cross[1], 'universal axis')
         if abs(ca @ cb) > 1e-6:
-            raise SolverError("universal joint cross axes must be perpendicular")
+            raise SolverError('universal joint cross axes must be perpendicular')
         return _comp(part_a, part_b, at) + [
             Primitive(PrimKind.DOT, (vector(part_a, ca), vector(part_b, cb)))
         ]
     if axis is None:
-        raise SolverError(f"{kind} joint needs an axis")
-    if kind == "inline":
+        raise SolverError(f'{kind} joint needs an axis')
+    if kind == 'inline':
         return _inline(part_a, part_b, at, axis)
-    if kind == "revolute":
+    if kind == 'revolute':
         return _comp(part_a, part_b, at) + _perpendicular_dots(part_a, part_b, axis)
     cylinder = _perpendicular_dots(part_a, part_b, axis) + _inline(part_a, part_b, at, axis)
-    if kind == "cylindrical":
+    if kind == 'cylindrical':
         return cylinder
-    if kind == "translational":
+    if kind == 'translational':
         n1, n2 = perpendicular_basis(axis)
         return cylinder + [Primitive(PrimKind.DOT, (vector(part_a, n1), vector(part_b, n2)))]
-    raise SolverError(f"unknown joint kind {kind!r}")
+    raise SolverError(f'unknown joint kind {kind!r}')
 
 
 # --- primitive kernels ------------------------------------------------------
@@ -221,20 +226,20 @@ def kernel(
     """Value, slot gradients and pair Hessians of ``kind`` for slot data ``q``."""
     if kind is PrimKind.COMP:
         d = q[0] - q[1]
-        return np.einsum("ni,ni->n", param, d), [param, -param], []
+        return np.einsum('ni,ni->n', param, d), [param, -param], []
     if kind is PrimKind.DOT:
         n = q[0].shape[0]
-        return np.einsum("ni,ni->n", q[0], q[1]), [q[1], q[0]], [_eye(n), _eye(n)]
+        return np.einsum('ni,ni->n', q[0], q[1]), [q[1], q[0]], [_eye(n), _eye(n)]
     if kind is PrimKind.DDOT:
         n = q[0].shape[0]
         d = q[1] - q[0]
-        value = np.einsum("ni,ni->n", d, q[2])
+        value = np.einsum('ni,ni->n', d, q[2])
         return value, [-q[2], q[2], d], [_eye(n, -1.0), _eye(n, -1.0), _eye(n), _eye(n)]
     if kind is PrimKind.DIST:
         d = q[0] - q[1]
         length = np.linalg.norm(d, axis=1)
         if np.any(length < 1e-9):
-            raise SolverError("a link or spring collapsed to zero length")
+            raise SolverError('a link or spring collapsed to zero length')
         u = d / length[:, None]
         proj = (_EYE - u[:, :, None] * u[:, None, :]) / length[:, None, None]
         return length, [u, -u], [proj, proj, -proj, -proj]
@@ -249,4 +254,4 @@ def kernel(
         grad_r = np.zeros_like(q[0])
         grad_r[:, 2] = 1.0
         return q[0][:, 2] - rho * s, [grad_r, grad_v], [hess]
-    raise SolverError(f"unknown primitive {kind!r}")
+    raise SolverError(f'unknown primitive {kind!r}')

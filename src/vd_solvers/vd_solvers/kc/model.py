@@ -1,4 +1,5 @@
-"""Plain input data of the K&C suspension model (thesis 3.2: hard points,
+"""
+Plain input data of the K&C suspension model (thesis 3.2: hard points,
 parts and masses, spring, damper, bump and rebound stops, anti-roll bar,
 bushings and joints, rack and pinion).
 
@@ -23,12 +24,12 @@ from vd_solvers.errors import SolverError
 from vd_solvers.flex.component import Condensed, ShapePoint
 from vd_solvers.flex.section import Material, Section
 
-Axle = Literal["front", "rear"]
-Side = Literal["left", "right"]
-SIDES: tuple[Side, Side] = ("left", "right")
+Axle = Literal['front', 'rear']
+Side = Literal['left', 'right']
+SIDES: tuple[Side, Side] = ('left', 'right')
 
 # Mirror factors per side: the left side is given, the right is y -> -y.
-SIDE_SIGN: dict[Side, float] = {"left": 1.0, "right": -1.0}
+SIDE_SIGN: dict[Side, float] = {'left': 1.0, 'right': -1.0}
 
 
 def mirror(vector: ArrayLike, side: Side) -> np.ndarray:
@@ -40,7 +41,8 @@ def mirror(vector: ArrayLike, side: Side) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Curve:
-    """Piecewise-linear characteristic y(x) with linear extrapolation.
+    """
+    Piecewise-linear characteristic y(x) with linear extrapolation.
 
     ``x`` (n,) strictly increasing, ``y`` (n,), n >= 2. Used for force vs
     deflection (N vs m or N*m vs rad) and force vs velocity (dampers).
@@ -55,25 +57,25 @@ class Curve:
         x = np.asarray(self.x, dtype=float).reshape(-1)
         y = np.asarray(self.y, dtype=float).reshape(-1)
         if x.size < 2 or x.size != y.size:
-            raise SolverError("a curve needs at least two (x, y) points of equal count")
+            raise SolverError('a curve needs at least two (x, y) points of equal count')
         if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
-            raise SolverError("a curve holds non-finite values")
+            raise SolverError('a curve holds non-finite values')
         if np.any(np.diff(x) <= 0.0):
-            raise SolverError("curve abscissae must be strictly increasing")
-        object.__setattr__(self, "x", x)
-        object.__setattr__(self, "y", y)
+            raise SolverError('curve abscissae must be strictly increasing')
+        object.__setattr__(self, 'x', x)
+        object.__setattr__(self, 'y', y)
         slope = np.diff(y) / np.diff(x)
         # Work from x[0] to each knot, for the exact integral of the polyline.
         cumulative = np.concatenate(([0.0], np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(x))))
-        object.__setattr__(self, "_slope", slope)
-        object.__setattr__(self, "_cumulative", cumulative)
-        object.__setattr__(self, "_origin", float(self._raw_integral(np.array(0.0))))
+        object.__setattr__(self, '_slope', slope)
+        object.__setattr__(self, '_cumulative', cumulative)
+        object.__setattr__(self, '_origin', float(self._raw_integral(np.array(0.0))))
 
     def _segment(self, u: np.ndarray) -> np.ndarray:
-        return np.clip(np.searchsorted(self.x, u, side="right") - 1, 0, self.x.size - 2)
+        return np.clip(np.searchsorted(self.x, u, side='right') - 1, 0, self.x.size - 2)
 
     def value(self, u: ArrayLike) -> np.ndarray:
-        """y at ``u``."""
+        """Y at ``u``."""
         u = np.asarray(u, dtype=float)
         i = self._segment(u)
         return self.y[i] + self._slope[i] * (u - self.x[i])
@@ -106,7 +108,8 @@ Stiffness = Union[float, Curve]
 
 @dataclass(frozen=True)
 class SpringSpec:
-    """Coil spring acting between the template's spring seats.
+    """
+    Coil spring acting between the template's spring seats.
 
     Give exactly one of ``rate`` (N/m) and ``curve`` (compression force N,
     positive pushing the seats apart, vs compression from the free length m),
@@ -123,15 +126,18 @@ class SpringSpec:
 
 @dataclass(frozen=True)
 class DamperSpec:
-    """Damper force (N, positive resisting compression) vs compression
-    velocity (m/s). Carried for the dynamic models; zero force quasi-statically."""
+    """
+    Damper force (N, positive resisting compression) vs compression
+    velocity (m/s). Carried for the dynamic models; zero force quasi-statically.
+    """
 
     curve: Curve
 
 
 @dataclass(frozen=True)
 class StopSpec:
-    """Bump or rebound stop on the damper line.
+    """
+    Bump or rebound stop on the damper line.
 
     ``clearance`` (m): free travel of the damper length from design before
     contact (compression for the bump stop, extension for the rebound stop).
@@ -144,7 +150,8 @@ class StopSpec:
 
 @dataclass(frozen=True)
 class Bushing:
-    """Six-direction elastic connection replacing an ideal joint.
+    """
+    Six-direction elastic connection replacing an ideal joint.
 
     ``stiffness``: (x, y, z, rx, ry, rz) in the bushing frame, N/m and
     N*m/rad, each a rate or a force-deflection :class:`Curve`.
@@ -160,16 +167,19 @@ class Bushing:
 
 @dataclass(frozen=True)
 class StabilizerSpec:
-    """Torsion anti-roll bar: bar axis through hard point ``arb_pivot``
+    """
+    Torsion anti-roll bar: bar axis through hard point ``arb_pivot``
     parallel to y; drop link from ``arb_link_lower`` (on the part the template
-    names) to ``arb_link_upper`` (end of the bar arm)."""
+    names) to ``arb_link_upper`` (end of the bar arm).
+    """
 
     torsional_stiffness: float  # N*m/rad, twist between the two bar ends
 
 
 @dataclass(frozen=True)
 class SteeringSpec:
-    """Rack and pinion; the tie-rod inner points sit on the rack.
+    """
+    Rack and pinion; the tie-rod inner points sit on the rack.
 
     The rack follows the steering-wheel command through the housing mount
     (``rack_stiffness``) in series with the column twist
@@ -194,7 +204,8 @@ class SteeringSpec:
 
 @dataclass(frozen=True)
 class FlexSpec:
-    """One flexible component (thesis 3.3): a beam frame generated from the
+    """
+    One flexible component (thesis 3.3): a beam frame generated from the
     hard points of the part it replaces, or an imported reduced stiffness.
 
     Beam frame: ``material``, ``section`` (the anti-roll bar's arms may have
@@ -211,12 +222,13 @@ class FlexSpec:
     elements_per_member: int = 1
     arm_section: Section | None = None
     imported: Condensed | None = None
-    source: str = ""
+    source: str = ''
 
 
 @dataclass(frozen=True)
 class SuspensionInput:
-    """One axle's suspension as a K&C rig sees it.
+    """
+    One axle's suspension as a K&C rig sees it.
 
     ``hardpoints``: left-side points (3,) in m by template name (see
     ``templates.TEMPLATES[...].required_points``). ``bushings`` are keyed by the
@@ -255,55 +267,56 @@ class SuspensionInput:
 
 def _positive(value: float | None, what: str) -> None:
     if value is not None and not (np.isfinite(value) and value > 0.0):
-        raise SolverError(f"{what} must be a positive finite number, got {value!r}")
+        raise SolverError(f'{what} must be a positive finite number, got {value!r}')
 
 
 def validate(inp: SuspensionInput) -> None:
-    """Check the scalar data of ``inp``; hard points are checked by the template.
+    """
+    Check the scalar data of ``inp``; hard points are checked by the template.
 
     Raises :class:`SolverError` naming the offending field.
     """
-    if inp.axle not in ("front", "rear"):
+    if inp.axle not in ('front', 'rear'):
         raise SolverError(f"axle must be 'front' or 'rear', got {inp.axle!r}")
     s = inp.spring
     if (s.rate is None) == (s.curve is None):
-        raise SolverError("spring: give exactly one of rate and curve")
+        raise SolverError('spring: give exactly one of rate and curve')
     if s.free_length is not None and s.preload is not None:
-        raise SolverError("spring: give at most one of free_length and preload")
-    _positive(s.rate, "spring rate")
-    _positive(s.free_length, "spring free_length")
-    _positive(inp.tire_radius, "tire_radius")
-    _positive(inp.tire_vertical_stiffness, "tire_vertical_stiffness")
-    _positive(inp.corner_load, "corner_load")
-    for name, stop in (("bump_stop", inp.bump_stop), ("rebound_stop", inp.rebound_stop)):
+        raise SolverError('spring: give at most one of free_length and preload')
+    _positive(s.rate, 'spring rate')
+    _positive(s.free_length, 'spring free_length')
+    _positive(inp.tire_radius, 'tire_radius')
+    _positive(inp.tire_vertical_stiffness, 'tire_vertical_stiffness')
+    _positive(inp.corner_load, 'corner_load')
+    for name, stop in (('bump_stop', inp.bump_stop), ('rebound_stop', inp.rebound_stop)):
         if stop is not None and not (np.isfinite(stop.clearance) and stop.clearance >= 0.0):
-            raise SolverError(f"{name}: clearance must be >= 0 m, got {stop.clearance!r}")
+            raise SolverError(f'{name}: clearance must be >= 0 m, got {stop.clearance!r}')
     if inp.stabilizer is not None:
-        _positive(inp.stabilizer.torsional_stiffness, "stabilizer torsional_stiffness")
+        _positive(inp.stabilizer.torsional_stiffness, 'stabilizer torsional_stiffness')
     if inp.steering is not None:
-        if inp.axle != "front":
-            raise SolverError("steering is modelled on the front axle only")
-        _positive(inp.steering.rack_ratio, "steering rack_ratio")
-        _positive(inp.steering.rack_travel_limit, "steering rack_travel_limit")
-        _positive(inp.steering.rack_stiffness, "steering rack_stiffness")
-        _positive(inp.steering.column_stiffness, "steering column_stiffness")
+        if inp.axle != 'front':
+            raise SolverError('steering is modelled on the front axle only')
+        _positive(inp.steering.rack_ratio, 'steering rack_ratio')
+        _positive(inp.steering.rack_travel_limit, 'steering rack_travel_limit')
+        _positive(inp.steering.rack_stiffness, 'steering rack_stiffness')
+        _positive(inp.steering.column_stiffness, 'steering column_stiffness')
     for name, bushing in inp.bushings.items():
         if len(bushing.stiffness) != 6:
-            raise SolverError(f"bushing {name!r}: six stiffnesses (x, y, z, rx, ry, rz) needed")
+            raise SolverError(f'bushing {name!r}: six stiffnesses (x, y, z, rx, ry, rz) needed')
         for k in bushing.stiffness:
             # Zero is allowed: a bushing may be free about its own axis.
             if not isinstance(k, Curve) and not (np.isfinite(k) and k >= 0.0):
-                raise SolverError(f"bushing {name!r}: stiffness must be >= 0, got {k!r}")
+                raise SolverError(f'bushing {name!r}: stiffness must be >= 0, got {k!r}')
     for name, mass in inp.masses.items():
         if not (np.isfinite(mass) and mass >= 0.0):
-            raise SolverError(f"mass {name!r} must be >= 0 kg, got {mass!r}")
+            raise SolverError(f'mass {name!r} must be >= 0 kg, got {mass!r}')
     for name, spec in inp.flexible.items():
         if spec.imported is None and (spec.material is None or spec.section is None):
-            raise SolverError(f"flexible component {name!r}: give a material and a section, "
-                              "or an imported stiffness")
-    for name, value in (("camber", inp.camber), ("toe", inp.toe)):
+            raise SolverError(f'flexible component {name!r}: give a material and a section, '
+                              'or an imported stiffness')
+    for name, value in (('camber', inp.camber), ('toe', inp.toe)):
         if not (np.isfinite(value) and abs(value) < 0.5):
-            raise SolverError(f"{name} must be a finite angle in rad below 0.5, got {value!r}")
+            raise SolverError(f'{name} must be a finite angle in rad below 0.5, got {value!r}')
 
 
 def without_bar(inp: SuspensionInput) -> SuspensionInput:
@@ -311,4 +324,4 @@ def without_bar(inp: SuspensionInput) -> SuspensionInput:
     from dataclasses import replace
 
     return replace(inp, stabilizer=None,
-                   flexible={k: v for k, v in inp.flexible.items() if k != "anti_roll_bar"})
+                   flexible={k: v for k, v in inp.flexible.items() if k != 'anti_roll_bar'})

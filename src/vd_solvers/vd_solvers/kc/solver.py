@@ -1,4 +1,5 @@
-"""Static equilibrium of the axle on the K&C rig: Newton on the KKT system.
+"""
+Static equilibrium of the axle on the K&C rig: Newton on the KKT system.
 
 For a load case the rig imposes (pad heights, applied forces, rack travel)
 find poses q and multipliers lambda with
@@ -47,8 +48,10 @@ SINGULAR_PIVOT_RATIO = 1e-13  # smallest/largest LU pivot of the scaled KKT matr
 
 @dataclass(frozen=True)
 class Convergence:
-    """How one load case converged: Newton iterations, max |g| (m) and max
-    force-balance residual (N or N*m)."""
+    """
+    How one load case converged: Newton iterations, max |g| (m) and max
+    force-balance residual (N or N*m).
+    """
 
     iterations: int
     constraint_residual: float
@@ -78,13 +81,14 @@ def _rotation_angle(r_new: np.ndarray, r_old: np.ndarray) -> float:
     """Largest rotation angle (rad) between two pose sets (n, 3, 3)."""
     if r_new.shape[0] == 0:
         return 0.0
-    rel = np.einsum("nij,nkj->nik", r_new, r_old)
+    rel = np.einsum('nij,nkj->nik', r_new, r_old)
     cos = np.clip((np.trace(rel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
     return float(np.max(np.arccos(cos)))
 
 
 def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluation, Convergence]:
-    """Equilibrium for ``load`` from the initial guess ``state`` (not modified).
+    """
+    Equilibrium for ``load`` from the initial guess ``state`` (not modified).
 
     Raises _StepFailure with the reason when it does not converge.
     """
@@ -117,8 +121,8 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
         pivots = np.abs(np.diag(lu))
         if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
             raise _StepFailure(
-                "singular equilibrium equations: the mechanism is locked (at a "
-                "singular position) or a part is unrestrained"
+                'singular equilibrium equations: the mechanism is locked (at a '
+                'singular position) or a part is unrestrained'
             )
         sol = scipy.linalg.lu_solve((lu, piv), rhs, check_finite=False)
         dq = sol[:n].reshape(-1, 6)
@@ -129,7 +133,7 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
         )
         dq = dq / longest
         state.p = state.p + dq[:, :3]
-        state.R = np.einsum("nij,njk->nik", rotation_vectors_to_matrices(dq[:, 3:]), state.R)
+        state.R = np.einsum('nij,njk->nik', rotation_vectors_to_matrices(dq[:, 3:]), state.R)
         state.lam = s * sol[n:]
     raise _StepFailure(
         f"no equilibrium after {MAX_NEWTON_ITERATIONS} Newton iterations (max |g| = "
@@ -141,12 +145,14 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
 def solve_static(
     system: System, load: LoadCase, describe: str, start: State | None = None
 ) -> tuple[State, Evaluation, Convergence]:
-    """Equilibrium for ``load`` from ``start`` (default: the design pose);
-    SolverError prefixed with ``describe`` when there is none."""
+    """
+    Equilibrium for ``load`` from ``start`` (default: the design pose);
+    SolverError prefixed with ``describe`` when there is none.
+    """
     try:
         return newton(system, system.design_state() if start is None else start, load)
     except _StepFailure as failure:
-        raise SolverError(f"{describe}: {failure}") from None
+        raise SolverError(f'{describe}: {failure}') from None
 
 
 @dataclass(frozen=True)
@@ -165,7 +171,8 @@ def solve_path(
     describe: Callable[[int], str],
     on_step: Callable[[int, int], None] | None = None,
 ) -> Solution:
-    """Equilibria of ``cases`` by continuation from the design state.
+    """
+    Equilibria of ``cases`` by continuation from the design state.
 
     The walk starts at ``cases[start]`` (the one nearest the design load) and
     runs outward in both directions. ``describe(i)`` names step i in errors;
@@ -196,11 +203,11 @@ def solve_path(
 
 def _extrapolate(before: State, state: State) -> State:
     """Linear predictor: repeat the increment from ``before`` to ``state``."""
-    turn = np.einsum("nij,nkj->nik", state.R, before.R)  # world-frame increments
+    turn = np.einsum('nij,nkj->nik', state.R, before.R)  # world-frame increments
     # Project back onto rotations: repeated products would otherwise grow
     # round-off away from orthonormality (a Newton step that converges at
     # once keeps its guess).
-    u, _, vt = np.linalg.svd(np.einsum("nij,njk->nik", turn, state.R))
+    u, _, vt = np.linalg.svd(np.einsum('nij,njk->nik', turn, state.R))
     return State(2.0 * state.p - before.p, u @ vt, 2.0 * state.lam - before.lam)
 
 
@@ -214,8 +221,10 @@ def _advance(
     step: int,
     describe: Callable[[int], str],
 ) -> tuple[State, Evaluation, Convergence]:
-    """Solve ``target`` from the solution ``state`` of ``previous`` (first
-    from the predicted ``guess`` if any), halving the load step on failure."""
+    """
+    Solve ``target`` from the solution ``state`` of ``previous`` (first
+    from the predicted ``guess`` if any), halving the load step on failure.
+    """
     for start in (guess, state):
         if start is None:
             continue
@@ -226,9 +235,9 @@ def _advance(
             continue
         if _rotation_angle(new.R, state.R) <= MAX_STEP_ROTATION:
             return new, ev, c
-        reason = "a part rotated too far in one step (possible branch jump)"
+        reason = 'a part rotated too far in one step (possible branch jump)'
     if depth >= MAX_SUBDIVISIONS:
-        raise SolverError(f"{describe(step)}: {reason}")
+        raise SolverError(f'{describe(step)}: {reason}')
     middle = previous.blend(target, 0.5)
     half, _, _ = _advance(system, state, None, previous, middle, depth + 1, step, describe)
     return _advance(system, half, None, middle, target, depth + 1, step, describe)

@@ -1,4 +1,5 @@
-"""Suspension templates: topology of one (left) corner by hard-point names.
+"""
+Suspension templates: topology of one (left) corner by hard-point names.
 
 A template names its parts, the ideal joints between them, the massless
 two-force links, where the spring and damper act, which part carries the
@@ -22,11 +23,11 @@ import numpy as np
 
 from .joints import GROUND, JointKind
 
-STEERING = "steering"  # the rack on a steered axle, else the body
+STEERING = 'steering'  # the rack on a steered axle, else the body
 
-ARB_POINTS: tuple[str, ...] = ("arb_link_lower", "arb_link_upper", "arb_pivot")
+ARB_POINTS: tuple[str, ...] = ('arb_link_lower', 'arb_link_upper', 'arb_pivot')
 #: body mounts of a flexible subframe (left side; mirrored)
-SUBFRAME_POINTS: tuple[str, ...] = ("subframe_front", "subframe_rear")
+SUBFRAME_POINTS: tuple[str, ...] = ('subframe_front', 'subframe_rear')
 
 
 @dataclass(frozen=True)
@@ -39,10 +40,12 @@ class PartDef:
 
 @dataclass(frozen=True)
 class JointDef:
-    """Ideal joint at hard point ``point`` (its connection key) between
+    """
+    Ideal joint at hard point ``point`` (its connection key) between
     ``inboard`` and ``outboard``; ``axis`` = (from, to) hard points giving the
     joint axis (in-line, cylindrical) or, for a universal joint, the link
-    direction its default cross is perpendicular to."""
+    direction its default cross is perpendicular to.
+    """
 
     kind: JointKind
     point: str
@@ -73,8 +76,10 @@ class LineDef:
 
 @dataclass(frozen=True)
 class Topology:
-    """One corner's topology; ``tracked`` maps reported hard points to the part
-    whose motion they follow (default: the part listing them first)."""
+    """
+    One corner's topology; ``tracked`` maps reported hard points to the part
+    whose motion they follow (default: the part listing them first).
+    """
 
     parts: tuple[PartDef, ...]
     joints: tuple[JointDef, ...]
@@ -82,7 +87,7 @@ class Topology:
     spring: LineDef
     damper: LineDef
     arb_part: str
-    wheel_part: str = "upright"
+    wheel_part: str = 'upright'
     tracked: Mapping[str, str] = field(default_factory=dict)
     #: beam members of each part when it is made flexible (pairs of its hard points);
     #: links are one member from inboard to outboard point
@@ -93,7 +98,7 @@ class Topology:
     def flexible_components(self, with_bar: bool) -> tuple[str, ...]:
         """Names that may be made flexible: parts, links, the anti-roll bar, the subframe."""
         names = tuple(p.name for p in self.parts) + tuple(link.name for link in self.links)
-        return names + (("anti_roll_bar",) if with_bar else ()) + ("subframe",)
+        return names + (('anti_roll_bar',) if with_bar else ()) + ('subframe',)
 
 
 class SuspensionTemplate(Protocol):
@@ -107,23 +112,25 @@ class SuspensionTemplate(Protocol):
         ...
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-        """Upper and lower points (n, 3) of the steering axis from the
-        current hard-point positions ``points`` (name -> (n, 3))."""
+        """
+        Upper and lower points (n, 3) of the steering axis from the
+        current hard-point positions ``points`` (name -> (n, 3)).
+        """
         ...
 
 
 def _arm(prefix: str, part: str, outer_part: str) -> tuple[JointDef, ...]:
     """An A-arm: revolute on the body (sphere + in-line), ball joint outboard."""
-    front, rear, outer = f"{prefix}_front", f"{prefix}_rear", f"{prefix}_outer"
+    front, rear, outer = f'{prefix}_front', f'{prefix}_rear', f'{prefix}_outer'
     return (
-        JointDef("spherical", front, GROUND, part),
-        JointDef("inline", rear, GROUND, part, axis=(front, rear)),
-        JointDef("spherical", outer, part, outer_part),
+        JointDef('spherical', front, GROUND, part),
+        JointDef('inline', rear, GROUND, part, axis=(front, rear)),
+        JointDef('spherical', outer, part, outer_part),
     )
 
 
 def _arm_frame(prefix: str) -> tuple[tuple[str, str], ...]:
-    return ((f"{prefix}_front", f"{prefix}_outer"), (f"{prefix}_rear", f"{prefix}_outer"))
+    return ((f'{prefix}_front', f'{prefix}_outer'), (f'{prefix}_rear', f'{prefix}_outer'))
 
 
 def _star(centre: str, *points: str) -> tuple[tuple[str, str], ...]:
@@ -142,41 +149,43 @@ def _closest_point(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarra
 
 
 class DoubleWishbone:
-    """Upper and lower A-arms, tie rod; spring and damper on the lower arm.
+    """
+    Upper and lower A-arms, tie rod; spring and damper on the lower arm.
 
     Steering (kingpin) axis: through the two outer ball joints.
     """
 
-    name = "double_wishbone"
+    name = 'double_wishbone'
     required_points = (
-        "uca_front", "uca_rear", "uca_outer", "lca_front", "lca_rear", "lca_outer",
-        "tierod_inner", "tierod_outer", "spring_upper", "spring_lower",
-        "damper_upper", "damper_lower", "wheel_centre",
+        'uca_front', 'uca_rear', 'uca_outer', 'lca_front', 'lca_rear', 'lca_outer',
+        'tierod_inner', 'tierod_outer', 'spring_upper', 'spring_lower',
+        'damper_upper', 'damper_lower', 'wheel_centre',
     )
 
     def topology(self) -> Topology:
         return Topology(
             parts=(
-                PartDef("upright", ("uca_outer", "lca_outer", "tierod_outer", "wheel_centre")),
-                PartDef("lca", ("lca_front", "lca_rear", "lca_outer")),
-                PartDef("uca", ("uca_front", "uca_rear", "uca_outer")),
+                PartDef('upright', ('uca_outer', 'lca_outer', 'tierod_outer', 'wheel_centre')),
+                PartDef('lca', ('lca_front', 'lca_rear', 'lca_outer')),
+                PartDef('uca', ('uca_front', 'uca_rear', 'uca_outer')),
             ),
-            joints=_arm("lca", "lca", "upright") + _arm("uca", "uca", "upright"),
-            links=(LinkDef("tierod", "tierod_inner", STEERING, "tierod_outer", "upright"),),
-            spring=LineDef("spring_upper", "spring_lower", "lca"),
-            damper=LineDef("damper_upper", "damper_lower", "lca"),
-            arb_part="lca",
-            frames={"upright": _star("wheel_centre", "uca_outer", "lca_outer", "tierod_outer"),
-                    "lca": _arm_frame("lca"), "uca": _arm_frame("uca")},
-            subframe_points=("lca_front", "lca_rear"),
+            joints=_arm('lca', 'lca', 'upright') + _arm('uca', 'uca', 'upright'),
+            links=(LinkDef('tierod', 'tierod_inner', STEERING, 'tierod_outer', 'upright'),),
+            spring=LineDef('spring_upper', 'spring_lower', 'lca'),
+            damper=LineDef('damper_upper', 'damper_lower', 'lca'),
+            arb_part='lca',
+            frames={'upright': _star('wheel_centre', 'uca_outer', 'lca_outer', 'tierod_outer'),
+                    'lca': _arm_frame('lca'), 'uca': _arm_frame('uca')},
+            subframe_points=('lca_front', 'lca_rear'),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-        return points["uca_outer"], points["lca_outer"]
+        return points['uca_outer'], points['lca_outer']
 
 
 class MacPherson:
-    """Lower A-arm, tie rod and strut: the strut rod hangs from the body on a
+    """
+    Lower A-arm, tie rod and strut: the strut rod hangs from the body on a
     universal joint at ``strut_top`` (the top mount; the joint only stops the
     rod's spin) and slides in the upright's tube (cylindrical joint along
     strut_top -> strut_lower). Spring and damper act along the strut.
@@ -184,40 +193,41 @@ class MacPherson:
     Steering axis: top mount to lower ball joint.
     """
 
-    name = "macpherson"
+    name = 'macpherson'
     required_points = (
-        "lca_front", "lca_rear", "lca_outer", "tierod_inner", "tierod_outer",
-        "strut_top", "strut_lower", "wheel_centre",
+        'lca_front', 'lca_rear', 'lca_outer', 'tierod_inner', 'tierod_outer',
+        'strut_top', 'strut_lower', 'wheel_centre',
     )
 
     def topology(self) -> Topology:
         return Topology(
             parts=(
-                PartDef("upright", ("lca_outer", "tierod_outer", "strut_lower", "wheel_centre")),
-                PartDef("lca", ("lca_front", "lca_rear", "lca_outer")),
-                PartDef("strut", ("strut_top", "strut_lower")),
+                PartDef('upright', ('lca_outer', 'tierod_outer', 'strut_lower', 'wheel_centre')),
+                PartDef('lca', ('lca_front', 'lca_rear', 'lca_outer')),
+                PartDef('strut', ('strut_top', 'strut_lower')),
             ),
-            joints=_arm("lca", "lca", "upright")
+            joints=_arm('lca', 'lca', 'upright')
             + (
-                JointDef("universal", "strut_top", GROUND, "strut", axis=("strut_top", "strut_lower")),
-                JointDef("cylindrical", "strut_lower", "strut", "upright", axis=("strut_lower", "strut_top")),
+                JointDef('universal', 'strut_top', GROUND, 'strut', axis=('strut_top', 'strut_lower')),
+                JointDef('cylindrical', 'strut_lower', 'strut', 'upright', axis=('strut_lower', 'strut_top')),
             ),
-            links=(LinkDef("tierod", "tierod_inner", STEERING, "tierod_outer", "upright"),),
-            spring=LineDef("strut_top", "strut_lower", "upright"),
-            damper=LineDef("strut_top", "strut_lower", "upright"),
-            arb_part="upright",
-            tracked={"strut_top": "strut"},
-            frames={"upright": _star("wheel_centre", "lca_outer", "tierod_outer", "strut_lower"),
-                    "lca": _arm_frame("lca"), "strut": (("strut_top", "strut_lower"),)},
-            subframe_points=("lca_front", "lca_rear"),
+            links=(LinkDef('tierod', 'tierod_inner', STEERING, 'tierod_outer', 'upright'),),
+            spring=LineDef('strut_top', 'strut_lower', 'upright'),
+            damper=LineDef('strut_top', 'strut_lower', 'upright'),
+            arb_part='upright',
+            tracked={'strut_top': 'strut'},
+            frames={'upright': _star('wheel_centre', 'lca_outer', 'tierod_outer', 'strut_lower'),
+                    'lca': _arm_frame('lca'), 'strut': (('strut_top', 'strut_lower'),)},
+            subframe_points=('lca_front', 'lca_rear'),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-        return points["strut_top"], points["lca_outer"]
+        return points['strut_top'], points['lca_outer']
 
 
 class MultiLink:
-    """Five-link (as Chrono's MultiLink): upper A-arm (two links on one ball
+    """
+    Five-link (as Chrono's MultiLink): upper A-arm (two links on one ball
     joint), lateral link, trailing link (universal joint on the body; carries
     spring, damper and bar link) and tie rod.
 
@@ -225,55 +235,55 @@ class MultiLink:
     of the common perpendicular of the lateral and trailing link lines.
     """
 
-    name = "multilink"
+    name = 'multilink'
     required_points = (
-        "upper_front", "upper_rear", "upper_outer", "lateral_inner", "lateral_outer",
-        "trailing_inner", "trailing_outer", "tierod_inner", "tierod_outer",
-        "spring_upper", "spring_lower", "damper_upper", "damper_lower", "wheel_centre",
+        'upper_front', 'upper_rear', 'upper_outer', 'lateral_inner', 'lateral_outer',
+        'trailing_inner', 'trailing_outer', 'tierod_inner', 'tierod_outer',
+        'spring_upper', 'spring_lower', 'damper_upper', 'damper_lower', 'wheel_centre',
     )
 
     def topology(self) -> Topology:
         return Topology(
             parts=(
                 PartDef(
-                    "upright",
-                    ("upper_outer", "lateral_outer", "trailing_outer", "tierod_outer", "wheel_centre"),
+                    'upright',
+                    ('upper_outer', 'lateral_outer', 'trailing_outer', 'tierod_outer', 'wheel_centre'),
                 ),
-                PartDef("upper_arm", ("upper_front", "upper_rear", "upper_outer")),
-                PartDef("trailing_link", ("trailing_inner", "trailing_outer")),
+                PartDef('upper_arm', ('upper_front', 'upper_rear', 'upper_outer')),
+                PartDef('trailing_link', ('trailing_inner', 'trailing_outer')),
             ),
-            joints=_arm("upper", "upper_arm", "upright")
+            joints=_arm('upper', 'upper_arm', 'upright')
             + (
                 JointDef(
-                    "universal", "trailing_inner", GROUND, "trailing_link",
-                    axis=("trailing_inner", "trailing_outer"),
+                    'universal', 'trailing_inner', GROUND, 'trailing_link',
+                    axis=('trailing_inner', 'trailing_outer'),
                 ),
-                JointDef("spherical", "trailing_outer", "trailing_link", "upright"),
+                JointDef('spherical', 'trailing_outer', 'trailing_link', 'upright'),
             ),
             links=(
-                LinkDef("lateral_link", "lateral_inner", GROUND, "lateral_outer", "upright"),
-                LinkDef("tierod", "tierod_inner", STEERING, "tierod_outer", "upright"),
+                LinkDef('lateral_link', 'lateral_inner', GROUND, 'lateral_outer', 'upright'),
+                LinkDef('tierod', 'tierod_inner', STEERING, 'tierod_outer', 'upright'),
             ),
-            spring=LineDef("spring_upper", "spring_lower", "trailing_link"),
-            damper=LineDef("damper_upper", "damper_lower", "trailing_link"),
-            arb_part="trailing_link",
-            frames={"upright": _star("wheel_centre", "upper_outer", "lateral_outer",
-                                     "trailing_outer", "tierod_outer"),
-                    "upper_arm": _arm_frame("upper"),
-                    "trailing_link": (("trailing_inner", "trailing_outer"),)},
-            subframe_points=("upper_front", "lateral_inner", "upper_rear", "tierod_inner"),
+            spring=LineDef('spring_upper', 'spring_lower', 'trailing_link'),
+            damper=LineDef('damper_upper', 'damper_lower', 'trailing_link'),
+            arb_part='trailing_link',
+            frames={'upright': _star('wheel_centre', 'upper_outer', 'lateral_outer',
+                                     'trailing_outer', 'tierod_outer'),
+                    'upper_arm': _arm_frame('upper'),
+                    'trailing_link': (('trailing_inner', 'trailing_outer'),)},
+            subframe_points=('upper_front', 'lateral_inner', 'upper_rear', 'tierod_inner'),
         )
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         lower = _closest_point(
-            points["lateral_inner"], points["lateral_outer"],
-            points["trailing_inner"], points["trailing_outer"],
+            points['lateral_inner'], points['lateral_outer'],
+            points['trailing_inner'], points['trailing_outer'],
         )
-        return points["upper_outer"], lower
+        return points['upper_outer'], lower
 
 
 TEMPLATES: dict[str, SuspensionTemplate] = {
-    "macpherson": MacPherson(),
-    "double_wishbone": DoubleWishbone(),
-    "multilink": MultiLink(),
+    'macpherson': MacPherson(),
+    'double_wishbone': DoubleWishbone(),
+    'multilink': MultiLink(),
 }

@@ -1,4 +1,5 @@
-"""Fit the thesis' simple tire (eqs. 6-9) to a PAC2002 Magic Formula.
+"""
+Fit the thesis' simple tire (eqs. 6-9) to a PAC2002 Magic Formula.
 
 Over ``n`` loads evenly spread across ``fz_range``, with the reference load
 fz0 = the middle of the range (so the linear load terms are centred where the
@@ -37,7 +38,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.tire.simple import SimpleTire
 
-__all__ = ["fit_simple_tire"]
+__all__ = ['fit_simple_tire']
 
 # Two unknowns per fitted line need at least two loads.
 _MIN_POINTS: Final[int] = 2
@@ -47,9 +48,9 @@ def fit_simple_tire(mf: MagicFormula, fz_range: tuple[float, float], n: int = 20
     """SimpleTire fitted to ``mf`` over loads ``fz_range`` = (low, high), N (see module doc)."""
     low, high = (float(v) for v in fz_range)
     if not 0.0 < low < high:
-        raise ValueError(f"fz_range must satisfy 0 < low < high, got {fz_range!r}")
+        raise ValueError(f'fz_range must satisfy 0 < low < high, got {fz_range!r}')
     if n < _MIN_POINTS:
-        raise ValueError(f"n must be at least {_MIN_POINTS}, got {n}")
+        raise ValueError(f'n must be at least {_MIN_POINTS}, got {n}')
     fz = np.linspace(low, high, n)
     fz0 = 0.5 * (low + high)
     dfz = fz - fz0
@@ -75,8 +76,8 @@ def fit_simple_tire(mf: MagicFormula, fz_range: tuple[float, float], n: int = 20
         c1=float(c0_c1 / c0),
         shape=mf.lateral_shape_factor,
         curvature=float(mf.lateral_curvature(fz0)),
-        source=f"{name} ({mf.props.file_format}): exact at Fz {fz0:g} N, slopes fitted over "
-        f"{low:g}..{high:g} N, n={n}",
+        source=f'{name} ({mf.props.file_format}): exact at Fz {fz0:g} N, slopes fitted over '
+        f'{low:g}..{high:g} N, n={n}',
     )
 
 

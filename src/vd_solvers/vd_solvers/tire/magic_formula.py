@@ -1,4 +1,5 @@
-"""PAC2002 (MF-Tyre 5.2) Magic Formula: pure and combined slip, moments, radii, relaxation.
+"""
+PAC2002 (MF-Tyre 5.2) Magic Formula: pure and combined slip, moments, radii, relaxation.
 
 Equations: Pacejka, "Tire and Vehicle Dynamics", 3rd ed., sec. 4.3.2,
 eqs. (4.E1)-(4.E30), in the PAC2002 / MF-Tyre 5.2 form used by Adams
@@ -106,47 +107,47 @@ from vd_data_server.errors import DataError
 from vd_data_server.tir import TireProperties
 from vd_solvers.errors import SolverError
 
-__all__ = ["MagicFormula", "TireForces"]
+__all__ = ['MagicFormula', 'TireForces']
 
 # Formats whose pure-slip equations are the PAC2002 ones above.
-_SUPPORTED_FORMATS: Final[frozenset[str]] = frozenset({"PAC2002", "MF52"})
+_SUPPORTED_FORMATS: Final[frozenset[str]] = frozenset({'PAC2002', 'MF52'})
 # Coefficients used here, per block; absent ones are 0 (MF-Tyre default).
 _COEFFICIENTS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
     {
-        "LONGITUDINAL_COEFFICIENTS": (
-            "PCX1", "PDX1", "PDX2", "PDX3", "PEX1", "PEX2", "PEX3", "PEX4",
-            "PKX1", "PKX2", "PKX3", "PHX1", "PHX2", "PVX1", "PVX2",
+        'LONGITUDINAL_COEFFICIENTS': (
+            'PCX1', 'PDX1', 'PDX2', 'PDX3', 'PEX1', 'PEX2', 'PEX3', 'PEX4',
+            'PKX1', 'PKX2', 'PKX3', 'PHX1', 'PHX2', 'PVX1', 'PVX2',
         ),
-        "LATERAL_COEFFICIENTS": (
-            "PCY1", "PDY1", "PDY2", "PDY3", "PEY1", "PEY2", "PEY3", "PEY4",
-            "PKY1", "PKY2", "PKY3", "PHY1", "PHY2", "PHY3", "PVY1", "PVY2", "PVY3", "PVY4",
+        'LATERAL_COEFFICIENTS': (
+            'PCY1', 'PDY1', 'PDY2', 'PDY3', 'PEY1', 'PEY2', 'PEY3', 'PEY4',
+            'PKY1', 'PKY2', 'PKY3', 'PHY1', 'PHY2', 'PHY3', 'PVY1', 'PVY2', 'PVY3', 'PVY4',
         ),
     }
 )  # fmt: skip
 # Combined slip, moments and transient coefficients (block, name); absent ones are 0.
 _MORE_COEFFICIENTS: Final[tuple[tuple[str, tuple[str, ...]], ...]] = (
-    ("LONGITUDINAL_COEFFICIENTS", ("RBX1", "RBX2", "RCX1", "REX1", "REX2", "RHX1",
-                                   "PTX1", "PTX2", "PTX3")),
-    ("LATERAL_COEFFICIENTS", ("RBY1", "RBY2", "RBY3", "RCY1", "REY1", "REY2", "RHY1", "RHY2",
-                              "RVY1", "RVY2", "RVY3", "RVY4", "RVY5", "RVY6", "PTY1", "PTY2")),
-    ("ALIGNING_COEFFICIENTS", ("QBZ1", "QBZ2", "QBZ3", "QBZ4", "QBZ5", "QBZ9", "QBZ10", "QCZ1",
-                               "QDZ1", "QDZ2", "QDZ3", "QDZ4", "QDZ6", "QDZ7", "QDZ8", "QDZ9",
-                               "QEZ1", "QEZ2", "QEZ3", "QEZ4", "QEZ5",
-                               "QHZ1", "QHZ2", "QHZ3", "QHZ4", "SSZ1", "SSZ2", "SSZ3", "SSZ4")),
-    ("OVERTURNING_COEFFICIENTS", ("QSX1", "QSX2", "QSX3")),
-    ("ROLLING_COEFFICIENTS", ("QSY1", "QSY2", "QSY3", "QSY4")),
-    ("VERTICAL", ("BREFF", "DREFF", "FREFF", "VERTICAL_DAMPING")),
+    ('LONGITUDINAL_COEFFICIENTS', ('RBX1', 'RBX2', 'RCX1', 'REX1', 'REX2', 'RHX1',
+                                   'PTX1', 'PTX2', 'PTX3')),
+    ('LATERAL_COEFFICIENTS', ('RBY1', 'RBY2', 'RBY3', 'RCY1', 'REY1', 'REY2', 'RHY1', 'RHY2',
+                              'RVY1', 'RVY2', 'RVY3', 'RVY4', 'RVY5', 'RVY6', 'PTY1', 'PTY2')),
+    ('ALIGNING_COEFFICIENTS', ('QBZ1', 'QBZ2', 'QBZ3', 'QBZ4', 'QBZ5', 'QBZ9', 'QBZ10', 'QCZ1',
+                               'QDZ1', 'QDZ2', 'QDZ3', 'QDZ4', 'QDZ6', 'QDZ7', 'QDZ8', 'QDZ9',
+                               'QEZ1', 'QEZ2', 'QEZ3', 'QEZ4', 'QEZ5',
+                               'QHZ1', 'QHZ2', 'QHZ3', 'QHZ4', 'SSZ1', 'SSZ2', 'SSZ3', 'SSZ4')),
+    ('OVERTURNING_COEFFICIENTS', ('QSX1', 'QSX2', 'QSX3')),
+    ('ROLLING_COEFFICIENTS', ('QSY1', 'QSY2', 'QSY3', 'QSY4')),
+    ('VERTICAL', ('BREFF', 'DREFF', 'FREFF', 'VERTICAL_DAMPING')),
 )  # fmt: skip
 # Scaling factors used here; absent ones are 1 (MF-Tyre default).
 _SCALING_FACTORS: Final[tuple[str, ...]] = (
-    "LFZO", "LCX", "LMUX", "LEX", "LKX", "LHX", "LVX", "LGAX",
-    "LCY", "LMUY", "LEY", "LKY", "LHY", "LVY", "LGAY",
-    "LTR", "LRES", "LGAZ", "LXAL", "LYKA", "LVYKA", "LS", "LSGKP", "LSGAL", "LMX", "LVMX", "LMY",
+    'LFZO', 'LCX', 'LMUX', 'LEX', 'LKX', 'LHX', 'LVX', 'LGAX',
+    'LCY', 'LMUY', 'LEY', 'LKY', 'LHY', 'LVY', 'LGAY',
+    'LTR', 'LRES', 'LGAZ', 'LXAL', 'LYKA', 'LVYKA', 'LS', 'LSGKP', 'LSGAL', 'LMX', 'LVMX', 'LMY',
 )  # fmt: skip
 # E <= 1 (Pacejka 4.E14, 4.E24): beyond it B x - E (B x - atan B x) falls again
 # at large x and the curve loses its single peak.
 _MAX_CURVATURE: Final[float] = 1.0
-_SIDES: Final[tuple[str, ...]] = ("LEFT", "RIGHT")
+_SIDES: Final[tuple[str, ...]] = ('LEFT', 'RIGHT')
 # Loads (x the scaled nominal load) and slips at which a tire must give finite forces.
 _CHECK_LOADS: Final[tuple[float, ...]] = (0.1, 0.5, 1.0, 2.0, 3.0)
 _CHECK_SLIPS: Final[tuple[float, ...]] = (-0.5, -0.05, 0.0, 0.05, 0.5)
@@ -174,7 +175,7 @@ class _Trail:
     sh: np.ndarray
 
     def trail(self, alpha_t: np.ndarray, alpha: np.ndarray) -> np.ndarray:
-        """t at the (equivalent) trail slip angle alpha_t, m; cos(alpha) of the true slip angle."""
+        """T at the (equivalent) trail slip angle alpha_t, m; cos(alpha) of the true slip angle."""
         bx = self.b * alpha_t
         e = np.minimum(self.e_even * (1.0 + self.e_odd * (2.0 / np.pi) * np.arctan(bx * self.c)),
                        _MAX_CURVATURE)
@@ -183,7 +184,8 @@ class _Trail:
 
 @dataclass(frozen=True)
 class _Curve:
-    """Factors of one pure-slip curve F(x) = D sin(C atan(B x - E (B x - atan B x))) + SV.
+    """
+    Factors of one pure-slip curve F(x) = D sin(C atan(B x - E (B x - atan B x))) + SV.
 
     E = min(e_even (1 - e_odd sgn(x)), 1) with x = slip + SH.
     """
@@ -219,7 +221,8 @@ class _Curve:
 
 @dataclass(frozen=True)
 class MagicFormula:
-    """Steady-state pure-slip PAC2002 forces of one tire (see module doc).
+    """
+    Steady-state pure-slip PAC2002 forces of one tire (see module doc).
 
     All methods broadcast their array arguments and return arrays. Loads are in
     N, angles in rad; a wheel with Fz <= 0 is off the ground and carries no force.
@@ -234,38 +237,40 @@ class MagicFormula:
         props = self.props
         if props.file_format not in _SUPPORTED_FORMATS:
             raise SolverError(
-                f"{props.path}: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is {props.file_format}"
+                f'{props.path}: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is {props.file_format}'
             )
         coefficients = {
             name: props.number(block, name, 0.0) for block, names in _COEFFICIENTS.items() for name in names
         }
         coefficients.update({name: props.number(block, name, 0.0)
                              for block, names in _MORE_COEFFICIENTS for name in names})
-        coefficients.update({name: props.number("SCALING_COEFFICIENTS", name, 1.0) for name in _SCALING_FACTORS})
-        coefficients["R0"] = props.unloaded_radius
-        coefficients["FNOMIN"] = props.fnomin
-        coefficients["CZ"] = props.number("VERTICAL", "VERTICAL_STIFFNESS", 0.0)
-        coefficients["LONGVL"] = props.number("MODEL", "LONGVL", 0.0)
+        coefficients.update({name: props.number('SCALING_COEFFICIENTS', name, 1.0) for name in _SCALING_FACTORS})
+        coefficients['R0'] = props.unloaded_radius
+        coefficients['FNOMIN'] = props.fnomin
+        coefficients['CZ'] = props.number('VERTICAL', 'VERTICAL_STIFFNESS', 0.0)
+        coefficients['LONGVL'] = props.number('MODEL', 'LONGVL', 0.0)
         # LFZO > 0 and the divisors != 0 are checked where the properties are read
         # (vd_data_server.tir.check_values), so `vd data check` refuses what a run would
-        coefficients["FZ0_PRIME"] = props.fnomin * coefficients["LFZO"]
+        coefficients['FZ0_PRIME'] = props.fnomin * coefficients['LFZO']
         # Frozen dataclass: derived fields are set once, here.
-        object.__setattr__(self, "_c", MappingProxyType(coefficients))
-        object.__setattr__(self, "_mirror", -1.0 if self._mirrored() else 1.0)
+        object.__setattr__(self, '_c', MappingProxyType(coefficients))
+        object.__setattr__(self, '_mirror', -1.0 if self._mirrored() else 1.0)
         self._check_finite()
 
     def _check_finite(self) -> None:
-        """Forces and stiffness must be finite over the working range: coefficients that
-        are finite one by one can still overflow together (PKX3 = 3000 in exp(PKX3 dfz))."""
+        """
+        Forces and stiffness must be finite over the working range: coefficients that
+        are finite one by one can still overflow together (PKX3 = 3000 in exp(PKX3 dfz)).
+        """
         fz = self.nominal_load * np.array(_CHECK_LOADS)
         slip = np.array(_CHECK_SLIPS)[:, None]
-        with np.errstate(all="ignore"):
+        with np.errstate(all='ignore'):
             values = (self.fy(fz, slip), self.fx(fz, slip), self.cornering_stiffness(fz))
-        for name, value in zip(("Fy", "Fx", "cornering stiffness"), values):
+        for name, value in zip(('Fy', 'Fx', 'cornering stiffness'), values):
             if not np.all(np.isfinite(value)):
                 raise DataError(
-                    f"the Magic Formula gives a non-finite {name} within {_CHECK_LOADS[0]:g}.."
-                    f"{_CHECK_LOADS[-1]:g} x the nominal load: coefficients out of range",
+                    f'the Magic Formula gives a non-finite {name} within {_CHECK_LOADS[0]:g}..'
+                    f'{_CHECK_LOADS[-1]:g} x the nominal load: coefficients out of range',
                     file=self.props.path,
                 )
 
@@ -276,24 +281,24 @@ class MagicFormula:
         wanted = self.side.upper()
         if wanted not in _SIDES:
             raise ValueError(f"side must be 'LEFT' or 'RIGHT', got {self.side!r}")
-        measured = self.props.get("MODEL", "TYRESIDE")
+        measured = self.props.get('MODEL', 'TYRESIDE')
         if not isinstance(measured, str) or measured.upper() not in _SIDES:
             raise DataError(
                 f"key 'TYRESIDE' in block [MODEL] must be 'LEFT' or 'RIGHT', found {measured!r}",
                 file=self.props.path,
-                key="TYRESIDE",
+                key='TYRESIDE',
             )
         return wanted != measured.upper()
 
     @property
     def nominal_load(self) -> float:
         """Scaled nominal load Fz0' = FNOMIN LFZO, N."""
-        return self._c["FZ0_PRIME"]
+        return self._c['FZ0_PRIME']
 
     @property
     def lateral_shape_factor(self) -> float:
         """C_y = PCY1 LCY, -."""
-        return self._c["PCY1"] * self._c["LCY"]
+        return self._c['PCY1'] * self._c['LCY']
 
     def fy(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure-slip lateral force Fy0, N, file (TYDEX) convention: alpha > 0 gives Fy < 0."""
@@ -304,7 +309,8 @@ class MagicFormula:
         return np.where(loaded, force, 0.0)
 
     def fy_iso(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
-        """Lateral force, N, for the vehicle-dynamics slip angle alpha = -alpha_TYDEX.
+        """
+        Lateral force, N, for the vehicle-dynamics slip angle alpha = -alpha_TYDEX.
 
         Positive alpha gives positive Fy (ISO y, left), as in SimpleTire.
         """
@@ -317,7 +323,8 @@ class MagicFormula:
         return np.where(loaded, self._longitudinal(fz_eval, gamma_).force(kappa_), 0.0)
 
     def cornering_stiffness(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
-        """dFy/dalpha at alpha = 0, N/rad, file convention (negative for PKY1 < 0).
+        """
+        dFy/dalpha at alpha = 0, N/rad, file convention (negative for PKY1 < 0).
 
         Exact derivative of :meth:`fy`, so it includes the horizontal shift SH_y;
         where SH_y = 0 it equals K_y = B C D of the Magic Formula.
@@ -334,12 +341,13 @@ class MagicFormula:
 
     def _peak_friction(self, fz_: np.ndarray, gamma_: np.ndarray) -> np.ndarray:
         c = self._c
-        dfz = (fz_ - c["FZ0_PRIME"]) / c["FZ0_PRIME"]
-        gamma_y = gamma_ * c["LGAY"]
-        return (c["PDY1"] + c["PDY2"] * dfz) * (1.0 - c["PDY3"] * gamma_y**2) * c["LMUY"]
+        dfz = (fz_ - c['FZ0_PRIME']) / c['FZ0_PRIME']
+        gamma_y = gamma_ * c['LGAY']
+        return (c['PDY1'] + c['PDY2'] * dfz) * (1.0 - c['PDY3'] * gamma_y**2) * c['LMUY']
 
     def lateral_curvature(self, fz: ArrayLike, gamma: ArrayLike = 0.0, slip_sign: ArrayLike = 0.0) -> np.ndarray:
-        """Curvature factor E_y, -, for sgn(alpha_y) = ``slip_sign`` (file convention).
+        """
+        Curvature factor E_y, -, for sgn(alpha_y) = ``slip_sign`` (file convention).
 
         ``slip_sign = 0`` gives the part even in the slip, (PEY1 + PEY2 dfz) LEY:
         the mean of the two branches, used for a symmetric (odd) fit.
@@ -351,7 +359,8 @@ class MagicFormula:
 
     def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0,
                      vx: ArrayLike = 0.0, mirror: ArrayLike | None = None) -> TireForces:
-        """Combined-slip forces and moments (module doc), file (TYDEX) convention.
+        """
+        Combined-slip forces and moments (module doc), file (TYDEX) convention.
 
         ``fz`` N, ``kappa`` -, ``alpha``/``gamma`` rad, ``vx`` m/s (rolling resistance
         only). ``mirror`` (+1 as measured, -1 mirrored, per element) overrides the
@@ -364,22 +373,22 @@ class MagicFormula:
         loaded, fz_e = self._loaded(fz_)
         a, g = s * alpha_, s * gamma_
         c = self._c
-        fz0 = c["FZ0_PRIME"]
+        fz0 = c['FZ0_PRIME']
         dfz = (fz_e - fz0) / fz0
         lat = self._lateral(fz_e, g)
         lon = self._longitudinal(fz_e, g)
         fy0 = lat.force(a)
         fx0 = lon.force(kappa_)
         # combined slip weighting (4.E50-4.E67)
-        b_xa = c["RBX1"] * np.cos(np.arctan(c["RBX2"] * kappa_)) * c["LXAL"]
-        g_xa = _weight(b_xa, c["RCX1"], np.minimum(c["REX1"] + c["REX2"] * dfz, _MAX_CURVATURE),
-                       a, np.full_like(a, c["RHX1"]))
-        b_yk = c["RBY1"] * np.cos(np.arctan(c["RBY2"] * (a - c["RBY3"]))) * c["LYKA"]
-        g_yk = _weight(b_yk, c["RCY1"], np.minimum(c["REY1"] + c["REY2"] * dfz, _MAX_CURVATURE),
-                       kappa_, c["RHY1"] + c["RHY2"] * dfz)
+        b_xa = c['RBX1'] * np.cos(np.arctan(c['RBX2'] * kappa_)) * c['LXAL']
+        g_xa = _weight(b_xa, c['RCX1'], np.minimum(c['REX1'] + c['REX2'] * dfz, _MAX_CURVATURE),
+                       a, np.full_like(a, c['RHX1']))
+        b_yk = c['RBY1'] * np.cos(np.arctan(c['RBY2'] * (a - c['RBY3']))) * c['LYKA']
+        g_yk = _weight(b_yk, c['RCY1'], np.minimum(c['REY1'] + c['REY2'] * dfz, _MAX_CURVATURE),
+                       kappa_, c['RHY1'] + c['RHY2'] * dfz)
         mu_y = lat.d / fz_e
-        sv_yk = (mu_y * fz_e * (c["RVY1"] + c["RVY2"] * dfz + c["RVY3"] * g) * np.cos(np.arctan(c["RVY4"] * a))
-                 * np.sin(c["RVY5"] * np.arctan(c["RVY6"] * kappa_)) * c["LVYKA"])  # fmt: skip
+        sv_yk = (mu_y * fz_e * (c['RVY1'] + c['RVY2'] * dfz + c['RVY3'] * g) * np.cos(np.arctan(c['RVY4'] * a))
+                 * np.sin(c['RVY5'] * np.arctan(c['RVY6'] * kappa_)) * c['LVYKA'])  # fmt: skip
         fx = g_xa * fx0
         fy = g_yk * fy0 + sv_yk
         # aligning moment with equivalent slip angles (4.E71-4.E78)
@@ -390,17 +399,17 @@ class MagicFormula:
         alpha_t = a + trail.sh
         alpha_r = a + lat.sh + np.divide(lat.sv, k_y, out=np.zeros_like(k_y), where=k_y != 0.0)
         t = trail.trail(_equivalent(alpha_t, ratio * kappa_), a)
-        gamma_z = g * c["LGAZ"]
-        b_r = c["QBZ9"] * c["LKY"] / c["LMUY"] + c["QBZ10"] * lat.b * lat.c
-        d_r = (fz_e * c["R0"] * ((c["QDZ6"] + c["QDZ7"] * dfz) * c["LRES"] + (c["QDZ8"] + c["QDZ9"] * dfz) * gamma_z)
-               * c["LMUY"])  # fmt: skip
+        gamma_z = g * c['LGAZ']
+        b_r = c['QBZ9'] * c['LKY'] / c['LMUY'] + c['QBZ10'] * lat.b * lat.c
+        d_r = (fz_e * c['R0'] * ((c['QDZ6'] + c['QDZ7'] * dfz) * c['LRES'] + (c['QDZ8'] + c['QDZ9'] * dfz) * gamma_z)
+               * c['LMUY'])  # fmt: skip
         m_zr = d_r * np.cos(np.arctan(b_r * _equivalent(alpha_r, ratio * kappa_))) * np.cos(a)
-        arm = c["R0"] * (c["SSZ1"] + c["SSZ2"] * fy / fz0 + (c["SSZ3"] + c["SSZ4"] * dfz) * gamma_z) * c["LS"]
+        arm = c['R0'] * (c['SSZ1'] + c['SSZ2'] * fy / fz0 + (c['SSZ3'] + c['SSZ4'] * dfz) * gamma_z) * c['LS']
         mz = -t * (fy - sv_yk) + m_zr + arm * fx
-        mx = fz_e * c["R0"] * (c["QSX1"] * c["LVMX"] - c["QSX2"] * g + c["QSX3"] * fy / fz0) * c["LMX"]
-        v_rel = vx_ / c["LONGVL"] if c["LONGVL"] > 0.0 else np.zeros_like(vx_)
-        my = -np.sign(vx_) * fz_e * c["R0"] * (c["QSY1"] + c["QSY2"] * fx / fz0 + c["QSY3"] * np.abs(v_rel)
-                                               + c["QSY4"] * v_rel**4) * c["LMY"]  # fmt: skip
+        mx = fz_e * c['R0'] * (c['QSX1'] * c['LVMX'] - c['QSX2'] * g + c['QSX3'] * fy / fz0) * c['LMX']
+        v_rel = vx_ / c['LONGVL'] if c['LONGVL'] > 0.0 else np.zeros_like(vx_)
+        my = -np.sign(vx_) * fz_e * c['R0'] * (c['QSY1'] + c['QSY2'] * fx / fz0 + c['QSY3'] * np.abs(v_rel)
+                                               + c['QSY4'] * v_rel**4) * c['LMY']  # fmt: skip
         return TireForces(*(np.where(loaded, f, 0.0) for f in (fx, s * fy, s * mx, my, s * mz)))
 
     def slip_stiffness(self, fz: ArrayLike) -> np.ndarray:
@@ -418,78 +427,78 @@ class MagicFormula:
     def radii(self, fz: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """(loaded radius R_l, effective rolling radius R_e), m, at load ``fz`` N (module doc)."""
         c = self._c
-        if c["CZ"] <= 0.0:
+        if c['CZ'] <= 0.0:
             raise DataError("key 'VERTICAL_STIFFNESS' in block [VERTICAL] must be > 0 for the "
-                            "tire radii", file=self.props.path, key="VERTICAL_STIFFNESS")
+                            "tire radii", file=self.props.path, key='VERTICAL_STIFFNESS')
         fz_ = np.maximum(np.asarray(fz, dtype=float), 0.0)
-        loaded = c["R0"] - fz_ / c["CZ"]
-        if c["BREFF"] == 0.0 and c["DREFF"] == 0.0 and c["FREFF"] == 0.0:
+        loaded = c['R0'] - fz_ / c['CZ']
+        if c['BREFF'] == 0.0 and c['DREFF'] == 0.0 and c['FREFF'] == 0.0:
             return loaded, loaded
-        rho = fz_ / c["FNOMIN"]
-        effective = c["R0"] - c["FNOMIN"] / c["CZ"] * (c["DREFF"] * np.arctan(c["BREFF"] * rho)
-                                                      + c["FREFF"] * rho)
+        rho = fz_ / c['FNOMIN']
+        effective = c['R0'] - c['FNOMIN'] / c['CZ'] * (c['DREFF'] * np.arctan(c['BREFF'] * rho)
+                                                      + c['FREFF'] * rho)
         return loaded, effective
 
     def relaxation_lengths(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """(sigma_kappa, sigma_alpha), m: first-order transient slip lengths (module doc); 0 off the ground."""
         fz_, gamma_ = _arrays(fz, gamma)
         c = self._c
-        fz0 = c["FZ0_PRIME"]
+        fz0 = c['FZ0_PRIME']
         loaded, fz_e = self._loaded(fz_)
         dfz = (fz_e - fz0) / fz0
-        sigma_k = fz_e * (c["PTX1"] + c["PTX2"] * dfz) * np.exp(-c["PTX3"] * dfz) * c["R0"] / fz0 * c["LSGKP"]
-        sigma_a = (c["PTY1"] * np.sin(2.0 * np.arctan(fz_e / (c["PTY2"] * fz0))) if c["PTY2"] != 0.0
+        sigma_k = fz_e * (c['PTX1'] + c['PTX2'] * dfz) * np.exp(-c['PTX3'] * dfz) * c['R0'] / fz0 * c['LSGKP']
+        sigma_a = (c['PTY1'] * np.sin(2.0 * np.arctan(fz_e / (c['PTY2'] * fz0))) if c['PTY2'] != 0.0
                    else np.zeros_like(fz_e))
-        sigma_a = sigma_a * (1.0 - c["PKY3"] * np.abs(gamma_)) * c["R0"] * c["LFZO"] * c["LSGAL"]
+        sigma_a = sigma_a * (1.0 - c['PKY3'] * np.abs(gamma_)) * c['R0'] * c['LFZO'] * c['LSGAL']
         return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
 
     @property
     def vertical_stiffness(self) -> float:
         """C_z, N/m ([VERTICAL] VERTICAL_STIFFNESS; 0 when absent)."""
-        return self._c["CZ"]
+        return self._c['CZ']
 
     @property
     def vertical_damping(self) -> float:
         """Tire vertical damping, N*s/m ([VERTICAL] VERTICAL_DAMPING; 0 when absent)."""
-        return self._c["VERTICAL_DAMPING"]
+        return self._c['VERTICAL_DAMPING']
 
     @property
     def unloaded_radius(self) -> float:
         """R0, m."""
-        return self._c["R0"]
+        return self._c['R0']
 
     def _trail_factors(self, fz: np.ndarray, gamma: np.ndarray) -> _Trail:
         """Pneumatic-trail factors of PAC2002 (Pacejka 4.E35-4.E40), as measured (no mirroring)."""
         c = self._c
-        fz0 = c["FZ0_PRIME"]
+        fz0 = c['FZ0_PRIME']
         dfz = (fz - fz0) / fz0
-        gamma_z = gamma * c["LGAZ"]
+        gamma_z = gamma * c['LGAZ']
         return _Trail(
-            b=((c["QBZ1"] + c["QBZ2"] * dfz + c["QBZ3"] * dfz**2) * (1.0 + c["QBZ4"] * gamma_z + c["QBZ5"] * np.abs(gamma_z))
-               * c["LKY"] / c["LMUY"]),
-            c=c["QCZ1"],
-            d=fz * (c["QDZ1"] + c["QDZ2"] * dfz) * (1.0 + c["QDZ3"] * gamma_z + c["QDZ4"] * gamma_z**2) * c["R0"] / fz0 * c["LTR"],
-            e_even=c["QEZ1"] + c["QEZ2"] * dfz + c["QEZ3"] * dfz**2,
-            e_odd=c["QEZ4"] + c["QEZ5"] * gamma_z,
-            sh=c["QHZ1"] + c["QHZ2"] * dfz + (c["QHZ3"] + c["QHZ4"] * dfz) * gamma_z,
+            b=((c['QBZ1'] + c['QBZ2'] * dfz + c['QBZ3'] * dfz**2) * (1.0 + c['QBZ4'] * gamma_z + c['QBZ5'] * np.abs(gamma_z))
+               * c['LKY'] / c['LMUY']),
+            c=c['QCZ1'],
+            d=fz * (c['QDZ1'] + c['QDZ2'] * dfz) * (1.0 + c['QDZ3'] * gamma_z + c['QDZ4'] * gamma_z**2) * c['R0'] / fz0 * c['LTR'],
+            e_even=c['QEZ1'] + c['QEZ2'] * dfz + c['QEZ3'] * dfz**2,
+            e_odd=c['QEZ4'] + c['QEZ5'] * gamma_z,
+            sh=c['QHZ1'] + c['QHZ2'] * dfz + (c['QHZ3'] + c['QHZ4'] * dfz) * gamma_z,
         )  # fmt: skip
 
     def _loaded(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Mask of wheels on the ground, and loads safe to evaluate (no 0/0 off the ground)."""
         loaded = fz > 0.0
-        return loaded, np.where(loaded, fz, self._c["FZ0_PRIME"])
+        return loaded, np.where(loaded, fz, self._c['FZ0_PRIME'])
 
     def _lateral(self, fz: np.ndarray, gamma: np.ndarray) -> _Curve:
         """Lateral factors as measured (PAC2002, Pacejka 4.E19-4.E30)."""
         c = self._c
-        fz0 = c["FZ0_PRIME"]
+        fz0 = c['FZ0_PRIME']
         dfz = (fz - fz0) / fz0
-        gamma_y = gamma * c["LGAY"]
-        shape = c["PCY1"] * c["LCY"]
+        gamma_y = gamma * c['LGAY']
+        shape = c['PCY1'] * c['LCY']
         peak = self._peak_friction(fz, gamma) * fz
         stiffness = (
-            c["PKY1"] * fz0 * np.sin(2.0 * np.arctan(fz / (c["PKY2"] * fz0)))
-            * (1.0 - c["PKY3"] * np.abs(gamma_y)) * c["LKY"]
+            c['PKY1'] * fz0 * np.sin(2.0 * np.arctan(fz / (c['PKY2'] * fz0)))
+            * (1.0 - c['PKY3'] * np.abs(gamma_y)) * c['LKY']
         )  # fmt: skip
         e_even, e_odd = self._lateral_curvature_terms(fz, gamma)
         return _Curve(
@@ -498,37 +507,38 @@ class MagicFormula:
             d=peak,
             e_even=e_even,
             e_odd=e_odd,
-            sh=(c["PHY1"] + c["PHY2"] * dfz) * c["LHY"] + c["PHY3"] * gamma_y,
-            sv=fz * ((c["PVY1"] + c["PVY2"] * dfz) * c["LVY"] + (c["PVY3"] + c["PVY4"] * dfz) * gamma_y) * c["LMUY"],
+            sh=(c['PHY1'] + c['PHY2'] * dfz) * c['LHY'] + c['PHY3'] * gamma_y,
+            sv=fz * ((c['PVY1'] + c['PVY2'] * dfz) * c['LVY'] + (c['PVY3'] + c['PVY4'] * dfz) * gamma_y) * c['LMUY'],
         )
 
     def _lateral_curvature_terms(self, fz: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """E_y = min(e_even (1 - e_odd sgn(alpha_y)), 1): returns (e_even, e_odd)."""
         c = self._c
-        dfz = (fz - c["FZ0_PRIME"]) / c["FZ0_PRIME"]
-        return (c["PEY1"] + c["PEY2"] * dfz) * c["LEY"], c["PEY3"] + c["PEY4"] * gamma * c["LGAY"]
+        dfz = (fz - c['FZ0_PRIME']) / c['FZ0_PRIME']
+        return (c['PEY1'] + c['PEY2'] * dfz) * c['LEY'], c['PEY3'] + c['PEY4'] * gamma * c['LGAY']
 
     def _longitudinal(self, fz: np.ndarray, gamma: np.ndarray) -> _Curve:
         """Longitudinal factors (PAC2002, Pacejka 4.E9-4.E18)."""
         c = self._c
-        fz0 = c["FZ0_PRIME"]
+        fz0 = c['FZ0_PRIME']
         dfz = (fz - fz0) / fz0
-        gamma_x = gamma * c["LGAX"]
-        shape = c["PCX1"] * c["LCX"]
-        peak = (c["PDX1"] + c["PDX2"] * dfz) * (1.0 - c["PDX3"] * gamma_x**2) * c["LMUX"] * fz
-        stiffness = fz * (c["PKX1"] + c["PKX2"] * dfz) * np.exp(c["PKX3"] * dfz) * c["LKX"]
+        gamma_x = gamma * c['LGAX']
+        shape = c['PCX1'] * c['LCX']
+        peak = (c['PDX1'] + c['PDX2'] * dfz) * (1.0 - c['PDX3'] * gamma_x**2) * c['LMUX'] * fz
+        stiffness = fz * (c['PKX1'] + c['PKX2'] * dfz) * np.exp(c['PKX3'] * dfz) * c['LKX']
         return _Curve(
             b=stiffness / (shape * peak),
             c=shape,
             d=peak,
-            e_even=(c["PEX1"] + c["PEX2"] * dfz + c["PEX3"] * dfz**2) * c["LEX"],
-            e_odd=np.full_like(fz, c["PEX4"]),
-            sh=(c["PHX1"] + c["PHX2"] * dfz) * c["LHX"],
-            sv=fz * (c["PVX1"] + c["PVX2"] * dfz) * c["LVX"] * c["LMUX"],
+            e_even=(c['PEX1'] + c['PEX2'] * dfz + c['PEX3'] * dfz**2) * c['LEX'],
+            e_odd=np.full_like(fz, c['PEX4']),
+            sh=(c['PHX1'] + c['PHX2'] * dfz) * c['LHX'],
+            sv=fz * (c['PVX1'] + c['PVX2'] * dfz) * c['LVX'] * c['LMUX'],
         )
 
     def pneumatic_trail(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
-        """Pneumatic trail t at zero slip angle, m (PAC2002, Pacejka 3rd ed. 4.E31-4.E49).
+        """
+        Pneumatic trail t at zero slip angle, m (PAC2002, Pacejka 3rd ed. 4.E31-4.E49).
 
         ``t = Dt cos(Ct arctan(Bt at - Et (Bt at - arctan(Bt at)))) cos(alpha)`` at alpha = 0,
         so at = SHt, with (gamma_z = gamma LGAZ, R0 = UNLOADED_RADIUS)::
@@ -572,8 +582,10 @@ def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarr
 
 
 def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
-    """Float arrays broadcast to one shape (returned as they are when they already are:
-    the full vehicle calls this every step with four-wheel arrays)."""
+    """
+    Float arrays broadcast to one shape (returned as they are when they already are:
+    the full vehicle calls this every step with four-wheel arrays).
+    """
     first = values[0]
     if isinstance(first, np.ndarray) and first.dtype == np.float64 and all(
             isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == first.shape

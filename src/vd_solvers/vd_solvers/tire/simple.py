@@ -1,4 +1,5 @@
-"""The thesis' load-dependent simple tire (eqs. 6-9).
+"""
+The thesis' load-dependent simple tire (eqs. 6-9).
 
 mu(Fz)   = mu0 * (1 - mu1 * (Fz - Fz0))                      (6)
 C_Fa(Fz) = C0 * Fz * (1 - C1 * (Fz - Fz0))                     (7)
@@ -26,7 +27,7 @@ class SimpleTire:
     c1: float  # cornering stiffness load sensitivity, 1/N
     shape: float  # Magic Formula shape factor C, -
     curvature: float  # Magic Formula curvature factor E, -
-    source: str = ""  # where the numbers came from (file, fit range)
+    source: str = ''  # where the numbers came from (file, fit range)
 
     def friction(self, fz: ArrayLike) -> np.ndarray:
         """Peak friction coefficient at load ``fz`` (eq. 6)."""
@@ -38,7 +39,8 @@ class SimpleTire:
         return self.c0 * fz * (1.0 - self.c1 * (fz - self.fz0))
 
     def lateral_force(self, fz: ArrayLike, alpha: ArrayLike) -> np.ndarray:
-        """Lateral force magnitude for slip angle ``alpha`` (rad), eqs. 8-9.
+        """
+        Lateral force magnitude for slip angle ``alpha`` (rad), eqs. 8-9.
 
         Sign follows ``alpha``: a positive slip angle gives a positive force.
         """

@@ -1,4 +1,5 @@
-"""Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the CommonRoad peer.
+"""
+Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the CommonRoad peer.
 
 * ``step_steer_10s``: a 10 s step steer (100 km/h, steering-wheel ramp at 1 s to the
   angle of 4 m/s^2) on the sedan baseline, the simulation alone (model built before).
@@ -15,8 +16,8 @@
 """
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
+import time
 from typing import Any
 
 import numpy as np
@@ -55,31 +56,31 @@ def bench_vehicle(config) -> dict[str, Any]:
         steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + RAMP, DURATION],
                                     angles=[0.0, 0.0, swa, swa])
         speed = SpeedController(lambda t: SPEED, model.total_mass, float(np.mean(r_e)))
-        return simulate(model, steering, speed, DURATION, event="step_steer",
+        return simulate(model, steering, speed, DURATION, event='step_steer',
                         initial_speed=SPEED, record_every=2)
 
     wall = median_time(step_steer)
     trace = step_steer()
     out: dict[str, Any] = {
-        "step_s": STEP, "model_build_s": build,
-        "step_steer_10s": {"wall_s": wall, "real_time_factor": DURATION / wall,
-                           "steps": trace.steps,
-                           "us_per_step": wall / trace.steps * 1e6},
+        'step_s': STEP, 'model_build_s': build,
+        'step_steer_10s': {'wall_s': wall, 'real_time_factor': DURATION / wall,
+                           'steps': trace.steps,
+                           'us_per_step': wall / trace.steps * 1e6},
     }
     t0 = time.perf_counter()
-    crt = run_vehicle_event(config, "constant_radius_turn")
+    crt = run_vehicle_event(config, 'constant_radius_turn')
     crt_wall = time.perf_counter() - t0
-    simulated = float(crt.channels["time"].values[-1])
-    out["constant_radius_turn"] = {"wall_s": crt_wall, "simulated_s": simulated,
-                                   "real_time_factor": simulated / crt_wall}
-    out["per_step"] = _per_step(model, swa)
+    simulated = float(crt.channels['time'].values[-1])
+    out['constant_radius_turn'] = {'wall_s': crt_wall, 'simulated_s': simulated,
+                                   'real_time_factor': simulated / crt_wall}
+    out['per_step'] = _per_step(model, swa)
     # the same manoeuvre for the peer: its own steer step to the same steady lateral
     # acceleration (ISO 7401, 4 m/s^2 at 100 km/h), not our road-wheel angle (the peer's
     # BMW understeers less: our 2.3 deg would take it beyond its limit)
-    out["commonroad"] = bench_commonroad(float(trace.channels()["yaw_rate"][-1]))
-    out["step_steer_10s"]["steady_yaw_rate"] = float(trace.channels()["yaw_rate"][-1])
-    out["ratio_vs_commonroad"] = (out["step_steer_10s"]["real_time_factor"]
-                                  / out["commonroad"]["real_time_factor"])
+    out['commonroad'] = bench_commonroad(float(trace.channels()['yaw_rate'][-1]))
+    out['step_steer_10s']['steady_yaw_rate'] = float(trace.channels()['yaw_rate'][-1])
+    out['ratio_vs_commonroad'] = (out['step_steer_10s']['real_time_factor']
+                                  / out['commonroad']['real_time_factor'])
     return out
 
 
@@ -104,16 +105,18 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
     def multibody():
         model.integrate(q, v, model.acceleration(q, v, tau), STEP)
 
-    return {"tires_us": _micro(tires), "suspension_maps_us": _micro(suspension_maps),
-            "forces_total_us": _micro(lambda: model.forces(q, v, swa, np.zeros(4), slip,
+    return {'tires_us': _micro(tires), 'suspension_maps_us': _micro(suspension_maps),
+            'forces_total_us': _micro(lambda: model.forces(q, v, swa, np.zeros(4), slip,
                                                            wheel, STEP)),
-            "multibody_us": _micro(multibody)}
+            'multibody_us': _micro(multibody)}
 
 
 def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
-    """The 10 s step steer on CommonRoad's multibody model (module doc), its road-wheel
+    """
+    The 10 s step steer on CommonRoad's multibody model (module doc), its road-wheel
     step scaled so that its steady yaw rate is ``yaw_rate`` (rad/s; from one untimed
-    run with a small step, the response being linear there)."""
+    run with a small step, the response being linear there).
+    """
     from scipy.integrate import odeint
     from vehiclemodels.init_mb import init_mb
     from vehiclemodels.parameters_vehicle2 import parameters_vehicle2
@@ -131,20 +134,20 @@ def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
             steer_rate = rate if STEP_TIME <= tt < STEP_TIME + RAMP else 0.0
             return vehicle_dynamics_mb(x, [steer_rate, 0.0], p)
 
-        result["x"], result["info"] = odeint(rhs, x0, t, full_output=True, hmax=RAMP / 4)
+        result['x'], result['info'] = odeint(rhs, x0, t, full_output=True, hmax=RAMP / 4)
 
     probe = 0.005  # rad
     run(probe)
-    angle = probe * yaw_rate / float(result["x"][-1, 5])
+    angle = probe * yaw_rate / float(result['x'][-1, 5])
     wall = median_time(lambda: run(angle))
-    x = result["x"]
+    x = result['x']
     if not np.all(np.isfinite(x)):
-        raise RuntimeError("the CommonRoad peer run diverged; its timing would be meaningless")
-    return {"wall_s": wall, "real_time_factor": DURATION / wall, "states": len(x0),
-            "rhs_evaluations": int(result["info"]["nfe"][-1]),
-            "steady_yaw_rate": float(x[-1, 5]), "road_wheel_angle": angle,
-            "integrator": "scipy.integrate.odeint (LSODA)",
-            "parameters": "parameters_vehicle2 (BMW 320i)"}
+        raise RuntimeError('the CommonRoad peer run diverged; its timing would be meaningless')
+    return {'wall_s': wall, 'real_time_factor': DURATION / wall, 'states': len(x0),
+            'rhs_evaluations': int(result['info']['nfe'][-1]),
+            'steady_yaw_rate': float(x[-1, 5]), 'road_wheel_angle': angle,
+            'integrator': 'scipy.integrate.odeint (LSODA)',
+            'parameters': 'parameters_vehicle2 (BMW 320i)'}
 
 
-__all__ = ["bench_vehicle", "bench_commonroad"]
+__all__ = ['bench_vehicle', 'bench_commonroad']

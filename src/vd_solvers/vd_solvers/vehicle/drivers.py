@@ -1,4 +1,5 @@
-"""Driver models and the driveline: small classes behind two protocols and a registry.
+"""
+Driver models and the driveline: small classes behind two protocols and a registry.
 
 Steering drivers return the steering-wheel angle (rad, + left) at time t from what
 they see (:class:`Observation`); the speed controller returns the total wheel torque
@@ -8,9 +9,9 @@ they see (:class:`Observation`); the speed controller returns the total wheel to
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+import math
 from typing import NamedTuple, Protocol
 
 import numpy as np
@@ -38,8 +39,10 @@ class SpeedDriver(Protocol):
 
 
 class OpenLoopSteering:
-    """Steering-wheel angle from a function of time, or a table (linear between points,
-    held beyond its ends)."""
+    """
+    Steering-wheel angle from a function of time, or a table (linear between points,
+    held beyond its ends).
+    """
 
     def __init__(self, signal: Callable[[float], float] | None = None,
                  times: Sequence[float] = (), angles: Sequence[float] = ()) -> None:
@@ -47,10 +50,10 @@ class OpenLoopSteering:
             t = np.asarray(times, dtype=float)
             a = np.asarray(angles, dtype=float)
             if t.ndim != 1 or t.size < 2 or t.shape != a.shape:
-                raise SolverError("open-loop steering needs a table of at least two "
-                                  "(time, angle) points of equal length")
+                raise SolverError('open-loop steering needs a table of at least two '
+                                  '(time, angle) points of equal length')
             if np.any(np.diff(t) <= 0.0) or not np.all(np.isfinite(a)):
-                raise SolverError("open-loop steering: times must increase and angles be finite")
+                raise SolverError('open-loop steering: times must increase and angles be finite')
             self._t, self._a = t, a
             signal = self._table
         self.signal = signal
@@ -63,8 +66,10 @@ class OpenLoopSteering:
 
 
 class ReplaySteering(OpenLoopSteering):
-    """Steering-wheel angle replayed from a recorded signal (e.g. a bag's ``time`` and
-    ``steering_wheel_angle`` channels), optionally shifted in time."""
+    """
+    Steering-wheel angle replayed from a recorded signal (e.g. a bag's ``time`` and
+    ``steering_wheel_angle`` channels), optionally shifted in time.
+    """
 
     def __init__(self, times: Sequence[float], angles: Sequence[float], offset: float = 0.0) -> None:
         super().__init__(times=np.asarray(times, dtype=float) + offset, angles=angles)
@@ -72,7 +77,8 @@ class ReplaySteering(OpenLoopSteering):
 
 @dataclass
 class CirclePathFollower:
-    """Path follower with preview on a circle (ISO 4138 constant radius).
+    """
+    Path follower with preview on a circle (ISO 4138 constant radius).
 
     The circle of ``radius`` starts at the origin heading +x and turns left (centre at
     (0, radius)). The driver looks ``preview_time`` * speed (at least ``min_preview``)
@@ -120,7 +126,8 @@ class CirclePathFollower:
 
 @dataclass
 class SpeedController:
-    """PI speed controller on drive/brake torque with feed-forward of the reference slope.
+    """
+    PI speed controller on drive/brake torque with feed-forward of the reference slope.
 
     ``reference(t)`` m/s; torque = mass * radius * (dv_ref/dt + kp e + ki int e), e = v_ref - v.
     """
@@ -141,7 +148,8 @@ class SpeedController:
 
 def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np.ndarray
                   ) -> np.ndarray:
-    """Split a total wheel torque over FL FR RL RR (N*m about the spin axes).
+    """
+    Split a total wheel torque over FL FR RL RR (N*m about the spin axes).
 
     Drive (total > 0): ``drive_front`` of it to the front axle, open differentials (equal
     left/right). Brake (total < 0): ``brake_front`` to the front axle, each brake opposing
@@ -156,11 +164,11 @@ def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np
 
 #: name -> driver class (docs/events.md)
 DRIVERS: Mapping[str, type] = {
-    "open_loop": OpenLoopSteering,
-    "replay": ReplaySteering,
-    "path_follower": CirclePathFollower,
-    "speed": SpeedController,
+    'open_loop': OpenLoopSteering,
+    'replay': ReplaySteering,
+    'path_follower': CirclePathFollower,
+    'speed': SpeedController,
 }
 
-__all__ = ["Observation", "OpenLoopSteering", "ReplaySteering", "CirclePathFollower",
-           "SpeedController", "wheel_torques", "DRIVERS"]
+__all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
+           'SpeedController', 'wheel_torques', 'DRIVERS']

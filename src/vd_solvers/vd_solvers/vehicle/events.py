@@ -1,4 +1,5 @@
-"""Full-vehicle events: constant radius turn (ISO 4138) and step steer (ISO 7401).
+"""
+Full-vehicle events: constant radius turn (ISO 4138) and step steer (ISO 7401).
 
 ``run_vehicle_event(config, event, params, fidelity, progress)`` builds the vehicle of
 ``config`` (suspension maps from the K&C results of the same data hash and fidelity),
@@ -25,8 +26,8 @@ peak / steady - 1; steady values are means over the last STEADY_WINDOW s.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
+import math
 
 import numpy as np
 
@@ -63,33 +64,33 @@ STEP_TIME = 1.0
 TURN_STEP = 0.008
 
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
-    "constant_radius_turn": {
-        "radius": Param("length", 40.0, "circle radius (ISO 4138 constant radius)", minimum=10.0,
+    'constant_radius_turn': {
+        'radius': Param('length', 40.0, 'circle radius (ISO 4138 constant radius)', minimum=10.0,
                         maximum=500.0),
-        "start_lateral_acceleration": Param("acceleration", 0.5, "lateral acceleration at the "
-                                            "start speed", minimum=0.1, maximum=5.0),
-        "speed_rate": Param("acceleration", 0.25, "rate of the slow speed increase "
-                            "(quasi-steady)", minimum=0.01, maximum=2.0),
-        "radius_tolerance": Param("length", 1.0, "radial deviation of the CoG at which the "
-                                  "radius counts as no longer held", minimum=0.05),
-        "max_duration": Param("time", 90.0, "longest simulated time", minimum=5.0,
+        'start_lateral_acceleration': Param('acceleration', 0.5, 'lateral acceleration at the '
+                                            'start speed', minimum=0.1, maximum=5.0),
+        'speed_rate': Param('acceleration', 0.25, 'rate of the slow speed increase '
+                            '(quasi-steady)', minimum=0.01, maximum=2.0),
+        'radius_tolerance': Param('length', 1.0, 'radial deviation of the CoG at which the '
+                                  'radius counts as no longer held', minimum=0.05),
+        'max_duration': Param('time', 90.0, 'longest simulated time', minimum=5.0,
                               maximum=600.0),
-        "drive_front": Param("dimensionless", 0.5, "front share of the drive torque (0 rear, 1 front)",
+        'drive_front': Param('dimensionless', 0.5, 'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
-        "brake_front": Param("dimensionless", 0.65, "front share of the brake torque", minimum=0.0,
+        'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
                              maximum=1.0),
     },
-    "step_steer": {
-        "speed": Param("velocity", 100.0 / 3.6, "constant speed", minimum=5.0, maximum=70.0),
-        "lateral_acceleration": Param("acceleration", 4.0, "steady lateral acceleration the "
-                                      "step aims at (ISO 7401: 4 m/s^2)", minimum=0.2,
+    'step_steer': {
+        'speed': Param('velocity', 100.0 / 3.6, 'constant speed', minimum=5.0, maximum=70.0),
+        'lateral_acceleration': Param('acceleration', 4.0, 'steady lateral acceleration the '
+                                      'step aims at (ISO 7401: 4 m/s^2)', minimum=0.2,
                                       maximum=8.0),
-        "ramp_time": Param("time", 0.1, "steering-wheel ramp time (ISO 7401: <= 0.15 s)",
+        'ramp_time': Param('time', 0.1, 'steering-wheel ramp time (ISO 7401: <= 0.15 s)',
                            minimum=0.01, maximum=1.0),
-        "duration": Param("time", 6.0, "simulated time", minimum=3.0, maximum=60.0),
-        "drive_front": Param("dimensionless", 0.5, "front share of the drive torque (0 rear, 1 front)",
+        'duration': Param('time', 6.0, 'simulated time', minimum=3.0, maximum=60.0),
+        'drive_front': Param('dimensionless', 0.5, 'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
-        "brake_front": Param("dimensionless", 0.65, "front share of the brake torque", minimum=0.0,
+        'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
                              maximum=1.0),
     },
 }
@@ -97,7 +98,7 @@ EVENTS = tuple(EVENT_PARAMS)
 
 
 def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] = (),
-                      fidelity: str = "rigid",
+                      fidelity: str = 'rigid',
                       progress: Callable[[float, str], None] | None = None) -> EventOutcome:
     """Run a full-vehicle event on ``config`` (module doc). SolverError names both."""
     label = f"configuration '{config.name}', event '{event}'"
@@ -106,19 +107,19 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
                           f"(events: {', '.join(EVENTS)})")
     values = parse_params(event, EVENT_PARAMS[event], params)
     if progress is not None:
-        progress(0.0, "K&C suspension maps")
+        progress(0.0, 'K&C suspension maps')
     try:
         model = VehicleModel(config, fidelity)
     except SolverError as err:
-        raise SolverError(f"{label}: {err}") from err
-    run = _constant_radius if event == "constant_radius_turn" else _step_steer
+        raise SolverError(f'{label}: {err}') from err
+    run = _constant_radius if event == 'constant_radius_turn' else _step_steer
     metrics, channels, notes = run(model, values, progress)
-    step = TURN_STEP if event == "constant_radius_turn" else STEP
-    notes = [*notes, f"integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; "
-             "transient slip integrated exactly per step, wheel spin linearly implicit",
-             *(f"{k}: {v}" for k, v in sorted(model.maps.provenance.items()))]
-    return EventOutcome(event=event, configuration=config.name, model="vehicle",
-                        fidelity=fidelity, axle="", data_hash=config.data_hash, metrics=metrics,
+    step = TURN_STEP if event == 'constant_radius_turn' else STEP
+    notes = [*notes, f'integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; '
+             'transient slip integrated exactly per step, wheel spin linearly implicit',
+             *(f'{k}: {v}' for k, v in sorted(model.maps.provenance.items()))]
+    return EventOutcome(event=event, configuration=config.name, model='vehicle',
+                        fidelity=fidelity, axle='', data_hash=config.data_hash, metrics=metrics,
                         channels=channels, notes=tuple(notes))
 
 
@@ -129,154 +130,154 @@ def _speed_controller(model: VehicleModel, reference: Callable[[float], float]) 
 
 def _channels(model: VehicleModel, trace: Trace) -> dict[str, Channel]:
     ch = trace.channels()
-    units = {"time": "s", "x": "m", "y": "m", "yaw": "rad", "roll": "rad", "pitch": "rad",
-             "yaw_rate": "rad/s", "speed": "m/s", "sideslip": "rad",
-             "steering_wheel_angle": "rad", "steer_angle_front_left": "rad",
-             "steer_angle_front_right": "rad", "lateral_acceleration": "m/s^2",
-             "longitudinal_acceleration": "m/s^2", "wheel_torque": "N*m"}
+    units = {'time': 's', 'x': 'm', 'y': 'm', 'yaw': 'rad', 'roll': 'rad', 'pitch': 'rad',
+             'yaw_rate': 'rad/s', 'speed': 'm/s', 'sideslip': 'rad',
+             'steering_wheel_angle': 'rad', 'steer_angle_front_left': 'rad',
+             'steer_angle_front_right': 'rad', 'lateral_acceleration': 'm/s^2',
+             'longitudinal_acceleration': 'm/s^2', 'wheel_torque': 'N*m'}
     out = {name: Channel(unit, ch[name]) for name, unit in units.items()}
-    wheel_units = {"wheel_load": "N", "wheel_travel": "m", "slip_angle": "rad",
-                   "slip_ratio": "-", "inclination": "rad", "tire_force_x": "N",
-                   "tire_force_y": "N", "wheel_steer": "rad", "aligning_moment": "N*m"}
+    wheel_units = {'wheel_load': 'N', 'wheel_travel': 'm', 'slip_angle': 'rad',
+                   'slip_ratio': '-', 'inclination': 'rad', 'tire_force_x': 'N',
+                   'tire_force_y': 'N', 'wheel_steer': 'rad', 'aligning_moment': 'N*m'}
     for key, unit in wheel_units.items():
         for w, name in enumerate(WHEELS):
-            out[f"{key}_{name}"] = Channel(unit, ch[key][:, w])
+            out[f'{key}_{name}'] = Channel(unit, ch[key][:, w])
     return out
 
 
 def _slope(x: np.ndarray, y: np.ndarray, window: tuple[float, float]) -> float:
     mask = (x >= window[0]) & (x <= window[1])
     if mask.sum() < 3:
-        return float("nan")
+        return float('nan')
     return float(np.polyfit(x[mask], y[mask], 1)[0])
 
 
 def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
-    radius = v["radius"]
-    speed0 = math.sqrt(v["start_lateral_acceleration"] * radius)
-    rate = v["speed_rate"]
-    wheelbase = model.config.group("geometry").scalar("wheelbase")
+    radius = v['radius']
+    speed0 = math.sqrt(v['start_lateral_acceleration'] * radius)
+    rate = v['speed_rate']
+    wheelbase = model.config.group('geometry').scalar('wheelbase')
     maps = model.maps
     follower = CirclePathFollower(radius=radius, wheelbase=wheelbase,
                                   steering_ratio=maps.steering_ratio,
                                   max_angle=float(min(-maps.steer_swa[0], maps.steer_swa[-1])))
     speed = _speed_controller(model, lambda t: speed0 + rate * max(t - SETTLE_TIME, 0.0))
-    cog_x = float(model.config.group("mass").point("sprung_cog")[0])
-    tolerance = v["radius_tolerance"]
+    cog_x = float(model.config.group('mass').point('sprung_cog')[0])
+    tolerance = v['radius_tolerance']
 
     def stop(row: dict[str, float]) -> str:
-        if row["time"] < SETTLE_TIME:
-            return ""
-        c, s = math.cos(row["yaw"]), math.sin(row["yaw"])
-        error = follower.radial_error(row["x"] + cog_x * c, row["y"] + cog_x * s)
-        if abs(row["sideslip"]) > MAX_SIDESLIP:
-            return "sideslip"
+        if row['time'] < SETTLE_TIME:
+            return ''
+        c, s = math.cos(row['yaw']), math.sin(row['yaw'])
+        error = follower.radial_error(row['x'] + cog_x * c, row['y'] + cog_x * s)
+        if abs(row['sideslip']) > MAX_SIDESLIP:
+            return 'sideslip'
         if abs(error) > tolerance:
-            return "radius"
-        return ""
+            return 'radius'
+        return ''
 
-    trace = simulate(model, follower, speed, v["max_duration"], event="constant_radius_turn",
+    trace = simulate(model, follower, speed, v['max_duration'], event='constant_radius_turn',
                      initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=6,
                      h=TURN_STEP,
-                     drive_front=v["drive_front"], brake_front=v["brake_front"], stop=stop,
+                     drive_front=v['drive_front'], brake_front=v['brake_front'], stop=stop,
                      progress=progress)
     channels = _channels(model, trace)
     ch = {k: c.values for k, c in channels.items()}
-    held = ch["time"] >= SETTLE_TIME
-    a_y = ch["lateral_acceleration"]
+    held = ch['time'] >= SETTLE_TIME
+    a_y = ch['lateral_acceleration']
     ratio = maps.steering_ratio
     # ISO 4138: steer angle less the Ackermann angle of the path actually driven, L r / v
-    ackermann = wheelbase * ch["yaw_rate"] / np.maximum(ch["speed"], 1e-9)
-    k_us = _slope(a_y[held], ch["steering_wheel_angle"][held] / ratio - ackermann[held],
+    ackermann = wheelbase * ch['yaw_rate'] / np.maximum(ch['speed'], 1e-9)
+    k_us = _slope(a_y[held], ch['steering_wheel_angle'][held] / ratio - ackermann[held],
                   LINEAR_RANGE)
-    roll = _slope(a_y[held], ch["roll"][held], LINEAR_RANGE)
-    beta = _slope(a_y[held], ch["sideslip"][held], LINEAR_RANGE)
+    roll = _slope(a_y[held], ch['roll'][held], LINEAR_RANGE)
+    beta = _slope(a_y[held], ch['sideslip'][held], LINEAR_RANGE)
     a_max = float(np.max(a_y[held]))
-    if trace.stop_reason == "sideslip":
-        behaviour = "oversteer: sideslip beyond 15 deg, the vehicle spins out of the circle"
-    elif trace.stop_reason == "radius":
-        end = ch["yaw_rate"][-1] * radius / max(ch["speed"][-1], 1e-9)
-        behaviour = ("understeer: the vehicle drifts out of the circle" if end < 1.0 else
-                     "oversteer: the vehicle turns inside the circle")
+    if trace.stop_reason == 'sideslip':
+        behaviour = 'oversteer: sideslip beyond 15 deg, the vehicle spins out of the circle'
+    elif trace.stop_reason == 'radius':
+        end = ch['yaw_rate'][-1] * radius / max(ch['speed'][-1], 1e-9)
+        behaviour = ('understeer: the vehicle drifts out of the circle' if end < 1.0 else
+                     'oversteer: the vehicle turns inside the circle')
     else:
         behaviour = f"radius held to the end ({v['max_duration']:g} s)"
     metrics = {
-        "understeer_gradient": Metric(k_us, "rad/(m/s^2)"),
-        "understeer_gradient_deg_per_g": Metric(k_us * DEG * G, "deg/g"),
-        "roll_gradient": Metric(roll * DEG * G, "deg/g"),
-        "sideslip_gradient": Metric(beta * DEG * G, "deg/g"),
-        "max_lateral_acceleration": Metric(a_max, "m/s^2"),
-        "max_lateral_acceleration_g": Metric(a_max / G, "g"),
-        "limit_is_oversteer": Metric(1.0 if behaviour.startswith("oversteer") else 0.0, "-"),
-        "radius": Metric(radius, "m"),
-        "steering_ratio": Metric(ratio, "-", maps.provenance["steering"]),
-        "simulated_time": Metric(float(ch["time"][-1]), "s"),
+        'understeer_gradient': Metric(k_us, 'rad/(m/s^2)'),
+        'understeer_gradient_deg_per_g': Metric(k_us * DEG * G, 'deg/g'),
+        'roll_gradient': Metric(roll * DEG * G, 'deg/g'),
+        'sideslip_gradient': Metric(beta * DEG * G, 'deg/g'),
+        'max_lateral_acceleration': Metric(a_max, 'm/s^2'),
+        'max_lateral_acceleration_g': Metric(a_max / G, 'g'),
+        'limit_is_oversteer': Metric(1.0 if behaviour.startswith('oversteer') else 0.0, '-'),
+        'radius': Metric(radius, 'm'),
+        'steering_ratio': Metric(ratio, '-', maps.provenance['steering']),
+        'simulated_time': Metric(float(ch['time'][-1]), 's'),
     }
-    notes = [f"limit: {behaviour} at {a_max:.2f} m/s^2 ({a_max / G:.3f} g)",
-             f"linear range for the gradients: {LINEAR_RANGE[0]:g}..{LINEAR_RANGE[1]:g} m/s^2",
-             "left-hand circle; path follower with preview and integral action"]
+    notes = [f'limit: {behaviour} at {a_max:.2f} m/s^2 ({a_max / G:.3f} g)',
+             f'linear range for the gradients: {LINEAR_RANGE[0]:g}..{LINEAR_RANGE[1]:g} m/s^2',
+             'left-hand circle; path follower with preview and integral action']
     return metrics, channels, notes
 
 
 def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
-    speed = v["speed"]
-    target = v["lateral_acceleration"]
+    speed = v['speed']
+    target = v['lateral_acceleration']
     maps = model.maps
     p = vehicle_params(model.config)
-    wheelbase = model.config.group("geometry").scalar("wheelbase")
+    wheelbase = model.config.group('geometry').scalar('wheelbase')
     delta = target * (wheelbase / speed**2 + bicycle.understeer_gradient(p))
     swa = delta * maps.steering_ratio
     limit = float(min(-maps.steer_swa[0], maps.steer_swa[-1]))
-    ramp = v["ramp_time"]
+    ramp = v['ramp_time']
     trace = None
-    reached = float("nan")
+    reached = float('nan')
     for _ in range(STEP_AIM_ITERATIONS):
         if not 0.0 < swa <= limit:
-            raise SolverError(f"step steer to {target:g} m/s^2 at {speed:g} m/s needs a "
-                              f"steering-wheel angle beyond the lock ({limit * DEG:.0f} deg)")
-        steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + ramp, v["duration"]],
+            raise SolverError(f'step steer to {target:g} m/s^2 at {speed:g} m/s needs a '
+                              f'steering-wheel angle beyond the lock ({limit * DEG:.0f} deg)')
+        steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + ramp, v['duration']],
                                     angles=[0.0, 0.0, swa, swa])
         trace = simulate(model, steering, _speed_controller(model, lambda t: speed),
-                         v["duration"], event="step_steer", initial_speed=speed,
-                         record_every=2, drive_front=v["drive_front"],
-                         brake_front=v["brake_front"], progress=progress)
+                         v['duration'], event='step_steer', initial_speed=speed,
+                         record_every=2, drive_front=v['drive_front'],
+                         brake_front=v['brake_front'], progress=progress)
         ch = trace.channels()
-        steady = ch["time"] >= ch["time"][-1] - STEADY_WINDOW
-        reached = float(np.mean(ch["lateral_acceleration"][steady]))
+        steady = ch['time'] >= ch['time'][-1] - STEADY_WINDOW
+        reached = float(np.mean(ch['lateral_acceleration'][steady]))
         if reached <= 0.0:
-            raise SolverError(f"the step steer gives no steady lateral acceleration "
-                              f"({reached:.3g} m/s^2)")
+            raise SolverError(f'the step steer gives no steady lateral acceleration '
+                              f'({reached:.3g} m/s^2)')
         if abs(reached / target - 1.0) <= STEP_AIM_TOLERANCE:
             break
         swa *= target / reached
     assert trace is not None
     channels = _channels(model, trace)
     ch = {k: c.values for k, c in channels.items()}
-    t = ch["time"]
+    t = ch['time']
     steady = t >= t[-1] - STEADY_WINDOW
     t50 = STEP_TIME + 0.5 * ramp
-    metrics = {"steering_wheel_angle_step": Metric(swa, "rad"),
-               "speed": Metric(speed, "m/s"),
-               "steering_ratio": Metric(maps.steering_ratio, "-", maps.provenance["steering"])}
-    for name, key in (("yaw_rate", "yaw_rate"), ("lateral_acceleration", "lateral_acceleration")):
+    metrics = {'steering_wheel_angle_step': Metric(swa, 'rad'),
+               'speed': Metric(speed, 'm/s'),
+               'steering_ratio': Metric(maps.steering_ratio, '-', maps.provenance['steering'])}
+    for name, key in (('yaw_rate', 'yaw_rate'), ('lateral_acceleration', 'lateral_acceleration')):
         y = ch[key]
         y_ss = float(np.mean(y[steady]))
         after = t >= t50
         i90 = np.nonzero(after & (y >= 0.9 * y_ss))[0]
         i_peak = int(np.argmax(np.where(after, y, -np.inf)))
-        unit = "rad/s" if name == "yaw_rate" else "m/s^2"
-        metrics[f"steady_{name}"] = Metric(y_ss, unit)
-        metrics[f"{name}_gain"] = Metric(y_ss / swa, f"{unit}/rad")
-        metrics[f"{name}_response_time_90"] = Metric(
-            float(t[i90[0]] - t50) if i90.size else float("nan"), "s")
-        metrics[f"{name}_peak_response_time"] = Metric(float(t[i_peak] - t50), "s")
-        metrics[f"{name}_overshoot"] = Metric(100.0 * (float(y[i_peak]) / y_ss - 1.0), "%")
-    metrics["sideslip_gain"] = Metric(float(np.mean(ch["sideslip"][steady])) / swa, "rad/rad")
-    metrics["roll_gain"] = Metric(float(np.mean(ch["roll"][steady])) / swa, "rad/rad")
-    notes = [f"steering-wheel step {swa * DEG:.1f} deg in {ramp:g} s at t = {STEP_TIME:g} s; "
-             f"steady a_y {reached:.3f} m/s^2 (aimed {target:g})",
-             "response times from the 50 % steering-wheel instant (ISO 7401)"]
+        unit = 'rad/s' if name == 'yaw_rate' else 'm/s^2'
+        metrics[f'steady_{name}'] = Metric(y_ss, unit)
+        metrics[f'{name}_gain'] = Metric(y_ss / swa, f'{unit}/rad')
+        metrics[f'{name}_response_time_90'] = Metric(
+            float(t[i90[0]] - t50) if i90.size else float('nan'), 's')
+        metrics[f'{name}_peak_response_time'] = Metric(float(t[i_peak] - t50), 's')
+        metrics[f'{name}_overshoot'] = Metric(100.0 * (float(y[i_peak]) / y_ss - 1.0), '%')
+    metrics['sideslip_gain'] = Metric(float(np.mean(ch['sideslip'][steady])) / swa, 'rad/rad')
+    metrics['roll_gain'] = Metric(float(np.mean(ch['roll'][steady])) / swa, 'rad/rad')
+    notes = [f'steering-wheel step {swa * DEG:.1f} deg in {ramp:g} s at t = {STEP_TIME:g} s; '
+             f'steady a_y {reached:.3f} m/s^2 (aimed {target:g})',
+             'response times from the 50 % steering-wheel instant (ISO 7401)']
     return metrics, channels, notes
 
 
-__all__ = ["EVENT_PARAMS", "EVENTS", "run_vehicle_event", "LINEAR_RANGE"]
+__all__ = ['EVENT_PARAMS', 'EVENTS', 'run_vehicle_event', 'LINEAR_RANGE']

@@ -1,4 +1,5 @@
-"""Suspension maps of the full vehicle, taken from the K&C results of the same configuration.
+"""
+Suspension maps of the full vehicle, taken from the K&C results of the same configuration.
 
 Every characteristic comes from a K&C event of the same configuration, data hash and
 fidelity (``kc.cache.kc_result``: computed on demand, cached by hash), and says which
@@ -38,13 +39,13 @@ from vd_solvers.kc.cache import NO_BAR, kc_model, kc_result
 from vd_solvers.kc.metrics import FORCE_WINDOW, slope_at
 
 #: wheels in the order of every per-wheel array
-WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
+WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
 #: K&C steps per sweep used for the maps (the map resolution)
 KC_STEPS = 41
 #: points of the uniform travel grid the maps are resampled on
 GRID_POINTS = 81
 #: rows of :attr:`SuspensionMaps.travel_table`
-TRAVEL_ROWS = ("wheel_force", "toe", "camber", "motion_ratio")
+TRAVEL_ROWS = ('wheel_force', 'toe', 'camber', 'motion_ratio')
 
 
 @dataclass(frozen=True)
@@ -98,7 +99,7 @@ def _uniform(x: np.ndarray, y: np.ndarray, what: str) -> tuple[float, float, np.
     order = np.argsort(x)
     x, y = x[order], y[order]
     if np.any(np.diff(x) <= 0.0):
-        raise SolverError(f"{what}: the K&C sweep is not monotonic")
+        raise SolverError(f'{what}: the K&C sweep is not monotonic')
     grid = np.linspace(x[0], x[-1], GRID_POINTS)
     return float(grid[0]), float(grid[1] - grid[0]), np.interp(grid, x, y)
 
@@ -109,93 +110,93 @@ def _one_sided(x: np.ndarray, y: np.ndarray, sign: float) -> float:
     return slope_at(x[mask], y[mask], 0.0, FORCE_WINDOW)
 
 
-def suspension_maps(config: Configuration, fidelity: str = "rigid") -> SuspensionMaps:
+def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> SuspensionMaps:
     """The maps of both axles of ``config`` (K&C results on demand, module doc)."""
     g = STANDARD_GRAVITY
-    mass = config.group("mass")
-    tag = f"{fidelity}, data hash {config.data_hash}"
+    mass = config.group('mass')
+    tag = f'{fidelity}, data hash {config.data_hash}'
     prov: dict[str, str] = {}
     t0, ts, table = np.zeros(4), np.zeros(4), np.zeros((len(TRAVEL_ROWS), 4, GRID_POINTS))
     a0, as_, arb = np.zeros(4), np.ones(4), np.zeros((4, GRID_POINTS))
     c_sy, c_cy, j_y = np.zeros(4), np.zeros(4), np.zeros(4)
     c_sx, j_x = np.zeros((2, 4)), np.zeros((2, 4))
     dampers_x, dampers_y = [], []
-    for k, axle in enumerate(("front", "rear")):
+    for k, axle in enumerate(('front', 'rear')):
         label = f"configuration '{config.name}', {axle} axle"
-        m_u = mass.scalar(f"unsprung_mass_{axle}")
-        par = kc_result(config, axle, "parallel_wheel_travel", fidelity, steps=KC_STEPS)
+        m_u = mass.scalar(f'unsprung_mass_{axle}')
+        par = kc_result(config, axle, 'parallel_wheel_travel', fidelity, steps=KC_STEPS)
         ch = par.channels
         for s in range(2):
             w = 2 * k + s
-            z = ch["wheel_travel"][:, s]
-            rows = (ch["pad_force"][:, s] - m_u * g, ch["toe"][:, s], ch["camber"][:, s],
-                    -np.gradient(ch["damper_length"][:, s], z))
+            z = ch['wheel_travel'][:, s]
+            rows = (ch['pad_force'][:, s] - m_u * g, ch['toe'][:, s], ch['camber'][:, s],
+                    -np.gradient(ch['damper_length'][:, s], z))
             for r, y in enumerate(rows):
-                t0[w], ts[w], table[r, w] = _uniform(z, y, f"{label} parallel_wheel_travel")
-        prov["wheel_force"] = prov.get("wheel_force", "") + (
-            f"{axle}: K&C parallel_wheel_travel pad force - unsprung weight ({tag}); ")
-        for key in ("toe", "camber", "damper_motion_ratio"):
-            prov[key] = prov.get(key, "") + f"{axle}: K&C parallel_wheel_travel ({tag}); "
+                t0[w], ts[w], table[r, w] = _uniform(z, y, f'{label} parallel_wheel_travel')
+        prov['wheel_force'] = prov.get('wheel_force', '') + (
+            f'{axle}: K&C parallel_wheel_travel pad force - unsprung weight ({tag}); ')
+        for key in ('toe', 'camber', 'damper_motion_ratio'):
+            prov[key] = prov.get(key, '') + f'{axle}: K&C parallel_wheel_travel ({tag}); '
         inp = kc_model(config, axle, fidelity).inp
         if inp.damper is None:
-            raise SolverError(f"{label}: the full vehicle needs a damper")
+            raise SolverError(f'{label}: the full vehicle needs a damper')
         dampers_x.append(np.asarray(inp.damper.curve.x, dtype=float))
         dampers_y.append(np.asarray(inp.damper.curve.y, dtype=float))
-        prov["damper"] = prov.get("damper", "") + f"{axle}: {config.group(f'{axle}_damper').file}; "
+        prov['damper'] = prov.get('damper', '') + f"{axle}: {config.group(f'{axle}_damper').file}; "
         if inp.stabilizer is not None:
-            opp = kc_result(config, axle, "opposite_wheel_travel", fidelity, steps=KC_STEPS)
+            opp = kc_result(config, axle, 'opposite_wheel_travel', fidelity, steps=KC_STEPS)
             bare = kc_result(config, axle, NO_BAR, fidelity, steps=KC_STEPS)
             for s in range(2):
-                zo, zb = opp.channels["wheel_travel"], bare.channels["wheel_travel"]
+                zo, zb = opp.channels['wheel_travel'], bare.channels['wheel_travel']
                 half_o = 0.5 * (zo[:, s] - zo[:, 1 - s])
                 half_b = 0.5 * (zb[:, s] - zb[:, 1 - s])
                 # pad force of the bare axle at the bar run's travels
                 order = np.argsort(half_b)
-                bare_force = np.interp(half_o, half_b[order], bare.channels["pad_force"][order, s])
+                bare_force = np.interp(half_o, half_b[order], bare.channels['pad_force'][order, s])
                 a0[2 * k + s], as_[2 * k + s], arb[2 * k + s] = _uniform(
-                    half_o, opp.channels["pad_force"][:, s] - bare_force,
-                    f"{label} opposite_wheel_travel")
-            prov["anti_roll_bar"] = prov.get("anti_roll_bar", "") + (
-                f"{axle}: K&C opposite_wheel_travel with - without bar ({tag}); ")
+                    half_o, opp.channels['pad_force'][:, s] - bare_force,
+                    f'{label} opposite_wheel_travel')
+            prov['anti_roll_bar'] = prov.get('anti_roll_bar', '') + (
+                f'{axle}: K&C opposite_wheel_travel with - without bar ({tag}); ')
         else:
-            prov["anti_roll_bar"] = prov.get("anti_roll_bar", "") + f"{axle}: no anti-roll bar; "
+            prov['anti_roll_bar'] = prov.get('anti_roll_bar', '') + f'{axle}: no anti-roll bar; '
             a0[2 * k:2 * k + 2], as_[2 * k:2 * k + 2] = -0.1, 0.2 / (GRID_POINTS - 1)
-        lat = kc_result(config, axle, "lateral_force", fidelity, steps=KC_STEPS)
-        f = lat.channels["contact_force"][:, 0, 1]
-        lon = kc_result(config, axle, "longitudinal_force", fidelity, steps=KC_STEPS)
-        fx = lon.channels["contact_force"][:, 0, 0] + lon.channels["centre_force"][:, 0, 0]
+        lat = kc_result(config, axle, 'lateral_force', fidelity, steps=KC_STEPS)
+        f = lat.channels['contact_force'][:, 0, 1]
+        lon = kc_result(config, axle, 'longitudinal_force', fidelity, steps=KC_STEPS)
+        fx = lon.channels['contact_force'][:, 0, 0] + lon.channels['centre_force'][:, 0, 0]
         for s in range(2):
             w = 2 * k + s
-            c_sy[w] = slope_at(f, lat.channels["toe"][:, s], 0.0, FORCE_WINDOW)
-            c_cy[w] = slope_at(f, lat.channels["camber"][:, s], 0.0, FORCE_WINDOW)
-            j_y[w] = slope_at(f, lat.channels["pad_force"][:, s], 0.0, FORCE_WINDOW)
+            c_sy[w] = slope_at(f, lat.channels['toe'][:, s], 0.0, FORCE_WINDOW)
+            c_cy[w] = slope_at(f, lat.channels['camber'][:, s], 0.0, FORCE_WINDOW)
+            j_y[w] = slope_at(f, lat.channels['pad_force'][:, s], 0.0, FORCE_WINDOW)
             for side, sign in enumerate((-1.0, 1.0)):
-                c_sx[side, w] = _one_sided(fx, lon.channels["toe"][:, s], sign)
-                j_x[side, w] = _one_sided(fx, lon.channels["pad_force"][:, s], sign)
-        for key in ("compliance_steer_lateral", "compliance_camber_lateral",
-                    "jacking_lateral"):
-            prov[key] = prov.get(key, "") + f"{axle}: K&C lateral_force ({tag}); "
-        for key in ("compliance_steer_longitudinal", "jacking_longitudinal"):
-            prov[key] = prov.get(key, "") + f"{axle}: K&C longitudinal_force ({tag}); "
-    if "steering" not in config.groups:
+                c_sx[side, w] = _one_sided(fx, lon.channels['toe'][:, s], sign)
+                j_x[side, w] = _one_sided(fx, lon.channels['pad_force'][:, s], sign)
+        for key in ('compliance_steer_lateral', 'compliance_camber_lateral',
+                    'jacking_lateral'):
+            prov[key] = prov.get(key, '') + f'{axle}: K&C lateral_force ({tag}); '
+        for key in ('compliance_steer_longitudinal', 'jacking_longitudinal'):
+            prov[key] = prov.get(key, '') + f'{axle}: K&C longitudinal_force ({tag}); '
+    if 'steering' not in config.groups:
         raise SolverError(f"configuration '{config.name}': the full vehicle needs a steering group")
-    steer = kc_result(config, "front", "steering", fidelity, steps=KC_STEPS)
-    swa = steer.channels["steering_wheel_angle"]
+    steer = kc_result(config, 'front', 'steering', fidelity, steps=KC_STEPS)
+    swa = steer.channels['steering_wheel_angle']
     order = np.argsort(swa)
     swa = swa[order]
-    angles = steer.channels["steer_angle"][order]
+    angles = steer.channels['steer_angle'][order]
     centre = int(np.argmin(np.abs(swa)))
     angles = angles - angles[centre]
     mean = angles.mean(axis=1)
     near = slice(max(centre - 2, 0), centre + 3)
     ratio = float(np.polyfit(mean[near], swa[near], 1)[0])
-    prov["steering"] = f"front: K&C steering ({tag}), ratio {ratio:.1f} at the centre"
+    prov['steering'] = f'front: K&C steering ({tag}), ratio {ratio:.1f} at the centre'
     return SuspensionMaps(
         travel0=t0, travel_step=ts, travel_table=table, arb0=a0, arb_step=as_, arb_table=arb,
         compliance_steer_y=c_sy, compliance_camber_y=c_cy, compliance_steer_x=c_sx,
         jacking_y=j_y, jacking_x=j_x, damper_x=(dampers_x[0], dampers_x[1]),
         damper_y=(dampers_y[0], dampers_y[1]), steer_swa=swa, steer_angle=angles,
-        steering_ratio=ratio, provenance={k: v.strip().rstrip(";") for k, v in prov.items()})
+        steering_ratio=ratio, provenance={k: v.strip().rstrip(';') for k, v in prov.items()})
 
 
-__all__ = ["SuspensionMaps", "suspension_maps", "WHEELS", "TRAVEL_ROWS", "KC_STEPS"]
+__all__ = ['SuspensionMaps', 'suspension_maps', 'WHEELS', 'TRAVEL_ROWS', 'KC_STEPS']

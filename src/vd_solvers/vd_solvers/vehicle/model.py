@@ -1,4 +1,5 @@
-"""Full-vehicle multibody model: Pinocchio chassis, K&C suspension maps, Magic Formula tires.
+"""
+Full-vehicle multibody model: Pinocchio chassis, K&C suspension maps, Magic Formula tires.
 
 Topology (Pinocchio, built once per configuration)::
 
@@ -72,8 +73,10 @@ FRONT = np.array([True, True, False, False])
 
 
 class SlipUpdate(NamedTuple):
-    """How the transient slips move over a step (arrays (4,)): alpha' explicitly, kappa'
-    with the wheel spin at the end of the step (see :meth:`VehicleModel.forces`)."""
+    """
+    How the transient slips move over a step (arrays (4,)): alpha' explicitly, kappa'
+    with the wheel spin at the end of the step (see :meth:`VehicleModel.forces`).
+    """
 
     alpha: np.ndarray  # alpha' at the end of the step
     kappa: np.ndarray  # kappa' at the start of the step
@@ -83,7 +86,7 @@ class SlipUpdate(NamedTuple):
     denominator: np.ndarray  # max(|V_x|, floor), m/s
 
     def kappa_next(self, spin: np.ndarray) -> np.ndarray:
-        """kappa' at the end of the step for the spin rates ``spin`` (rad/s) reached."""
+        """Kappa' at the end of the step for the spin rates ``spin`` (rad/s) reached."""
         target = (spin * self.radius - self.vx) / self.denominator
         return target + (self.kappa - target) * self.decay
 
@@ -114,19 +117,19 @@ class Options:
 class VehicleModel:
     """The multibody vehicle of one configuration (module doc). Not thread-safe."""
 
-    def __init__(self, config: Configuration, fidelity: str = "rigid",
+    def __init__(self, config: Configuration, fidelity: str = 'rigid',
                  options: Options = Options(), maps: SuspensionMaps | None = None) -> None:
         self.config = config
         self.options = options
         self.maps = maps if maps is not None else suspension_maps(config, fidelity)
-        mass = config.group("mass")
-        front_props = tire_properties(config.group("front_tire"))
-        rear_props = tire_properties(config.group("rear_tire"))
+        mass = config.group('mass')
+        front_props = tire_properties(config.group('front_tire'))
+        rear_props = tire_properties(config.group('rear_tire'))
         self.tires = (MagicFormula(front_props), MagicFormula(rear_props))
         # one vectorised evaluation of all four wheels where both axles share the .tir data
         self._one_tire = (front_props.file_format == rear_props.file_format
                           and front_props.sections == rear_props.sections)
-        for axle, tire in zip(("front", "rear"), self.tires):
+        for axle, tire in zip(('front', 'rear'), self.tires):
             if tire.vertical_stiffness <= 0.0:
                 raise SolverError(f"configuration '{config.name}': {axle} tire has no "
                                   "VERTICAL_STIFFNESS")
@@ -136,17 +139,17 @@ class VehicleModel:
         self.r0 = np.array([self.tires[0].unloaded_radius] * 2 + [self.tires[1].unloaded_radius] * 2)
         self.cz = np.array([self.tires[0].vertical_stiffness] * 2 + [self.tires[1].vertical_stiffness] * 2)
         self.cd = np.array([self.tires[0].vertical_damping] * 2 + [self.tires[1].vertical_damping] * 2)
-        vxlow = [t.props.number("MODEL", "VXLOW", 0.0) for t in self.tires]
+        vxlow = [t.props.number('MODEL', 'VXLOW', 0.0) for t in self.tires]
         self.vx_floor = max(VX_FLOOR, *vxlow)
         centres = []
-        for axle in ("front", "rear"):
-            x, y, z = config.group(f"{axle}_hardpoints").point("points.wheel_centre")
+        for axle in ('front', 'rear'):
+            x, y, z = config.group(f'{axle}_hardpoints').point('points.wheel_centre')
             centres += [(x, abs(y), z), (x, -abs(y), z)]
         self.wheel_centres = np.array(centres)  # (4, 3) body frame, design
-        m_u = np.array([mass.scalar("unsprung_mass_front")] * 2 + [mass.scalar("unsprung_mass_rear")] * 2)
+        m_u = np.array([mass.scalar('unsprung_mass_front')] * 2 + [mass.scalar('unsprung_mass_rear')] * 2)
         self.unsprung = m_u
         self.spin_inertia = SPIN_INERTIA_FACTOR * m_u * self.r0**2
-        self.sprung_mass = mass.scalar("sprung_mass")
+        self.sprung_mass = mass.scalar('sprung_mass')
         self.gravity = STANDARD_GRAVITY if options.gravity else 0.0
         self.model = self._build(mass)
         self.data = self.model.createData()
@@ -158,25 +161,25 @@ class VehicleModel:
 
     @staticmethod
     def _mirror(tire: MagicFormula, side: float) -> float:
-        measured = str(tire.props.get("MODEL", "TYRESIDE", "LEFT")).upper()
-        return 1.0 if (measured == "LEFT") == (side > 0) else -1.0
+        measured = str(tire.props.get('MODEL', 'TYRESIDE', 'LEFT')).upper()
+        return 1.0 if (measured == 'LEFT') == (side > 0) else -1.0
 
     def _build(self, mass) -> pin.Model:
         model = pin.Model()
         model.gravity.linear = np.array([0.0, 0.0, -self.gravity])
-        body = model.addJoint(0, pin.JointModelFreeFlyer(), pin.SE3.Identity(), "body")
-        inertia = np.diag([mass.scalar("sprung_inertia.ixx"), mass.scalar("sprung_inertia.iyy"),
-                           mass.scalar("sprung_inertia.izz")])
+        body = model.addJoint(0, pin.JointModelFreeFlyer(), pin.SE3.Identity(), 'body')
+        inertia = np.diag([mass.scalar('sprung_inertia.ixx'), mass.scalar('sprung_inertia.iyy'),
+                           mass.scalar('sprung_inertia.izz')])
         model.appendBodyToJoint(body, pin.Inertia(self.sprung_mass,
-                                                  np.array(mass.point("sprung_cog")), inertia),
+                                                  np.array(mass.point('sprung_cog')), inertia),
                                 pin.SE3.Identity())
         for w, name in enumerate(WHEELS):
             travel = model.addJoint(body, pin.JointModelPZ(),
-                                    pin.SE3(np.eye(3), self.wheel_centres[w]), f"{name}_travel")
+                                    pin.SE3(np.eye(3), self.wheel_centres[w]), f'{name}_travel')
             # the carrier: unsprung mass at the wheel centre (rotational inertia in the wheel)
             model.appendBodyToJoint(travel, pin.Inertia(float(self.unsprung[w]), np.zeros(3),
                                                         np.zeros((3, 3))), pin.SE3.Identity())
-            spin = model.addJoint(travel, pin.JointModelRY(), pin.SE3.Identity(), f"{name}_spin")
+            spin = model.addJoint(travel, pin.JointModelRY(), pin.SE3.Identity(), f'{name}_spin')
             i_s = float(self.spin_inertia[w])
             model.appendBodyToJoint(spin, pin.Inertia(0.0, np.zeros(3),
                                                       np.diag([0.5 * i_s, i_s, 0.5 * i_s])),
@@ -186,8 +189,10 @@ class VehicleModel:
     # --- state -------------------------------------------------------------------------
 
     def initial_state(self, speed: float, yaw_rate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) with the static loads on the tires, at ``speed`` (m/s, body x) and
-        ``yaw_rate`` (rad/s; zero: straight ahead)."""
+        """
+        (q, v) with the static loads on the tires, at ``speed`` (m/s, body x) and
+        ``yaw_rate`` (rad/s; zero: straight ahead).
+        """
         q = pin.neutral(self.model)
         fz_static = self.static_loads()
         # body height and pitch at which the tires carry the static loads at zero travel
@@ -226,7 +231,8 @@ class VehicleModel:
     def forces(self, q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.ndarray,
                slip: np.ndarray, previous: WheelState | None, h: float
                ) -> tuple[np.ndarray, WheelState, SlipUpdate]:
-        """Generalised forces tau (nv,), the wheels' state, and how the transient slips move.
+        """
+        Generalised forces tau (nv,), the wheels' state, and how the transient slips move.
 
         ``slip`` (2, 4): transient [kappa', alpha'] at the start of the step; ``wheel_torque``
         (4,) N*m drive (+) / brake torques about the spin axes.
@@ -375,10 +381,10 @@ class VehicleModel:
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b row by row for (3,) or (n, 3) operands (np.cross costs more on small arrays)."""
+    """A x b row by row for (3,) or (n, 3) operands (np.cross costs more on small arrays)."""
     a = np.broadcast_to(a, b.shape)
     return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
                      a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
-__all__ = ["VehicleModel", "WheelState", "SlipUpdate", "Options", "STEP", "WHEELS"]
+__all__ = ['VehicleModel', 'WheelState', 'SlipUpdate', 'Options', 'STEP', 'WHEELS']

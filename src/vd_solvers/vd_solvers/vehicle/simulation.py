@@ -1,4 +1,5 @@
-"""Time integration of the full vehicle with its drivers, and the recorded trace.
+"""
+Time integration of the full vehicle with its drivers, and the recorded trace.
 
 ``simulate`` advances :class:`.model.VehicleModel` with a fixed step, asks the drivers
 every step, records every ``record_every`` steps and stops at ``duration`` or when
@@ -7,10 +8,10 @@ up (outward in a left turn), sideslip and yaw rate positive to the left.
 """
 from __future__ import annotations
 
-import math
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+import math
+import time
 
 import numpy as np
 import pinocchio as pin
@@ -21,11 +22,11 @@ from .drivers import Observation, SpeedDriver, SteeringDriver, wheel_torques
 from .model import STEP, VehicleModel
 
 #: recorded per-sample channels besides the per-wheel ones
-TRACE = ("time", "x", "y", "yaw", "roll", "pitch", "yaw_rate", "speed", "sideslip",
-         "steering_wheel_angle", "steer_angle_front_left", "steer_angle_front_right",
-         "cog_velocity_x", "cog_velocity_y", "cog_velocity_z", "wheel_torque")
-PER_WHEEL = ("wheel_load", "wheel_travel", "slip_angle", "slip_ratio", "inclination",
-             "tire_force_x", "tire_force_y", "wheel_steer", "aligning_moment")
+TRACE = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
+         'steering_wheel_angle', 'steer_angle_front_left', 'steer_angle_front_right',
+         'cog_velocity_x', 'cog_velocity_y', 'cog_velocity_z', 'wheel_torque')
+PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclination',
+             'tire_force_x', 'tire_force_y', 'wheel_steer', 'aligning_moment')
 
 
 @dataclass
@@ -34,9 +35,9 @@ class Trace:
 
     rows: list[list[float]] = field(default_factory=list)
     wheels: dict[str, list[np.ndarray]] = field(default_factory=lambda: {k: [] for k in PER_WHEEL})
-    timings: dict[str, float] = field(default_factory=lambda: {"forces": 0.0, "multibody": 0.0})
+    timings: dict[str, float] = field(default_factory=lambda: {'forces': 0.0, 'multibody': 0.0})
     steps: int = 0
-    stop_reason: str = ""
+    stop_reason: str = ''
 
     def channels(self) -> dict[str, np.ndarray]:
         """Every channel as an array over the samples, plus accelerations (m/s^2)."""
@@ -44,15 +45,15 @@ class Trace:
         out = {name: data[:, i] for i, name in enumerate(TRACE)}
         for key, values in self.wheels.items():
             out[key] = np.array(values)
-        t = out["time"]
+        t = out['time']
         if t.size >= 3:
-            ax_w = np.gradient(out["cog_velocity_x"], t)
-            ay_w = np.gradient(out["cog_velocity_y"], t)
+            ax_w = np.gradient(out['cog_velocity_x'], t)
+            ay_w = np.gradient(out['cog_velocity_y'], t)
         else:
             ax_w = ay_w = np.zeros_like(t)
-        c, s = np.cos(out["yaw"]), np.sin(out["yaw"])
-        out["lateral_acceleration"] = -ax_w * s + ay_w * c
-        out["longitudinal_acceleration"] = ax_w * c + ay_w * s
+        c, s = np.cos(out['yaw']), np.sin(out['yaw'])
+        out['lateral_acceleration'] = -ax_w * s + ay_w * c
+        out['longitudinal_acceleration'] = ax_w * c + ay_w * s
         return out
 
 
@@ -75,7 +76,7 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
     slip = np.zeros((2, 4))
     previous = None
     trace = Trace()
-    cog = np.array(model.config.group("mass").point("sprung_cog"))
+    cog = np.array(model.config.group('mass').point('sprung_cog'))
     n_steps = int(round(duration / h))
     swa = torque = 0.0
     t_forces = t_mb = 0.0
@@ -101,7 +102,7 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
                     trace.stop_reason = reason
                     break
             if progress is not None and step % (record_every * 50) == 0:
-                progress(step / max(n_steps, 1), "simulating")
+                progress(step / max(n_steps, 1), 'simulating')
         if step == n_steps:
             break
         c2 = time.perf_counter()
@@ -112,10 +113,10 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
         slip = np.stack([update.kappa_next(v[7::2]), update.alpha])
         previous = wheel
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            raise SolverError(f"{model.label(event, t + h)}: the state became non-finite")
+            raise SolverError(f'{model.label(event, t + h)}: the state became non-finite')
         trace.steps += 1
-    trace.timings["forces"] = t_forces
-    trace.timings["multibody"] = t_mb
+    trace.timings['forces'] = t_forces
+    trace.timings['multibody'] = t_mb
     return trace
 
 
@@ -133,4 +134,4 @@ def _row(model: VehicleModel, q, v, t, swa, wheel, cog, torque) -> list[float]:
             swa, wheel.steer[0], wheel.steer[1], v_cog[0], v_cog[1], v_cog[2], torque]
 
 
-__all__ = ["simulate", "Trace", "TRACE", "PER_WHEEL", "observe"]
+__all__ = ['simulate', 'Trace', 'TRACE', 'PER_WHEEL', 'observe']
