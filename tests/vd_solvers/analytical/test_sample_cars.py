@@ -21,9 +21,10 @@ from vd_solvers.analytical.events import run_event
 from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.kc import cache
 from vd_solvers.kc.assembly import LoadCase
+from vd_solvers.kc.channels import wheel_angles
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
-from vd_solvers.kc.metrics import derived_metrics, wheel_angles
+from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.solver import solve_static
 
 STUDIES = {name: load_study(SAMPLE_DATA / 'studies' / f'{name}.yaml') for name in ('sedan', 'hmmwv')}
@@ -64,13 +65,13 @@ def test_sedan_budget_sums_to_its_understeer_gradient_and_names_its_sources(seda
 
 def test_sedan_budget_terms_are_the_k_and_c_metrics_of_the_same_data(sedan_bicycle) -> None:
     # lateral compliance steer alone, from the K&C lateral-force run's own metric:
-    # -c_f N_f/2 + c_r N_r/2 (deg/kN, kN per g)
+    # -c_f N_f/2 + c_r N_r/2 (rad/N, N per g), in deg/g
     config = STUDIES['sedan'].configurations['baseline']
     fz_f, fz_r = static_wheel_loads(config)
     # the K&C run as `vd run lateral_force --axle ...` reports it
     c_f = run_kc_event(config, 'lateral_force', 'front').metrics['lateral_compliance_steer'].value
     c_r = run_kc_event(config, 'lateral_force', 'rear').metrics['lateral_compliance_steer'].value
-    expected = -c_f * fz_f / 1e3 + c_r * fz_r / 1e3
+    expected = math.degrees(-c_f * fz_f + c_r * fz_r)
     term = sedan_bicycle.metrics['understeer_budget_lateral_compliance_steer_deg_per_g'].value
     assert term == pytest.approx(expected, rel=1e-12)
 

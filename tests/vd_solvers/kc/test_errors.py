@@ -83,7 +83,7 @@ def test_steering_needs_a_rack(multilink_rear) -> None:
     ('event', 'params', 'message'),
     [
         ('bounce', {}, "unknown event 'bounce'"),
-        ('parallel_wheel_travel', {'amplitude': 0.1}, 'unexpected keyword'),
+        ('parallel_wheel_travel', {'amplitude': 0.1}, 'unknown parameter'),
         ('parallel_wheel_travel', {'steps': 2}, 'steps must be an integer >= 3'),
         ('lateral_force', {'force_min': 10.0, 'force_max': -10.0}, 'low < high'),
     ],

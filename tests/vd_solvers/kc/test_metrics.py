@@ -5,8 +5,9 @@ import numpy as np
 import pytest
 
 from vd_solvers.errors import SolverError
+from vd_solvers.kc.channels import steering_geometry, wheel_angles
 from vd_solvers.kc.events import run_suite
-from vd_solvers.kc.metrics import derived_metrics, slope_at, steering_geometry, wheel_angles
+from vd_solvers.kc.metrics import derived_metrics, slope_at
 from vd_solvers.kc.model import Curve
 
 
@@ -32,11 +33,12 @@ def test_front_metrics_are_complete_and_sane(front_suite, generic_wheelbase) -> 
                  'steering_ratio', 'ackermann', 'caster', 'kingpin_inclination', 'scrub_radius',
                  'mechanical_trail'):
         assert name in m, name
-    assert m['wheel_rate'][1] == 'N/m' and m['roll_stiffness'][1] == 'N*m/deg'
+    assert m['wheel_rate'][1] == 'N/m' and m['roll_stiffness'][1] == 'N*m/rad'
     # MacPherson: strut top rearward and inboard -> positive caster, KPI, trail
-    assert 3.0 < m['caster'][0] < 12.0 and 5.0 < m['kingpin_inclination'][0] < 18.0
+    caster, kpi = np.degrees(m['caster'][0]), np.degrees(m['kingpin_inclination'][0])
+    assert 3.0 < caster < 12.0 and 5.0 < kpi < 18.0
     assert m['mechanical_trail'][0] > 0.0
-    assert -30.0 < m['camber_gain'][0] < 0.0  # deg/m: top inward in bump
+    assert -30.0 < np.degrees(m['camber_gain'][0]) < 0.0  # deg/m: top inward in bump
     assert 0.0 < m['roll_centre_height_kinematic'][0] < 0.3
     assert 10.0 < m['steering_ratio'][0] < 30.0
     assert 0.0 < m['ackermann'][0] < 100.0

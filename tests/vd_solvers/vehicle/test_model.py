@@ -71,7 +71,7 @@ def test_anti_roll_bar_forces_are_zero_in_parallel_travel_and_give_the_kc_bar_st
     phi = math.atan((z[1] - z[0]) / track)
     results = {e: kc_result(sedan, 'front', e, steps=KC_STEPS) for e in
                ('opposite_wheel_travel', 'opposite_wheel_travel_no_bar')}
-    k_bar = derived_metrics(results, 2.8e5)['roll_stiffness_bar'][0] * 180.0 / math.pi
+    k_bar = derived_metrics(results, 2.8e5)['roll_stiffness_bar'][0]  # N*m/rad
     npt.assert_allclose(moment / phi, k_bar, rtol=0.02)
 
 
