@@ -142,8 +142,7 @@ def _design_value(channel: str, unit: str, doc: str) -> None:
 
 for _name, _unit in (('toe', 'rad'), ('camber', 'rad'), ('caster', 'rad'),
                      ('kingpin_inclination', 'rad'), ('scrub_radius', 'm'),
-                     ('mechanical_trail', 'm'), ('fvsa_length', 'm'), ('svsa_length', 'm'),
-                     ('svsa_angle', 'rad')):
+                     ('mechanical_trail', 'm')):
     _design_value(_name, _unit, f'{_name} at design (left wheel)')
 
 
@@ -189,6 +188,8 @@ def _roll_centre_kinematic(c: Context) -> float:
     return float(design(c[PAR], 'roll_centre_height'))
 
 
+for _name, _unit in (('fvsa_length', 'm'), ('svsa_length', 'm'), ('svsa_angle', 'rad')):
+    _design_value(_name, _unit, f'{_name} at design (left wheel)')
 for _name, _channel, _k in (('front_view_instant_centre_y', 'front_view_instant_centre', 1),
                             ('front_view_instant_centre_z', 'front_view_instant_centre', 2),
                             ('side_view_instant_centre_x', 'side_view_instant_centre', 0),
