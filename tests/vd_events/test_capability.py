@@ -1,6 +1,8 @@
 """
-The rigid-vs-flexible capability criterion on constructed outcomes with known
-differences, and `vd capability` end to end through the ROS graph.
+The rigid-vs-flexible capability criterion.
+
+On constructed outcomes with known differences, and `vd capability` end to end
+through the ROS graph.
 """
 from __future__ import annotations
 
@@ -33,7 +35,7 @@ def _outcome(event='lateral_force', **changes) -> EventOutcome:
     for name, values in changes.items():
         ch[name] = Channel(ch[name].unit, np.asarray(values, dtype=float))
     return EventOutcome(event, 'c', 'kc', 'rigid', 'front', 'h',
-                        {'lateral_stiffness': Metric(1000.0, 'N/mm')}, ch)
+                        {'lateral_stiffness': Metric(1.0e6, 'N/m')}, ch)
 
 
 def _cell(cells, quantity):
@@ -82,10 +84,10 @@ def test_relative_tolerance_follows_the_quantity_range():
 
 def test_metrics_are_judged_relative_to_the_rigid_value():
     a, b = _outcome(), _outcome()
-    b = EventOutcome(**{**b.__dict__, 'metrics': {'lateral_stiffness': Metric(900.0, 'N/mm')}})
+    b = EventOutcome(**{**b.__dict__, 'metrics': {'lateral_stiffness': Metric(0.9e6, 'N/m')}})
     _, metrics = compare(a, b)
     (cell,) = metrics
-    assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1000.0, 900.0, 'Flexible')
+    assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1.0e6, 0.9e6, 'Flexible')
 
 
 def _vd(*args, timeout=240):

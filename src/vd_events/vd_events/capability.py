@@ -1,6 +1,7 @@
 """
-The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2): for every K&C
-event of an axle, run the rigid and the flexible model on the same configuration and
+The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2).
+
+For every K&C event of an axle, run the rigid and the flexible model on the same configuration and
 say, per quantity, whether the rigid model is good enough ("Rigid") or the flexible
 one is needed ("Flexible").
 
@@ -45,18 +46,19 @@ QUANTITIES: Mapping[str, tuple[tuple[str, ...], str, float | None]] = {
 LOAD_FRACTION = 0.01
 #: a difference this fraction of the quantity's range in the event is also acceptable
 RELATIVE = 0.05
-#: derived metrics compared per event, with the absolute floor (SI-ish, the metric's unit)
+#: derived metrics compared per event, with the absolute floor in the metric's SI unit
 METRICS: Mapping[str, Mapping[str, float]] = {
-    'parallel_wheel_travel': {'bump_steer': 0.5, 'camber_gain': 0.5, 'wheel_rate': 500.0,
-                              'roll_centre_height_kinematic': 0.002},
-    'opposite_wheel_travel': {'roll_stiffness': 10.0, 'roll_steer': 0.005,
-                              'roll_camber': 0.005},
-    'lateral_force': {'lateral_compliance_steer': 0.01, 'lateral_compliance_camber': 0.01,
-                      'lateral_stiffness': 10.0},
-    'longitudinal_force': {'longitudinal_stiffness_braking': 10.0,
-                           'longitudinal_stiffness_traction': 10.0,
-                           'longitudinal_compliance_steer_braking': 0.01},
-    'aligning_torque': {'aligning_torque_compliance_steer': 0.01},
+    'parallel_wheel_travel': {'bump_steer': 0.5 * DEG, 'camber_gain': 0.5 * DEG,  # rad/m
+                              'wheel_rate': 500.0, 'roll_centre_height_kinematic': 0.002},
+    'opposite_wheel_travel': {'roll_stiffness': 10.0 / DEG,  # N*m/rad (10 N*m/deg)
+                              'roll_steer': 0.005, 'roll_camber': 0.005},  # rad/rad
+    'lateral_force': {'lateral_compliance_steer': 0.01 * DEG / 1e3,  # rad/N (0.01 deg/kN)
+                      'lateral_compliance_camber': 0.01 * DEG / 1e3,
+                      'lateral_stiffness': 1e4},  # N/m
+    'longitudinal_force': {'longitudinal_stiffness_braking': 1e4,
+                           'longitudinal_stiffness_traction': 1e4,
+                           'longitudinal_compliance_steer_braking': 0.01 * DEG / 1e3},
+    'aligning_torque': {'aligning_torque_compliance_steer': 0.01 * DEG / 1e3},  # rad/(N*m)
     'steering': {'steering_ratio': 0.1, 'ackermann': 1.0},
 }
 METRIC_RELATIVE = 0.05
@@ -132,7 +134,9 @@ def _stop_mask(*outcomes: EventOutcome) -> np.ndarray:
 def compare(rigid: EventOutcome, flexible: EventOutcome,
             tolerances: Mapping[str, float] | None = None) -> tuple[list[Cell], list[Cell]]:
     """
-    Cells (per-step quantities) and metric cells of one event; see the module doc.
+    Compare the rigid and flexible runs of one event.
+
+    Returns the cells (per-step quantities) and metric cells; see the module doc.
     ``tolerances`` overrides the absolute tolerance per quantity (SI).
     """
     if rigid.n_steps != flexible.n_steps:
@@ -179,7 +183,7 @@ def compare(rigid: EventOutcome, flexible: EventOutcome,
 
 def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: Sequence[str],
                 tolerances: Mapping[str, float] | None = None) -> Table:
-    """The table of one axle from (rigid, flexible) outcome pairs."""
+    """Build the table of one axle from (rigid, flexible) outcome pairs."""
     first = pairs[0][0]
     cells: list[Cell] = []
     metrics: list[Cell] = []
@@ -220,7 +224,8 @@ def to_msg(table: Table, stamp=None):
         return CapabilityCell(event=c.event, quantity=c.quantity, unit=c.unit,
                               max_difference=float(c.max_difference),
                               tolerance=float(c.tolerance), verdict=c.verdict,
-                              stop_engaged=c.stop_engaged, stop_difference=float(c.stop_difference),
+                              stop_engaged=c.stop_engaged,
+                              stop_difference=float(c.stop_difference),
                               stop_needs_flexible=c.stop_needs_flexible,
                               design_offset=float(c.design_offset),
                               rigid_value=float(c.rigid_value),
@@ -253,8 +258,9 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
               parameters: Sequence[str] = (), tolerances: Mapping[str, float] | None = None,
               progress=None) -> list[Table]:
     """
-    Run every K&C event rigid and flexible on ``axles`` through the ROS graph
-    (embedded) and record both runs of every event -- their EventResults and per-step
+    Run every K&C event rigid and flexible on ``axles`` through the ROS graph.
+
+    The graph is embedded; it records both runs of every event -- their EventResults and per-step
     Samples as the solver answered the goals -- and each axle's table to one bag,
     ``out/capability_<configuration>``; return the tables.
 

@@ -11,6 +11,7 @@ Everything goes to ``out/demo/`` (replaced on each run).
 """
 from __future__ import annotations
 
+import math
 from pathlib import Path
 import shutil
 import sys
@@ -29,13 +30,13 @@ HEADLINE = (
     ('yaw_rate_response_time_90', 't90(r) {:.3f} s', 1.0),
     ('yaw_rate_overshoot', 'overshoot(r) {:.1f} %', 1.0),
     ('natural_frequency', 'f_n {:.2f} Hz', 1.0),
-    ('bump_steer', 'bump steer {:.1f} deg/m', 1.0),
-    ('camber_gain', 'camber gain {:.1f} deg/m', 1.0),
+    ('bump_steer', 'bump steer {:.1f} deg/m', 180.0 / math.pi),
+    ('camber_gain', 'camber gain {:.1f} deg/m', 180.0 / math.pi),
     ('wheel_rate', 'wheel rate {:.1f} N/mm', 1e-3),
     ('roll_centre_height_kinematic', 'RC {:.0f} mm', 1e3),
-    ('roll_stiffness', 'roll stiffness {:.0f} N*m/deg', 1.0),
-    ('lateral_compliance_steer', 'lat. compl. steer {:.3f} deg/kN', 1.0),
-    ('lateral_compliance_camber', 'camber {:.3f} deg/kN', 1.0),
+    ('roll_stiffness', 'roll stiffness {:.0f} N*m/deg', math.pi / 180.0),
+    ('lateral_compliance_steer', 'lat. compl. steer {:.3f} deg/kN', 180e3 / math.pi),
+    ('lateral_compliance_camber', 'camber {:.3f} deg/kN', 180e3 / math.pi),
     ('anti_squat', 'anti-squat {:.0f} %', 1.0),
     ('steering_ratio', 'steering ratio {:.1f}', 1.0),
     ('ackermann', 'Ackermann {:.0f} %', 1.0),

@@ -21,12 +21,14 @@ from vd_solvers.analytical.events import run_event
 from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.kc import cache
 from vd_solvers.kc.assembly import LoadCase
+from vd_solvers.kc.channels import wheel_angles
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
-from vd_solvers.kc.metrics import derived_metrics, wheel_angles
+from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.solver import solve_static
 
-STUDIES = {name: load_study(SAMPLE_DATA / 'studies' / f'{name}.yaml') for name in ('sedan', 'hmmwv')}
+STUDIES = {name: load_study(SAMPLE_DATA / 'studies' / f'{name}.yaml')
+           for name in ('sedan', 'hmmwv')}
 CONFIGS = [(study, name) for study, s in STUDIES.items() for name in s.configurations]
 
 
@@ -37,7 +39,7 @@ def sedan_bicycle():
 
 
 def kc(config, axle: str, event: str) -> dict[str, float]:
-    """Derived metrics of one K&C event (default parameters, cached by data hash)."""
+    """Return the derived metrics of one K&C event (default parameters, cached by hash)."""
     results = {event: cache.kc_result(config, axle, event)}
     return {k: v for k, (v, _) in derived_metrics(
         results, cache.kc_model(config, axle).inp.tire_vertical_stiffness,
@@ -58,19 +60,20 @@ def test_sedan_budget_sums_to_its_understeer_gradient_and_names_its_sources(seda
     for term in ('roll_steer', 'lateral_compliance_steer', 'aligning_torque', 'camber'):
         source = m[f'understeer_budget_{term}_deg_per_g'].source
         assert 'K&C front' in source and 'K&C rear' in source and data_hash in source
-    assert m['understeer_budget_tire_deg_per_g'].source.startswith('front: tires/Sedan_Pac02Tire.tir')
+    assert m['understeer_budget_tire_deg_per_g'].source.startswith(
+        'front: tires/Sedan_Pac02Tire.tir')
     assert m['understeer_gradient_deg_per_g'].source.startswith('effective axle cornering')
 
 
 def test_sedan_budget_terms_are_the_k_and_c_metrics_of_the_same_data(sedan_bicycle) -> None:
     # lateral compliance steer alone, from the K&C lateral-force run's own metric:
-    # -c_f N_f/2 + c_r N_r/2 (deg/kN, kN per g)
+    # -c_f N_f/2 + c_r N_r/2 (rad/N, N per g), in deg/g
     config = STUDIES['sedan'].configurations['baseline']
     fz_f, fz_r = static_wheel_loads(config)
     # the K&C run as `vd run lateral_force --axle ...` reports it
     c_f = run_kc_event(config, 'lateral_force', 'front').metrics['lateral_compliance_steer'].value
     c_r = run_kc_event(config, 'lateral_force', 'rear').metrics['lateral_compliance_steer'].value
-    expected = -c_f * fz_f / 1e3 + c_r * fz_r / 1e3
+    expected = math.degrees(-c_f * fz_f + c_r * fz_r)
     term = sedan_bicycle.metrics['understeer_budget_lateral_compliance_steer_deg_per_g'].value
     assert term == pytest.approx(expected, rel=1e-12)
 
@@ -83,7 +86,8 @@ def test_result_does_not_depend_on_what_ran_before() -> None:
     fresh = run_event(config, 'handling_diagram', 'two_track', ['steps=5'])
     run_kc_event(config, 'opposite_wheel_travel', 'rear', ['steps=21'])
     again = run_event(config, 'handling_diagram', 'two_track', ['steps=5'])
-    assert {k: v.value for k, v in fresh.metrics.items()} == {k: v.value for k, v in again.metrics.items()}
+    assert ({k: v.value for k, v in fresh.metrics.items()}
+            == {k: v.value for k, v in again.metrics.items()})
 
 
 @pytest.mark.parametrize('name', ['baseline', 'sport'])
@@ -135,8 +139,9 @@ def test_hmmwv_front_bushings_pivot_freely() -> None:
     # Chrono's bushing leaves the arm's pivot rotation free: the bushings change
     # the roll stiffness of ideal joints by a few per cent, not by a factor
     study = STUDIES['hmmwv']
-    ideal = kc(study.configurations['baseline'], 'front', 'opposite_wheel_travel')['roll_stiffness']
-    bushed = kc(study.configurations['bushings'], 'front', 'opposite_wheel_travel')['roll_stiffness']
+    roll = 'opposite_wheel_travel'
+    ideal = kc(study.configurations['baseline'], 'front', roll)['roll_stiffness']
+    bushed = kc(study.configurations['bushings'], 'front', roll)['roll_stiffness']
     assert math.isclose(bushed, ideal, rel_tol=0.05)
 
 
@@ -157,4 +162,5 @@ def test_without_a_k_and_c_model_the_result_says_bare_tire_and_design_target() -
     assert m['understeer_budget_tire_deg_per_g'].value == pytest.approx(
         m['understeer_gradient_deg_per_g'].value, rel=1e-12)
     two = run_event(bare, 'handling_diagram', 'two_track', ['steps=3'])
-    assert two.metrics['roll_stiffness_front'].source == 'design target sedan/targets/X.yaml (variant X)'
+    assert two.metrics['roll_stiffness_front'].source == (
+        'design target sedan/targets/X.yaml (variant X)')

@@ -38,7 +38,8 @@ def test_label_prefixes_errors(double_wishbone) -> None:
 @pytest.mark.parametrize(
     ('overrides', 'message'),
     [
-        ({'bushings': {'lca_middle': Bushing((1e6,) * 6)}}, "bushing 'lca_middle' does not name a connection"),
+        ({'bushings': {'lca_middle': Bushing((1e6,) * 6)}},
+         "bushing 'lca_middle' does not name a connection"),
         ({'masses': {'knuckle': 10.0}}, "mass 'knuckle' names no part"),
         ({'spring': SpringSpec()}, 'exactly one of rate and curve'),
         ({'spring': SpringSpec(rate=-1.0, preload=0.0)}, 'spring rate must be a positive'),
@@ -54,19 +55,24 @@ def test_bad_inputs(double_wishbone, overrides: dict, message: str) -> None:
 
 def test_locked_mechanism_names_event_and_step(double_wishbone) -> None:
     """
+    Check that a locked mechanism is reported as singular.
+
     An upper ball joint on the arm's own pivot axis: the arm's rotation is
     unrestrained (nothing holds it), the equations are singular.
     """
     inp = double_wishbone()
     points = dict(inp.hardpoints)
     points['uca_outer'] = 0.5 * (points['uca_front'] + points['uca_rear'])
-    with pytest.raises(SolverError, match=r"event 'parallel_wheel_travel', step 50 of 0..100 .*singular"):
+    with pytest.raises(SolverError,
+                       match=r"event 'parallel_wheel_travel', step 50 of 0..100 .*singular"):
         KCModel(replace(inp, hardpoints=points), label='locked').run('parallel_wheel_travel')
 
 
 def test_travel_beyond_the_mechanism_range(double_wishbone) -> None:
-    with pytest.raises(SolverError, match=r"^dw: event 'parallel_wheel_travel', step \d+ of 0..100 \(pad travel = "):
-        KCModel(double_wishbone(), label='dw').run('parallel_wheel_travel', travel_min=-0.8, travel_max=0.8)
+    message = r"^dw: event 'parallel_wheel_travel', step \d+ of 0..100 \(pad travel = "
+    with pytest.raises(SolverError, match=message):
+        KCModel(double_wishbone(), label='dw').run('parallel_wheel_travel', travel_min=-0.8,
+                                                   travel_max=0.8)
 
 
 def test_steering_beyond_the_rack_limit(macpherson_front) -> None:
@@ -83,7 +89,7 @@ def test_steering_needs_a_rack(multilink_rear) -> None:
     ('event', 'params', 'message'),
     [
         ('bounce', {}, "unknown event 'bounce'"),
-        ('parallel_wheel_travel', {'amplitude': 0.1}, 'unexpected keyword'),
+        ('parallel_wheel_travel', {'amplitude': 0.1}, 'unknown parameter'),
         ('parallel_wheel_travel', {'steps': 2}, 'steps must be an integer >= 3'),
         ('lateral_force', {'force_min': 10.0, 'force_max': -10.0}, 'low < high'),
     ],

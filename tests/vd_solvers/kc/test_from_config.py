@@ -97,8 +97,8 @@ def test_design_alignment_reproduced_with_ideal_joints(hmmwv):
                             {'front_alignment.camber': '-0.75 deg',
                              'front_alignment.toe': '0.1 deg'})
     out = run_kc_event(config, 'parallel_wheel_travel', 'front', ['steps=11'])
-    assert out.metrics['camber'].value == pytest.approx(-0.75, abs=1e-9)
-    assert out.metrics['toe'].value == pytest.approx(0.1, abs=1e-9)
+    assert out.metrics['camber'].value == pytest.approx(math.radians(-0.75), abs=1e-11)
+    assert out.metrics['toe'].value == pytest.approx(math.radians(0.1), abs=1e-11)
 
 
 def test_bushings_make_the_axle_compliant(hmmwv):
@@ -155,6 +155,8 @@ def test_stabilizer_without_its_hard_points_is_refused(hmmwv, sedan):
 
 def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
     """
+    Check that the two-track model takes the K&C roll properties.
+
     The two-track model computes the K&C roll properties on demand: the same
     numbers as a direct K&C run of the same configuration, labelled with the data
     hash; without K&C the parameters say 'design target'.
@@ -172,8 +174,7 @@ def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
                                                              'parallel_wheel_travel')},
                                  inp.tire_vertical_stiffness)
         stiffness = fed.metrics[f'roll_stiffness_{axle}']
-        assert stiffness.value == pytest.approx(direct['roll_stiffness'][0] * 180.0 / math.pi,
-                                                rel=1e-12)
+        assert stiffness.value == pytest.approx(direct['roll_stiffness'][0], rel=1e-12)
         assert stiffness.source == (f'K&C {axle} axle (opposite and parallel wheel travel, '
                                     f'data hash {config.data_hash})')
         height = fed.metrics[f'roll_centre_height_{axle}'].value

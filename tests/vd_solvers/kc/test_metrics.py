@@ -5,8 +5,9 @@ import numpy as np
 import pytest
 
 from vd_solvers.errors import SolverError
+from vd_solvers.kc.channels import steering_geometry, wheel_angles
 from vd_solvers.kc.events import run_suite
-from vd_solvers.kc.metrics import derived_metrics, slope_at, steering_geometry, wheel_angles
+from vd_solvers.kc.metrics import derived_metrics, slope_at
 from vd_solvers.kc.model import Curve
 
 
@@ -24,19 +25,23 @@ def rear_suite(request: pytest.FixtureRequest) -> dict:
 
 def test_front_metrics_are_complete_and_sane(front_suite, generic_wheelbase) -> None:
     inp, results = front_suite['inp'], front_suite['results']
-    m = derived_metrics(results, inp.tire_vertical_stiffness, cg_height=0.55, wheelbase=generic_wheelbase)
+    m = derived_metrics(results, inp.tire_vertical_stiffness, cg_height=0.55,
+                        wheelbase=generic_wheelbase)
     for name in ('bump_steer', 'camber_gain', 'wheel_rate', 'ride_rate', 'roll_stiffness',
-                 'roll_stiffness_no_bar', 'roll_steer', 'roll_camber', 'roll_centre_height_kinematic',
-                 'roll_centre_height_force', 'lateral_compliance_steer', 'lateral_stiffness',
+                 'roll_stiffness_no_bar', 'roll_steer', 'roll_camber',
+                 'roll_centre_height_kinematic', 'roll_centre_height_force',
+                 'lateral_compliance_steer', 'lateral_stiffness',
                  'longitudinal_stiffness_braking', 'anti_dive', 'anti_lift_traction',
                  'steering_ratio', 'ackermann', 'caster', 'kingpin_inclination', 'scrub_radius',
-                 'mechanical_trail'):
+                 'mechanical_trail', 'fvsa_length', 'svsa_length', 'svsa_angle',
+                 'front_view_instant_centre_y', 'side_view_instant_centre_x'):
         assert name in m, name
-    assert m['wheel_rate'][1] == 'N/m' and m['roll_stiffness'][1] == 'N*m/deg'
+    assert m['wheel_rate'][1] == 'N/m' and m['roll_stiffness'][1] == 'N*m/rad'
     # MacPherson: strut top rearward and inboard -> positive caster, KPI, trail
-    assert 3.0 < m['caster'][0] < 12.0 and 5.0 < m['kingpin_inclination'][0] < 18.0
+    caster, kpi = np.degrees(m['caster'][0]), np.degrees(m['kingpin_inclination'][0])
+    assert 3.0 < caster < 12.0 and 5.0 < kpi < 18.0
     assert m['mechanical_trail'][0] > 0.0
-    assert -30.0 < m['camber_gain'][0] < 0.0  # deg/m: top inward in bump
+    assert -30.0 < np.degrees(m['camber_gain'][0]) < 0.0  # deg/m: top inward in bump
     assert 0.0 < m['roll_centre_height_kinematic'][0] < 0.3
     assert 10.0 < m['steering_ratio'][0] < 30.0
     assert 0.0 < m['ackermann'][0] < 100.0
@@ -55,21 +60,29 @@ def test_ride_rate_is_wheel_rate_in_series_with_the_tire(front_suite) -> None:
 @pytest.mark.parametrize('suite', ['front_suite', 'rear_suite'])
 def test_roll_centre_from_paths_equals_roll_centre_from_forces(suite: str, request) -> None:
     """
+    Check the kinematic roll centre against the force-based one.
+
     Rigid linkage: instant-centre construction and the pads' jacking under
     lateral force are the same virtual-work statement.
     """
     data = request.getfixturevalue(suite)
     m = derived_metrics(data['results'], data['inp'].tire_vertical_stiffness)
-    assert m['roll_centre_height_force'][0] == pytest.approx(m['roll_centre_height_kinematic'][0], rel=2e-3)
+    assert m['roll_centre_height_force'][0] == pytest.approx(
+        m['roll_centre_height_kinematic'][0], rel=1e-9)
 
 
 def test_steering_ratio_from_the_rack_ratio(front_suite) -> None:
     inp, results = front_suite['inp'], front_suite['results']
-    ch = results['steering'].channels
+    steer = results['steering']
     m = derived_metrics(results, inp.tire_vertical_stiffness)
-    mean = ch['steer_angle'].mean(axis=1)
-    road_per_rack = abs(slope_at(ch['rack_travel'], mean, 0.0, 0.005))
-    assert m['steering_ratio'][0] == pytest.approx(1.0 / (road_per_rack * inp.steering.rack_ratio), rel=1e-3)
+    rate = steer.rate_up
+    road_per_rack = abs(rate['steer_angle'].mean() / rate['rack_travel'])
+    assert m['steering_ratio'][0] == pytest.approx(
+        1.0 / (road_per_rack * inp.steering.rack_ratio), rel=1e-9)
+    # the former fit over +-5 mm of rack within its bias
+    mean = steer.channels['steer_angle'].mean(axis=1)
+    fit = abs(slope_at(steer.channels['rack_travel'], mean, 0.0, 0.005))
+    assert fit == pytest.approx(road_per_rack, rel=1e-3)
 
 
 def test_rear_metrics(rear_suite) -> None:

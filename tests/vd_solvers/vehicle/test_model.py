@@ -35,6 +35,8 @@ def model(sedan):
 
 def test_maps_are_the_kc_results_of_the_same_configuration(sedan, model):
     """
+    Check that the maps are the K&C results of the same configuration.
+
     At design (z = 0) the wheel-force map is the K&C pad load less the unsprung weight,
     toe and camber are the K&C ones, and every map names its K&C event and data hash.
     """
@@ -57,6 +59,8 @@ def test_maps_are_the_kc_results_of_the_same_configuration(sedan, model):
 def test_anti_roll_bar_forces_are_zero_in_parallel_travel_and_give_the_kc_bar_stiffness(sedan,
                                                                                     model):
     """
+    Check the anti-roll-bar map against the K&C bar roll stiffness.
+
     No bar force when both wheels travel alike; in roll, the bar forces' roll moment over
     the roll angle is the K&C bar roll stiffness (with bar minus without), within 2 %
     (the K&C metric is a slope fitted over +-10 mm, this a secant over +-5 mm).
@@ -71,12 +75,14 @@ def test_anti_roll_bar_forces_are_zero_in_parallel_travel_and_give_the_kc_bar_st
     phi = math.atan((z[1] - z[0]) / track)
     results = {e: kc_result(sedan, 'front', e, steps=KC_STEPS) for e in
                ('opposite_wheel_travel', 'opposite_wheel_travel_no_bar')}
-    k_bar = derived_metrics(results, 2.8e5)['roll_stiffness_bar'][0] * 180.0 / math.pi
+    k_bar = derived_metrics(results, 2.8e5)['roll_stiffness_bar'][0]  # N*m/rad
     npt.assert_allclose(moment / phi, k_bar, rtol=0.02)
 
 
 def test_tire_loads_follow_the_wheel_centres_pinocchio_computes(model):
     """
+    Check the tire loads against Pinocchio's wheel-centre kinematics.
+
     The model's own wheel-centre kinematics (used per step for speed) against
     Pinocchio's forward kinematics: the tire load C_z (R0 - h) - c dh/dt at each wheel.
     """
@@ -118,6 +124,8 @@ def _free_flight_drift(sedan, h: float) -> tuple[float, float]:
 
 def test_free_flight_conserves_momentum_to_the_integration_error(sedan):
     """
+    Check that free flight conserves momentum to the integration error.
+
     No road, no gravity: suspension, dampers and wheel spin are internal forces, so the
     centroidal momentum must stay constant. The semi-implicit Euler step on the body's
     local velocities conserves it only to O(h): the drift must be small and halve with the
@@ -132,6 +140,8 @@ def test_free_flight_conserves_momentum_to_the_integration_error(sedan):
 
 def test_a_dropped_car_settles_on_the_static_wheel_loads(sedan, model):
     """
+    Check that a dropped car settles on the static wheel loads.
+
     Dropped 20 mm at rest, the car comes to rest with the loads of static_wheel_loads.
     Tolerance 0.2 %: the data's spring preloads hold the rear about 6 mm from design
     height (K&C pad load at design 3970 N vs the 3815 N static load), which pitches the
@@ -166,6 +176,8 @@ def test_a_non_finite_state_is_an_error_naming_configuration_event_and_time(mode
 
 def test_the_step_converges_with_the_step_size(model):
     """
+    Check that the step converges with the step size.
+
     Steps of 1, 2.5 and 5 ms on a step steer of about 4 m/s^2: the steady state is the
     same, and the peak yaw rate converges at first order (semi-implicit Euler): its error
     against the 1 ms run grows in proportion to h - 1 ms, so the 5 ms error is
@@ -189,6 +201,8 @@ def test_the_step_converges_with_the_step_size(model):
 @pytest.mark.parametrize('study', ['sedan', 'hmmwv'])
 def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
     """
+    Check that the initial state puts the static loads on the tires.
+
     Body height and pitch of the start are those at which the tires carry the static
     wheel loads (the wheel-centre heights of the data need not be the loaded radius).
     """
@@ -202,6 +216,8 @@ def test_the_initial_state_puts_the_static_loads_on_the_tires(study):
 
 def _suspension_potential(maps, z: np.ndarray) -> float:
     """
+    Return the suspension potential of the wheel-force maps at z.
+
     Sum over the wheels of the work of the wheel-force map from the grid start to z
     (exact for the piecewise-linear map, with its linear extrapolation).
     """
@@ -238,6 +254,8 @@ def _energy_drift(vehicle, h: float) -> float:
 
 def test_free_flight_without_dampers_conserves_energy():
     """
+    Check that free flight without dampers conserves energy.
+
     The HMMWV (no anti-roll bar: its suspension forces derive from the wheel-force
     maps alone) in free flight without dampers, road and gravity: kinetic energy plus
     the maps' potential stays constant but for the symplectic step's bounded O(h) error,

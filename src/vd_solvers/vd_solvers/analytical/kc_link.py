@@ -5,27 +5,26 @@ Per axle, from K&C events run on demand and cached by data hash
 (:func:`vd_solvers.kc.cache.kc_result`, each event with its default
 parameters, so the numbers equal those of ``vd run EVENT --axle AXLE``):
 
-==========================================  ===========================  ==============================
-value                                       K&C event                    derived metric (docs/kc.md)
-==========================================  ===========================  ==============================
-roll stiffness (incl. anti-roll bar)        opposite_wheel_travel        ``roll_stiffness``
-roll-centre height                          parallel_wheel_travel        ``roll_centre_height_kinematic``
-roll steer, roll camber                     opposite_wheel_travel        ``roll_steer``, ``roll_camber``
-lateral-force compliance steer and camber   lateral_force                ``lateral_compliance_steer``,
-                                                                         ``lateral_compliance_camber``
-aligning-torque compliance steer            aligning_torque              ``aligning_torque_compliance_steer``
-==========================================  ===========================  ==============================
+* roll stiffness (incl. anti-roll bar): ``opposite_wheel_travel``,
+  ``roll_stiffness``;
+* roll-centre height: ``parallel_wheel_travel``, ``roll_centre_height_kinematic``;
+* roll steer, roll camber: ``opposite_wheel_travel``, ``roll_steer``,
+  ``roll_camber``;
+* lateral-force compliance steer and camber: ``lateral_force``,
+  ``lateral_compliance_steer``, ``lateral_compliance_camber``;
+* aligning-torque compliance steer: ``aligning_torque``,
+  ``aligning_torque_compliance_steer``
 
-and from the axle's .tir file at the static wheel load: the pneumatic trail
-at zero slip (:meth:`MagicFormula.pneumatic_trail`) and the camber stiffness
-(the derivative of the lateral force with respect to the lean of the wheel
-top towards +y, at zero slip). The K&C metrics leave in engineering units
-(deg/kN, deg/deg, N*m/deg); they are converted to SI here, once.
+(event, derived metric of docs/kc.md), and from the axle's .tir file at the
+static wheel load: the pneumatic trail at zero slip
+(:meth:`MagicFormula.pneumatic_trail`) and the camber stiffness (the
+derivative of the lateral force with respect to the lean of the wheel top
+towards +y, at zero slip). The K&C metrics are SI (rad/N, rad/rad, N*m/rad),
+as the analytical parameters.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-import math
 
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
@@ -38,8 +37,6 @@ from vd_solvers.tire.magic_formula import MagicFormula
 KC_EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force', 'aligning_torque')
 #: step of the central difference of the lateral force in camber, rad
 CAMBER_STEP = 1e-6
-
-DEG = 180.0 / math.pi
 
 
 @dataclass(frozen=True)
@@ -88,7 +85,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
         m = derived_metrics(results, model.inp.tire_vertical_stiffness)
         tag = f'data hash {config.data_hash}'
         suspension[axle] = AxleSuspension(
-            m['roll_stiffness'][0] * DEG, m['roll_centre_height_kinematic'][0],
+            m['roll_stiffness'][0], m['roll_centre_height_kinematic'][0],
             f'K&C {axle} axle (opposite and parallel wheel travel, {tag})')
         group = config.group(f'{axle}_tire')
         mf = MagicFormula(tire_properties(group))
@@ -99,11 +96,11 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
             return f'K&C {axle} {event} {metric} {value:.4g} {unit} ({tag})'
 
         compliance[axle] = AxleCompliance(
-            lateral_compliance_steer=m['lateral_compliance_steer'][0] / DEG / 1e3,
-            lateral_compliance_camber=m['lateral_compliance_camber'][0] / DEG / 1e3,
+            lateral_compliance_steer=m['lateral_compliance_steer'][0],
+            lateral_compliance_camber=m['lateral_compliance_camber'][0],
             roll_steer=m['roll_steer'][0],
             roll_camber=m['roll_camber'][0],
-            aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0] / DEG / 1e3,
+            aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0],
             pneumatic_trail=float(mf.pneumatic_trail(fz)),
             camber_stiffness=camber_stiffness(mf, fz),
             sources={
@@ -121,9 +118,11 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
 
 def try_kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInputs | str:
     """
-    :func:`kc_inputs`, or why the configuration has no K&C model (its data
-    cannot be assembled into one). A K&C event that fails on a model that
-    could be assembled is an error, not a reason to drop the K&C values.
+    Return :func:`kc_inputs`, or why the configuration has no K&C model.
+
+    The reason is given when its data cannot be assembled into one. A K&C
+    event that fails on a model that could be assembled is an error, not a
+    reason to drop the K&C values.
     """
     from vd_solvers.kc.cache import kc_model
 

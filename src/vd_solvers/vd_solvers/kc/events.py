@@ -23,48 +23,79 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from vd_solvers.errors import SolverError
+from vd_solvers.event_params import Param
 
-from .assembly import LoadCase, State, System, assemble
-from .metrics import channels, wheel_angles
-from .model import Axle, SuspensionInput, without_bar
-from .solver import solve_path, solve_static
+from .assembly import Evaluation, LoadCase, State, System, assemble
+from .channels import SOLVER_CHANNELS, TRAVEL_EVENTS, channels, wheel_angles
+from .model import SuspensionInput, without_bar
+from .result import EventResult
+from .solver import (
+    Convergence,
+    Sensitivity,
+    Solution,
+    moved,
+    sensitivity,
+    solve_path,
+    solve_static,
+)
 from .templates import TEMPLATES
 
-DEFAULT_STEPS = 101
 # Spring-preload trim: secant iterations and relative tolerance on the pad load.
 MAX_TRIM_ITERATIONS = 8
 TRIM_TOL = 1e-9
 # Loaded alignment: fixed-point iterations and tolerance on toe and camber, rad.
 MAX_ALIGN_ITERATIONS = 12
 ALIGN_TOL = 1e-10
+#: step of the output-map derivative at design, as a fraction of the sweep's reach
+RATE_STEP = 1e-3
 
+_STEPS = Param('integer', 101, 'steps', minimum=3, maximum=2001)
 
-@dataclass(frozen=True)
-class EventResult:
-    """
-    One event's per-step channels (see :func:`.metrics.channels`) and the
-    parameters it ran with (SI).
-    """
-
-    event: str
-    axle: Axle
-    label: str
-    params: Mapping[str, float]
-    channels: Mapping[str, np.ndarray]
-
-    @property
-    def steps(self) -> int:
-        """Number of steps."""
-        return int(self.channels['wheel_travel'].shape[0])
+#: event -> its parameters (SI) with their defaults: the one table of them, used by
+#: :meth:`KCModel.run` and by ``vd run --param`` (:mod:`.from_config`)
+EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
+    'parallel_wheel_travel': {
+        'travel_min': Param('length', -0.08, 'lowest pad travel (rebound)', maximum=0.0),
+        'travel_max': Param('length', 0.08, 'highest pad travel (bump)', minimum=0.0),
+        'steps': _STEPS,
+    },
+    'opposite_wheel_travel': {
+        'amplitude': Param('length', 0.08, 'left pad +a..-a, right pad opposite', minimum=0.001),
+        'steps': _STEPS,
+    },
+    'lateral_force': {
+        'force_min': Param('force', -4000.0, 'lowest force along +y at both contact patches',
+                           maximum=0.0),
+        'force_max': Param('force', 4000.0, 'highest force', minimum=0.0),
+        'steps': _STEPS,
+    },
+    'longitudinal_force': {
+        'force_min': Param('force', -4000.0, 'braking force at the contact patch (negative)',
+                           maximum=0.0),
+        'force_max': Param('force', 4000.0, 'traction force at the wheel centre', minimum=0.0),
+        'steps': _STEPS,
+    },
+    'steering': {
+        'steering_wheel_angle': Param('angle', 0.0, 'sweep +-angle; 0 = lock to lock',
+                                      minimum=0.0),
+        'steps': _STEPS,
+    },
+    'aligning_torque': {
+        'moment_min': Param('torque', -200.0, 'lowest moment about +z at both contact patches',
+                            maximum=0.0),
+        'moment_max': Param('torque', 200.0, 'highest moment', minimum=0.0),
+        'steps': _STEPS,
+    },
+}
 
 
 @dataclass(frozen=True)
 class _Plan:
-    """Load cases of an event and the swept quantity that names its steps."""
+    """The load of an event as a function of its swept quantity, and the sweep."""
 
-    cases: list[LoadCase]
+    load: Callable[[float], LoadCase]
     sweep: np.ndarray
-    quantity: str
+    quantity: str  # channel-style name of the swept quantity
     unit: str
     params: dict[str, float]
 
@@ -77,68 +108,66 @@ def _sweep(low: float, high: float, steps: int, what: str) -> np.ndarray:
     return np.linspace(low, high, steps)
 
 
-def parallel_wheel_travel(
-    inp: SuspensionInput, travel_min: float = -0.08, travel_max: float = 0.08, steps: int = DEFAULT_STEPS
-) -> _Plan:
+def parallel_wheel_travel(inp: SuspensionInput, *, travel_min: float, travel_max: float,
+                          steps: int) -> _Plan:
     """Both pads from ``travel_min`` to ``travel_max`` (m, + = bump)."""
     z = _sweep(travel_min, travel_max, steps, 'parallel_wheel_travel')
-    cases = [LoadCase(pad=np.array([t, t])) for t in z]
     params = {'travel_min': travel_min, 'travel_max': travel_max, 'steps': steps}
-    return _Plan(cases, z, 'pad travel', 'm', params)
+    return _Plan(lambda t: LoadCase(pad=np.array([t, t])), z, 'pad_travel', 'm', params)
 
 
-def opposite_wheel_travel(
-    inp: SuspensionInput, amplitude: float = 0.08, steps: int = DEFAULT_STEPS
-) -> _Plan:
+def opposite_wheel_travel(inp: SuspensionInput, *, amplitude: float, steps: int) -> _Plan:
     """Left pad t, right pad -t for t from -``amplitude`` to ``amplitude`` (m)."""
     z = _sweep(-amplitude, amplitude, steps, 'opposite_wheel_travel')
-    cases = [LoadCase(pad=np.array([t, -t])) for t in z]
-    return _Plan(cases, z, 'left pad travel', 'm', {'amplitude': amplitude, 'steps': steps})
+    return _Plan(lambda t: LoadCase(pad=np.array([t, -t])), z, 'pad_travel_left', 'm',
+                 {'amplitude': amplitude, 'steps': steps})
 
 
-def lateral_force(
-    inp: SuspensionInput, force_min: float = -4000.0, force_max: float = 4000.0, steps: int = DEFAULT_STEPS
-) -> _Plan:
+def _on_both(value: float, component: int) -> np.ndarray:
+    out = np.zeros((2, 3))
+    out[:, component] = value
+    return out
+
+
+def lateral_force(inp: SuspensionInput, *, force_min: float, force_max: float,
+                  steps: int) -> _Plan:
     """Force along +y (N) at both contact points, pads at design height."""
     f = _sweep(force_min, force_max, steps, 'lateral_force')
-    cases = []
-    for v in f:
-        force = np.zeros((2, 3))
-        force[:, 1] = v
-        cases.append(LoadCase(contact_force=force))
     params = {'force_min': force_min, 'force_max': force_max, 'steps': steps}
-    return _Plan(cases, f, 'lateral force', 'N', params)
+    return _Plan(lambda v: LoadCase(contact_force=_on_both(v, 1)), f, 'lateral_force', 'N',
+                 params)
 
 
-def longitudinal_force(
-    inp: SuspensionInput, force_min: float = -4000.0, force_max: float = 4000.0, steps: int = DEFAULT_STEPS
-) -> _Plan:
+def longitudinal_force(inp: SuspensionInput, *, force_min: float, force_max: float,
+                       steps: int) -> _Plan:
     """
-    Force along +x (N) on both wheels: negative = braking at the contact
-    point (wheel locked), positive = traction at the wheel centre.
+    Apply a force along +x (N) on both wheels.
+
+    Negative = braking at the contact point (wheel locked), positive =
+    traction at the wheel centre.
     """
     f = _sweep(force_min, force_max, steps, 'longitudinal_force')
-    cases = []
-    for v in f:
-        at_contact, at_centre = np.zeros((2, 3)), np.zeros((2, 3))
-        (at_contact if v < 0.0 else at_centre)[:, 0] = v
-        cases.append(LoadCase(contact_force=at_contact, centre_force=at_centre))
+
+    def load(v: float) -> LoadCase:
+        if v < 0.0:
+            return LoadCase(contact_force=_on_both(v, 0))
+        return LoadCase(centre_force=_on_both(v, 0))
+
     params = {'force_min': force_min, 'force_max': force_max, 'steps': steps}
-    return _Plan(cases, f, 'longitudinal force', 'N', params)
+    return _Plan(load, f, 'longitudinal_force', 'N', params)
 
 
-def steering(
-    inp: SuspensionInput, steering_wheel_angle: float | None = None, steps: int = DEFAULT_STEPS
-) -> _Plan:
+def steering(inp: SuspensionInput, *, steering_wheel_angle: float | None, steps: int) -> _Plan:
     """
-    Steering wheel from -a to +a (rad, + = left); default lock to lock
-    (the rack travel limit). Pads at design height.
+    Sweep the steering wheel from -a to +a (rad, + = left), pads at design height.
+
+    ``steering_wheel_angle`` None or 0: lock to lock (the rack travel limit).
     """
     spec = inp.steering
     if spec is None:
         raise SolverError('steering event: the axle has no steering (front axle with rack only)')
     limit = spec.rack_travel_limit / spec.rack_ratio
-    amplitude = limit if steering_wheel_angle is None else float(steering_wheel_angle)
+    amplitude = limit if not steering_wheel_angle else float(steering_wheel_angle)
     if amplitude > limit * (1.0 + 1e-12):
         raise SolverError(
             f'steering event: steering-wheel angle {np.degrees(amplitude):.1f} deg needs '
@@ -146,31 +175,27 @@ def steering(
             f'{spec.rack_travel_limit * 1e3:.1f} mm limit'
         )
     swa = _sweep(-amplitude, amplitude, steps, 'steering')
+    ratio = spec.rack_ratio
     return _Plan(
-        [LoadCase(rack=float(a * spec.rack_ratio)) for a in swa],  # sign applied by the model
+        lambda a: LoadCase(rack=float(a * ratio)),  # sign applied by the model
         swa,
-        'steering-wheel angle',
+        'steering_wheel_angle',
         'rad',
         {'steering_wheel_angle': amplitude, 'rack_ratio': spec.rack_ratio, 'steps': steps},
     )
 
 
-def aligning_torque(
-    inp: SuspensionInput, moment_min: float = -200.0, moment_max: float = 200.0,
-    steps: int = DEFAULT_STEPS,
-) -> _Plan:
+def aligning_torque(inp: SuspensionInput, *, moment_min: float, moment_max: float,
+                    steps: int) -> _Plan:
     """
-    Moment about +z (N*m, counter-clockwise from above) at both contact
-    points, pads at design height, steering held.
+    Apply a moment about +z (N*m, counter-clockwise from above) at both contact points.
+
+    Pads at design height, steering held.
     """
     mz = _sweep(moment_min, moment_max, steps, 'aligning_torque')
-    cases = []
-    for v in mz:
-        moment = np.zeros((2, 3))
-        moment[:, 2] = v
-        cases.append(LoadCase(contact_moment=moment))
     params = {'moment_min': moment_min, 'moment_max': moment_max, 'steps': steps}
-    return _Plan(cases, mz, 'aligning torque', 'N*m', params)
+    return _Plan(lambda v: LoadCase(contact_moment=_on_both(v, 2)), mz, 'aligning_torque',
+                 'N*m', params)
 
 
 EVENTS: dict[str, Callable[..., _Plan]] = {
@@ -181,6 +206,12 @@ EVENTS: dict[str, Callable[..., _Plan]] = {
     'steering': steering,
     'aligning_torque': aligning_torque,
 }
+
+
+def event_defaults(event: str) -> dict[str, float]:
+    """Return the default parameters of ``event`` (SI; ``steps`` an int)."""
+    return {k: (int(p.default) if p.quantity == 'integer' else p.default)
+            for k, p in EVENT_PARAMS[event].items()}
 
 
 class KCModel:
@@ -215,43 +246,106 @@ class KCModel:
     def run(self, event: str, on_step: Callable[[int, int], None] | None = None,
             **params: float) -> EventResult:
         """
-        Run ``event`` with ``params`` (see the event functions' defaults);
-        ``on_step(done, total)`` reports progress.
+        Run ``event`` with ``params`` (defaults: :data:`EVENT_PARAMS`).
+
+        ``on_step(done, total)`` reports progress. Besides the per-step
+        channels the result holds every channel at the design state and its
+        exact rates there (:class:`.result.EventResult`); the travel events
+        also carry the kinematic channels of :func:`.channels.instant_centres`.
         """
         plan_of = EVENTS.get(event)
         if plan_of is None:
             raise SolverError(f'{self._prefix()}unknown event {event!r}; known: {sorted(EVENTS)}')
+        unknown = sorted(set(params) - set(EVENT_PARAMS[event]))
+        if unknown:
+            known = ', '.join(EVENT_PARAMS[event])
+            raise SolverError(f'{self._prefix()}event {event!r}: unknown parameter(s) '
+                              f'{", ".join(unknown)} (parameters: {known})')
         try:
-            plan = plan_of(self.inp, **params)
-        except TypeError as err:
-            raise SolverError(f'{self._prefix()}event {event!r}: {err}') from None
+            plan = plan_of(self.inp, **{**event_defaults(event), **params})
         except SolverError as err:
             raise SolverError(f'{self._prefix()}{err}') from None
         sign = self.system.outputs.steer_sign
-        cases = [replace(c, rack=sign * c.rack) for c in plan.cases]
+
+        def load(value: float) -> LoadCase:
+            case = plan.load(value)
+            return replace(case, rack=sign * case.rack)
+
+        cases = [load(v) for v in plan.sweep]
         n = len(cases)
 
         def describe(i: int) -> str:
             return (
                 f'{self._prefix()}event {event!r}, step {i} of 0..{n - 1} '
-                f'({plan.quantity} = {plan.sweep[i]:.6g} {plan.unit})'
+                f"({plan.quantity.replace('_', ' ')} = {plan.sweep[i]:.6g} {plan.unit})"
             )
 
         start = int(np.argmin(np.abs(plan.sweep)))
         solution = solve_path(self.system, cases, start, describe, on_step)
         ratio = self.inp.steering.rack_ratio if self.inp.steering is not None else None
-        ch = channels(self.system, self.template, solution, cases, ratio)
-        return EventResult(event, self.inp.axle, self.label, dict(plan.params), ch)
+        step = RATE_STEP * float(np.max(np.abs(plan.sweep)))
+        travel = event in TRAVEL_EVENTS
+        per_step = None
+        if travel:
+            per_step = [sensitivity(self.system, st, c, load(v + step), step, ev)
+                        for st, c, v, ev in zip(solution.states, cases, plan.sweep,
+                                                solution.evaluations)]
+        ch = channels(self.system, self.template, solution, cases, ratio, per_step)
+        design, rate_up, rate_down = self._design_rates(event, load, step, ratio, travel)
+        return EventResult(event, self.inp.axle, self.label, dict(plan.params), ch,
+                           plan.quantity, plan.unit, design, rate_up, rate_down)
+
+    def _design_rates(self, event: str, load: Callable[[float], LoadCase], step: float,
+                      ratio: float | None, travel: bool):
+        """
+        Return the channels at design and their exact rates there (up, down).
+
+        The state's rate is exact (:func:`.solver.sensitivity`); each
+        channel's rate follows by the chain rule as the directional derivative
+        of the channel map along it: a Richardson-extrapolated central
+        difference over +-``step``, +-2 ``step`` of an explicit smooth map
+        (truncation O(step^4), about 1e-12 relative at RATE_STEP).
+        """
+        system = self.system
+        design = LoadCase()
+        state, ev, conv = solve_static(system, design, f'{self._prefix()}event {event!r}, design')
+        rates: list[tuple[Sensitivity, Callable[[float], LoadCase]]] = []
+        for sign in (1.0, -1.0):
+            ahead = load(sign * step)
+            rate = sensitivity(system, state, design, ahead, sign * step, ev)
+            rates.append((rate, lambda t, a=ahead, h=sign * step: design.blend(a, t / h)))
+        up = rates[0][0]
+        at = channels(system, self.template, Solution((state,), (ev,), (conv,)), [design], ratio,
+                      [up] if travel else None)
+        values = {k: v[0] for k, v in at.items()}
+        out = []
+        for rate, line in rates:
+            out.append(self._channel_rates(state, rate, line, step, ratio, values))
+        return values, out[0], out[1]
+
+    def _channel_rates(self, state: State, rate: Sensitivity, line: Callable[[float], LoadCase],
+                       step: float, ratio: float | None,
+                       values: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        offsets = (-2.0 * step, -step, step, 2.0 * step)
+        states = tuple(moved(state, rate, t) for t in offsets)
+        loads = [line(t) for t in offsets]
+        evals: tuple[Evaluation, ...] = tuple(
+            self.system.evaluate(st, c) for st, c in zip(states, loads))
+        idle = tuple(Convergence(0, 0.0, 0.0) for _ in offsets)
+        ch = channels(self.system, self.template, Solution(states, evals, idle), loads, ratio)
+        return {k: (8.0 * (v[2] - v[1]) - (v[3] - v[0])) / (12.0 * step)
+                for k, v in ch.items() if k in values and k not in SOLVER_CHANNELS}
 
     @staticmethod
     def _aligned(inp: SuspensionInput, spec: SuspensionInput | None = None) -> SuspensionInput:
         """
-        ``inp`` with the toe and camber the wheel is assembled with solved so
-        that under the static corner load at design height (pads at design,
-        bushings deflected) the left wheel has the toe and camber of ``spec``
-        (default ``inp``): alignment is specified for the loaded car. Without
-        bushings the linkage does not deflect and ``inp`` is returned.
-        Fixed-point iteration on the deflection, to ALIGN_TOL.
+        Solve the toe and camber the wheel is assembled with.
+
+        Returns ``inp`` with them, chosen so that under the static corner load at design
+        height (pads at design, bushings deflected) the left wheel has the toe and
+        camber of ``spec`` (default ``inp``): alignment is specified for the loaded car.
+        Without bushings the linkage does not deflect and ``inp`` is returned. Fixed-
+        point iteration on the deflection, to ALIGN_TOL.
         """
         spec = inp if spec is None else spec
         if not inp.bushings:
@@ -276,8 +370,10 @@ class KCModel:
     @staticmethod
     def _trimmed(inp: SuspensionInput) -> SuspensionInput:
         """
-        ``inp`` with the spring preload found, if neither free length nor
-        preload is given, so that the design pad load equals the corner load
+        Trim the spring preload to the corner load.
+
+        Returns ``inp`` with the spring preload found, if neither free length
+        nor preload is given, so that the design pad load equals the corner load
         (secant on the preload; exact in one step for a rigid linkage).
         """
         spring = inp.spring
@@ -289,7 +385,8 @@ class KCModel:
         def pad_load(preload: float) -> float:
             trial = replace(inp, spring=replace(spring, preload=preload))
             system = assemble(trial)
-            state, _, _ = solve_static(system, LoadCase(), 'spring preload trim', last[-1] if last else None)
+            state, _, _ = solve_static(system, LoadCase(), 'spring preload trim',
+                                       last[-1] if last else None)
             last.append(state)
             return float(-state.lam[system.outputs.pad_rows].mean())
 
@@ -300,7 +397,8 @@ class KCModel:
             if abs(f1 - target) <= TRIM_TOL * target:
                 return replace(inp, spring=replace(spring, preload=p1))
             if f1 == f0:
-                raise SolverError('spring preload trim: the pad load does not respond to the spring preload')
+                raise SolverError('spring preload trim: the pad load does not respond to the '
+                                  'spring preload')
             p0, p1, f0 = p1, p1 + (target - f1) * (p1 - p0) / (f1 - f0), f1
             f1 = pad_load(p1)
         raise SolverError(
@@ -320,8 +418,9 @@ def run_suite(
     params: Mapping[str, Mapping[str, float]] | None = None,
 ) -> dict[str, EventResult]:
     """
-    All events that apply to ``inp`` (steering on a steered axle only),
-    plus ``opposite_wheel_travel_no_bar`` when the axle has an anti-roll bar.
+    Run all events that apply to ``inp`` (steering on a steered axle only).
+
+    Plus ``opposite_wheel_travel_no_bar`` when the axle has an anti-roll bar.
     ``params``: per-event keyword arguments.
     """
     params = params or {}

@@ -18,10 +18,11 @@ import numpy as np
 from vd_data_server.model import Configuration, GroupData
 from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.errors import SolverError
-from vd_solvers.event_params import Param, parse_params
+from vd_solvers.event_params import parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
-from .events import EVENTS, KCModel, run_suite
+from .channels import UNITS, bushing_unit
+from .events import EVENT_PARAMS, EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
 from .model import (
     Bushing,
@@ -38,45 +39,7 @@ from .model import (
 
 FIDELITIES = ('rigid', 'flexible')
 
-DEG = 180.0 / math.pi
 SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
-
-#: event -> its parameters (SI), as ``vd run --param`` takes them
-EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
-    'parallel_wheel_travel': {
-        'travel_min': Param('length', -0.08, 'lowest pad travel (rebound)', maximum=0.0),
-        'travel_max': Param('length', 0.08, 'highest pad travel (bump)', minimum=0.0),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-    'opposite_wheel_travel': {
-        'amplitude': Param('length', 0.08, 'left pad +a..-a, right pad opposite', minimum=0.001),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-    'lateral_force': {
-        'force_min': Param('force', -4000.0, 'lowest force along +y at both contact patches',
-                           maximum=0.0),
-        'force_max': Param('force', 4000.0, 'highest force', minimum=0.0),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-    'longitudinal_force': {
-        'force_min': Param('force', -4000.0, 'braking force at the contact patch (negative)',
-                           maximum=0.0),
-        'force_max': Param('force', 4000.0, 'traction force at the wheel centre', minimum=0.0),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-    'steering': {
-        'steering_wheel_angle': Param('angle', 0.0, 'sweep +-angle; 0 = lock to lock',
-                                      minimum=0.0),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-    'aligning_torque': {
-        'moment_min': Param('torque', -200.0, 'lowest moment about +z at both contact patches',
-                            maximum=0.0),
-        'moment_max': Param('torque', 200.0, 'highest moment', minimum=0.0),
-        'steps': Param('integer', 101, 'steps', minimum=3, maximum=2001),
-    },
-}
-
 
 def _curve(group: GroupData, key: str, scale: float = 1.0) -> Curve:
     xs, ys = group.curve(key)
@@ -89,7 +52,7 @@ def _optional(config: Configuration, name: str) -> GroupData | None:
 
 def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') -> SuspensionInput:
     """
-    The K&C input of ``axle`` ('front' or 'rear') of ``config``.
+    Build the K&C input of ``axle`` ('front' or 'rear') of ``config``.
 
     ``fidelity`` 'flexible' makes the components of the ``<axle>_flex`` group
     flexible (the configuration's ``flexible_components`` if it names any on
@@ -240,7 +203,7 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
 
 
 def _imported(group: GroupData, comp: str, base: str):
-    """The reduced stiffness of an imported component (file content carried in the group)."""
+    """Read the reduced stiffness of an imported component (file content in the group)."""
     import yaml
 
     from vd_data_server.units import si_factor
@@ -280,8 +243,9 @@ def _imported(group: GroupData, comp: str, base: str):
 
 def bar_stiffness(group: GroupData) -> float:
     """
-    Torsional stiffness of the anti-roll bar, N*m/rad: given, or G*J/L of a
-    solid round bar (J = pi r^4 / 2).
+    Return the torsional stiffness of the anti-roll bar, N*m/rad.
+
+    Given, or G*J/L of a solid round bar (J = pi r^4 / 2).
     """
     given = group.get_scalar('torsional_stiffness')
     if given is not None:
@@ -290,11 +254,8 @@ def bar_stiffness(group: GroupData) -> float:
     return group.scalar('shear_modulus') * math.pi * r ** 4 / 2.0 / group.scalar('torsion_length')
 
 
-def _event_kwargs(event: str, values: Mapping[str, float]) -> dict[str, float]:
-    kwargs: dict[str, float] = {k: (int(v) if k == 'steps' else v) for k, v in values.items()}
-    if event == 'steering' and kwargs.get('steering_wheel_angle', 0.0) == 0.0:
-        kwargs.pop('steering_wheel_angle', None)
-    return kwargs
+def _event_kwargs(values: Mapping[str, float]) -> dict[str, float]:
+    return {k: (int(v) if k == 'steps' else v) for k, v in values.items()}
 
 
 def run_kc_event(config: Configuration, event: str, axle: str,
@@ -329,13 +290,13 @@ def run_kc_event(config: Configuration, event: str, axle: str,
             return None
         return lambda done, total: progress((run + done / total) / runs, stage)
 
-    result = model.run(event, on_step(0, 'solving'), **_event_kwargs(event, values))
+    result = model.run(event, on_step(0, 'solving'), **_event_kwargs(values))
     results = {event: result}
     if with_bar:
         bare = KCModel(without_bar(model.inp), label, solved=True)
         results['opposite_wheel_travel_no_bar'] = bare.run(
             event, on_step(1, 'solving without the anti-roll bar'),
-            **_event_kwargs(event, values))
+            **_event_kwargs(values))
     return _outcome(config, event, axle, inp, model, results, fidelity)
 
 
@@ -393,27 +354,12 @@ WHEEL = ('left', 'right')
 XYZ = ('x', 'y', 'z')
 SIX_NAMES = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
-_UNITS = {
-    'wheel_travel': 'm', 'pad_travel': 'm', 'wheel_centre': 'm', 'contact_point': 'm',
-    'track': 'm', 'contact_force': 'N', 'centre_force': 'N', 'contact_moment': 'N*m', 'toe': 'rad',
-    'camber': 'rad',
-    'caster': 'rad', 'kingpin_inclination': 'rad', 'scrub_radius': 'm',
-    'mechanical_trail': 'm', 'steer_angle': 'rad', 'pad_force': 'N', 'spring_length': 'm',
-    'spring_force': 'N', 'damper_length': 'm', 'bump_stop_force': 'N',
-    'bump_stop_deflection': 'm', 'rebound_stop_force': 'N', 'rebound_stop_deflection': 'm',
-    'arb_twist': 'rad', 'arb_torque': 'N*m', 'arb_arm_angle': 'rad', 'droplink_force': 'N',
-    'rack_travel': 'm', 'rack_force': 'N', 'steering_wheel_angle': 'rad',
-    'elastic_energy': 'J', 'constraint_residual': 'm', 'force_residual': 'N',
-    'iterations': '-', 'camber_ground': 'rad', 'steering_axis_ground': 'm',
-}
-
-
 def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     """(n,), (n, 2), (n, 2, 3) and bushing (n, 2, 6) arrays -> named 1-D channels."""
     out: dict[str, Channel] = {}
     for name, array in raw.items():
         base = name.split('.', 1)[0]
-        unit = _UNITS.get(base, '')
+        unit = UNITS.get(base, '')
         a = np.asarray(array, dtype=float)
         if a.ndim == 1:
             out[name] = Channel(unit, a)
@@ -425,11 +371,9 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
                 for c, comp in enumerate(XYZ):
                     out[f'{name}_{comp}_{side}'] = Channel(unit, a[:, s, c])
         elif a.ndim == 3 and a.shape[2] == 6:
-            kind = 'force' if 'force' in base else 'deflection'
             for s, side in enumerate(WHEEL):
                 for c, comp in enumerate(SIX_NAMES):
-                    u = ('N' if c < 3 else 'N*m') if kind == 'force' else ('m' if c < 3 else 'rad')
-                    out[f'{name}.{comp}_{side}'] = Channel(u, a[:, s, c])
+                    out[f'{name}.{comp}_{side}'] = Channel(bushing_unit(base, c), a[:, s, c])
         elif a.ndim == 2:
             for c in range(a.shape[1]):
                 out[f'{name}_{c}'] = Channel(unit, a[:, c])

@@ -1,189 +1,117 @@
 """
-K&C outputs: per-step, per-wheel channels and the derived metrics.
+Derived K&C metrics: pure functions of event channels, registered by name.
 
-Angles follow ISO 8855 / SAE J670, per wheel, with the steering axis k
-(unit, lower -> upper point from the template), spin axis a (outward) and
-side sign s (+1 left, -1 right):
+Every metric is a :class:`MetricDef` in :data:`METRICS`: its name, SI unit,
+the events it needs and a function of those events' results. Slopes "at
+design" are exact local derivatives: ratios of the channels' rates at the
+design state (:attr:`.result.EventResult.rate_up`, from the implicit
+function theorem on the converged tangent), never fits. Values at design are
+the channels at the design state. docs/kc.md defines each metric.
 
-* toe          atan2(a_x, s a_y), positive toe-in
-* camber       -asin(a_z), positive top outward; relative to the body. On
-  this rig the pads stay level, so camber to the road is the same number.
-* steer angle  -s toe, positive to the left (counter-clockwise from above)
-* caster       atan2(-k_x, k_z), positive when the axis top leans rearward
-* kingpin incl. atan2(-s k_y, k_z), positive when the top leans inboard
-* scrub radius (contact point - axis ground point) . outward lateral
-  direction of the wheel: positive when the axis meets the ground inboard
-* mech. trail  (axis ground point - contact point) . wheel heading: positive
-  when the axis meets the ground ahead of the contact point.
-
-The contact point lies one loaded radius from the wheel centre along the road
-normal projected into the wheel plane; the axis ground point is where the
-steering axis pierces the level plane through the contact point.
-
-Channels are SI (m, rad, N, N*m, J); derived metrics carry engineering units.
+The left wheel is reported unless stated (the right is its mirror image).
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 
 import numpy as np
 
 from vd_solvers.errors import SolverError
 
-from .assembly import LoadCase, System, contact_direction
-from .solver import Solution
-from .templates import SuspensionTemplate
+from .channels import SIDE_SIGNS
+from .result import EventResult
 
-if TYPE_CHECKING:
-    from .events import EventResult
-
-SIDE_SIGNS = np.array([1.0, -1.0])
-
-# Half-widths of the windows for slopes "at design" (quadratic least squares).
+#: Half-widths of the windows of :func:`slope_at` (a fit over channels, for callers that
+#: need a slope away from design)
 TRAVEL_WINDOW = 0.010  # m of wheel travel
 FORCE_WINDOW = 500.0  # N of applied force
-MOMENT_WINDOW = 25.0  # N*m of applied aligning torque
-RACK_WINDOW = 0.005  # m of rack travel
 ACKERMANN_REFERENCE_ANGLE = np.radians(20.0)  # inner road-wheel angle, rad
-# A compliance below this (m/N) is reported as infinite stiffness (rigid).
+#: a compliance below this (m/N) is reported as infinite stiffness (rigid)
 RIGID_COMPLIANCE = 1e-12
 
-DEG = 180.0 / np.pi
+PAR, OPP, BARE = 'parallel_wheel_travel', 'opposite_wheel_travel', 'opposite_wheel_travel_no_bar'
+LAT, LON, ALIGN, STEER = 'lateral_force', 'longitudinal_force', 'aligning_torque', 'steering'
 
 
-def wheel_angles(axis: np.ndarray) -> dict[str, np.ndarray]:
-    """Toe, camber and steer angle (rad) from outward spin axes (..., 2, 3)."""
-    toe = np.arctan2(axis[..., 0], SIDE_SIGNS * axis[..., 1])
-    camber = -np.arcsin(np.clip(axis[..., 2], -1.0, 1.0))
-    return {'toe': toe, 'camber': camber, 'steer_angle': -SIDE_SIGNS * toe}
+@dataclass(frozen=True)
+class Context:
+    """What a metric function sees: the results and the vehicle data it may need."""
+
+    results: Mapping[str, EventResult]
+    tire_vertical_stiffness: float
+    cg_height: float | None = None
+    wheelbase: float | None = None
+    brake_fraction: float = 1.0
+    drive_fraction: float = 1.0
+
+    def __getitem__(self, event: str) -> EventResult:
+        """Return the result of ``event``."""
+        return self.results[event]
 
 
-def steering_geometry(
-    upper: np.ndarray, lower: np.ndarray, contact: np.ndarray, axis: np.ndarray
-) -> dict[str, np.ndarray]:
-    """
-    Caster, kingpin inclination (rad), scrub radius and mechanical trail
-    (m) from steering-axis points, contact points and spin axes (..., 2, 3).
-    """
-    k = upper - lower
-    k = k / np.linalg.norm(k, axis=-1, keepdims=True)
-    caster = np.arctan2(-k[..., 0], k[..., 2])
-    kpi = np.arctan2(-SIDE_SIGNS * k[..., 1], k[..., 2])
-    ground = lower + k * ((contact[..., 2] - lower[..., 2]) / k[..., 2])[..., None]
-    lateral = axis.copy()
-    lateral[..., 2] = 0.0
-    lateral /= np.linalg.norm(lateral, axis=-1, keepdims=True)
-    heading = np.stack((lateral[..., 1], -lateral[..., 0], np.zeros_like(lateral[..., 0])), -1)
-    heading *= SIDE_SIGNS[:, None]
-    offset = contact - ground
-    return {
-        'caster': caster,
-        'kingpin_inclination': kpi,
-        'scrub_radius': np.einsum('...i,...i->...', offset, lateral),
-        'mechanical_trail': -np.einsum('...i,...i->...', offset, heading),
-        'steering_axis_ground': ground,
-    }
+@dataclass(frozen=True)
+class MetricDef:
+    """A derived metric: SI unit, events needed, vehicle data needed, function."""
+
+    unit: str
+    events: tuple[str, ...]
+    compute: Callable[[Context], float]
+    needs: tuple[str, ...] = ()  # 'cg_height', 'wheelbase'
+    axle: str | None = None  # only on this axle ('front'/'rear'), else both
+    doc: str = ''
 
 
-def channels(
-    system: System,
-    template: SuspensionTemplate,
-    solution: Solution,
-    cases: list[LoadCase],
-    rack_ratio: float | None,
-) -> dict[str, np.ndarray]:
-    """
-    All per-step channels of a solved event.
-
-    Shapes: per wheel (n, 2) [left, right], vectors (n, 2, 3), bushings
-    (n, 2, 6) keyed ``bushing_force.<name>`` / ``bushing_deflection.<name>``
-    (bushing frame; x y z in N and m, rx ry rz in N*m and rad; force positive
-    along positive deflection), axle-level (n,).
-    """
-    out = system.outputs
-    design = system.design_state()
-    wc0, _, _ = system.contact_points(design)
-    world = np.array([system.marker_world(s)[0] for s in solution.states])
-    vec = np.array([system.marker_world(s)[1] for s in solution.states])
-    wheel_idx = np.array([w.centre for w in out.wheels])
-    axis_idx = np.array([w.axis for w in out.wheels])
-    radius = np.array([w.radius for w in out.wheels])
-    centre, axis = world[:, wheel_idx], vec[:, axis_idx]
-    contact = centre + radius[None, :, None] * contact_direction(axis.reshape(-1, 3)).reshape(axis.shape)
-    points = {
-        name: np.stack([world[:, out.tracked[s][name]] for s in range(2)], axis=1)
-        for name in out.tracked[0]
-    }
-    upper, lower = template.steering_axis(points)
-    ch: dict[str, np.ndarray] = {
-        'wheel_travel': centre[..., 2] - wc0[:, 2],
-        'pad_travel': np.array([c.pad for c in cases]),
-        'wheel_centre': centre,
-        'contact_point': contact,
-        'track': contact[:, 0, 1] - contact[:, 1, 1],
-        'contact_force': np.array([c.contact_force for c in cases]),
-        'centre_force': np.array([c.centre_force for c in cases]),
-        'contact_moment': np.array([c.contact_moment for c in cases]),
-    }
-    ch.update(wheel_angles(axis))
-    ch.update(steering_geometry(upper, lower, contact, axis))
-    evals = solution.evaluations
-    x = np.array([e.x for e in evals])
-    d1 = np.array([e.d1 for e in evals])
-    y = np.array([e.y for e in evals])
-    lam = np.array([s.lam for s in solution.states])
-    # The pad constraint is the contact-point height: its reaction on the
-    # wheel is -lambda, upward positive.
-    ch['pad_force'] = -lam[:, out.pad_rows]
-    ch['spring_length'] = x[:, out.spring_length]
-    ch['spring_force'] = -d1[:, out.spring]
-    ch['damper_length'] = x[:, out.damper_length]
-    for name, idx, sign in (
-        ('bump_stop', out.bump_stop, -1.0),
-        ('rebound_stop', out.rebound_stop, 1.0),
-    ):
-        if idx is not None:
-            ch[f'{name}_force'] = sign * d1[:, idx]
-            ch[f'{name}_deflection'] = sign * y[:, idx]
-    for name, idx in out.bushings.items():
-        ch[f'bushing_force.{name}'] = d1[:, idx]
-        ch[f'bushing_deflection.{name}'] = y[:, idx]
-    if out.arb_arms is not None and out.droplink_rows is not None:
-        # arm (or, for the beam-model bar, drop-link end node) rotation about y
-        rot = np.array([s.R[out.arb_arms] for s in solution.states])
-        ch['arb_arm_angle'] = np.arctan2(rot[..., 0, 2], rot[..., 0, 0])
-        ch['droplink_force'] = lam[:, out.droplink_rows]
-        if out.arb_twist is not None:
-            ch['arb_twist'] = np.arcsin(y[:, out.arb_twist])
-            ch['arb_torque'] = d1[:, out.arb_twist] * np.sqrt(1.0 - y[:, out.arb_twist] ** 2)
-        else:
-            ch['arb_twist'] = ch['arb_arm_angle'][:, 0] - ch['arb_arm_angle'][:, 1]
-    if out.rack_part is not None:
-        rack = np.array([s.p[out.rack_part, 1] for s in solution.states]) - design.p[out.rack_part, 1]
-        ch['rack_travel'] = rack
-        if out.rack_measure is not None:
-            ch['rack_force'] = d1[:, out.rack_measure]
-        else:
-            ch['rack_force'] = lam[:, out.rack_row]
-        if rack_ratio is not None:
-            ch['steering_wheel_angle'] = out.steer_sign * np.array([c.rack for c in cases]) / rack_ratio
-    energy = np.array([e.energy for e in evals])
-    ch['elastic_energy'] = energy[:, out.elastic].sum(axis=1)
-    ch['constraint_residual'] = np.array([c.constraint_residual for c in solution.convergence])
-    ch['force_residual'] = np.array([c.force_residual for c in solution.convergence])
-    ch['iterations'] = np.array([c.iterations for c in solution.convergence])
-    return ch
+METRICS: dict[str, MetricDef] = {}
 
 
-# --- derived metrics ----------------------------------------------------------
+def metric(name: str, unit: str, events: tuple[str, ...], needs: tuple[str, ...] = (),
+           axle: str | None = None, doc: str = ''):
+    """Register the decorated function as metric ``name``."""
+    def register(fn: Callable[[Context], float]) -> Callable[[Context], float]:
+        if name in METRICS:
+            raise ValueError(f'metric {name!r} registered twice')
+        METRICS[name] = MetricDef(unit, events, fn, needs, axle, doc)
+        return fn
+    return register
+
+
+# --- exact slopes from the channels' rates at design --------------------------
+
+
+def rate(result: EventResult, channel: str, down: bool = False) -> np.ndarray:
+    """Return d channel / d swept quantity at design (up, or ``down`` the sweep)."""
+    rates = result.rate_down if down else result.rate_up
+    if channel not in rates:
+        raise SolverError(f'{result.label}: event {result.event!r} has no rate of {channel!r}')
+    return np.asarray(rates[channel])
+
+
+def slope(result: EventResult, y: str, x: str, side: int = 0, down: bool = False,
+          y_index: tuple[int, ...] = (), x_index: tuple[int, ...] = ()) -> float:
+    """Return dy/dx at design of two channels of one wheel (``side``), exact."""
+    dy = rate(result, y, down)[(side, *y_index)]
+    dx = rate(result, x, down)[(side, *x_index)]
+    return float(dy / dx)
+
+
+def design(result: EventResult, channel: str) -> np.ndarray:
+    """Return ``channel`` at the design state."""
+    return np.asarray(result.design[channel])
+
+
+def _stiffness(compliance: float) -> float:
+    """Return N/m from a compliance in m/N; inf for a rigid connection."""
+    if abs(compliance) < RIGID_COMPLIANCE:
+        return float('inf')
+    return 1.0 / compliance
+
+
+# --- fits over channels (away from design) ------------------------------------
 
 
 def _fit_slope(x: np.ndarray, y: np.ndarray) -> float:
-    """
-    dy/dx at x = 0 from a quadratic least-squares fit (a line when fewer
-    than four points).
-    """
+    """Return dy/dx at x = 0 from a quadratic least-squares fit (a line below four points)."""
     if x.size < 2:
         raise SolverError("fewer than two steps in a metric's slope window; refine the event")
     coef = np.polyfit(x, y, 2 if x.size >= 4 else 1)
@@ -192,8 +120,11 @@ def _fit_slope(x: np.ndarray, y: np.ndarray) -> float:
 
 def slope_at(x: np.ndarray, y: np.ndarray, x0: float, half_width: float) -> float:
     """
-    dy/dx at x0 from the points within ``half_width`` of x0 (at least the
-    three nearest, so a coarse sweep still gives a slope, over a wider window).
+    Return dy/dx at x0 from a quadratic fit to the points within ``half_width``.
+
+    At least the three nearest points are used, so a coarse sweep still gives
+    a slope, over a wider window. Metrics at design use the exact rates
+    instead; this serves slopes of channels elsewhere (vehicle maps).
     """
     distance = np.abs(x - x0)
     mask = distance <= half_width + 1e-12
@@ -202,173 +133,246 @@ def slope_at(x: np.ndarray, y: np.ndarray, x0: float, half_width: float) -> floa
     return _fit_slope(x[mask] - x0, y[mask])
 
 
-def _one_sided(x: np.ndarray, y: np.ndarray, sign: float, half_width: float) -> float:
+# --- parallel wheel travel ------------------------------------------------------
+
+
+def _design_value(channel: str, unit: str, doc: str) -> None:
+    metric(channel, unit, (PAR,), doc=doc)(lambda c: float(design(c[PAR], channel)[0]))
+
+
+for _name, _unit in (('toe', 'rad'), ('camber', 'rad'), ('caster', 'rad'),
+                     ('kingpin_inclination', 'rad'), ('scrub_radius', 'm'),
+                     ('mechanical_trail', 'm')):
+    _design_value(_name, _unit, f'{_name} at design (left wheel)')
+
+
+@metric('bump_steer', 'rad/m', (PAR,), doc='d toe / d wheel travel')
+def _bump_steer(c: Context) -> float:
+    return slope(c[PAR], 'toe', 'wheel_travel')
+
+
+@metric('camber_gain', 'rad/m', (PAR,), doc='d camber / d wheel travel')
+def _camber_gain(c: Context) -> float:
+    return slope(c[PAR], 'camber', 'wheel_travel')
+
+
+@metric('track_change', 'm/m', (PAR,), doc='d contact-point y / d wheel travel')
+def _track_change(c: Context) -> float:
+    return slope(c[PAR], 'contact_point', 'wheel_travel', y_index=(1,))
+
+
+@metric('wheelbase_change', 'm/m', (PAR,), doc='d contact-point x / d wheel travel')
+def _wheelbase_change(c: Context) -> float:
+    return slope(c[PAR], 'contact_point', 'wheel_travel', y_index=(0,))
+
+
+@metric('wheel_rate', 'N/m', (PAR,), doc='d pad force / d wheel travel')
+def _wheel_rate(c: Context) -> float:
+    return slope(c[PAR], 'pad_force', 'wheel_travel')
+
+
+@metric('ride_rate', 'N/m', (PAR,), doc='wheel rate in series with the tire')
+def _ride_rate(c: Context) -> float:
+    kw, kt = _wheel_rate(c), c.tire_vertical_stiffness
+    return kw * kt / (kw + kt)
+
+
+@metric('installation_ratio', '-', (PAR,), doc='-d spring length / d wheel travel')
+def _installation_ratio(c: Context) -> float:
+    return -slope(c[PAR], 'spring_length', 'wheel_travel')
+
+
+@metric('roll_centre_height_kinematic', 'm', (PAR,),
+        doc='kinematic roll centre (front-view instant centres) at design')
+def _roll_centre_kinematic(c: Context) -> float:
+    return float(design(c[PAR], 'roll_centre_height'))
+
+
+for _name, _unit in (('fvsa_length', 'm'), ('svsa_length', 'm'), ('svsa_angle', 'rad')):
+    _design_value(_name, _unit, f'{_name} at design (left wheel)')
+for _name, _channel, _k in (('front_view_instant_centre_y', 'front_view_instant_centre', 1),
+                            ('front_view_instant_centre_z', 'front_view_instant_centre', 2),
+                            ('side_view_instant_centre_x', 'side_view_instant_centre', 0),
+                            ('side_view_instant_centre_z', 'side_view_instant_centre', 2)):
+    metric(_name, 'm', (PAR,), doc=f'{_channel} at design (left wheel)')(
+        lambda c, ch=_channel, k=_k: float(design(c[PAR], ch)[0, k]))
+
+
+# --- opposite wheel travel ------------------------------------------------------
+
+
+def _roll_rates(result: EventResult) -> tuple[float, float]:
     """
-    Slope at 0 from the points with sign*x in [0, half_width] (at least the two
-    nearest on that side).
+    Return the roll angle's and the pads' roll moment's rates at design.
+
+    Roll angle phi = atan((z_R - z_L) / t) (rad, ISO: right side down
+    positive), moment M = (F_R - F_L) t / 2 (N*m), t the design track.
     """
-    side = sign * x >= -1e-12
-    mask = side & (sign * x <= half_width + 1e-12)
-    if np.count_nonzero(mask) < 2:
-        reach = np.sort(sign * x[side])[: 2]
-        mask = side & (sign * x <= reach[-1] + 1e-12)
-    return _fit_slope(x[mask], y[mask])
+    t = float(design(result, 'track'))
+    z = design(result, 'wheel_travel')
+    dz, df = rate(result, 'wheel_travel'), rate(result, 'pad_force')
+    u = (z[1] - z[0]) / t
+    return float((dz[1] - dz[0]) / t / (1.0 + u * u)), float(0.5 * t * (df[1] - df[0]))
 
 
-def _stiffness(compliance: float) -> float:
-    """N/mm from a compliance in m/N; inf for a rigid connection."""
-    if abs(compliance) < RIGID_COMPLIANCE:
-        return float('inf')
-    return 1e-3 / compliance
+def _roll_stiffness_of(result: EventResult) -> float:
+    dphi, dm = _roll_rates(result)
+    return dm / dphi
 
 
-def derived_metrics(
-    results: Mapping[str, EventResult],
-    tire_vertical_stiffness: float,
-    *,
-    cg_height: float | None = None,
-    wheelbase: float | None = None,
-    brake_fraction: float = 1.0,
-    drive_fraction: float = 1.0,
-) -> dict[str, tuple[float, str]]:
-    """
-    Derived metrics (name -> (value, unit)) from the events present.
-
-    Slopes are at the design position, from the left wheel unless stated
-    (the right is its mirror image); docs/kc.md defines each metric.
-    ``cg_height``/``wheelbase`` enable the anti-pitch percentages and the
-    Ackermann figure; ``brake_fraction``/``drive_fraction`` are this axle's
-    share of the braking and driving force.
-    """
-    m: dict[str, tuple[float, str]] = {}
-    par = results.get('parallel_wheel_travel')
-    if par is not None:
-        ch = par.channels
-        z = ch['wheel_travel'][:, 0]
-        at = int(np.argmin(np.abs(ch['pad_travel'][:, 0])))
-        m['toe'] = (ch['toe'][at, 0] * DEG, 'deg')
-        m['camber'] = (ch['camber'][at, 0] * DEG, 'deg')
-        m['caster'] = (ch['caster'][at, 0] * DEG, 'deg')
-        m['kingpin_inclination'] = (ch['kingpin_inclination'][at, 0] * DEG, 'deg')
-        m['scrub_radius'] = (ch['scrub_radius'][at, 0] * 1e3, 'mm')
-        m['mechanical_trail'] = (ch['mechanical_trail'][at, 0] * 1e3, 'mm')
-        m['bump_steer'] = (slope_at(z, ch['toe'][:, 0], 0.0, TRAVEL_WINDOW) * DEG, 'deg/m')
-        m['camber_gain'] = (slope_at(z, ch['camber'][:, 0], 0.0, TRAVEL_WINDOW) * DEG, 'deg/m')
-        m['track_change'] = (slope_at(z, ch['contact_point'][:, 0, 1], 0.0, TRAVEL_WINDOW), 'm/m')
-        m['wheelbase_change'] = (slope_at(z, ch['contact_point'][:, 0, 0], 0.0, TRAVEL_WINDOW), 'm/m')
-        wheel_rate = slope_at(z, ch['pad_force'][:, 0], 0.0, TRAVEL_WINDOW)
-        m['wheel_rate'] = (wheel_rate, 'N/m')
-        m['ride_rate'] = (
-            wheel_rate * tire_vertical_stiffness / (wheel_rate + tire_vertical_stiffness),
-            'N/m',
-        )
-        m['installation_ratio'] = (slope_at(z, -ch['spring_length'][:, 0], 0.0, TRAVEL_WINDOW), '-')
-        cp = ch['contact_point']
-        heights = [
-            cp[at, s, 1] * slope_at(cp[:, s, 2], cp[:, s, 1], cp[at, s, 2], TRAVEL_WINDOW)
-            for s in range(2)
-        ]
-        m['roll_centre_height_kinematic'] = (float(np.mean(heights)), 'm')
-    opp = results.get('opposite_wheel_travel')
-    if opp is not None:
-        phi, moment = _roll(opp)
-        m['roll_stiffness'] = (slope_at(phi, moment, 0.0, _roll_window(opp)) / DEG, 'N*m/deg')
-        ch = opp.channels
-        steer = ch['steer_angle'].mean(axis=1)
-        m['roll_steer'] = (slope_at(phi, steer, 0.0, _roll_window(opp)), 'deg/deg')
-        camber_ground = ch['camber'][:, 0] - phi
-        m['roll_camber'] = (slope_at(phi, camber_ground, 0.0, _roll_window(opp)), 'deg/deg')
-        bare = results.get('opposite_wheel_travel_no_bar')
-        if bare is not None:
-            phi0, moment0 = _roll(bare)
-            k0 = slope_at(phi0, moment0, 0.0, _roll_window(bare)) / DEG
-            m['roll_stiffness_no_bar'] = (k0, 'N*m/deg')
-            m['roll_stiffness_bar'] = (m['roll_stiffness'][0] - k0, 'N*m/deg')
-    lat = results.get('lateral_force')
-    if lat is not None:
-        ch = lat.channels
-        f = ch['contact_force'][:, 0, 1]
-        inboard = -SIDE_SIGNS  # lateral force toward the vehicle centre per unit +y
-        toe = [inboard[s] * slope_at(f, ch['toe'][:, s], 0.0, FORCE_WINDOW) for s in range(2)]
-        camber = [inboard[s] * slope_at(f, ch['camber'][:, s], 0.0, FORCE_WINDOW) for s in range(2)]
-        m['lateral_compliance_steer'] = (float(np.mean(toe)) * DEG * 1e3, 'deg/kN')
-        m['lateral_compliance_camber'] = (float(np.mean(camber)) * DEG * 1e3, 'deg/kN')
-        dy = [slope_at(f, ch['contact_point'][:, s, 1], 0.0, FORCE_WINDOW) for s in range(2)]
-        m['lateral_stiffness'] = (_stiffness(float(np.mean(dy))), 'N/mm')
-        cp = ch['contact_point']
-        at = int(np.argmin(np.abs(f)))
-        heights = [
-            -cp[at, s, 1] * slope_at(f, ch['pad_force'][:, s], 0.0, FORCE_WINDOW) for s in range(2)
-        ]
-        m['roll_centre_height_force'] = (float(np.mean(heights)), 'm')
-    aligning = results.get('aligning_torque')
-    if aligning is not None:
-        ch = aligning.channels
-        mz = ch['contact_moment'][:, 0, 2]
-        steer = [slope_at(mz, ch['steer_angle'][:, s], 0.0, MOMENT_WINDOW) for s in range(2)]
-        m['aligning_torque_compliance_steer'] = (float(np.mean(steer)) * DEG * 1e3, 'deg/(kN*m)')
-    lon = results.get('longitudinal_force')
-    if lon is not None:
-        ch = lon.channels
-        f = ch['contact_force'][:, 0, 0] + ch['centre_force'][:, 0, 0]
-        # Wheel-centre compliance for both (K&C practice): under braking the
-        # locked wheel winds up and rolls on the floating pad, so the lowest
-        # point of the wheel is not the tire material the force acts on.
-        dx_brake = _one_sided(f, ch['wheel_centre'][:, 0, 0], -1.0, FORCE_WINDOW)
-        dx_drive = _one_sided(f, ch['wheel_centre'][:, 0, 0], 1.0, FORCE_WINDOW)
-        m['longitudinal_stiffness_braking'] = (_stiffness(dx_brake), 'N/mm')
-        m['longitudinal_stiffness_traction'] = (_stiffness(dx_drive), 'N/mm')
-        m['longitudinal_compliance_steer_braking'] = (
-            _one_sided(f, ch['toe'][:, 0], -1.0, FORCE_WINDOW) * DEG * 1e3, 'deg/kN'
-        )
-        # Pad-load change per unit longitudinal force: the tangent of the
-        # side-view force line (braking at the contact point, traction at the
-        # wheel centre), positive when the wheel is pushed down.
-        tan_brake = -_one_sided(f, ch['pad_force'][:, 0], -1.0, FORCE_WINDOW)
-        tan_drive = _one_sided(f, ch['pad_force'][:, 0], 1.0, FORCE_WINDOW)
-        m['svsa_angle_braking'] = (np.degrees(np.arctan(tan_brake)), 'deg')
-        m['svsa_angle_traction'] = (np.degrees(np.arctan(tan_drive)), 'deg')
-        if cg_height is not None and wheelbase is not None:
-            front = lon.axle == 'front'
-            ratio = wheelbase / cg_height * 100.0
-            brake = (1.0 if front else -1.0) * tan_brake * brake_fraction * ratio
-            drive = (-1.0 if front else 1.0) * tan_drive * drive_fraction * ratio
-            m['anti_dive' if front else 'anti_lift_braking'] = (brake, '%')
-            m['anti_lift_traction' if front else 'anti_squat'] = (drive, '%')
-    steer = results.get('steering')
-    if steer is not None:
-        ch = steer.channels
-        mean = ch['steer_angle'].mean(axis=1)
-        rack = np.abs(ch['rack_travel'])
-        near = rack <= max(RACK_WINDOW, np.sort(rack)[min(2, rack.size - 1)]) + 1e-12
-        m['steering_ratio'] = (_fit_slope(mean[near], ch['steering_wheel_angle'][near]), '-')
-        if wheelbase is not None:
-            m['ackermann'] = (_ackermann(ch, wheelbase), '%')
-    return m
+@metric('roll_stiffness', 'N*m/rad', (OPP,), doc='d roll moment / d roll angle')
+def _roll_stiffness(c: Context) -> float:
+    return _roll_stiffness_of(c[OPP])
 
 
-def _roll(result: EventResult) -> tuple[np.ndarray, np.ndarray]:
-    """
-    Roll angle (rad, ISO: right side down positive) and the pads' roll
-    moment (N*m) of an opposite-travel event.
-    """
-    ch = result.channels
-    at = int(np.argmin(np.abs(ch['pad_travel'][:, 0])))
-    track = ch['track'][at]
-    z = ch['wheel_travel']
-    force = ch['pad_force']
-    phi = np.arctan((z[:, 1] - z[:, 0]) / track)
-    return phi, 0.5 * track * (force[:, 1] - force[:, 0])
+@metric('roll_stiffness_no_bar', 'N*m/rad', (BARE,), doc='roll stiffness without the bar')
+def _roll_stiffness_no_bar(c: Context) -> float:
+    return _roll_stiffness_of(c[BARE])
 
 
-def _roll_window(result: EventResult) -> float:
-    at = int(np.argmin(np.abs(result.channels['pad_travel'][:, 0])))
-    return 2.0 * TRAVEL_WINDOW / float(result.channels['track'][at])
+@metric('roll_stiffness_bar', 'N*m/rad', (OPP, BARE), doc='the bar share of roll stiffness')
+def _roll_stiffness_bar(c: Context) -> float:
+    return _roll_stiffness(c) - _roll_stiffness_no_bar(c)
+
+
+@metric('roll_steer', 'rad/rad', (OPP,), doc='d mean steer angle / d roll angle')
+def _roll_steer(c: Context) -> float:
+    dphi, _ = _roll_rates(c[OPP])
+    return float(rate(c[OPP], 'steer_angle').mean()) / dphi
+
+
+@metric('roll_camber', 'rad/rad', (OPP,), doc='d camber to the ground (left) / d roll angle')
+def _roll_camber(c: Context) -> float:
+    dphi, _ = _roll_rates(c[OPP])
+    return float(rate(c[OPP], 'camber')[0]) / dphi - 1.0
+
+
+# --- lateral force, aligning torque ---------------------------------------------
+
+
+def _per_newton(result: EventResult, channel: str, force: tuple[int, ...],
+                down: bool = False) -> np.ndarray:
+    """Return both wheels' d channel / d applied force at design."""
+    applied = rate(result, force[0], down)[(0, *force[1:])]
+    return rate(result, channel, down) / applied
+
+
+_FY = ('contact_force', 1)
+
+
+@metric('lateral_compliance_steer', 'rad/N', (LAT,),
+        doc='toe per N of lateral force directed inboard, both wheels averaged')
+def _lateral_steer(c: Context) -> float:
+    return float(np.mean(-SIDE_SIGNS * _per_newton(c[LAT], 'toe', _FY)))
+
+
+@metric('lateral_compliance_camber', 'rad/N', (LAT,),
+        doc='camber per N of lateral force directed inboard, both wheels averaged')
+def _lateral_camber(c: Context) -> float:
+    return float(np.mean(-SIDE_SIGNS * _per_newton(c[LAT], 'camber', _FY)))
+
+
+@metric('lateral_stiffness', 'N/m', (LAT,), doc='dFy / d contact-point y, both wheels averaged')
+def _lateral_stiffness(c: Context) -> float:
+    return _stiffness(float(np.mean(_per_newton(c[LAT], 'contact_point', _FY)[:, 1])))
+
+
+@metric('roll_centre_height_force', 'm', (LAT,),
+        doc='force-based roll centre: -y_cp dF_pad/dFy, both wheels averaged')
+def _roll_centre_force(c: Context) -> float:
+    y = design(c[LAT], 'contact_point')[:, 1]
+    return float(np.mean(-y * _per_newton(c[LAT], 'pad_force', _FY)))
+
+
+@metric('aligning_torque_compliance_steer', 'rad/(N*m)', (ALIGN,),
+        doc='d steer angle / d Mz, both wheels averaged')
+def _aligning_steer(c: Context) -> float:
+    return float(np.mean(_per_newton(c[ALIGN], 'steer_angle', ('contact_moment', 2))))
+
+
+# --- longitudinal force -----------------------------------------------------------
+
+# Braking acts at the contact point (the load for F < 0, rates down the sweep), traction at
+# the wheel centre (F > 0, rates up): one-sided derivatives at design.
+_BRAKE, _DRIVE = (('contact_force', 0), True), (('centre_force', 0), False)
+
+
+def _lon(c: Context, channel: str, side: tuple[tuple[str, int], bool]) -> np.ndarray:
+    force, down = side
+    return _per_newton(c[LON], channel, force, down)
+
+
+# Wheel-centre compliance for both (K&C practice): under braking the locked wheel winds up
+# and rolls on the floating pad, so the lowest point of the wheel is not the tire material
+# the force acts on.
+@metric('longitudinal_stiffness_braking', 'N/m', (LON,), doc='dFx / d wheel-centre x, Fx < 0')
+def _lon_brake(c: Context) -> float:
+    return _stiffness(float(_lon(c, 'wheel_centre', _BRAKE)[0, 0]))
+
+
+@metric('longitudinal_stiffness_traction', 'N/m', (LON,), doc='dFx / d wheel-centre x, Fx > 0')
+def _lon_drive(c: Context) -> float:
+    return _stiffness(float(_lon(c, 'wheel_centre', _DRIVE)[0, 0]))
+
+
+@metric('longitudinal_compliance_steer_braking', 'rad/N', (LON,), doc='d toe / dFx, Fx < 0')
+def _lon_steer(c: Context) -> float:
+    return float(_lon(c, 'toe', _BRAKE)[0])
+
+
+def _tan_brake(c: Context) -> float:
+    """Pad-load change per N of braking: the tangent of the side-view force line."""
+    return -float(_lon(c, 'pad_force', _BRAKE)[0])
+
+
+def _tan_drive(c: Context) -> float:
+    return float(_lon(c, 'pad_force', _DRIVE)[0])
+
+
+@metric('svsa_angle_braking', 'rad', (LON,), doc='side-view force-line angle, braking')
+def _svsa_brake(c: Context) -> float:
+    return float(np.arctan(_tan_brake(c)))
+
+
+@metric('svsa_angle_traction', 'rad', (LON,), doc='side-view force-line angle, traction')
+def _svsa_drive(c: Context) -> float:
+    return float(np.arctan(_tan_drive(c)))
+
+
+def _anti(c: Context, brake: bool) -> float:
+    front = c[LON].axle == 'front'
+    ratio = c.wheelbase / c.cg_height * 100.0  # type: ignore[operator]
+    if brake:
+        return (1.0 if front else -1.0) * _tan_brake(c) * c.brake_fraction * ratio
+    return (-1.0 if front else 1.0) * _tan_drive(c) * c.drive_fraction * ratio
+
+
+for _name, _axle, _brake in (('anti_dive', 'front', True),
+                             ('anti_lift_braking', 'rear', True),
+                             ('anti_lift_traction', 'front', False),
+                             ('anti_squat', 'rear', False)):
+    metric(_name, '%', (LON,), ('cg_height', 'wheelbase'), _axle,
+           doc='anti-pitch from the side-view force line')(lambda c, b=_brake: _anti(c, b))
+
+
+# --- steering ---------------------------------------------------------------------
+
+
+@metric('steering_ratio', '-', (STEER,), doc='d steering-wheel angle / d mean road-wheel angle')
+def _steering_ratio(c: Context) -> float:
+    result = c[STEER]
+    return float(rate(result, 'steering_wheel_angle') / rate(result, 'steer_angle').mean())
+
+
+@metric('ackermann', '%', (STEER,), ('wheelbase',), doc='Ackermann % at 20 deg inner angle')
+def _ackermann_metric(c: Context) -> float:
+    return _ackermann(c[STEER].channels, c.wheelbase)  # type: ignore[arg-type]
 
 
 def _ackermann(ch: Mapping[str, np.ndarray], wheelbase: float) -> float:
     """
-    Ackermann % in a left turn at the reference inner (left) wheel angle:
+    Return the Ackermann % in a left turn at the reference inner (left) wheel angle.
+
     (inner - outer) / (inner - ideal outer) * 100, ideal outer from the
     turn centre on the rear-axle line and the steering-axis ground points.
     """
@@ -381,3 +385,39 @@ def _ackermann(ch: Mapping[str, np.ndarray], wheelbase: float) -> float:
     pivot_track = float(ground[0, 1] - ground[1, 1])
     ideal = np.arctan(wheelbase / (wheelbase / np.tan(reference) + pivot_track))
     return float((reference - delta_o) / (reference - ideal) * 100.0)
+
+
+def derived_metrics(
+    results: Mapping[str, EventResult],
+    tire_vertical_stiffness: float,
+    *,
+    cg_height: float | None = None,
+    wheelbase: float | None = None,
+    brake_fraction: float = 1.0,
+    drive_fraction: float = 1.0,
+) -> dict[str, tuple[float, str]]:
+    """
+    Evaluate every registered metric whose events (and vehicle data) are present.
+
+    Returns name -> (value, SI unit). ``cg_height``/``wheelbase`` enable the
+    anti-pitch percentages and the Ackermann figure;
+    ``brake_fraction``/``drive_fraction`` are this axle's share of the
+    braking and driving force.
+    """
+    ctx = Context(results, tire_vertical_stiffness, cg_height, wheelbase, brake_fraction,
+                  drive_fraction)
+    given = {'cg_height': cg_height, 'wheelbase': wheelbase}
+    out: dict[str, tuple[float, str]] = {}
+    for name, m in METRICS.items():
+        if not all(e in results for e in m.events):
+            continue
+        if any(given[k] is None for k in m.needs):
+            continue
+        if m.axle is not None and results[m.events[0]].axle != m.axle:
+            continue
+        out[name] = (float(m.compute(ctx)), m.unit)
+    return out
+
+
+__all__ = ['METRICS', 'MetricDef', 'Context', 'derived_metrics', 'metric', 'rate', 'slope',
+           'design', 'slope_at', 'TRAVEL_WINDOW', 'FORCE_WINDOW']

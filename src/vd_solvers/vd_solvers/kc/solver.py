@@ -49,8 +49,9 @@ SINGULAR_PIVOT_RATIO = 1e-13  # smallest/largest LU pivot of the scaled KKT matr
 @dataclass(frozen=True)
 class Convergence:
     """
-    How one load case converged: Newton iterations, max |g| (m) and max
-    force-balance residual (N or N*m).
+    How one load case converged.
+
+    Newton iterations, max |g| (m) and max force-balance residual (N or N*m).
     """
 
     iterations: int
@@ -146,8 +147,9 @@ def solve_static(
     system: System, load: LoadCase, describe: str, start: State | None = None
 ) -> tuple[State, Evaluation, Convergence]:
     """
-    Equilibrium for ``load`` from ``start`` (default: the design pose);
-    SolverError prefixed with ``describe`` when there is none.
+    Solve the equilibrium for ``load`` from ``start`` (default: the design pose).
+
+    Raises SolverError prefixed with ``describe`` when there is none.
     """
     try:
         return newton(system, system.design_state() if start is None else start, load)
@@ -193,7 +195,8 @@ def solve_path(
         for i in walk:
             # Events step uniformly, so the last increment predicts the next.
             guess = _extrapolate(before, state) if before is not None else None
-            new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i, describe)
+            new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i,
+                                              describe)
             before, state, previous = state, new, cases[i]
             states[i] = state
             if on_step is not None:
@@ -222,8 +225,9 @@ def _advance(
     describe: Callable[[int], str],
 ) -> tuple[State, Evaluation, Convergence]:
     """
-    Solve ``target`` from the solution ``state`` of ``previous`` (first
-    from the predicted ``guess`` if any), halving the load step on failure.
+    Solve ``target`` from the solution ``state`` of ``previous``.
+
+    First from the predicted ``guess`` if any; the load step is halved on failure.
     """
     for start in (guess, state):
         if start is None:
@@ -241,3 +245,64 @@ def _advance(
     middle = previous.blend(target, 0.5)
     half, _, _ = _advance(system, state, None, previous, middle, depth + 1, step, describe)
     return _advance(system, half, None, middle, target, depth + 1, step, describe)
+
+
+@dataclass(frozen=True)
+class Sensitivity:
+    """
+    Rates of an equilibrium along a load parameter p (per unit of p).
+
+    ``dq`` (P, 6): dp (m) and d theta (rad) of every part, in the chart of the
+    Newton update; ``dlam`` (m,): the multipliers' rates.
+    """
+
+    dq: np.ndarray
+    dlam: np.ndarray
+
+
+def sensitivity(system: System, state: State, load: LoadCase, ahead: LoadCase,
+                step: float, evaluation: Evaluation | None = None) -> Sensitivity:
+    """
+    Exact rates of the equilibrium ``state`` of ``load`` along a load path.
+
+    The load path runs from ``load`` to ``ahead``, which is ``step`` units of
+    the parameter p further on. The residual F(q, lambda; p) = [grad V - Q +
+    J^T lambda; g] is affine in the rig inputs (pad heights and rack command
+    offset g and the rack measure linearly, applied loads enter Q linearly),
+    so dF/dp = (F(q; ahead) - F(q; load)) / step exactly; the implicit
+    function theorem gives
+
+        [ K  J^T ] [ dq   ]     [ dF_force/dp ]
+        [ J   0  ] [ dlam ] = - [ dg/dp       ]
+
+    with K the tangent at the converged state (scaled as in :func:`newton`).
+    ``evaluation``: the evaluation of ``state`` under ``load`` if at hand.
+    Raises SolverError when the equations are singular there.
+    """
+    ev = system.evaluate(state, load) if evaluation is None else evaluation
+    further = system.evaluate(state, ahead)
+    d_force = (further.force_residual(state.lam) - ev.force_residual(state.lam)) / step
+    d_g = (further.g - ev.g) / step
+    k = ev.tangent(state.lam)
+    j = ev.jacobian
+    s = max(float(np.max(np.abs(k))), 1.0)
+    n, m = k.shape[0], j.shape[0]
+    kkt = np.zeros((n + m, n + m))
+    kkt[:n, :n] = k
+    kkt[:n, n:] = s * j.T
+    kkt[n:, :n] = s * j
+    lu, piv = scipy.linalg.lu_factor(kkt, check_finite=False)
+    pivots = np.abs(np.diag(lu))
+    if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
+        raise SolverError('sensitivity: singular equilibrium equations at the state')
+    sol = scipy.linalg.lu_solve((lu, piv), -np.concatenate((d_force, s * d_g)),
+                                check_finite=False)
+    return Sensitivity(sol[:n].reshape(-1, 6), s * sol[n:])
+
+
+def moved(state: State, rate: Sensitivity, t: float) -> State:
+    """``state`` moved by ``t`` along ``rate`` in the Newton chart (first order)."""
+    return State(state.p + t * rate.dq[:, :3],
+                 np.einsum('nij,njk->nik', rotation_vectors_to_matrices(t * rate.dq[:, 3:]),
+                           state.R),
+                 state.lam + t * rate.dlam)
