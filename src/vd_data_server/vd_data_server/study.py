@@ -69,7 +69,7 @@ class Study:
                 for n, c in self.configurations.items()}
 
     def to_json(self) -> dict[str, Any]:
-        """The ``vd data status --json`` contract (ARCHITECTURE §5)."""
+        """Return the ``vd data status --json`` contract (ARCHITECTURE §5)."""
         switches = self.flexible_switches()
         consistency = 'SAME' if len(set(switches.values())) == 1 else 'DIFFERS'
         return {
@@ -163,17 +163,14 @@ def modified_keys(shared: Mapping[str, Value], fed: Mapping[str, Value]) -> list
         ref = shared.get(key)
         if ref is not None and ref.same_data(value):
             continue
-        unit = value.display_unit or SI_UNITS_DISPLAY.get(value.unit, value.unit)
+        unit = value.display_unit or value.unit
         out.append(ModifiedKey(key, format_value(ref, unit) if ref else '-',
                                format_value(value, unit), unit))
     return out
 
 
-SI_UNITS_DISPLAY = {u: u for u in SI_UNITS.values()}
-
-
 def format_value(value: Value, unit: str) -> str:
-    """A value in a display unit, as a short text for tables."""
+    """Return a value in a display unit, as a short text for tables."""
     if value.type == 'text':
         return str(value.si)
     if value.type == 'curve':

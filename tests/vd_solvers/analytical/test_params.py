@@ -5,7 +5,8 @@ import math
 
 import pytest
 
-from vd_solvers.analytical.params import STANDARD_GRAVITY, VehicleParams
+from vd_solvers.analytical.params import VehicleParams
+from vd_solvers.constants import STANDARD_GRAVITY
 
 
 def test_static_axle_loads_add_up_to_the_weight(passenger_car: VehicleParams) -> None:

@@ -21,9 +21,8 @@ from dataclasses import dataclass, field, fields
 import math
 from types import MappingProxyType
 
+from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.tire.simple import SimpleTire
-
-STANDARD_GRAVITY = 9.80665  # m/s^2, ISO 80000-3 standard acceleration of gravity
 
 # The axle force peak search (two_track.py) needs a Magic Formula with a
 # genuine maximum: 1 < C < 2 makes sin(C * arctan(.)) rise to 1 and fall

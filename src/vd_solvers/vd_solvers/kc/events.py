@@ -24,10 +24,11 @@ import numpy as np
 
 from vd_solvers.errors import SolverError
 
-from .assembly import LoadCase, State, System, assemble
+from .assembly import assemble
 from .metrics import channels, wheel_angles
 from .model import Axle, SuspensionInput, without_bar
 from .solver import solve_path, solve_static
+from .system import LoadCase, State, System
 from .templates import TEMPLATES
 
 DEFAULT_STEPS = 101

@@ -16,10 +16,11 @@ import math
 import numpy as np
 
 from vd_data_server.model import Configuration, GroupData
-from vd_solvers.analytical.from_config import static_wheel_loads
+from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 from .events import EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
@@ -38,8 +39,6 @@ from .model import (
 
 FIDELITIES = ('rigid', 'flexible')
 
-DEG = 180.0 / math.pi
-SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 #: event -> its parameters (SI), as ``vd run --param`` takes them
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
@@ -89,7 +88,7 @@ def _optional(config: Configuration, name: str) -> GroupData | None:
 
 def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') -> SuspensionInput:
     """
-    The K&C input of ``axle`` ('front' or 'rear') of ``config``.
+    Return the K&C input of ``axle`` ('front' or 'rear') of ``config``.
 
     ``fidelity`` 'flexible' makes the components of the ``<axle>_flex`` group
     flexible (the configuration's ``flexible_components`` if it names any on
@@ -119,15 +118,16 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
         names = sorted({k.split('.')[1] for k in bush_g.values if k.startswith('connections.')})
         for name in names:
             base = f'connections.{name}'
-            stiffness = tuple(bush_g.scalar(f'{base}.stiffness.{d}') for d in SIX)
-            damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0 for d in SIX)
+            stiffness = tuple(bush_g.scalar(f'{base}.stiffness.{d}') for d in BUSHING_DIRECTIONS)
+            damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0
+                            for d in BUSHING_DIRECTIONS)
             axis = bush_g.point(f'{base}.axis') if bush_g.has(f'{base}.axis') else None
             bushings[name] = Bushing(stiffness, damping,  # type: ignore[arg-type]
                                      None if axis is None else np.asarray(axis, dtype=float))
     stabilizer = None
     stab_g = _optional(config, f'{axle}_stabilizer')
     if stab_g is not None:
-        missing = [p for p in ('arb_link_lower', 'arb_link_upper', 'arb_pivot') if p not in points]
+        missing = [p for p in ARB_POINTS if p not in points]
         if missing:
             raise SolverError(f"{axle}_stabilizer is given but {hp.file} lacks the anti-roll-bar "
                               f"hard points {', '.join(missing)}")
@@ -240,7 +240,7 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
 
 
 def _imported(group: GroupData, comp: str, base: str):
-    """The reduced stiffness of an imported component (file content carried in the group)."""
+    """Return the reduced stiffness of an imported component (file content in the group)."""
     import yaml
 
     from vd_data_server.units import si_factor
@@ -280,8 +280,9 @@ def _imported(group: GroupData, comp: str, base: str):
 
 def bar_stiffness(group: GroupData) -> float:
     """
-    Torsional stiffness of the anti-roll bar, N*m/rad: given, or G*J/L of a
-    solid round bar (J = pi r^4 / 2).
+    Return the torsional stiffness of the anti-roll bar, N*m/rad.
+
+    Given, or G*J/L of a solid round bar (J = pi r^4 / 2).
     """
     given = group.get_scalar('torsional_stiffness')
     if given is not None:
@@ -341,7 +342,7 @@ def run_kc_event(config: Configuration, event: str, axle: str,
 
 def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> EventOutcome:
     geo = config.group('geometry')
-    mass_cog = _cog_height(config)
+    mass_cog = mass_properties(config).cog_height
     metrics = {k: Metric(float(v), u) for k, (v, u) in derived_metrics(
         results, inp.tire_vertical_stiffness, cg_height=mass_cog,
         wheelbase=geo.scalar('wheelbase')).items()}
@@ -382,16 +383,9 @@ def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> Even
                         channels=channels, notes=tuple(notes))
 
 
-def _cog_height(config: Configuration) -> float:
-    from vd_solvers.analytical.from_config import mass_properties
-
-    return mass_properties(config).cog_height
-
-
 #: per-wheel channel suffixes, vector component names
 WHEEL = ('left', 'right')
 XYZ = ('x', 'y', 'z')
-SIX_NAMES = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 _UNITS = {
     'wheel_travel': 'm', 'pad_travel': 'm', 'wheel_centre': 'm', 'contact_point': 'm',
@@ -427,7 +421,7 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
         elif a.ndim == 3 and a.shape[2] == 6:
             kind = 'force' if 'force' in base else 'deflection'
             for s, side in enumerate(WHEEL):
-                for c, comp in enumerate(SIX_NAMES):
+                for c, comp in enumerate(BUSHING_DIRECTIONS):
                     u = ('N' if c < 3 else 'N*m') if kind == 'force' else ('m' if c < 3 else 'rad')
                     out[f'{name}.{comp}_{side}'] = Channel(u, a[:, s, c])
         elif a.ndim == 2:

@@ -31,8 +31,8 @@ import numpy as np
 
 from vd_solvers.errors import SolverError
 
-from .assembly import LoadCase, System, contact_direction
 from .solver import Solution
+from .system import LoadCase, System, contact_direction
 from .templates import SuspensionTemplate
 
 if TYPE_CHECKING:

@@ -31,7 +31,7 @@ import scipy.linalg
 
 from vd_solvers.errors import SolverError
 
-from .assembly import Evaluation, LoadCase, State, System
+from .system import Evaluation, LoadCase, State, System
 
 CONSTRAINT_TOL = 1e-9  # m; angular rows (dot products) in rad, i.e. m at 1 m lever
 FORCE_TOL = 1e-6  # N and N*m, absolute ...

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vd_data_server.model import Configuration
-from vd_solvers.analytical.params import STANDARD_GRAVITY
+from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.cache import NO_BAR, kc_model, kc_result
 from vd_solvers.kc.metrics import FORCE_WINDOW, slope_at
