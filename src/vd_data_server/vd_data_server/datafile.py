@@ -119,9 +119,9 @@ def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: Colle
     value = out[key]
     warning = None
     if isinstance(spec, schema.Scalar):
-        warning = plausibility.unusual_scalar(float(value.si), spec.quantity)
+        warning = plausibility.unusual_scalar(value.number(), spec.quantity)
     elif isinstance(spec, schema.Point):
-        warning = plausibility.unusual_point(value.si)  # type: ignore[arg-type]
+        warning = plausibility.unusual_point(value.triple())
     if warning:
         col.warnings.append(f'{col.file}: {key}: {warning}{where}')
 
@@ -291,12 +291,12 @@ def _check_flex(values: Mapping[str, Value], col: Collector, data: Any) -> None:
                             f"{', '.join(sorted(known)) or 'none'})")
         if f'{base}.arm_section' in values and comp != schema.BAR_COMPONENT:
             col.add(f'{base}.arm_section', f'only the {schema.BAR_COMPONENT} has arms')
-        n = values[f'{base}.elements_per_member'].si
-        if float(n) != int(n) or not 1 <= int(n) <= 50:  # type: ignore[arg-type]
+        n = values[f'{base}.elements_per_member'].number()
+        if n != int(n) or not 1 <= int(n) <= 50:
             col.add(f'{base}.elements_per_member', f'must be a whole number 1..50, found {n}')
         for sp in sorted(_names({k[len(base) + 1:]: v for k, v in values.items()
                                  if k.startswith(base + '.')}, 'shape_points')):
-            f = float(values[f'{base}.shape_points.{sp}.fraction'].si)  # type: ignore[arg-type]
+            f = values[f'{base}.shape_points.{sp}.fraction'].number()
             if not 0.0 < f < 1.0:
                 col.add(f'{base}.shape_points.{sp}.fraction', f'must lie strictly between 0 '
                         f'and 1, found {f:g}')

@@ -111,7 +111,7 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
         root_is_dir = False
     if not root_is_dir:
         col.add('study.data_root', f'the data root {root} is not a folder', study, 'data_root')
-    defaults = raw.get('defaults') if isinstance(raw.get('defaults'), Mapping) else {}
+    defaults = _mapping(raw.get('defaults'))
     configs_raw = raw.get('configurations')
     configs: dict[str, ConfigurationSpec] = {}
     for name, body in (configs_raw.items() if isinstance(configs_raw, Mapping) else ()):
@@ -119,8 +119,8 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
             continue  # reported by the walker
         if not isinstance(body, Mapping):
             body = {}
-        variants = body.get('variants') if isinstance(body.get('variants'), Mapping) else {}
-        overrides = body.get('overrides') if isinstance(body.get('overrides'), Mapping) else {}
+        variants = _mapping(body.get('variants'))
+        overrides = _mapping(body.get('overrides'))
         merged = {**defaults, **variants}
         where = f'configurations.{name}'
         for group in schema.REQUIRED_GROUPS:
@@ -141,6 +141,10 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     col.raise_if_any()
     return MasterFile(path=path, name=str(study['name']), description=str(study.get(
         'description') or ''), vehicle=vehicle, data_root=root, configurations=configs)
+
+
+def _mapping(node: Any) -> Mapping[str, Any]:
+    return node if isinstance(node, Mapping) else {}
 
 
 class GroupCache:
@@ -270,9 +274,9 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
         groups = apply_overrides(groups, extra_overrides, file=extra_source, where='')
     check_geometry(groups, file=master.display, configuration=name)
     check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
-    for group in groups.values():
-        if group.kind == 'tire':
-            tire_properties(group)  # the coefficients after overrides, as a solver reads them
+    for data in groups.values():
+        if data.kind == 'tire':
+            tire_properties(data)  # the coefficients after overrides, as a solver reads them
     tire_files = {g.text('file') for g in groups.values() if g.kind == 'tire'}
     tire_files |= {g.text(k) for g in groups.values() if g.kind == 'flex'
                    for k in _imported_keys(g)}
@@ -406,16 +410,16 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         if old.type != 'point':
             raise DataError(f"'{key}' is a {old.type}, not a point", file=file, key=label)
         axis = Value(key, 'scalar', 0.0, 'm', display_unit=old.display_unit)
-        number = parse_override(raw, axis, file=file, key=label).si
-        xyz = list(old.si)  # type: ignore[arg-type]
-        xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
+        number = parse_override(raw, axis, file=file, key=label).number()
+        xyz = list(old.triple())
+        xyz[COORDS[coord]] = number
         check_point((xyz[0], xyz[1], xyz[2]), file=file, key=label, raw=raw)
         new = Value(key, 'point', tuple(xyz), 'm', display_unit=old.display_unit, source=source)
     else:
         new = parse_override(raw, old, file=file, key=label).with_source(source)
         spec = schema.leaf_spec(group.kind, key)
         if isinstance(spec, schema.Scalar):
-            _check_range(float(new.si), spec, file, label, raw)  # type: ignore[arg-type]
+            _check_range(new.number(), spec, file, label, raw)
         if isinstance(spec, schema.Text) and spec.choices and new.si not in spec.choices:
             raise DataError(f"'{new.si}' is not one of: {', '.join(spec.choices)}", file=file,
                             key=label)

@@ -174,7 +174,7 @@ def format_value(value: Value, unit: str) -> str:
     if value.type == 'text':
         return str(value.si)
     if value.type == 'curve':
-        xs, ys = value.si  # type: ignore[misc]
+        xs, ys = value.table()
         return f'curve of {len(xs)} points, y {min(ys):.6g}..{max(ys):.6g} {value.unit}'
     quantity = _quantity_of(value.unit)
     factor = 1.0
@@ -184,8 +184,8 @@ def format_value(value: Value, unit: str) -> str:
         except ValueError:
             factor = 1.0
     if value.type in ('point', 'vector'):
-        return '[' + ', '.join(f'{c / factor:.6g}' for c in value.si) + ']'  # type: ignore[union-attr]
-    return f'{float(value.si) / factor:.6g}'  # type: ignore[arg-type]
+        return '[' + ', '.join(f'{c / factor:.6g}' for c in value.triple()) + ']'
+    return f'{value.number() / factor:.6g}'
 
 
 def _quantity_of(unit: str) -> str | None:

@@ -30,8 +30,10 @@ def _shift_x(group: GroupData, dx: float) -> GroupData:
 
 def test_moving_the_whole_car_in_x_changes_nothing(baseline):
     """
-    The vehicle frame's origin is a convention: shifting every point and the COG by the
-    same dx must give the same analytical parameters.
+    Check that the vehicle frame's origin is a convention.
+
+    Shifting every point and the COG by the same dx must give the same analytical
+    parameters.
     """
     groups = dict(baseline.groups)
     for name in ('front_hardpoints', 'rear_hardpoints', 'mass'):

@@ -155,6 +155,8 @@ def test_stabilizer_without_its_hard_points_is_refused(hmmwv, sedan):
 
 def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
     """
+    Check that the two-track model takes the K&C roll properties, labelled.
+
     The two-track model computes the K&C roll properties on demand: the same
     numbers as a direct K&C run of the same configuration, labelled with the data
     hash; without K&C the parameters say 'design target'.

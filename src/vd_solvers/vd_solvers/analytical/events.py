@@ -1,6 +1,8 @@
 """
-Events of the analytical rung: steady-state circular (ISO 4138 constant radius),
-handling diagram, and the linear step steer (ISO 7401) of the bicycle model.
+Events of the analytical rung.
+
+Steady-state circular (ISO 4138 constant radius), handling diagram, and the
+linear step steer (ISO 7401) of the bicycle model.
 
 ``run_event(config, event, model, params)`` returns an :class:`EventOutcome`
 with SI channels and metrics (plus the conventional deg/g, g, km/h figures).
@@ -96,8 +98,9 @@ def run_event(config: Configuration, event: str, model: str,
 
 def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
     """
-    The understeer budget: ``understeer_budget_<term>`` in rad/(m/s^2) and
-    ``..._deg_per_g``, each with its source, and the total.
+    Return the understeer budget metrics, each with its source, and the total.
+
+    ``understeer_budget_<term>`` in rad/(m/s^2) and ``..._deg_per_g``.
     """
     budget = understeer_budget(p)
     metrics = {}

@@ -61,7 +61,7 @@ def vehicle_params(config: Configuration,
         'unsprung_cog_height_front': 'front_hardpoints wheel_centre z',
         'unsprung_cog_height_rear': 'rear_hardpoints wheel_centre z',
     }
-    roll = {}
+    roll: dict[str, float] = {}
     for axle in ('front', 'rear'):
         kc = (suspension or {}).get(axle)
         if kc is not None:
@@ -73,7 +73,7 @@ def vehicle_params(config: Configuration,
             for key in (f'roll_stiffness_{axle}', f'roll_centre_height_{axle}'):
                 roll[key] = targets.scalar(key)
                 sources[key] = f'design target {targets.values[key].source}'
-    comp = {}
+    comp: dict[str, AxleCompliance] = {}
     for axle in ('front', 'rear'):
         given = (compliance or {}).get(axle)
         comp[f'compliance_{axle}'] = given if given is not None else AxleCompliance()
@@ -85,7 +85,11 @@ def vehicle_params(config: Configuration,
         cog_height=z_g, yaw_inertia=izz, tire_front=tire_front, tire_rear=tire_rear,
         unsprung_mass_front=m_uf, unsprung_mass_rear=m_ur,
         unsprung_cog_height_front=z_uf, unsprung_cog_height_rear=z_ur, sources=sources,
-        **roll, **comp)
+        roll_stiffness_front=roll['roll_stiffness_front'],
+        roll_stiffness_rear=roll['roll_stiffness_rear'],
+        roll_centre_height_front=roll['roll_centre_height_front'],
+        roll_centre_height_rear=roll['roll_centre_height_rear'],
+        compliance_front=comp['compliance_front'], compliance_rear=comp['compliance_rear'])
 
 
 def _fit(config: Configuration, group: str, fz_static: float) -> tuple[SimpleTire, str]:

@@ -19,12 +19,14 @@ from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.flex.component import Condensed, build, clamped
 from vd_solvers.flex.imported import mirror_stiffness
+from vd_solvers.flex.section import Material, Section
 
 from .builder import Builder
 from .bushing import bushing_frame, bushing_measures, side_frame
 from .forces import LinearLaw, MatrixLaw, StopLaw, TorsionLaw, spring_law, stiffness_law
 from .joints import (
     GROUND,
+    JointKind,
     Primitive,
     PrimKind,
     joint_constraints,
@@ -159,13 +161,13 @@ class _Assembly:
         self.b.energy([prim], LinearLaw(np.zeros(1), np.array([mass * STANDARD_GRAVITY])))
 
     def _connection(
-        self, kind: str, name: str, a: str, b: str, at: np.ndarray, side: Side,
+        self, kind: JointKind, name: str, a: str, b: str, at: np.ndarray, side: Side,
         axis: np.ndarray | None = None, cross: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
         """Ideal joint, or the input's bushing keyed by ``name``."""
         bushing = self.inp.bushings.get(name)
         if bushing is None:
-            for prim in joint_constraints(kind, a, b, at, axis, cross):  # type: ignore[arg-type]
+            for prim in joint_constraints(kind, a, b, at, axis, cross):
                 self.b.constrain(prim)
             return
         frame, signs = side_frame(bushing_frame(bushing.axial), side)
@@ -221,10 +223,13 @@ class _Assembly:
                 given = inp.joint_axes.get(j.point)
                 if given is not None:
                     cross = (mirror(given[0], side), mirror(given[1], side))
-                else:
+                elif axis is not None:
                     # Both cross axes perpendicular to the link: the joint then
                     # only stops the link's spin about its own axis.
-                    cross = perpendicular_basis(axis)  # type: ignore[arg-type]
+                    cross = perpendicular_basis(axis)
+                else:
+                    raise SolverError(f'template {self.template.name!r}: the universal joint at '
+                                      f'{j.point!r} has no axis')
             kind = j.kind
             if kind == 'inline' and (j.inboard in inp.flexible or j.outboard in inp.flexible):
                 # The in-line rear pivot only avoids a redundant constraint on a rigid arm;
@@ -350,12 +355,12 @@ class _Assembly:
             owner['arb_link_lower'] = topo.arb_part
         tracked = self.out.tracked[SIDES.index(side)]
         for name in inp.hardpoints:
-            part = owner.get(name, GROUND)
+            owner_part = owner.get(name, GROUND)
             if name == 'arb_link_upper' and inp.stabilizer is not None:
                 resolved = (self.nodes[(BAR, 'left')][f'arb_link_upper.{side}']
                             if BAR in inp.flexible else f'arb_arm.{side}')
             else:
-                resolved = self.at(part, name, side)
+                resolved = self.at(owner_part, name, side)
             tracked[name] = self.b.marker(point(resolved, self.hp(name, side)))
 
     # -- flexible components ------------------------------------------------------
@@ -383,7 +388,8 @@ class _Assembly:
         if spec.imported is not None:
             comp = _check_imported(name, spec.imported, hp)
         else:
-            comp = build(name, hp, members, spec.material, spec.section,  # type: ignore[arg-type]
+            material, section = _beam(name, spec)
+            comp = build(name, hp, members, material, section,
                          attachments=attachments, shape_points=spec.shape_points,
                          elements_per_member=spec.elements_per_member)
         self._condensed[name] = comp
@@ -469,7 +475,8 @@ class _Assembly:
         points = {f'{n}.{s}': mirror(self.inp.hardpoints[n], s) for s in SIDES for n in chain}
         members = [(f'{a}.{s}', f'{b}.{s}') for s in SIDES for a, b in zip(chain, chain[1:])]
         members += [(f'{n}.left', f'{n}.right') for n in carried]
-        comp = build(SUBFRAME, points, members, spec.material, spec.section,  # type: ignore[arg-type]
+        material, section = _beam(SUBFRAME, spec)
+        comp = build(SUBFRAME, points, members, material, section,
                      elements_per_member=spec.elements_per_member)
         self.out.components.append(comp)
         nodes = self._embed(comp, 'left', (SUBFRAME, 'left'), comp.positions, comp.stiffness,
@@ -504,8 +511,9 @@ class _Assembly:
             shapes.append(type(sp)(names['left'][0], names['left'][1], sp.fraction, sp.offset))
             shapes.append(type(sp)(names['right'][1], names['right'][0], 1.0 - sp.fraction,
                                    tuple(mirror(np.asarray(sp.offset), 'right'))))
-        arm = spec.arm_section or spec.section
-        comp = build(BAR, points, members, spec.material, spec.section,  # type: ignore[arg-type]
+        material, section = _beam(BAR, spec)
+        arm = spec.arm_section or section
+        comp = build(BAR, points, members, material, section,
                      shape_points=shapes, elements_per_member=spec.elements_per_member,
                      member_sections={names['left']: arm, members[2]: arm})
         self.out.components.append(comp)
@@ -520,6 +528,14 @@ class _Assembly:
                                                              point(nodes[upper], points[upper]))))
             self.out.put('droplink_rows', side, row)
             self.out.put('arb_arms', side, self.b.part_index(nodes[upper]))
+
+
+def _beam(name: str, spec: FlexSpec) -> tuple[Material, Section]:
+    """Return the material and section of a beam-frame component."""
+    if spec.material is None or spec.section is None:
+        raise SolverError(f'flexible component {name!r}: a beam frame needs a material and a '
+                          'section')
+    return spec.material, spec.section
 
 
 def _check_imported(name: str, comp: Condensed, hardpoints: dict[str, np.ndarray]) -> Condensed:

@@ -10,6 +10,7 @@ the linear laws into one vectorised law.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Union
 
 import numpy as np
@@ -72,7 +73,7 @@ class Builder:
         self.constraints.append(measure)
         return len(self.constraints) - 1
 
-    def energy(self, ms: list[MeasureLike], law: EnergyLaw) -> np.ndarray:
+    def energy(self, ms: Sequence[MeasureLike], law: EnergyLaw) -> np.ndarray:
         if len(ms) != law.size:
             raise SolverError('internal: law size does not match its measures')
         first = len(self.measures)

@@ -25,6 +25,7 @@ from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 from .events import EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
 from .model import (
+    Axle,
     Bushing,
     Curve,
     DamperSpec,
@@ -97,6 +98,10 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
     if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', axle '{axle}': unknown fidelity "
                           f"'{fidelity}' (fidelities: {', '.join(FIDELITIES)})")
+    if axle not in ('front', 'rear'):
+        raise SolverError(f"configuration '{config.name}': unknown axle '{axle}' (axles: front, "
+                          'rear)')
+    corner: Axle = 'front' if axle == 'front' else 'rear'
     hp = config.group(f'{axle}_hardpoints')
     points = {k.split('.', 1)[1]: np.asarray(v.si, dtype=float)
               for k, v in hp.values.items() if k.startswith('points.')}
@@ -122,7 +127,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
             damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0
                             for d in BUSHING_DIRECTIONS)
             axis = bush_g.point(f'{base}.axis') if bush_g.has(f'{base}.axis') else None
-            bushings[name] = Bushing(stiffness, damping,  # type: ignore[arg-type]
+            bushings[name] = Bushing(stiffness, damping,
                                      None if axis is None else np.asarray(axis, dtype=float))
     stabilizer = None
     stab_g = _optional(config, f'{axle}_stabilizer')
@@ -165,7 +170,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
         chosen = [c for c in config.flexible_components if c in specs] or sorted(specs)
         flexible = {c: specs[c][0] for c in chosen}
     return SuspensionInput(
-        template=hp.text('template'), axle=axle, hardpoints=points, spring=spring,  # type: ignore[arg-type]
+        template=hp.text('template'), axle=corner, hardpoints=points, spring=spring,
         tire_radius=points['wheel_centre'][2],
         tire_vertical_stiffness=tire.scalar('tir.VERTICAL.VERTICAL_STIFFNESS'),
         corner_load=front_load if axle == 'front' else rear_load,
@@ -226,7 +231,7 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
                 ShapePoint(group.text(f'{base}.shape_points.{sp}.from'),
                            group.text(f'{base}.shape_points.{sp}.to'),
                            group.scalar(f'{base}.shape_points.{sp}.fraction'),
-                           tuple(group.point(f'{base}.shape_points.{sp}.offset'))
+                           group.point(f'{base}.shape_points.{sp}.offset')
                            if group.has(f'{base}.shape_points.{sp}.offset') else (0.0, 0.0, 0.0))
                 for sp in sorted({k.split('.')[3] for k in group.values
                                   if k.startswith(f'{base}.shape_points.')}))

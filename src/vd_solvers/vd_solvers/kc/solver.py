@@ -192,7 +192,7 @@ def solve_path(
             state, previous, before = states[start], cases[start], None  # type: ignore[assignment]
         for i in walk:
             # Events step uniformly, so the last increment predicts the next.
-            guess = _extrapolate(before, state) if before is not None else None
+            guess: State | None = _extrapolate(before, state) if before is not None else None
             new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i, describe)
             before, state, previous = state, new, cases[i]
             states[i] = state

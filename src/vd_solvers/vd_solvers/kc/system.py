@@ -256,12 +256,16 @@ class System:
         self._jac_template[: self._n_points, :, :3] = _EYE
         nc = 6 * (self.n_parts + 1)
         self._nc = nc
-        slot_marker, slot_prim, pair_a, pair_b, pair_prim = [], [], [], [], []
+        slot_marker: list[np.ndarray] = []
+        slot_prim: list[np.ndarray] = []
+        pair_a: list[np.ndarray] = []
+        pair_b: list[np.ndarray] = []
+        pair_prim: list[np.ndarray] = []
         for b in self._batches:
             n = b.param.shape[0]
             rows = b.offset + np.arange(n)
             first = sum(len(m) for m in slot_marker)
-            base = []
+            base: list[int] = []
             for idx in b.slot_idx:
                 base.append(first)
                 first += n
@@ -348,7 +352,8 @@ class System:
         world, vec = self.marker_world(state)
         return self._contact(world, vec)
 
-    def _contact(self, world: np.ndarray, vec: np.ndarray) -> tuple[np.ndarray, ...]:
+    def _contact(self, world: np.ndarray,
+                 vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         wheels = self.outputs.wheels
         centre = np.array([world[w.centre] for w in wheels])
         axis = np.array([vec[w.axis] for w in wheels])
