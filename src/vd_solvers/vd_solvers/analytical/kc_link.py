@@ -25,12 +25,12 @@ top towards +y, at zero slip). The K&C metrics leave in engineering units
 from __future__ import annotations
 
 from dataclasses import dataclass
-import math
 
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.params import AxleCompliance
+from vd_solvers.constants import DEG
 from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 
@@ -39,7 +39,6 @@ KC_EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force', 
 #: step of the central difference of the lateral force in camber, rad
 CAMBER_STEP = 1e-6
 
-DEG = 180.0 / math.pi
 
 
 @dataclass(frozen=True)
@@ -88,7 +87,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
         m = derived_metrics(results, model.inp.tire_vertical_stiffness)
         tag = f'data hash {config.data_hash}'
         suspension[axle] = AxleSuspension(
-            m['roll_stiffness'][0] * DEG, m['roll_centre_height_kinematic'][0],
+            m['roll_stiffness'][0] / DEG, m['roll_centre_height_kinematic'][0],
             f'K&C {axle} axle (opposite and parallel wheel travel, {tag})')
         group = config.group(f'{axle}_tire')
         mf = MagicFormula(tire_properties(group))
@@ -99,11 +98,11 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
             return f'K&C {axle} {event} {metric} {value:.4g} {unit} ({tag})'
 
         compliance[axle] = AxleCompliance(
-            lateral_compliance_steer=m['lateral_compliance_steer'][0] / DEG / 1e3,
-            lateral_compliance_camber=m['lateral_compliance_camber'][0] / DEG / 1e3,
+            lateral_compliance_steer=m['lateral_compliance_steer'][0] * DEG / 1e3,
+            lateral_compliance_camber=m['lateral_compliance_camber'][0] * DEG / 1e3,
             roll_steer=m['roll_steer'][0],
             roll_camber=m['roll_camber'][0],
-            aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0] / DEG / 1e3,
+            aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0] * DEG / 1e3,
             pneumatic_trail=float(mf.pneumatic_trail(fz)),
             camber_stiffness=camber_stiffness(mf, fz),
             sources={
