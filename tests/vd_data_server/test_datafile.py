@@ -60,7 +60,7 @@ def load(tmp_path: Path, group: str, text: str) -> GroupData:
 
 
 def refused(tmp_path: Path, group: str, text: str) -> list[str]:
-    """The error lines of a bad file; loading writes nothing."""
+    """Return the error lines of a bad file; loading writes nothing."""
     path = write(tmp_path, text)
     before = tree_snapshot(tmp_path)
     with pytest.raises(DataError) as info:
@@ -441,7 +441,7 @@ def test_bundled_inertias_are_those_of_a_car(vehicle: str) -> None:
 
 
 def _as_si_file(data: GroupData) -> dict[str, Any]:
-    """The values of ``data`` written back as a data file in SI units."""
+    """Return the values of ``data`` written back as a data file in SI units."""
     tree: dict[str, Any] = {}
     for key, value in data.values.items():
         *parents, leaf = key.split('.')
@@ -449,10 +449,10 @@ def _as_si_file(data: GroupData) -> dict[str, Any]:
         for part in parents:
             node = node.setdefault(part, {})
         if value.type == 'curve':
-            xs, ys = value.si  # type: ignore[misc]
+            xs, ys = value.table()
             node[leaf] = {'x': list(xs), 'y': list(ys)}
         elif value.type in ('point', 'vector'):
-            node[leaf] = list(value.si)  # type: ignore[arg-type]
+            node[leaf] = list(value.triple())
         else:
             node[leaf] = value.si
     units = {q: u for q, u in SI_UNITS.items() if u}
@@ -519,7 +519,8 @@ def test_flex_section_needs_its_shape_dimensions(sample_root):
 def test_flex_component_must_name_a_known_section(sample_root):
     lines = _flex_refused(sample_root, 'section: tie_rod,', 'section: tie_bar,')
     assert lines == ["sedan/front_flex/X.yaml: components.tierod.section: 'tie_bar' is not in "
-                     "sections (known: bar, knuckle, pressed_arm, strut_tube, subframe_box, tie_rod)"]
+                     'sections (known: bar, knuckle, pressed_arm, strut_tube, subframe_box, '
+                     'tie_rod)']
 
 
 def test_flex_component_must_exist_in_the_template(sample_root):

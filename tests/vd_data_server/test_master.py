@@ -24,7 +24,7 @@ RTOL = 1e-12
 
 
 def refused(root: Path, master: Path) -> list[str]:
-    """The error lines of loading ``master``; nothing under ``root`` is written."""
+    """Return the error lines of loading ``master``; nothing under ``root`` is written."""
     before = tree_snapshot(root)
     with pytest.raises(DataError) as info:
         load_study(master)
@@ -67,7 +67,8 @@ def test_unknown_configuration_key_is_refused(sample_root: Path, sedan_master: P
     lines = refused(sample_root, sedan_master)
     line = line_no(sedan_master, '    variant:')
     assert [(f'{sedan_master}: configurations.sport.variant: unknown key (expected one of: '
-            f'description, variants, overrides, flexible, flexible_components) (line {line})')] == lines
+             'description, variants, overrides, flexible, flexible_components) '
+             f'(line {line})')] == lines
 
 
 def test_variant_that_does_not_exist_lists_the_available_ones(sample_root: Path,
@@ -131,7 +132,7 @@ def test_flexible_must_be_a_switch_or_a_list(sample_root: Path, sedan_master: Pa
                  '    flexible: 3\n')
     assert refused(sample_root, sedan_master) == [
         f'{sedan_master}: configurations.sport.flexible: expected true, false or a list of '
-        'component names, found 3']
+        f"component names, found 3 (line {line_no(sedan_master, '    flexible: 3')})"]
 
 
 def test_flexible_components_are_kept(sedan_master: Path) -> None:
@@ -326,6 +327,8 @@ def test_data_file_with_malformed_yaml_is_named_relative_to_the_root(sample_root
 
 def test_geometry_must_agree_with_the_wheel_centre_hard_points(sedan_master):
     """
+    Refuse a wheelbase that disagrees with the wheel-centre hard points.
+
     A wheelbase edited in the master file without moving the hard points describes two
     different cars: refused, naming configuration, key and the values.
     """
@@ -360,3 +363,20 @@ def test_set_override_of_a_track_is_checked_against_the_hard_points(sedan_master
                            {'geometry.track_rear': '1600 mm',
                             'rear_hardpoints.points.wheel_centre.y': '800 mm'})
     assert moved.group('geometry').scalar('track_rear') == pytest.approx(1.6)
+
+
+def test_overrides_must_be_a_mapping(sample_root: Path, sedan_master: Path) -> None:
+    replace_once(sedan_master, '    overrides:\n', '    overrides: [camber]\n    unused:\n')
+    line = line_no(sedan_master, '    overrides:')
+    assert refused(sample_root, sedan_master)[-1] == (
+        f"{sedan_master}: configurations.sport.overrides: expected a mapping of group.key: "
+        f"value, found list ['camber'] (line {line})")
+
+
+def test_a_data_root_that_is_no_folder_is_refused(sample_root: Path, sedan_master: Path) -> None:
+    text = sedan_master.read_text()
+    sedan_master.write_text(re.sub(r'(?m)^  data_root: .*$', '  data_root: nowhere', text))
+    root = Path(os.path.realpath(sedan_master.parent / 'nowhere'))
+    assert refused(sample_root, sedan_master) == [
+        f'{sedan_master}: study.data_root: the data root {root} is not a folder '
+        f"(line {line_no(sedan_master, '  data_root:')})"]

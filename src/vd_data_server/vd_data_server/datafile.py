@@ -23,30 +23,13 @@ from pathlib import Path
 from typing import Any
 
 from . import plausibility, schema
-from .errors import DataError, DataErrors
+from .errors import DataError
 from .model import GroupData, Value
+from .shape import Collector, join, kind_of, section_keys
 from .units import SI_UNITS, UnitSystem, parse_quantity, si_factor, to_si
 from .yamlio import line_of, load_file
 
 TOP_KEYS = ('kind', 'description', 'source', 'units', 'mirror', 'data')
-
-
-class _Collector:
-    def __init__(self, file: str) -> None:
-        self.file = file
-        self.errors: list[DataError] = []
-        self.warnings: list[str] = []
-
-    def add(self, key: str, message: str, container: Any = None, name: str | None = None) -> None:
-        line = line_of(container, name) if name is not None else None
-        suffix = f' (line {line})' if line else ''
-        self.errors.append(DataError(message + suffix, file=self.file, key=key or None))
-
-    def raise_if_any(self) -> None:
-        if len(self.errors) == 1:
-            raise self.errors[0]
-        if self.errors:
-            raise DataErrors(self.errors)
 
 
 def load_group_file(path: Path, *, display: str, group: str, variant: str) -> GroupData:
@@ -56,7 +39,7 @@ def load_group_file(path: Path, *, display: str, group: str, variant: str) -> Gr
 
 
 def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupData:
-    col = _Collector(display)
+    col = Collector(display)
     if not isinstance(raw, Mapping):
         raise DataError("expected a mapping with 'kind', 'units' and 'data'", file=display)
     for key in raw:
@@ -101,38 +84,30 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
                      warnings=tuple(col.warnings))
 
 
-def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Collector,
+def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: Collector,
           out: dict[str, Value], parent: Any, name: str) -> None:
     key = path or name  # the top-level section is named by its file key, 'data'
     if isinstance(spec, schema.Section):
         if not isinstance(node, Mapping):
-            col.add(key, f'expected a mapping, found {_kind_of(node)}', parent, name)
+            col.add(key, f'expected a mapping, found {kind_of(node)}', parent, name)
             return
-        for sub in node:
-            if sub not in spec.fields:
-                col.add(_join(path, sub), "unknown key (expected one of: "
-                        f"{', '.join(spec.fields)})", node, sub)
-        for group in spec.one_of:
-            given = [g for g in group if g in node]
-            if len(given) != 1:
-                col.add(key, f"give exactly one of: {', '.join(group)} (found "
-                        f"{', '.join(given) if given else 'none'})", parent, name)
+        section_keys(spec, node, path, col, parent, name)
         for sub, sub_spec in spec.fields.items():
             if sub in node:
-                _walk(sub_spec, node[sub], _join(path, sub), units, col, out, node, sub)
+                _walk(sub_spec, node[sub], join(path, sub), units, col, out, node, sub)
             elif sub_spec.required and not any(sub in g for g in spec.one_of):
-                col.add(_join(path, sub), 'missing required key', parent, name)
+                continue  # reported by section_keys
             elif isinstance(sub_spec, schema.Scalar) and sub_spec.default is not None:
-                out[_join(path, sub)] = _scalar_value(_join(path, sub), sub_spec.default,
+                out[join(path, sub)] = _scalar_value(join(path, sub), sub_spec.default,
                                                       sub_spec.quantity, units)
         return
     if isinstance(spec, schema.MapOf):
         if not isinstance(node, Mapping) or not node:
-            col.add(key, f'expected a non-empty mapping of names, found {_kind_of(node)}',
+            col.add(key, f'expected a non-empty mapping of names, found {kind_of(node)}',
                     parent, name)
             return
         for sub, value in node.items():
-            _walk(spec.value, value, _join(path, sub), units, col, out, node, sub)
+            _walk(spec.value, value, join(path, sub), units, col, out, node, sub)
         return
     line = line_of(parent, name)
     where = f' (line {line})' if line else ''
@@ -144,9 +119,9 @@ def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: _Coll
     value = out[key]
     warning = None
     if isinstance(spec, schema.Scalar):
-        warning = plausibility.unusual_scalar(float(value.si), spec.quantity)
+        warning = plausibility.unusual_scalar(value.number(), spec.quantity)
     elif isinstance(spec, schema.Point):
-        warning = plausibility.unusual_point(value.si)  # type: ignore[arg-type]
+        warning = plausibility.unusual_point(value.triple())
     if warning:
         col.warnings.append(f'{col.file}: {key}: {warning}{where}')
 
@@ -171,10 +146,10 @@ def _leaf(spec: schema.Spec, node: Any, key: str, units: UnitSystem) -> Value:
         return Value(key, 'vector', tuple(c / norm for c in xyz), '', display_unit='-')
     if isinstance(spec, schema.Text):
         if not isinstance(node, str) or not node:
-            raise DataError(f'expected a text, found {_kind_of(node)}', file=file, key=key)
+            raise DataError(f'expected a text, found {kind_of(node)}', file=file, key=key)
         if spec.choices and node not in spec.choices:
-            raise DataError(f"'{node}' is not one of: {', '.join(spec.choices)}", file=file,
-                            key=key)
+            raise DataError(spec.refusal.format(value=node, choices=', '.join(spec.choices)),
+                            file=file, key=key)
         return Value(key, 'text', node)
     if isinstance(spec, schema.Curve):
         return _curve(spec, node, key, units)
@@ -205,7 +180,7 @@ def _triple(node: Any, file: str, key: str) -> tuple[float, float, float]:
 
 
 def _finite(number: float) -> bool:
-    """A finite float, also for integers too large for one (400 digits)."""
+    """Return True for a finite number, also for integers too large for a float."""
     try:
         return math.isfinite(float(number))
     except OverflowError:
@@ -259,7 +234,7 @@ def _short(unit: str) -> str:
     return format(parse_unit(unit), '~') if unit else '-'
 
 
-def _check_template_points(values: Mapping[str, Value], col: _Collector, data: Any) -> None:
+def _check_template_points(values: Mapping[str, Value], col: Collector, data: Any) -> None:
     template = str(values['template'].si)
     given = {k.split('.', 1)[1] for k in values if k.startswith('points.')}
     allowed = set(schema.TEMPLATE_POINTS[template]) | set(schema.OPTIONAL_POINTS)
@@ -277,11 +252,13 @@ def _names(values: Mapping[str, Value], prefix: str) -> set[str]:
     return {k.split('.')[1] for k in values if k.startswith(prefix + '.')}
 
 
-def _check_flex(values: Mapping[str, Value], col: _Collector, data: Any) -> None:
+def _check_flex(values: Mapping[str, Value], col: Collector, data: Any) -> None:
     """
-    Cross-references of a flex file: materials and sections named by components
-    exist, every section has the dimensions of its shape, a component is either a beam
-    frame (material + section) or imported, shape points lie along their member.
+    Check the cross-references of a flex file.
+
+    Materials and sections named by components exist, every section has the dimensions
+    of its shape, a component is either a beam frame (material + section) or imported,
+    shape points lie along their member.
     """
     materials, sections = _names(values, 'materials'), _names(values, 'sections')
     for name in sorted(sections):
@@ -314,12 +291,12 @@ def _check_flex(values: Mapping[str, Value], col: _Collector, data: Any) -> None
                             f"{', '.join(sorted(known)) or 'none'})")
         if f'{base}.arm_section' in values and comp != schema.BAR_COMPONENT:
             col.add(f'{base}.arm_section', f'only the {schema.BAR_COMPONENT} has arms')
-        n = values[f'{base}.elements_per_member'].si
-        if float(n) != int(n) or not 1 <= int(n) <= 50:  # type: ignore[arg-type]
+        n = values[f'{base}.elements_per_member'].number()
+        if n != int(n) or not 1 <= int(n) <= 50:
             col.add(f'{base}.elements_per_member', f'must be a whole number 1..50, found {n}')
         for sp in sorted(_names({k[len(base) + 1:]: v for k, v in values.items()
                                  if k.startswith(base + '.')}, 'shape_points')):
-            f = float(values[f'{base}.shape_points.{sp}.fraction'].si)  # type: ignore[arg-type]
+            f = values[f'{base}.shape_points.{sp}.fraction'].number()
             if not 0.0 < f < 1.0:
                 col.add(f'{base}.shape_points.{sp}.fraction', f'must lie strictly between 0 '
                         f'and 1, found {f:g}')
@@ -328,14 +305,6 @@ def _check_flex(values: Mapping[str, Value], col: _Collector, data: Any) -> None
             for key in ('matrix', 'grids'):
                 if not any(k.startswith(f'{base}.imported.{key}') for k in values):
                     col.add(f'{base}.imported.{key}', "required for format 'dmig'")
-
-
-def _join(path: str, key: str) -> str:
-    return f'{path}.{key}' if path else str(key)
-
-
-def _kind_of(node: Any) -> str:
-    return 'nothing' if node is None else f'{type(node).__name__} {node!r}'
 
 
 def parse_override(value: Any, template: Value, *, file: str, key: str) -> Value:

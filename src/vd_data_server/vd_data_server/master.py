@@ -25,11 +25,10 @@ Only files under the data root are ever read.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 import hashlib
 import os
 from pathlib import Path
-import re
 from typing import Any
 
 from . import schema
@@ -37,14 +36,11 @@ from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
 from .model import Configuration, GroupData, Value
 from .plausibility import check_point
+from .shape import PLAIN_NAME, Collector, check
 from .tir import read_tir
 from .tire_group import tire_properties, with_tire
-from .yamlio import line_of, load_file
+from .yamlio import load_file
 
-_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_.-]*$')
-MASTER_TOP = ('study', 'defaults', 'configurations')
-STUDY_KEYS = ('name', 'description', 'vehicle', 'data_root')
-CONFIG_KEYS = ('description', 'variants', 'overrides', 'flexible', 'flexible_components')
 COORDS = {'x': 0, 'y': 1, 'z': 2}
 
 
@@ -66,7 +62,6 @@ class MasterFile:
     vehicle: str
     data_root: Path
     configurations: Mapping[str, ConfigurationSpec]
-    raw_overrides_lines: Mapping[tuple[str, str], int] = field(default_factory=dict)
 
     @property
     def display(self) -> str:
@@ -75,7 +70,7 @@ class MasterFile:
 
 def inside(root: Path, path: Path) -> bool:
     """
-    True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
+    Return True if ``path`` lies under ``root`` once '..', '.' and symbolic links are resolved.
 
     Names such as ``../../etc/passwd`` are refused, and so is a link inside the data
     root that points out of it (checked before the file is opened, so its content is
@@ -88,44 +83,26 @@ def inside(root: Path, path: Path) -> bool:
 
 
 def load_master(path: str | Path, *, data_root: str | Path | None = None) -> MasterFile:
+    """Read and check a master file (``schema.MASTER``); every problem is reported."""
     path = Path(path)
     display = str(path)
     raw = load_file(path, display=display)
-    errors: list[DataError] = []
-
-    def err(key: str, message: str, container: Any = None, name: str | None = None) -> None:
-        line = line_of(container, name) if name is not None else None
-        errors.append(DataError(message + (f' (line {line})' if line else ''), file=display,
-                                key=key or None))
-
     if not isinstance(raw, Mapping):
         raise DataError("expected a mapping with 'study', 'defaults' and 'configurations'",
                         file=display)
-    for key in raw:
-        if key not in MASTER_TOP:
-            err(key, f"unknown key (expected one of: {', '.join(MASTER_TOP)})", raw, key)
+    col = Collector(display)
+    check(schema.MASTER, raw, '', col)
     study = raw.get('study')
     if not isinstance(study, Mapping):
+        col.raise_if_any()
         raise DataError("missing required mapping 'study' (name, vehicle)", file=display,
                         key='study')
-    for key in study:
-        if key not in STUDY_KEYS:
-            err(f'study.{key}', f"unknown key (expected one of: {', '.join(STUDY_KEYS)})",
-                study, key)
-    for key in ('name', 'vehicle'):
-        if not isinstance(study.get(key), str) or not study.get(key):
-            err(f'study.{key}', 'missing required text', raw, 'study')
-    vehicle = str(study.get('vehicle', ''))
-    if vehicle and not _NAME.match(vehicle):
-        err('study.vehicle', f"'{vehicle}' is not a plain folder name", study, 'vehicle')
-    if not isinstance(study.get('data_root', '..'), str) or not study.get('data_root', '..'):
-        raise DataError(f"expected a folder path, found {study.get('data_root')!r}",
-                        file=display, key='study.data_root')
+    vehicle = str(study.get('vehicle') or '')
     # real paths: a master file linked from elsewhere (a symlink install links every
     # file) names its data root relative to where it really is
     if data_root is None:
         root = Path(os.path.realpath(Path(os.path.realpath(path)).parent /
-                                     str(study.get('data_root', '..'))))
+                                     str(study.get('data_root') or '..')))
     else:
         root = Path(os.path.realpath(data_root))
     try:
@@ -133,86 +110,41 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
     except OSError:  # a name too long, a loop of links
         root_is_dir = False
     if not root_is_dir:
-        raise DataError(f'the data root {root} is not a folder', file=display,
-                        key='study.data_root')
-    defaults = raw.get('defaults') or {}
-    if not isinstance(defaults, Mapping):
-        err('defaults', 'expected a mapping of group: variant', raw, 'defaults')
-        defaults = {}
-    _check_variants(defaults, 'defaults', err)
+        col.add('study.data_root', f'the data root {root} is not a folder', study, 'data_root')
+    defaults = _mapping(raw.get('defaults'))
     configs_raw = raw.get('configurations')
-    if not isinstance(configs_raw, Mapping) or not configs_raw:
-        err('configurations', 'expected a non-empty mapping of configuration names', raw,
-            'configurations')
-        configs_raw = {}
     configs: dict[str, ConfigurationSpec] = {}
-    for name, body in configs_raw.items():
-        where = f'configurations.{name}'
-        if not _NAME.match(name):
-            err(where, "configuration names may hold letters, digits, '_', '-' and '.'",
-                configs_raw, name)
-            continue
-        body = body or {}
+    for name, body in (configs_raw.items() if isinstance(configs_raw, Mapping) else ()):
+        if not isinstance(name, str) or not PLAIN_NAME.match(name):
+            continue  # reported by the walker
         if not isinstance(body, Mapping):
-            err(where, 'expected a mapping', configs_raw, name)
-            continue
-        for key in body:
-            if key not in CONFIG_KEYS:
-                err(f'{where}.{key}', f"unknown key (expected one of: {', '.join(CONFIG_KEYS)})",
-                    body, key)
-        variants = body.get('variants') or {}
-        overrides = body.get('overrides') or {}
-        if not isinstance(variants, Mapping):
-            err(f'{where}.variants', 'expected a mapping of group: variant', body, 'variants')
-            variants = {}
-        if not isinstance(overrides, Mapping):
-            err(f'{where}.overrides', 'expected a mapping of group.key: value', body, 'overrides')
-            overrides = {}
-        _check_variants(variants, f'{where}.variants', err)
+            body = {}
+        variants = _mapping(body.get('variants'))
+        overrides = _mapping(body.get('overrides'))
         merged = {**defaults, **variants}
+        where = f'configurations.{name}'
         for group in schema.REQUIRED_GROUPS:
             if group not in merged:
-                err(f'{where}.variants.{group}', "no variant chosen (neither in 'defaults' nor "
-                    "in the configuration)", configs_raw, name)
-        flexible, components = _flexible(body.get('flexible', False), f'{where}.flexible', err)
-        if 'flexible_components' in body:
-            chosen = body['flexible_components']
-            if not (isinstance(chosen, list) and chosen
-                    and all(isinstance(c, str) and c for c in chosen)):
-                err(f'{where}.flexible_components', 'expected a non-empty list of component '
-                    f'names, found {chosen!r}', body, 'flexible_components')
-            elif components:
-                err(f'{where}.flexible_components', "give the components either as the "
-                    "'flexible' list or here, not both", body, 'flexible_components')
-            else:
-                flexible, components = True, tuple(chosen)
+                col.add(f'{where}.variants.{group}', "no variant chosen (neither in 'defaults' "
+                        "nor in the configuration)", configs_raw, name)
+        flexible = body.get('flexible') or False
+        components = tuple(flexible) if isinstance(flexible, list) else ()
+        if body.get('flexible_components'):
+            if components:
+                col.add(f'{where}.flexible_components', "give the components either as the "
+                        "'flexible' list or here, not both", body, 'flexible_components')
+            components = tuple(body['flexible_components'])
         configs[name] = ConfigurationSpec(name, str(body.get('description') or ''),
                                           {str(k): str(v) for k, v in merged.items()},
-                                          dict(overrides), flexible, components)
-    if errors:
-        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+                                          dict(overrides), bool(flexible or components),
+                                          components)
+    col.raise_if_any()
     return MasterFile(path=path, name=str(study['name']), description=str(study.get(
         'description') or ''), vehicle=vehicle, data_root=root, configurations=configs)
 
 
-def _check_variants(variants: Mapping[str, Any], where: str, err: Any) -> None:
-    names = schema.all_group_names()
-    for group, variant in variants.items():
-        if group not in names:
-            err(f'{where}.{group}', f"unknown input group (expected one of: {', '.join(names)})",
-                variants, group)
-        elif not isinstance(variant, (str, int)) or not _NAME.match(str(variant)):
-            err(f'{where}.{group}', f'variant must be a plain name, found {variant!r}', variants,
-                group)
-
-
-def _flexible(raw: Any, where: str, err: Any) -> tuple[bool, tuple[str, ...]]:
-    if isinstance(raw, bool):
-        return raw, ()
-    if isinstance(raw, list) and all(isinstance(c, str) for c in raw):
-        return bool(raw), tuple(raw)
-    err(where, f'expected true, false or a list of component names, found {raw!r}')
-    return False, ()
+def _mapping(node: Any) -> Mapping[str, Any]:
+    return node if isinstance(node, Mapping) else {}
 
 
 class GroupCache:
@@ -315,9 +247,10 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
             extra_overrides: Mapping[str, Any] | None = None,
             extra_source: str = '--set') -> Configuration:
     """
-    Resolve one configuration: variants, then master overrides, then ``extra_overrides``
-    (``vd run --set``, or edits over ROS: ``extra_source`` names them in messages and in
-    each value's source), each value keeping its source.
+    Resolve one configuration, each value keeping its source.
+
+    Variants, then master overrides, then ``extra_overrides`` (``vd run --set``, or edits
+    over ROS: ``extra_source`` names them in messages and in each value's source).
     """
     if name not in master.configurations:
         raise DataError(f"configuration '{name}' does not exist (available: "
@@ -341,9 +274,9 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
         groups = apply_overrides(groups, extra_overrides, file=extra_source, where='')
     check_geometry(groups, file=master.display, configuration=name)
     check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
-    for group in groups.values():
-        if group.kind == 'tire':
-            tire_properties(group)  # the coefficients after overrides, as a solver reads them
+    for data in groups.values():
+        if data.kind == 'tire':
+            tire_properties(data)  # the coefficients after overrides, as a solver reads them
     tire_files = {g.text('file') for g in groups.values() if g.kind == 'tire'}
     tire_files |= {g.text(k) for g in groups.values() if g.kind == 'flex'
                    for k in _imported_keys(g)}
@@ -397,6 +330,8 @@ def flex_components(groups: Mapping[str, GroupData]) -> dict[str, tuple[str, ...
 def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, file: str,
                    configuration: str) -> None:
     """
+    Check the flexible components of the flex groups and of a configuration.
+
     Flex components must exist in the axle's template, and a configuration's
     chosen ``flexible_components`` in its flex groups.
     """
@@ -424,9 +359,11 @@ def check_flexible(groups: Mapping[str, GroupData], chosen: Sequence[str], *, fi
                                         f'({axle}_stabilizer) to make flexible', file=flex.file,
                                         key=f'components.{name}'))
             elif name != schema.BAR_COMPONENT and name not in known:
+                offered = (known + ((schema.BAR_COMPONENT,) if with_bar else ())
+                           + (schema.SUBFRAME_COMPONENT,))
                 errors.append(DataError(
                     f"template '{template}' has no component '{name}' (components: "
-                    f"{', '.join(known + ((schema.BAR_COMPONENT,) if with_bar else ()) + (schema.SUBFRAME_COMPONENT,))})",
+                    f"{', '.join(offered)})",
                     file=flex.file, key=f'components.{name}'))
     every = {n for names in defined.values() for n in names}
     for name in chosen:
@@ -473,16 +410,16 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
         if old.type != 'point':
             raise DataError(f"'{key}' is a {old.type}, not a point", file=file, key=label)
         axis = Value(key, 'scalar', 0.0, 'm', display_unit=old.display_unit)
-        number = parse_override(raw, axis, file=file, key=label).si
-        xyz = list(old.si)  # type: ignore[arg-type]
-        xyz[COORDS[coord]] = float(number)  # type: ignore[arg-type]
+        number = parse_override(raw, axis, file=file, key=label).number()
+        xyz = list(old.triple())
+        xyz[COORDS[coord]] = number
         check_point((xyz[0], xyz[1], xyz[2]), file=file, key=label, raw=raw)
         new = Value(key, 'point', tuple(xyz), 'm', display_unit=old.display_unit, source=source)
     else:
         new = parse_override(raw, old, file=file, key=label).with_source(source)
         spec = schema.leaf_spec(group.kind, key)
         if isinstance(spec, schema.Scalar):
-            _check_range(float(new.si), spec, file, label, raw)  # type: ignore[arg-type]
+            _check_range(new.number(), spec, file, label, raw)
         if isinstance(spec, schema.Text) and spec.choices and new.si not in spec.choices:
             raise DataError(f"'{new.si}' is not one of: {', '.join(spec.choices)}", file=file,
                             key=label)

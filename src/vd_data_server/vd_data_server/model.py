@@ -15,6 +15,8 @@ import json
 import math
 from typing import Literal, Union
 
+from .errors import DataError
+
 ValueType = Literal['scalar', 'curve', 'point', 'vector', 'text']
 SI = Union[float, str, tuple[float, ...], tuple[tuple[float, ...], tuple[float, ...]]]
 
@@ -48,8 +50,39 @@ class Value:
         return Value(self.key, self.type, self.si, self.unit, self.x_unit, self.display_unit,
                      self.x_display_unit, source)
 
+    def number(self) -> float:
+        """Return a scalar's value (SI); DataError for any other type."""
+        si = self.si
+        if isinstance(si, (int, float)) and not isinstance(si, bool):
+            return float(si)
+        raise DataError(f'a {self.type}, not a scalar', key=self.key)
 
-def _close(a: SI, b: SI) -> bool:
+    def triple(self) -> tuple[float, float, float]:
+        """Return a point's or a vector's coordinates (SI); DataError for any other type."""
+        si = self.si
+        coords = [float(c) for c in si if isinstance(c, (int, float))] \
+            if isinstance(si, tuple) and len(si) == 3 else []
+        if len(coords) != 3:
+            raise DataError(f'a {self.type}, not a point', key=self.key)
+        return coords[0], coords[1], coords[2]
+
+    def text(self) -> str:
+        """Return a text's value; DataError for any other type."""
+        if isinstance(self.si, str):
+            return self.si
+        raise DataError(f'a {self.type}, not a text', key=self.key)
+
+    def table(self) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """Return a curve's (x, y) values (SI); DataError for any other type."""
+        si = self.si
+        if isinstance(si, tuple) and len(si) == 2:
+            xs, ys = si
+            if isinstance(xs, tuple) and isinstance(ys, tuple):
+                return xs, ys
+        raise DataError(f'a {self.type}, not a curve', key=self.key)
+
+
+def _close(a: object, b: object) -> bool:
     if isinstance(a, str) or isinstance(b, str):
         return a == b
     if isinstance(a, float) and isinstance(b, float):
@@ -73,20 +106,17 @@ class GroupData:
     warnings: tuple[str, ...] = ()
 
     def scalar(self, key: str) -> float:
-        value = self.values[key]
-        assert value.type == 'scalar', key
-        return float(value.si)  # type: ignore[arg-type]
+        return self.values[key].number()
 
     def get_scalar(self, key: str, default: float | None = None) -> float | None:
         value = self.values.get(key)
-        return default if value is None else float(value.si)  # type: ignore[arg-type]
+        return default if value is None else value.number()
 
     def point(self, key: str) -> tuple[float, float, float]:
-        value = self.values[key]
-        return value.si  # type: ignore[return-value]
+        return self.values[key].triple()
 
     def curve(self, key: str) -> tuple[tuple[float, ...], tuple[float, ...]]:
-        return self.values[key].si  # type: ignore[return-value]
+        return self.values[key].table()
 
     def text(self, key: str) -> str:
         return str(self.values[key].si)

@@ -17,7 +17,7 @@ PIPE_WIDTH = 140
 
 
 def console():
-    """A rich console: the terminal's width, or PIPE_WIDTH when piped."""
+    """Return a rich console: the terminal's width, or PIPE_WIDTH when piped."""
     from rich.console import Console
 
     probe = Console()
@@ -27,6 +27,8 @@ RED = 'bold red'
 
 def status_table(study: Study) -> Table:
     """
+    Return the overview table of a study.
+
     Rows: input groups; columns: configurations (variant, green unchanged / red
     modified) and the SAME/DIFFERS consistency across configurations.
     """
@@ -86,7 +88,7 @@ def print_status(study: Study, console: Console) -> None:
 
 
 def configuration_json(config: Configuration) -> dict[str, Any]:
-    """The ``vd data show --json`` contract: SI values, each with unit and source."""
+    """Return the ``vd data show --json`` contract: SI values, each with unit and source."""
     groups: dict[str, Any] = {}
     for name, group in config.groups.items():
         values: dict[str, Any] = {}
@@ -94,10 +96,10 @@ def configuration_json(config: Configuration) -> dict[str, Any]:
             entry: dict[str, Any] = {'type': value.type, 'unit': value.unit,
                                      'source': value.source}
             if value.type == 'curve':
-                xs, ys = value.si  # type: ignore[misc]
+                xs, ys = value.table()
                 entry.update({'x': list(xs), 'y': list(ys), 'x_unit': value.x_unit})
             elif value.type in ('point', 'vector'):
-                entry['value'] = list(value.si)  # type: ignore[arg-type]
+                entry['value'] = list(value.triple())
             else:
                 entry['value'] = value.si
             values[key] = entry

@@ -56,6 +56,53 @@ class Text:
     doc: str
     choices: tuple[str, ...] | None = None
     required: bool = True
+    #: the message for a text that is no choice, formatted with ``value`` and ``choices``
+    refusal: str = "'{value}' is not one of: {choices}"
+
+
+@dataclass(frozen=True)
+class Name:
+    """
+    A plain name: letters, digits, '_', '-' and '.', not starting with a punctuation mark.
+
+    Names pick files and folders (variants, the vehicle) and name configurations, so they
+    hold no path separators and never climb out of the data root.
+    """
+
+    doc: str
+    #: the message for a name that is not plain, formatted with ``value``
+    refusal: str = "must be a plain name (letters, digits, '_', '-', '.'), found {value!r}"
+    required: bool = True
+    numbers: bool = False  # a number is a name too (variant ``1``)
+
+
+@dataclass(frozen=True)
+class Flag:
+    """``true`` or ``false``; with ``or_list``, also a list of names (a switch for those)."""
+
+    doc: str
+    required: bool = False
+    or_list: str | None = None  # what the names of the list are, in messages
+
+
+@dataclass(frozen=True)
+class ListOf:
+    """A list ``[a, b, ...]`` of one spec; ``alternative`` is a text allowed instead."""
+
+    value: 'Spec'
+    doc: str
+    what: str = 'texts'  # in messages: "expected a list of <what>"
+    required: bool = False
+    non_empty: bool = False
+    alternative: str | None = None
+
+
+@dataclass(frozen=True)
+class Raw:
+    """Any value, checked later by whoever reads it (an override value)."""
+
+    doc: str
+    required: bool = True
 
 
 @dataclass(frozen=True)
@@ -69,14 +116,20 @@ class Section:
 
 @dataclass(frozen=True)
 class MapOf:
-    """Free names (hard points, bushing connections) -> the same spec."""
+    """Free names (hard points, bushing connections, configurations) -> the same spec."""
 
-    value: "Spec"
+    value: 'Spec'
     doc: str
     required: bool = True
+    #: what the names must be (a plain name, one of a set of texts), if anything
+    keys: 'Name | Text | None' = None
+    #: an empty mapping (or none at all) is fine
+    empty: bool = False
+    #: what a value that is no mapping is refused as: "expected <expected>, found ..."
+    expected: str = 'a non-empty mapping of names'
 
 
-Spec = Union[Scalar, Curve, Point, Vector, Text, Section, MapOf]
+Spec = Union[Scalar, Curve, Point, Vector, Text, Name, Flag, ListOf, Raw, Section, MapOf]
 
 AXLES = ('front', 'rear')
 
@@ -108,12 +161,13 @@ SECTION_SHAPES: Mapping[str, tuple[str, ...]] = {
     'general': ('area', 'iy', 'iz', 'torsion_constant'),
 }
 
-#: optional points every template understands (anti-roll bar drop link and pivot, and
-#: the body mounts of a flexible subframe)
-OPTIONAL_POINTS = ('arb_link_lower', 'arb_link_upper', 'arb_pivot', 'subframe_front',
-                   'subframe_rear')
-SUBFRAME_COMPONENT = 'subframe'
+#: the anti-roll bar's drop link (lower and upper end) and its pivot on the body
+ARB_POINTS = ('arb_link_lower', 'arb_link_upper', 'arb_pivot')
+#: body mounts of a flexible subframe (left side; mirrored)
 SUBFRAME_POINTS = ('subframe_front', 'subframe_rear')
+#: optional points every template understands
+OPTIONAL_POINTS = ARB_POINTS + SUBFRAME_POINTS
+SUBFRAME_COMPONENT = 'subframe'
 
 _STOP = Section({
     'clearance': Scalar('length', 'travel of the spring/damper from design length before the '
@@ -122,7 +176,8 @@ _STOP = Section({
                    x_minimum=0.0),
 })
 
-_SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
+#: the six directions of a bushing, in its frame: translations, then rotations
+BUSHING_DIRECTIONS = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 
 def _six(trans: str, rot: str, what: str, required: bool) -> Section:
@@ -130,7 +185,7 @@ def _six(trans: str, rot: str, what: str, required: bool) -> Section:
         d: Scalar(trans if len(d) == 1 else rot,
                   f"{what} along/about the bushing's {d[-1]} axis", minimum=0.0,
                   required=required, default=None if required else 0.0)
-        for d in _SIX
+        for d in BUSHING_DIRECTIONS
     }, required=required)
 
 
@@ -198,7 +253,8 @@ KINDS: Mapping[str, Section] = {
         'sprung_cog': Point('sprung-mass centre of gravity, vehicle frame'),
         'sprung_inertia': Section({
             'ixx': Scalar('inertia', 'roll moment of inertia about the sprung COG', positive=True),
-            'iyy': Scalar('inertia', 'pitch moment of inertia about the sprung COG', positive=True),
+            'iyy': Scalar('inertia', 'pitch moment of inertia about the sprung COG',
+                          positive=True),
             'izz': Scalar('inertia', 'yaw moment of inertia about the sprung COG', positive=True),
             'ixy': Scalar('inertia', 'product of inertia', required=False, default=0.0),
             'ixz': Scalar('inertia', 'product of inertia', required=False, default=0.0),
@@ -323,6 +379,44 @@ def all_group_names() -> tuple[str, ...]:
     return tuple(names)
 
 
+# --- master files (studies): the same specs, validated by the same walker (shape.py) ---
+_VARIANT = Name('variant: the file <vehicle>/<group>/<variant>.yaml',
+                refusal='variant must be a plain name, found {value!r}', numbers=True)
+
+
+def _variants(doc: str) -> MapOf:
+    return MapOf(_VARIANT, doc, required=False, empty=True, expected='a mapping of group: variant',
+                 keys=Text('input group', choices=all_group_names(),
+                           refusal='unknown input group (expected one of: {choices})'))
+
+
+MASTER = Section({
+    'study': Section({
+        'name': Text('name of the study'),
+        'description': Text('what the study is for', required=False),
+        'vehicle': Name('folder of the vehicle under the data root',
+                        refusal="'{value}' is not a plain folder name"),
+        'data_root': Text('folder of the shared data files, relative to the master file '
+                          '(default: ..)', required=False),
+    }),
+    'defaults': _variants('variant per input group, for every configuration'),
+    'configurations': MapOf(Section({
+        'description': Text('what the configuration is', required=False),
+        'variants': _variants('variants that differ from the defaults'),
+        'overrides': MapOf(Raw('a value with its unit'), 'single values: GROUP.KEY: VALUE',
+                           required=False, empty=True,
+                           expected='a mapping of group.key: value'),
+        'flexible': Flag('flexible components on (all of them, or the listed ones)',
+                         or_list='component names'),
+        'flexible_components': ListOf(Text('flexible component'), 'flexible components on',
+                                      what='component names', non_empty=True),
+    }, required=False), 'the configurations of the study',
+        keys=Name('configuration name', refusal="configuration names may hold letters, "
+                  "digits, '_', '-' and '.'"),
+        expected='a non-empty mapping of configuration names'),
+})
+
+
 @dataclass(frozen=True)
 class FieldDoc:
     key: str
@@ -343,19 +437,22 @@ def describe(spec: Spec, prefix: str = '') -> list[FieldDoc]:
         return describe(spec.value, f'{prefix}.<name>')
     quantity = {Scalar: lambda s: s.quantity, Curve: lambda s: f'{s.x_quantity} -> {s.y_quantity}',
                 Point: lambda s: 'length', Vector: lambda s: 'dimensionless',
-                Text: lambda s: 'text'}[type(spec)](spec)
+                Text: lambda s: 'text', Name: lambda s: 'name', Flag: lambda s: 'flag',
+                ListOf: lambda s: 'list', Raw: lambda s: 'any'}[type(spec)](spec)
     rows.append(FieldDoc(prefix, type(spec).__name__.lower(), quantity, spec.required, spec.doc))
     return rows
 
 
-__all__ = ['AXLES', 'KINDS', 'TEMPLATE_POINTS', 'OPTIONAL_POINTS', 'REQUIRED_GROUPS',
+__all__ = ['AXLES', 'KINDS', 'TEMPLATE_POINTS', 'OPTIONAL_POINTS', 'ARB_POINTS',
+           'SUBFRAME_POINTS', 'BUSHING_DIRECTIONS', 'REQUIRED_GROUPS',
            'TEMPLATE_COMPONENTS', 'BAR_COMPONENT', 'SUBFRAME_COMPONENT', 'SECTION_SHAPES',
-           'Scalar', 'Curve', 'Point', 'Vector', 'Text', 'Section', 'MapOf', 'group_kind',
+           'Scalar', 'Curve', 'Point', 'Vector', 'Text', 'Name', 'Flag', 'ListOf', 'Raw',
+           'Section', 'MapOf', 'MASTER', 'group_kind',
            'all_group_names', 'describe']
 
 
 def leaf_spec(kind: str, key: str) -> Spec | None:
-    """The leaf spec a flat key of a group of ``kind`` refers to (None if unknown)."""
+    """Return the leaf spec a flat key of a group of ``kind`` refers to (None if unknown)."""
     spec: Spec = KINDS[kind]
     for part in key.split('.'):
         if isinstance(spec, MapOf):

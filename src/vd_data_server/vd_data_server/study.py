@@ -69,7 +69,7 @@ class Study:
                 for n, c in self.configurations.items()}
 
     def to_json(self) -> dict[str, Any]:
-        """The ``vd data status --json`` contract (ARCHITECTURE §5)."""
+        """Return the ``vd data status --json`` contract (ARCHITECTURE §5)."""
         switches = self.flexible_switches()
         consistency = 'SAME' if len(set(switches.values())) == 1 else 'DIFFERS'
         return {
@@ -163,21 +163,18 @@ def modified_keys(shared: Mapping[str, Value], fed: Mapping[str, Value]) -> list
         ref = shared.get(key)
         if ref is not None and ref.same_data(value):
             continue
-        unit = value.display_unit or SI_UNITS_DISPLAY.get(value.unit, value.unit)
+        unit = value.display_unit or value.unit
         out.append(ModifiedKey(key, format_value(ref, unit) if ref else '-',
                                format_value(value, unit), unit))
     return out
 
 
-SI_UNITS_DISPLAY = {u: u for u in SI_UNITS.values()}
-
-
 def format_value(value: Value, unit: str) -> str:
-    """A value in a display unit, as a short text for tables."""
+    """Return a value in a display unit, as a short text for tables."""
     if value.type == 'text':
         return str(value.si)
     if value.type == 'curve':
-        xs, ys = value.si  # type: ignore[misc]
+        xs, ys = value.table()
         return f'curve of {len(xs)} points, y {min(ys):.6g}..{max(ys):.6g} {value.unit}'
     quantity = _quantity_of(value.unit)
     factor = 1.0
@@ -187,8 +184,8 @@ def format_value(value: Value, unit: str) -> str:
         except ValueError:
             factor = 1.0
     if value.type in ('point', 'vector'):
-        return '[' + ', '.join(f'{c / factor:.6g}' for c in value.si) + ']'  # type: ignore[union-attr]
-    return f'{float(value.si) / factor:.6g}'  # type: ignore[arg-type]
+        return '[' + ', '.join(f'{c / factor:.6g}' for c in value.triple()) + ']'
+    return f'{value.number() / factor:.6g}'
 
 
 def _quantity_of(unit: str) -> str | None:

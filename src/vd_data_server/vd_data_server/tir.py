@@ -595,13 +595,13 @@ def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
             if isinstance(value, float) and not math.isfinite(value):
                 bad(block, key, 'must be a finite number', value)
     for block, key in POSITIVE_KEYS:
-        value = sections.get(block, {}).get(key)
-        if isinstance(value, float) and math.isfinite(value) and value <= 0.0:
-            bad(block, key, 'must be > 0', value)
+        given = sections.get(block, {}).get(key)
+        if isinstance(given, float) and math.isfinite(given) and given <= 0.0:
+            bad(block, key, 'must be > 0', given)
     for block, key in NONZERO_KEYS:
-        value = sections.get(block, {}).get(key)
-        if isinstance(value, float) and value == 0.0:
-            bad(block, key, 'must not be 0 (the Magic Formula divides by it)', value)
+        given = sections.get(block, {}).get(key)
+        if isinstance(given, float) and given == 0.0:
+            bad(block, key, 'must not be 0 (the Magic Formula divides by it)', given)
     return errors
 
 

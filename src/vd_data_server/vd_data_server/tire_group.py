@@ -64,7 +64,8 @@ def tire_properties(group: GroupData) -> TireProperties:
         if not name.startswith(PREFIX) or name == FORMAT_KEY:
             continue
         block, key = name[len(PREFIX):].split('.', 1)
-        sections.setdefault(block, {})[key] = value.si  # type: ignore[assignment]
+        sections.setdefault(block, {})[key] = value.text() if value.type == 'text' \
+            else value.number()
     frozen: Mapping[str, Mapping[str, float | str]] = MappingProxyType(
         {b: MappingProxyType(v) for b, v in sections.items()})
     path = f"{group.file} -> {group.text('file')}"

@@ -16,12 +16,13 @@ from collections.abc import Mapping
 from functools import lru_cache
 import math
 import re
+from typing import cast
 
 import pint
 
 from .errors import DataError
 
-UREG = pint.UnitRegistry()
+UREG: pint.UnitRegistry = pint.UnitRegistry()
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
 _NUMBER_UNIT = re.compile(r'^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$')
 
@@ -74,7 +75,8 @@ _DERIVED: Mapping[str, str] = {
 SI_SYMBOLS: Mapping[str, str] = {
     'm': 'm', 'rad': 'rad', 'N': 'N', 'kg': 'kg', 's': 's', 'm/s': 'm/s', 'N/m': 'N/m',
     'N*s/m': 'N·s/m', 'N*m/rad': 'N·m/rad', 'N*m*s/rad': 'N·m·s/rad', 'N*m': 'N·m',
-    'kg*m^2': 'kg·m²', 'Pa': 'Pa', 'kg/m^3': 'kg/m³', 'm^2': 'm²', 'm^4': 'm⁴', 'm/rad': 'm/rad', 'm/s^2': 'm/s²', '1/s': '1/s', '': '-',
+    'kg*m^2': 'kg·m²', 'Pa': 'Pa', 'kg/m^3': 'kg/m³', 'm^2': 'm²', 'm^4': 'm⁴',
+    'm/rad': 'm/rad', 'm/s^2': 'm/s²', '1/s': '1/s', '': '-',
 }
 
 
@@ -117,11 +119,13 @@ def si_factor(unit: str, quantity: str) -> float:
 
 
 def _radian_power(unit: pint.Unit) -> int:
-    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get('radian', 0)
+    powers = dict(UREG.Quantity(1.0, unit).to_root_units().unit_items())
+    # pint types the exponents as any number; those of a unit are whole numbers
+    return int(cast(float, powers.get('radian', 0)))
 
 
 def _a(quantity: str) -> str:
-    """'a length', 'an angle': the quantity's name with its article, for messages."""
+    """Return the quantity's name with its article ('a length', 'an angle'), for messages."""
     name = quantity.replace('_', ' ')
     return f"{'an' if name[0] in 'aeiou' else 'a'} {name}"
 
@@ -197,11 +201,13 @@ def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float
 def parse_quantity(text: str, quantity: str, *, file: str | None, key: str) -> tuple[float, str]:
     """Split ``"-1.5 deg"`` into (number, unit); a bare number only for dimensionless."""
     match = _NUMBER_UNIT.match(text.strip())
-    parts = [match.group(1), match.group(2)] if match and match.group(2) else text.strip().split(None, 1)
+    parts = ([match.group(1), match.group(2)] if match and match.group(2)
+             else text.strip().split(None, 1))
     try:
         number = float(parts[0])
     except (ValueError, IndexError):
-        raise DataError(f'expected a number with a unit, found {text!r}', file=file, key=key) from None
+        raise DataError(f'expected a number with a unit, found {text!r}', file=file,
+                        key=key) from None
     if not math.isfinite(number):
         raise DataError(f'value must be finite, found {text!r}', file=file, key=key)
     if len(parts) == 1:

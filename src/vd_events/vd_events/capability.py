@@ -31,9 +31,9 @@ import math
 
 import numpy as np
 
+from vd_solvers.constants import DEG
 from vd_solvers.results import EventOutcome
 
-DEG = math.pi / 180.0
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
 QUANTITIES: Mapping[str, tuple[tuple[str, ...], str, float | None]] = {
     'toe': (('toe_left', 'toe_right'), 'rad', 0.05 * DEG),
@@ -201,7 +201,7 @@ def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: 
 
 
 #: display units of the differences
-DISPLAY = {'rad': ('deg', 180.0 / math.pi), 'm': ('mm', 1e3), 'N': ('N', 1.0)}
+DISPLAY = {'rad': ('deg', 1.0 / DEG), 'm': ('mm', 1e3), 'N': ('N', 1.0)}
 
 
 def format_table(table: Table) -> list[list[str]]:

@@ -14,6 +14,7 @@ import html
 import math
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -297,7 +298,7 @@ def _overview(status) -> str:
     if status is None:
         return '<p>No data status recorded.</p>'
     configs = list(status.configurations)
-    cells: dict[tuple[str, str], object] = {(s.configuration, s.group): s for s in status.status}
+    cells: dict[tuple[str, str], Any] = {(s.configuration, s.group): s for s in status.status}
     head = ''.join(f'<th>{html.escape(c)}</th>' for c in configs)
     rows = []
     for group in status.groups:

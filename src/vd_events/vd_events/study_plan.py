@@ -19,19 +19,37 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-import re
 from typing import Any
 
+from vd_data_server import schema
 from vd_data_server.errors import DataError
 from vd_data_server.paths import default_master
+from vd_data_server.shape import Collector, check
 from vd_data_server.study import load_study
 from vd_data_server.yamlio import load_file
 
 from .bag import BagError
 from .runner import RunError, RunRequest, run_distributed, run_embedded, validate
 
-RUN_KEYS = ('event', 'models', 'configurations', 'parameters', 'overrides', 'axle', 'fidelity')
-_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_.-]*$')
+#: a study plan, in the specs of the data files (``vd_data_server.schema``)
+PLAN = schema.Section({
+    'name': schema.Name('plan name', refusal="invalid plan name (letters, digits, '_', '-', "
+                        "'.'), found {value!r}"),
+    'master': schema.Text('master file, relative to the plan (default: the bundled sample)',
+                          required=False),
+    'runs': schema.ListOf(schema.Section({
+        'event': schema.Text('event name'),
+        'models': schema.ListOf(schema.Text('model'), 'models (default: two_track)'),
+        'configurations': schema.ListOf(schema.Text('configuration'),
+                                        'configurations (default: all)', what='names',
+                                        alternative='all'),
+        'parameters': schema.ListOf(schema.Text('NAME=VALUE'), 'event parameters'),
+        'overrides': schema.ListOf(schema.Text('GROUP.KEY=VALUE'), 'overrides of these runs'),
+        'axle': schema.Text('axle of a K&C event: front or rear', required=False),
+        'fidelity': schema.Text('K&C fidelity: rigid (the default) or flexible',
+                                required=False),
+    }), 'the runs', what='runs', required=True, non_empty=True),
+})
 
 
 @dataclass(frozen=True)
@@ -43,73 +61,46 @@ class Plan:
 
 
 def load_plan(path: Path) -> Plan:
+    """Read and check a study plan (``PLAN``); every problem is reported."""
     raw = load_file(path, display=str(path))
     file = str(path)
     if not isinstance(raw, Mapping):
         raise DataError("expected a mapping with 'name' and 'runs'", file=file)
-    for key in raw:
-        if key not in ('name', 'master', 'runs'):
-            raise DataError('unknown key (expected name, master, runs)', file=file, key=key)
-    name = raw.get('name')
-    if not isinstance(name, str) or not _NAME.match(name):
-        raise DataError("missing or invalid plan name (letters, digits, '_', '-', '.')",
-                        file=file, key='name')
-    if raw.get('master') and not isinstance(raw['master'], str):
-        raise DataError(f"expected a file path, found {raw['master']!r}", file=file,
-                        key='master')
+    col = Collector(file)
+    check(PLAN, raw, '', col)
+    col.raise_if_any()
     master = Path(raw['master']) if raw.get('master') else default_master()
     if raw.get('master') and not master.is_absolute():
         master = path.parent / master
-    runs = raw.get('runs')
-    if not isinstance(runs, list) or not runs:
-        raise DataError('expected a non-empty list of runs', file=file, key='runs')
-    for i, run in enumerate(runs):
-        if not isinstance(run, Mapping) or 'event' not in run:
-            raise DataError("each run needs at least 'event'", file=file, key=f'runs[{i}]')
-        for key in run:
-            if key not in RUN_KEYS:
-                raise DataError(f"unknown key (expected one of: {', '.join(RUN_KEYS)})",
-                                file=file, key=f'runs[{i}].{key}')
-        _check_run_types(run, file, f'runs[{i}]')
-    return Plan(path, name, master, tuple(runs))
-
-
-def _check_run_types(run: Mapping[str, Any], file: str, where: str) -> None:
-    """
-    Texts where texts belong and lists of texts where lists do (``configurations``
-    may also be ``all``), before anything iterates over them.
-    """
-    for key in ('event', 'axle'):
-        if key in run and not isinstance(run[key], str):
-            raise DataError(f'expected a text, found {run[key]!r}', file=file,
-                            key=f'{where}.{key}')
-    for key in ('models', 'configurations', 'parameters', 'overrides'):
-        if key not in run or (key == 'configurations' and run[key] == 'all'):
-            continue
-        value = run[key]
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-            expected = "'all' or a list of names" if key == 'configurations' else 'a list of texts'
-            raise DataError(f'expected {expected}, found {value!r}', file=file,
-                            key=f'{where}.{key}')
+    return Plan(path, raw['name'], master, tuple(raw['runs']))
 
 
 def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
+    """Return the runs of ``plan``: one per model and configuration of each entry."""
     requests = []
-    for i, run in enumerate(plan.runs):
-        configs = run.get('configurations', 'all')
+    for run in plan.runs:
+        configs = _get(run, 'configurations', 'all')
         configs = names if configs == 'all' else list(configs)
-        for model in run.get('models', ['two_track']):
+        axle = str(_get(run, 'axle', ''))
+        fidelity = str(_get(run, 'fidelity', 'rigid'))
+        overrides = tuple(str(o) for o in _get(run, 'overrides', []))
+        parameters = tuple(str(p) for p in _get(run, 'parameters', []))
+        for model in _get(run, 'models', ['two_track']):
             for config in configs:
-                axle = str(run.get('axle', ''))
                 bag = bags / f"{run['event']}{'_' + axle if axle else ''}_{model}_{config}"
-                fidelity = str(run.get('fidelity', 'rigid'))
                 if fidelity != 'rigid':
                     bag = bag.with_name(f'{bag.name}_{fidelity}')
                 requests.append(RunRequest(
                     event=str(run['event']), configuration=str(config), model=str(model),
-                    axle=axle, fidelity=fidelity, overrides=tuple(str(o) for o in run.get('overrides', [])),
-                    parameters=tuple(str(p) for p in run.get('parameters', [])), bag=bag))
+                    axle=axle, fidelity=fidelity, overrides=overrides, parameters=parameters,
+                    bag=bag))
     return requests
+
+
+def _get(run: Mapping[str, Any], key: str, default: Any) -> Any:
+    """Return the value of ``key`` of a run; a key left blank is as if it were not there."""
+    value = run.get(key)
+    return default if value is None else value
 
 
 def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
@@ -139,7 +130,8 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
         'bags': str(bags), 'errors': errors,
         'runs': [{'event': r.request.event, 'configuration': r.request.configuration,
-                  'model': r.request.model, 'axle': r.request.axle, 'bag': str(r.bag) if r.bag else None,
+                  'model': r.request.model, 'axle': r.request.axle,
+                  'bag': str(r.bag) if r.bag else None,
                   'error': r.error,
                   'metrics': {k: {'value': m.value, 'unit': m.unit}
                               for k, m in (r.outcome.metrics.items() if r.outcome else [])}}

@@ -5,7 +5,8 @@ import math
 
 import pytest
 
-from vd_solvers.analytical.params import STANDARD_GRAVITY, VehicleParams
+from vd_solvers.analytical.params import VehicleParams
+from vd_solvers.constants import STANDARD_GRAVITY
 
 
 def test_static_axle_loads_add_up_to_the_weight(passenger_car: VehicleParams) -> None:
@@ -37,7 +38,8 @@ def test_static_axle_loads_add_up_to_the_weight(passenger_car: VehicleParams) ->
         ('cog_height', math.inf),
     ],
 )
-def test_invalid_values_name_their_field(passenger_car: VehicleParams, field: str, value: float) -> None:
+def test_invalid_values_name_their_field(passenger_car: VehicleParams, field: str,
+                                         value: float) -> None:
     with pytest.raises(ValueError, match=field):
         replace(passenger_car, **{field: value})
 
@@ -58,7 +60,8 @@ def test_unsprung_masses_must_leave_a_sprung_body(passenger_car: VehicleParams) 
         ({'mu0': 0.0}, 'tire_front'),
     ],
 )
-def test_unusable_tires_are_rejected(passenger_car: VehicleParams, change: dict[str, float], field: str) -> None:
+def test_unusable_tires_are_rejected(passenger_car: VehicleParams, change: dict[str, float],
+                                     field: str) -> None:
     with pytest.raises(ValueError, match=field):
         replace(passenger_car, tire_front=replace(passenger_car.tire_front, **change))
 

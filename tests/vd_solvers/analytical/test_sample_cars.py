@@ -18,14 +18,14 @@ from conftest import SAMPLE_DATA
 from vd_data_server.study import load_study
 from vd_solvers.analytical.budget import TERMS
 from vd_solvers.analytical.events import run_event
-from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.kc import cache
-from vd_solvers.kc.assembly import LoadCase
 from vd_solvers.kc.channels import wheel_angles
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
 from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.solver import solve_static
+from vd_solvers.kc.system import LoadCase
+from vd_solvers.vehicle_data import static_wheel_loads
 
 STUDIES = {name: load_study(SAMPLE_DATA / 'studies' / f'{name}.yaml')
            for name in ('sedan', 'hmmwv')}

@@ -14,13 +14,14 @@ from vd_data_server.study import load_study
 from vd_solvers.errors import SolverError
 from vd_solvers.flex import section as sec
 from vd_solvers.flex.imported import from_dmig, from_plain, mirror_stiffness
-from vd_solvers.kc.assembly import LoadCase, assemble
+from vd_solvers.kc.assembly import assemble
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.forces import MatrixLaw
 from vd_solvers.kc.from_config import suspension_input
 from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.model import FlexSpec, StabilizerSpec
 from vd_solvers.kc.solver import rotation_vectors_to_matrices
+from vd_solvers.kc.system import LoadCase
 
 EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
           'longitudinal_force')
@@ -269,7 +270,7 @@ def test_tangent_is_consistent_with_the_internal_forces(studies):
     every component loaded). At equilibrium the symmetric exponential-map chart is
     exact; away from it the tangent lacks the (vanishing) skew term of the residual
     moment, by design. Pad loads only: a force at the contact point has a documented
-    approximate tangent (the contact point rolls along the tread; assembly._applied).
+    approximate tangent (the contact point rolls along the tread; system.System._applied).
     """
     from vd_solvers.kc.solver import solve_static
 

@@ -10,9 +10,9 @@ import pytest
 from vd_data_server.master import with_overrides
 from vd_data_server.study import load_study
 from vd_solvers.analytical.events import run_event
-from vd_solvers.analytical.from_config import static_wheel_loads
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import run_kc_event, suspension_input
+from vd_solvers.vehicle_data import static_wheel_loads
 
 G = 9.80665
 EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
@@ -155,7 +155,7 @@ def test_stabilizer_without_its_hard_points_is_refused(hmmwv, sedan):
 
 def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
     """
-    Check that the two-track model takes the K&C roll properties.
+    Check that the two-track model takes the K&C roll properties, labelled.
 
     The two-track model computes the K&C roll properties on demand: the same
     numbers as a direct K&C run of the same configuration, labelled with the data

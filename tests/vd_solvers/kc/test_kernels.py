@@ -14,12 +14,12 @@ from numpy.testing import assert_allclose
 import pytest
 from scipy.spatial.transform import Rotation
 
-from vd_solvers.kc.assembly import LoadCase
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.forces import LinearLaw, SpringLaw, StopLaw, TorsionLaw
 from vd_solvers.kc.joints import PAIRS, SLOTS, PrimKind, kernel
 from vd_solvers.kc.model import Curve
 from vd_solvers.kc.solver import Sensitivity, moved, rotation_vectors_to_matrices, solve_static
+from vd_solvers.kc.system import LoadCase
 
 H = 1e-6  # central-difference step (values of order 1): truncation ~1e-12
 
@@ -99,7 +99,7 @@ def test_rotation_chart_is_the_second_derivative_of_the_rotated_marker() -> None
     ``assembly._chart`` that turns marker gradients into the tangent's
     rotation blocks.
     """
-    from vd_solvers.kc.assembly import _chart
+    from vd_solvers.kc.system import _chart
 
     rng = np.random.default_rng(4)
     g, w = rng.normal(size=(5, 3)), rng.normal(size=(5, 3))

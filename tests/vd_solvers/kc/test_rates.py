@@ -16,12 +16,12 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 
-from vd_solvers.kc.assembly import LoadCase
 from vd_solvers.kc.channels import channels
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.kc.model import SpringSpec, SuspensionInput
 from vd_solvers.kc.solver import Solution, solve_static
+from vd_solvers.kc.system import LoadCase
 
 CHANNELS = ('toe', 'camber', 'wheel_travel', 'pad_force', 'contact_point', 'wheel_centre',
             'spring_length', 'steer_angle')

@@ -16,10 +16,11 @@ import pytest
 from vd_data_server.errors import DataError
 from vd_data_server.study import load_study
 from vd_solvers.analytical import two_track
-from vd_solvers.analytical.from_config import mass_properties, static_wheel_loads, vehicle_params
+from vd_solvers.analytical.from_config import vehicle_params
 from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.events import LINEAR_RANGE, run_vehicle_event
+from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 FAST_RAMP = 'speed_rate=0.5 m/s^2'

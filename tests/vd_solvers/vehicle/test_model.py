@@ -10,8 +10,7 @@ import pinocchio as pin
 import pytest
 
 from vd_data_server.study import load_study
-from vd_solvers.analytical.from_config import static_wheel_loads
-from vd_solvers.analytical.params import STANDARD_GRAVITY as G
+from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.cache import kc_result
 from vd_solvers.kc.metrics import derived_metrics
@@ -19,6 +18,7 @@ from vd_solvers.vehicle.drivers import OpenLoopSteering, SpeedController
 from vd_solvers.vehicle.maps import KC_STEPS
 from vd_solvers.vehicle.model import Options, VehicleModel
 from vd_solvers.vehicle.simulation import simulate
+from vd_solvers.vehicle_data import static_wheel_loads
 
 STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 

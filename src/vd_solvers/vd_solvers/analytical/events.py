@@ -1,6 +1,8 @@
 """
-Events of the analytical rung: steady-state circular (ISO 4138 constant radius),
-handling diagram, and the linear step steer (ISO 7401) of the bicycle model.
+Events of the analytical rung.
+
+Steady-state circular (ISO 4138 constant radius), handling diagram, and the
+linear step steer (ISO 7401) of the bicycle model.
 
 ``run_event(config, event, model, params)`` returns an :class:`EventOutcome`
 with SI channels and metrics (plus the conventional deg/g, g, km/h figures).
@@ -18,15 +20,16 @@ import numpy as np
 from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle, two_track
 from vd_solvers.analytical.budget import TERMS, understeer_budget
-from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
+from vd_solvers.analytical.from_config import vehicle_params
 from vd_solvers.analytical.kc_link import try_kc_inputs
 from vd_solvers.analytical.params import VehicleParams
+from vd_solvers.constants import DEG
+from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.errors import BeyondLimitError, SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.vehicle_data import static_wheel_loads
 
-G = 9.80665
-DEG = 180.0 / math.pi
 MODELS = ('bicycle', 'two_track')
 
 _SWEEP = {
@@ -95,18 +98,19 @@ def run_event(config: Configuration, event: str, model: str,
 
 def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
     """
-    The understeer budget: ``understeer_budget_<term>`` in rad/(m/s^2) and
-    ``..._deg_per_g``, each with its source, and the total.
+    Return the understeer budget metrics, each with its source, and the total.
+
+    ``understeer_budget_<term>`` in rad/(m/s^2) and ``..._deg_per_g``.
     """
     budget = understeer_budget(p)
     metrics = {}
     for term in budget.terms:
         metrics[f'understeer_budget_{term.name}'] = Metric(term.value, 'rad/(m/s^2)', term.source)
-        metrics[f'understeer_budget_{term.name}_deg_per_g'] = Metric(term.value * DEG * G, 'deg/g',
+        metrics[f'understeer_budget_{term.name}_deg_per_g'] = Metric(term.value / DEG * G, 'deg/g',
                                                                       term.source)
     metrics['understeer_budget_total'] = Metric(budget.total, 'rad/(m/s^2)',
                                                 'sum of the terms ' + ', '.join(TERMS))
-    metrics['understeer_budget_total_deg_per_g'] = Metric(budget.total * DEG * G, 'deg/g',
+    metrics['understeer_budget_total_deg_per_g'] = Metric(budget.total / DEG * G, 'deg/g',
                                                           'sum of the terms ' + ', '.join(TERMS))
     return metrics
 
@@ -120,7 +124,7 @@ def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]
                 else 'bare tire: no K&C results')
     metrics = {
         'understeer_gradient': Metric(k, 'rad/(m/s^2)', k_source),
-        'understeer_gradient_deg_per_g': Metric(k * DEG * G, 'deg/g', k_source),
+        'understeer_gradient_deg_per_g': Metric(k / DEG * G, 'deg/g', k_source),
         'cornering_stiffness_front_axle': Metric(c_f, 'N/rad', p.sources.get('tire_front', '')),
         'cornering_stiffness_rear_axle': Metric(c_r, 'N/rad', p.sources.get('tire_rear', '')),
         'effective_cornering_stiffness_front_axle': Metric(e_f, 'N/rad', k_source),
@@ -203,8 +207,8 @@ def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
         'limit_speed': Metric(limit.speed, 'm/s'),
         'limiting_axle_is_rear': Metric(1.0 if limit.limiting_axle == 'rear' else 0.0, '-'),
         'understeer_gradient_linear': Metric(k_lin, 'rad/(m/s^2)'),
-        'understeer_gradient_linear_deg_per_g': Metric(k_lin * DEG * G, 'deg/g'),
-        'roll_gradient': Metric(geometry.roll_gradient * DEG * G, 'deg/g'),
+        'understeer_gradient_linear_deg_per_g': Metric(k_lin / DEG * G, 'deg/g'),
+        'roll_gradient': Metric(geometry.roll_gradient / DEG * G, 'deg/g'),
         'roll_stiffness_front': Metric(p.roll_stiffness_front, 'N*m/rad',
                                        p.sources.get('roll_stiffness_front', '')),
         'roll_stiffness_rear': Metric(p.roll_stiffness_rear, 'N*m/rad',

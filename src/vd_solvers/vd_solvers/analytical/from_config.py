@@ -6,7 +6,7 @@ derived here, and every value says where it came from (``VehicleParams.sources``
 
 * mass, COG and yaw inertia: the sprung mass (mass group) plus four unsprung
   masses at the wheel centres (hard points), combined with the parallel-axis
-  theorem;
+  theorem (``vd_solvers/vehicle_data.py``, shared by every rung);
 * tracks and wheelbase: geometry group; unsprung COG height: wheel-centre height;
 * per-axle tire (thesis eqs. 6-9): fitted to the .tir Magic Formula over
   FIT_RANGE times the static wheel load of that axle (``tire/fit.py``);
@@ -20,66 +20,19 @@ derived here, and every value says where it came from (``VehicleParams.sources``
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.budget import BARE_TIRE
 from vd_solvers.analytical.kc_link import AxleSuspension
-from vd_solvers.analytical.params import STANDARD_GRAVITY, AxleCompliance, VehicleParams
+from vd_solvers.analytical.params import AxleCompliance, VehicleParams
 from vd_solvers.tire.fit import fit_simple_tire
 from vd_solvers.tire.magic_formula import MagicFormula
+from vd_solvers.tire.simple import SimpleTire
+from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 #: load range of the simple-tire fit, as fractions of the static wheel load
 FIT_RANGE = (0.2, 1.8)
-
-
-@dataclass(frozen=True)
-class MassProperties:
-    """Whole-vehicle mass properties: sprung mass plus four unsprung masses."""
-
-    mass: float  # kg
-    cog_x: float  # m, vehicle frame (negative: behind the front axle)
-    cog_height: float  # m
-    yaw_inertia: float  # kg*m^2 about the vehicle COG
-    unsprung_front: float  # kg, both front corners
-    unsprung_rear: float  # kg, both rear corners
-    unsprung_height_front: float  # m, wheel-centre height
-    unsprung_height_rear: float  # m
-    front_axle_x: float  # m, front wheel-centre x (0 when the data follow the vd frame)
-
-    @property
-    def cog_to_front_axle(self) -> float:
-        """a, m: from the front axle back to the COG."""
-        return self.front_axle_x - self.cog_x
-
-
-def mass_properties(config: Configuration) -> MassProperties:
-    mass = config.group('mass')
-    m_s = mass.scalar('sprung_mass')
-    x_s, y_s, z_s = mass.point('sprung_cog')
-    m_uf = 2.0 * mass.scalar('unsprung_mass_front')
-    m_ur = 2.0 * mass.scalar('unsprung_mass_rear')
-    x_uf, y_uf, z_uf = config.group('front_hardpoints').point('points.wheel_centre')
-    x_ur, y_ur, z_ur = config.group('rear_hardpoints').point('points.wheel_centre')
-    m = m_s + m_uf + m_ur
-    # unsprung masses at the wheel centres (left and right: their mean y is zero)
-    x_g = (m_s * x_s + m_uf * x_uf + m_ur * x_ur) / m
-    y_g = m_s * y_s / m
-    z_g = (m_s * z_s + m_uf * z_uf + m_ur * z_ur) / m
-    izz = (mass.scalar('sprung_inertia.izz') + m_s * ((x_s - x_g) ** 2 + (y_s - y_g) ** 2)
-           + m_uf * ((x_uf - x_g) ** 2 + y_uf ** 2 + y_g ** 2)
-           + m_ur * ((x_ur - x_g) ** 2 + y_ur ** 2 + y_g ** 2))
-    return MassProperties(m, x_g, z_g, izz, m_uf, m_ur, z_uf, z_ur, x_uf)
-
-
-def static_wheel_loads(config: Configuration) -> tuple[float, float]:
-    """Static vertical load of one front and one rear wheel, N."""
-    mp = mass_properties(config)
-    wheelbase = config.group('geometry').scalar('wheelbase')
-    a = mp.cog_to_front_axle
-    weight = mp.mass * STANDARD_GRAVITY
-    return weight * (wheelbase - a) / wheelbase / 2.0, weight * a / wheelbase / 2.0
 
 
 def vehicle_params(config: Configuration,
@@ -90,7 +43,7 @@ def vehicle_params(config: Configuration,
     targets = config.group('targets')
     wheelbase = geo.scalar('wheelbase')
     mp = mass_properties(config)
-    m, x_g, z_g, izz = mp.mass, mp.cog_x, mp.cog_height, mp.yaw_inertia
+    m, z_g, izz = mp.mass, mp.cog_height, mp.yaw_inertia
     m_uf, m_ur, z_uf, z_ur = (mp.unsprung_front, mp.unsprung_rear, mp.unsprung_height_front,
                               mp.unsprung_height_rear)
     t_f, t_r = geo.scalar('track_front'), geo.scalar('track_rear')
@@ -108,7 +61,7 @@ def vehicle_params(config: Configuration,
         'unsprung_cog_height_front': 'front_hardpoints wheel_centre z',
         'unsprung_cog_height_rear': 'rear_hardpoints wheel_centre z',
     }
-    roll = {}
+    roll: dict[str, float] = {}
     for axle in ('front', 'rear'):
         kc = (suspension or {}).get(axle)
         if kc is not None:
@@ -120,7 +73,7 @@ def vehicle_params(config: Configuration,
             for key in (f'roll_stiffness_{axle}', f'roll_centre_height_{axle}'):
                 roll[key] = targets.scalar(key)
                 sources[key] = f'design target {targets.values[key].source}'
-    comp = {}
+    comp: dict[str, AxleCompliance] = {}
     for axle in ('front', 'rear'):
         given = (compliance or {}).get(axle)
         comp[f'compliance_{axle}'] = given if given is not None else AxleCompliance()
@@ -132,10 +85,14 @@ def vehicle_params(config: Configuration,
         cog_height=z_g, yaw_inertia=izz, tire_front=tire_front, tire_rear=tire_rear,
         unsprung_mass_front=m_uf, unsprung_mass_rear=m_ur,
         unsprung_cog_height_front=z_uf, unsprung_cog_height_rear=z_ur, sources=sources,
-        **roll, **comp)
+        roll_stiffness_front=roll['roll_stiffness_front'],
+        roll_stiffness_rear=roll['roll_stiffness_rear'],
+        roll_centre_height_front=roll['roll_centre_height_front'],
+        roll_centre_height_rear=roll['roll_centre_height_rear'],
+        compliance_front=comp['compliance_front'], compliance_rear=comp['compliance_rear'])
 
 
-def _fit(config: Configuration, group: str, fz_static: float):
+def _fit(config: Configuration, group: str, fz_static: float) -> tuple[SimpleTire, str]:
     props = tire_properties(config.group(group))
     low, high = FIT_RANGE[0] * fz_static, FIT_RANGE[1] * fz_static
     tire = fit_simple_tire(MagicFormula(props), (low, high))

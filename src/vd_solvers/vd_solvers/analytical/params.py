@@ -20,10 +20,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 import math
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
+from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.tire.simple import SimpleTire
 
-STANDARD_GRAVITY = 9.80665  # m/s^2, ISO 80000-3 standard acceleration of gravity
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
 
 # The axle force peak search (two_track.py) needs a Magic Formula with a
 # genuine maximum: 1 < C < 2 makes sin(C * arctan(.)) rise to 1 and fall
@@ -36,8 +39,10 @@ _CURVATURE_MAX = 1.0  # exclusive
 @dataclass(frozen=True)
 class AxleCompliance:
     """
-    Linear steer and camber changes of one axle's wheels (K&C) and the tire
-    properties that turn them into slip (all zero: a rigid, bare-tire axle).
+    Linear steer and camber changes of one axle's wheels (K&C).
+
+    With the tire properties that turn them into slip (all zero: a rigid,
+    bare-tire axle).
 
     Signs (ISO 8855, per wheel; the left and right wheel are mirror images):
 
@@ -166,8 +171,10 @@ class VehicleParams:
         # The sprung body must keep mass and lie between the axles, otherwise
         # the sprung axle split of eq. 4 is meaningless.
         sprung = self.mass - self.unsprung_mass_front - self.unsprung_mass_rear
-        _require(sprung > 0.0, 'unsprung_mass_front + unsprung_mass_rear', 'leaves no sprung mass', sprung)
-        sprung_x = (self.mass * self.cog_to_front_axle - self.unsprung_mass_rear * self.wheelbase) / sprung
+        _require(sprung > 0.0, 'unsprung_mass_front + unsprung_mass_rear',
+                 'leaves no sprung mass', sprung)
+        sprung_x = (self.mass * self.cog_to_front_axle
+                    - self.unsprung_mass_rear * self.wheelbase) / sprung
         _require(
             0.0 < sprung_x < self.wheelbase,
             'unsprung_mass_front/unsprung_mass_rear',
@@ -209,20 +216,21 @@ class VehicleParams:
         return self.roll_stiffness_front + self.roll_stiffness_rear
 
 
-def _check_finite(params: object) -> None:
+def _check_finite(params: DataclassInstance) -> None:
     """Every numeric field of the dataclass ``params`` must be finite."""
-    for f in fields(params):  # type: ignore[arg-type]
+    for f in fields(params):
         value = getattr(params, f.name)
         if isinstance(value, (int, float)) and not math.isfinite(value):
             raise ValueError(f'{f.name} must be finite, got {value!r}')
 
 
-def _freeze_sources(params: object) -> None:
+def _freeze_sources(params: DataclassInstance) -> None:
     """``params.sources`` may name only its fields; frozen to a read-only mapping."""
-    known = {f.name for f in fields(params)} - {'sources'}  # type: ignore[arg-type]
-    for key in params.sources:  # type: ignore[attr-defined]
+    known = {f.name for f in fields(params)} - {'sources'}
+    sources = getattr(params, 'sources')
+    for key in sources:
         _require(key in known, 'sources', f'names unknown field {key!r}', key)
-    object.__setattr__(params, 'sources', MappingProxyType(dict(params.sources)))  # type: ignore[attr-defined]
+    object.__setattr__(params, 'sources', MappingProxyType(dict(sources)))
 
 
 def _require(ok: bool, name: str, message: str, value: object) -> None:
@@ -241,9 +249,11 @@ def _check_tire(name: str, tire: object, static_load: float) -> None:
         f'must lie strictly between {_SHAPE_MIN} and {_SHAPE_MAX} for a force peak',
         tire.shape,
     )
-    _require(tire.curvature < _CURVATURE_MAX, f'{name}.curvature', f'must be below {_CURVATURE_MAX}', tire.curvature)
+    _require(tire.curvature < _CURVATURE_MAX, f'{name}.curvature',
+             f'must be below {_CURVATURE_MAX}', tire.curvature)
     mu = float(tire.friction(static_load))
-    _require(mu > 0.0, name, f'gives no friction (mu0, mu1) at the static load {static_load:.1f} N', mu)
+    _require(mu > 0.0, name,
+             f'gives no friction (mu0, mu1) at the static load {static_load:.1f} N', mu)
     stiffness = float(tire.cornering_stiffness(static_load))
     _require(
         stiffness > 0.0,

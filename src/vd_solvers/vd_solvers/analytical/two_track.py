@@ -79,6 +79,7 @@ from vd_solvers.errors import BeyondLimitError, SolverError
 from vd_solvers.tire.simple import SimpleTire
 
 Axle = Literal['front', 'rear']
+AXLES: tuple[Axle, Axle] = ('front', 'rear')
 LimitCause = Literal['saturation', 'rollover']
 
 WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
@@ -261,8 +262,9 @@ def wheel_lift_onset(p: VehicleParams) -> tuple[Axle, float] | None:
     does, from the linear load transfer of eq. 4; None if neither ever lifts.
     """
     geometry = roll_geometry(p)
-    per_g = [(_linear_transfer(p, geometry, 'front', 1.0), p.axle_load_front / 2.0, 'front'),
-             (_linear_transfer(p, geometry, 'rear', 1.0), p.axle_load_rear / 2.0, 'rear')]
+    per_g: list[tuple[float, float, Axle]] = [
+        (float(_linear_transfer(p, geometry, 'front', 1.0)), p.axle_load_front / 2.0, 'front'),
+        (float(_linear_transfer(p, geometry, 'rear', 1.0)), p.axle_load_rear / 2.0, 'rear')]
     onsets = [(cap / rate, axle) for rate, cap, axle in per_g if rate > 0.0]
     if not onsets:
         return None
@@ -315,7 +317,9 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
     net = geometry.sprung_mass * p.g * geometry.roll_arm
     lifted = {'front': front > caps['front'], 'rear': rear > caps['rear']}
     first_front = front / caps['front'] >= rear / caps['rear']
-    for axle, other, first in (('front', 'rear', first_front), ('rear', 'front', ~first_front)):
+    sides: tuple[tuple[Axle, Axle, np.ndarray], ...] = (('front', 'rear', first_front),
+                                                        ('rear', 'front', ~first_front))
+    for axle, other, first in sides:
         case = lifted[axle] & first
         if not np.any(case):
             continue
@@ -563,7 +567,7 @@ def _compliance(p: VehicleParams, axle: Axle, a_y: float, required: float) -> tu
 def _axle_states(p: VehicleParams, a_y: float, loads: np.ndarray) -> tuple[_AxleState, _AxleState]:
     """Front and rear axle states that carry m a_y b/L and m a_y a/L."""
     out = []
-    for axle, tire, pair, required in zip(('front', 'rear'), (p.tire_front, p.tire_rear),
+    for axle, tire, pair, required in zip(AXLES, (p.tire_front, p.tire_rear),
                                           (loads[:2], loads[2:]), _required_forces(p, a_y)):
         steer, thrust = _compliance(p, axle, a_y, required)
         tire_slip = _axle_slip(p, axle, tire, pair, required - 2.0 * thrust, a_y)
@@ -628,7 +632,7 @@ def _violation(p: VehicleParams, a_y: float) -> tuple[Axle, LimitCause] | None:
         lift = wheel_lift_onset(p)
         return (lift[0] if lift is not None else 'front'), 'rollover'
     shortfalls: list[tuple[float, Axle]] = []
-    for axle, tire, pair, required in zip(('front', 'rear'), (p.tire_front, p.tire_rear),
+    for axle, tire, pair, required in zip(AXLES, (p.tire_front, p.tire_rear),
                                           (loads[:2], loads[2:]), _required_forces(p, a_y)):
         _check_tire_range(p, axle, tire, pair, a_y)
         _, thrust = _compliance(p, axle, a_y, required)

@@ -29,7 +29,6 @@ import numpy as np
 from .joints import Primitive, PrimKind, perpendicular_basis, point, unit, vector
 from .model import Side, mirror
 
-DIRECTIONS: tuple[str, ...] = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 MIRROR_SIGNS = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 # Small-angle rotation about e_i: (e_k . f_j - e_j . f_k)/2 with (i, j, k) cyclic.
@@ -58,7 +57,7 @@ def side_frame(left_frame: np.ndarray, side: Side) -> tuple[np.ndarray, np.ndarr
 def bushing_measures(
     part_a: str, part_b: str, at: np.ndarray, frame: np.ndarray, signs: np.ndarray
 ) -> list[Measure]:
-    """The six deflection measures (x, y, z, rx, ry, rz) as primitive combinations."""
+    """Return the six deflection measures (x, y, z, rx, ry, rz) as primitive combinations."""
     ra, rb = point(part_a, at), point(part_b, at)
     e = [vector(part_a, frame[:, k]) for k in range(3)]
     f = [vector(part_b, frame[:, k]) for k in range(3)]

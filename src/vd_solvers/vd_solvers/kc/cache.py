@@ -47,7 +47,7 @@ def _remember(store: OrderedDict, key: tuple, value):
 
 
 def kc_model(config: Configuration, axle: str, fidelity: str = 'rigid') -> KCModel:
-    """The assembled K&C model of ``axle`` of ``config`` (cached by data hash)."""
+    """Return the assembled K&C model of ``axle`` of ``config`` (cached by data hash)."""
     from .from_config import suspension_input
 
     if fidelity not in FIDELITIES:
@@ -85,9 +85,9 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rig
         if model.inp.stabilizer is None:
             raise SolverError(f"configuration '{config.name}', axle '{axle}': no anti-roll bar")
         bare = KCModel(without_bar(model.inp), model.label, solved=True)
-        result = bare.run('opposite_wheel_travel', **params)
+        result = bare.run('opposite_wheel_travel', None, **params)
     else:
-        result = model.run(event, **params)
+        result = model.run(event, None, **params)
     with _lock:
         return _remember(_results, key, result)
 

@@ -34,8 +34,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .assembly import LoadCase, System, contact_direction
 from .solver import Sensitivity, Solution
+from .system import LoadCase, System, contact_direction
 from .templates import SuspensionTemplate
 
 SIDE_SIGNS = np.array([1.0, -1.0])

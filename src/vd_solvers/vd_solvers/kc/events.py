@@ -25,7 +25,7 @@ import numpy as np
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param
 
-from .assembly import Evaluation, LoadCase, State, System, assemble
+from .assembly import assemble
 from .channels import SOLVER_CHANNELS, TRAVEL_EVENTS, channels, wheel_angles
 from .model import SuspensionInput, without_bar
 from .result import EventResult
@@ -38,6 +38,7 @@ from .solver import (
     solve_path,
     solve_static,
 )
+from .system import Evaluation, LoadCase, State, System
 from .templates import TEMPLATES
 
 # Spring-preload trim: secant iterations and relative tolerance on the pad load.
@@ -409,7 +410,7 @@ class KCModel:
 
 def run_event(inp: SuspensionInput, event: str, label: str = '', **params: float) -> EventResult:
     """Assemble ``inp`` and run one ``event`` with ``params``."""
-    return KCModel(inp, label).run(event, **params)
+    return KCModel(inp, label).run(event, None, **params)
 
 
 def run_suite(
@@ -426,10 +427,10 @@ def run_suite(
     params = params or {}
     model = KCModel(inp, label)
     names = [e for e in EVENTS if e != 'steering' or inp.steering is not None]
-    results = {e: model.run(e, **params.get(e, {})) for e in names}
+    results = {e: model.run(e, None, **params.get(e, {})) for e in names}
     if inp.stabilizer is not None:
         bare = KCModel(without_bar(model.inp), label, solved=True)
         results['opposite_wheel_travel_no_bar'] = bare.run(
-            'opposite_wheel_travel', **params.get('opposite_wheel_travel', {})
+            'opposite_wheel_travel', None, **params.get('opposite_wheel_travel', {})
         )
     return results

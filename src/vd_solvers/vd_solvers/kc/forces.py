@@ -33,7 +33,10 @@ _MAX_TWIST_SINE = 0.995
 class EnergyLaw(Protocol):
     """Potential of ``size`` independent scalar deflections."""
 
-    size: int
+    @property
+    def size(self) -> int:
+        """Return the number of deflections."""
+        ...
 
     def evaluate(self, delta: np.ndarray) -> Triple:
         """V, dV/d(delta), d2V/d(delta)^2, each shaped like ``delta`` (size,)."""
@@ -90,13 +93,18 @@ class SpringLaw:
         """Compression force (N) and its slope dF/dc (N/m)."""
         if self.curve is not None:
             return self.curve.value(compression), self.curve.slope(compression)
-        rate = float(self.rate)  # type: ignore[arg-type]
+        rate = self._rate()
         return rate * compression, np.full_like(compression, rate)
 
     def _work(self, compression: np.ndarray) -> np.ndarray:
         if self.curve is not None:
             return self.curve.integral(compression)
-        return 0.5 * float(self.rate) * compression * compression  # type: ignore[arg-type]
+        return 0.5 * self._rate() * compression * compression
+
+    def _rate(self) -> float:
+        if self.rate is None:
+            raise SolverError('internal: a spring law needs a rate or a curve')
+        return float(self.rate)
 
     def evaluate(self, delta: np.ndarray) -> Triple:
         c = self.design_compression - delta
@@ -107,7 +115,7 @@ class SpringLaw:
 
 def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:
     """
-    The spring's law, its design compression found from free length or preload.
+    Return the spring's law, its design compression found from free length or preload.
 
     Raises SolverError when a curve cannot deliver the requested preload.
     """

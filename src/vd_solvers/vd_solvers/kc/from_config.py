@@ -16,15 +16,17 @@ import math
 import numpy as np
 
 from vd_data_server.model import Configuration, GroupData
-from vd_solvers.analytical.from_config import static_wheel_loads
+from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 from .channels import UNITS, bushing_unit
 from .events import EVENT_PARAMS, EVENTS, KCModel, run_suite
 from .metrics import derived_metrics
 from .model import (
+    Axle,
     Bushing,
     Curve,
     DamperSpec,
@@ -39,7 +41,6 @@ from .model import (
 
 FIDELITIES = ('rigid', 'flexible')
 
-SIX = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 def _curve(group: GroupData, key: str, scale: float = 1.0) -> Curve:
     xs, ys = group.curve(key)
@@ -61,6 +62,10 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
     if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', axle '{axle}': unknown fidelity "
                           f"'{fidelity}' (fidelities: {', '.join(FIDELITIES)})")
+    if axle not in ('front', 'rear'):
+        raise SolverError(f"configuration '{config.name}': unknown axle '{axle}' (axles: front, "
+                          'rear)')
+    corner: Axle = 'front' if axle == 'front' else 'rear'
     hp = config.group(f'{axle}_hardpoints')
     points = {k.split('.', 1)[1]: np.asarray(v.si, dtype=float)
               for k, v in hp.values.items() if k.startswith('points.')}
@@ -82,15 +87,16 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
         names = sorted({k.split('.')[1] for k in bush_g.values if k.startswith('connections.')})
         for name in names:
             base = f'connections.{name}'
-            stiffness = tuple(bush_g.scalar(f'{base}.stiffness.{d}') for d in SIX)
-            damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0 for d in SIX)
+            stiffness = tuple(bush_g.scalar(f'{base}.stiffness.{d}') for d in BUSHING_DIRECTIONS)
+            damping = tuple(bush_g.get_scalar(f'{base}.damping.{d}', 0.0) or 0.0
+                            for d in BUSHING_DIRECTIONS)
             axis = bush_g.point(f'{base}.axis') if bush_g.has(f'{base}.axis') else None
-            bushings[name] = Bushing(stiffness, damping,  # type: ignore[arg-type]
+            bushings[name] = Bushing(stiffness, damping,
                                      None if axis is None else np.asarray(axis, dtype=float))
     stabilizer = None
     stab_g = _optional(config, f'{axle}_stabilizer')
     if stab_g is not None:
-        missing = [p for p in ('arb_link_lower', 'arb_link_upper', 'arb_pivot') if p not in points]
+        missing = [p for p in ARB_POINTS if p not in points]
         if missing:
             raise SolverError(f"{axle}_stabilizer is given but {hp.file} lacks the anti-roll-bar "
                               f"hard points {', '.join(missing)}")
@@ -128,7 +134,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
         chosen = [c for c in config.flexible_components if c in specs] or sorted(specs)
         flexible = {c: specs[c][0] for c in chosen}
     return SuspensionInput(
-        template=hp.text('template'), axle=axle, hardpoints=points, spring=spring,  # type: ignore[arg-type]
+        template=hp.text('template'), axle=corner, hardpoints=points, spring=spring,
         tire_radius=points['wheel_centre'][2],
         tire_vertical_stiffness=tire.scalar('tir.VERTICAL.VERTICAL_STIFFNESS'),
         corner_load=front_load if axle == 'front' else rear_load,
@@ -189,7 +195,7 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
                 ShapePoint(group.text(f'{base}.shape_points.{sp}.from'),
                            group.text(f'{base}.shape_points.{sp}.to'),
                            group.scalar(f'{base}.shape_points.{sp}.fraction'),
-                           tuple(group.point(f'{base}.shape_points.{sp}.offset'))
+                           group.point(f'{base}.shape_points.{sp}.offset')
                            if group.has(f'{base}.shape_points.{sp}.offset') else (0.0, 0.0, 0.0))
                 for sp in sorted({k.split('.')[3] for k in group.values
                                   if k.startswith(f'{base}.shape_points.')}))
@@ -302,7 +308,7 @@ def run_kc_event(config: Configuration, event: str, axle: str,
 
 def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> EventOutcome:
     geo = config.group('geometry')
-    mass_cog = _cog_height(config)
+    mass_cog = mass_properties(config).cog_height
     metrics = {k: Metric(float(v), u) for k, (v, u) in derived_metrics(
         results, inp.tire_vertical_stiffness, cg_height=mass_cog,
         wheelbase=geo.scalar('wheelbase')).items()}
@@ -343,16 +349,9 @@ def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> Even
                         channels=channels, notes=tuple(notes))
 
 
-def _cog_height(config: Configuration) -> float:
-    from vd_solvers.analytical.from_config import mass_properties
-
-    return mass_properties(config).cog_height
-
-
 #: per-wheel channel suffixes, vector component names
 WHEEL = ('left', 'right')
 XYZ = ('x', 'y', 'z')
-SIX_NAMES = ('x', 'y', 'z', 'rx', 'ry', 'rz')
 
 def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     """(n,), (n, 2), (n, 2, 3) and bushing (n, 2, 6) arrays -> named 1-D channels."""
@@ -372,7 +371,7 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
                     out[f'{name}_{comp}_{side}'] = Channel(unit, a[:, s, c])
         elif a.ndim == 3 and a.shape[2] == 6:
             for s, side in enumerate(WHEEL):
-                for c, comp in enumerate(SIX_NAMES):
+                for c, comp in enumerate(BUSHING_DIRECTIONS):
                     out[f'{name}.{comp}_{side}'] = Channel(bushing_unit(base, c), a[:, s, c])
         elif a.ndim == 2:
             for c in range(a.shape[1]):

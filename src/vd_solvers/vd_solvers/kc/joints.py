@@ -96,8 +96,10 @@ Marker = Union[PointRef, VectorRef]
 @dataclass(frozen=True)
 class Primitive:
     """
-    One scalar primitive: ``markers`` in the order of ``SLOTS[kind]``;
-    ``param`` is c (3,) for COMP and (rho,) for CPZ, else empty.
+    One scalar primitive.
+
+    ``markers`` in the order of ``SLOTS[kind]``; ``param`` is c (3,) for COMP
+    and (rho,) for CPZ, else empty.
     """
 
     kind: PrimKind
@@ -107,7 +109,8 @@ class Primitive:
 
 def point(part: str, at: np.ndarray) -> PointRef:
     """Marker helper: point ``at`` (3,) on ``part``."""
-    return PointRef(part, tuple(float(v) for v in at))  # type: ignore[arg-type]
+    x, y, z = (float(v) for v in at)
+    return PointRef(part, (x, y, z))
 
 
 def vector(part: str, direction: np.ndarray) -> VectorRef:
@@ -115,7 +118,8 @@ def vector(part: str, direction: np.ndarray) -> VectorRef:
     n = float(np.linalg.norm(direction))
     if n == 0.0:
         raise SolverError(f'zero-length axis on part {part!r}')
-    return VectorRef(part, tuple(float(v) / n for v in direction))  # type: ignore[arg-type]
+    x, y, z = (float(v) / n for v in direction)
+    return VectorRef(part, (x, y, z))
 
 
 def unit(v: np.ndarray, what: str) -> np.ndarray:

@@ -1,7 +1,8 @@
 """
-Plain input data of the K&C suspension model (thesis 3.2: hard points,
-parts and masses, spring, damper, bump and rebound stops, anti-roll bar,
-bushings and joints, rack and pinion).
+Plain input data of the K&C suspension model.
+
+Thesis 3.2: hard points, parts and masses, spring, damper, bump and rebound
+stops, anti-roll bar, bushings and joints, rack and pinion.
 
 Everything is SI: m, N, N/m, N*m/rad, rad, kg. Positions are in the vehicle
 frame of ISO 8855 (x forward, y left, z up), origin on the ground under the
@@ -33,7 +34,7 @@ SIDE_SIGN: dict[Side, float] = {'left': 1.0, 'right': -1.0}
 
 
 def mirror(vector: ArrayLike, side: Side) -> np.ndarray:
-    """The left-side point or direction ``vector`` (3,) as seen on ``side``."""
+    """Return the left-side point or direction ``vector`` (3,) as seen on ``side``."""
     out = np.array(vector, dtype=float)
     out[1] *= SIDE_SIGN[side]
     return out
@@ -52,6 +53,10 @@ class Curve:
 
     x: np.ndarray
     y: np.ndarray
+    # derived in __post_init__: segment slopes, work to each knot, work from x[0] to 0
+    _slope: np.ndarray = field(init=False, repr=False)
+    _cumulative: np.ndarray = field(init=False, repr=False)
+    _origin: float = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         x = np.asarray(self.x, dtype=float).reshape(-1)
@@ -127,8 +132,9 @@ class SpringSpec:
 @dataclass(frozen=True)
 class DamperSpec:
     """
-    Damper force (N, positive resisting compression) vs compression
-    velocity (m/s). Carried for the dynamic models; zero force quasi-statically.
+    Damper force (N, positive resisting compression) vs compression velocity (m/s).
+
+    Carried for the dynamic models; zero force quasi-statically.
     """
 
     curve: Curve
@@ -160,17 +166,19 @@ class Bushing:
     vehicle frame (left side); default: the bushing frame is the vehicle frame.
     """
 
-    stiffness: tuple[Stiffness, Stiffness, Stiffness, Stiffness, Stiffness, Stiffness]
-    damping: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    stiffness: tuple[Stiffness, ...]  # six (``validate`` checks)
+    damping: tuple[float, ...] = (0.0,) * 6
     axial: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
 class StabilizerSpec:
     """
-    Torsion anti-roll bar: bar axis through hard point ``arb_pivot``
-    parallel to y; drop link from ``arb_link_lower`` (on the part the template
-    names) to ``arb_link_upper`` (end of the bar arm).
+    Torsion anti-roll bar.
+
+    Bar axis through hard point ``arb_pivot`` parallel to y; drop link from
+    ``arb_link_lower`` (on the part the template names) to ``arb_link_upper``
+    (end of the bar arm).
     """
 
     torsional_stiffness: float  # N*m/rad, twist between the two bar ends
@@ -205,8 +213,10 @@ class SteeringSpec:
 @dataclass(frozen=True)
 class FlexSpec:
     """
-    One flexible component (thesis 3.3): a beam frame generated from the
-    hard points of the part it replaces, or an imported reduced stiffness.
+    One flexible component (thesis 3.3).
+
+    A beam frame generated from the hard points of the part it replaces, or an
+    imported reduced stiffness.
 
     Beam frame: ``material``, ``section`` (the anti-roll bar's arms may have
     ``arm_section``), ``shape_points`` (bends, defined relative to the hard

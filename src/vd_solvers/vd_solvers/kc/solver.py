@@ -31,7 +31,7 @@ import scipy.linalg
 
 from vd_solvers.errors import SolverError
 
-from .assembly import Evaluation, LoadCase, State, System
+from .system import Evaluation, LoadCase, State, System
 
 CONSTRAINT_TOL = 1e-9  # m; angular rows (dot products) in rad, i.e. m at 1 m lever
 FORCE_TOL = 1e-6  # N and N*m, absolute ...
@@ -194,7 +194,7 @@ def solve_path(
             state, previous, before = states[start], cases[start], None  # type: ignore[assignment]
         for i in walk:
             # Events step uniformly, so the last increment predicts the next.
-            guess = _extrapolate(before, state) if before is not None else None
+            guess: State | None = _extrapolate(before, state) if before is not None else None
             new, evals[i], conv[i] = _advance(system, state, guess, previous, cases[i], 0, i,
                                               describe)
             before, state, previous = state, new, cases[i]

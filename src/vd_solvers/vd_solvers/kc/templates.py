@@ -21,13 +21,12 @@ from typing import Protocol
 
 import numpy as np
 
+from vd_data_server.schema import TEMPLATE_POINTS
+
 from .joints import GROUND, JointKind
 
 STEERING = 'steering'  # the rack on a steered axle, else the body
 
-ARB_POINTS: tuple[str, ...] = ('arb_link_lower', 'arb_link_upper', 'arb_pivot')
-#: body mounts of a flexible subframe (left side; mirrored)
-SUBFRAME_POINTS: tuple[str, ...] = ('subframe_front', 'subframe_rear')
 
 
 @dataclass(frozen=True)
@@ -41,8 +40,9 @@ class PartDef:
 @dataclass(frozen=True)
 class JointDef:
     """
-    Ideal joint at hard point ``point`` (its connection key) between
-    ``inboard`` and ``outboard``; ``axis`` = (from, to) hard points giving the
+    An ideal joint at hard point ``point`` (its connection key).
+
+    Between ``inboard`` and ``outboard``; ``axis`` = (from, to) hard points giving the
     joint axis (in-line, cylindrical) or, for a universal joint, the link
     direction its default cross is perpendicular to.
     """
@@ -77,8 +77,10 @@ class LineDef:
 @dataclass(frozen=True)
 class Topology:
     """
-    One corner's topology; ``tracked`` maps reported hard points to the part
-    whose motion they follow (default: the part listing them first).
+    One corner's topology.
+
+    ``tracked`` maps reported hard points to the part whose motion they follow
+    (default: the part listing them first).
     """
 
     parts: tuple[PartDef, ...]
@@ -108,19 +110,20 @@ class SuspensionTemplate(Protocol):
     required_points: tuple[str, ...]
 
     def topology(self) -> Topology:
-        """The corner's parts, joints, links and force lines."""
+        """Return the corner's parts, joints, links and force lines."""
         ...
 
     def steering_axis(self, points: Mapping[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         """
-        Upper and lower points (n, 3) of the steering axis from the
-        current hard-point positions ``points`` (name -> (n, 3)).
+        Return the upper and lower points (n, 3) of the steering axis.
+
+        From the current hard-point positions ``points`` (name -> (n, 3)).
         """
         ...
 
 
 def _arm(prefix: str, part: str, outer_part: str) -> tuple[JointDef, ...]:
-    """An A-arm: revolute on the body (sphere + in-line), ball joint outboard."""
+    """Return an A-arm's joints: revolute on the body (sphere + in-line), ball joint outboard."""
     front, rear, outer = f'{prefix}_front', f'{prefix}_rear', f'{prefix}_outer'
     return (
         JointDef('spherical', front, GROUND, part),
@@ -156,11 +159,7 @@ class DoubleWishbone:
     """
 
     name = 'double_wishbone'
-    required_points = (
-        'uca_front', 'uca_rear', 'uca_outer', 'lca_front', 'lca_rear', 'lca_outer',
-        'tierod_inner', 'tierod_outer', 'spring_upper', 'spring_lower',
-        'damper_upper', 'damper_lower', 'wheel_centre',
-    )
+    required_points = TEMPLATE_POINTS[name]
 
     def topology(self) -> Topology:
         return Topology(
@@ -185,7 +184,9 @@ class DoubleWishbone:
 
 class MacPherson:
     """
-    Lower A-arm, tie rod and strut: the strut rod hangs from the body on a
+    Lower A-arm, tie rod and strut.
+
+    The strut rod hangs from the body on a
     universal joint at ``strut_top`` (the top mount; the joint only stops the
     rod's spin) and slides in the upright's tube (cylindrical joint along
     strut_top -> strut_lower). Spring and damper act along the strut.
@@ -194,10 +195,7 @@ class MacPherson:
     """
 
     name = 'macpherson'
-    required_points = (
-        'lca_front', 'lca_rear', 'lca_outer', 'tierod_inner', 'tierod_outer',
-        'strut_top', 'strut_lower', 'wheel_centre',
-    )
+    required_points = TEMPLATE_POINTS[name]
 
     def topology(self) -> Topology:
         return Topology(
@@ -208,8 +206,10 @@ class MacPherson:
             ),
             joints=_arm('lca', 'lca', 'upright')
             + (
-                JointDef('universal', 'strut_top', GROUND, 'strut', axis=('strut_top', 'strut_lower')),
-                JointDef('cylindrical', 'strut_lower', 'strut', 'upright', axis=('strut_lower', 'strut_top')),
+                JointDef('universal', 'strut_top', GROUND, 'strut',
+                         axis=('strut_top', 'strut_lower')),
+                JointDef('cylindrical', 'strut_lower', 'strut', 'upright',
+                         axis=('strut_lower', 'strut_top')),
             ),
             links=(LinkDef('tierod', 'tierod_inner', STEERING, 'tierod_outer', 'upright'),),
             spring=LineDef('strut_top', 'strut_lower', 'upright'),
@@ -227,27 +227,26 @@ class MacPherson:
 
 class MultiLink:
     """
-    Five-link (as Chrono's MultiLink): upper A-arm (two links on one ball
-    joint), lateral link, trailing link (universal joint on the body; carries
-    spring, damper and bar link) and tie rod.
+    Five-link, as Chrono's MultiLink.
+
+    Upper A-arm (two links on one ball joint), lateral link, trailing link
+    (universal joint on the body; carries spring, damper and bar link) and
+    tie rod.
 
     Steering axis: upper ball joint to the virtual lower pivot, the midpoint
     of the common perpendicular of the lateral and trailing link lines.
     """
 
     name = 'multilink'
-    required_points = (
-        'upper_front', 'upper_rear', 'upper_outer', 'lateral_inner', 'lateral_outer',
-        'trailing_inner', 'trailing_outer', 'tierod_inner', 'tierod_outer',
-        'spring_upper', 'spring_lower', 'damper_upper', 'damper_lower', 'wheel_centre',
-    )
+    required_points = TEMPLATE_POINTS[name]
 
     def topology(self) -> Topology:
         return Topology(
             parts=(
                 PartDef(
                     'upright',
-                    ('upper_outer', 'lateral_outer', 'trailing_outer', 'tierod_outer', 'wheel_centre'),
+                    ('upper_outer', 'lateral_outer', 'trailing_outer', 'tierod_outer',
+                     'wheel_centre'),
                 ),
                 PartDef('upper_arm', ('upper_front', 'upper_rear', 'upper_outer')),
                 PartDef('trailing_link', ('trailing_inner', 'trailing_outer')),

@@ -587,8 +587,9 @@ def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
     the full vehicle calls this every step with four-wheel arrays).
     """
     first = values[0]
-    if isinstance(first, np.ndarray) and first.dtype == np.float64 and all(
-            isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == first.shape
-            for v in values):
-        return values  # type: ignore[return-value]
+    if isinstance(first, np.ndarray):
+        ready = tuple(v for v in values if isinstance(v, np.ndarray)
+                      and v.dtype == np.float64 and v.shape == first.shape)
+        if len(ready) == len(values):
+            return ready
     return tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))

@@ -40,8 +40,9 @@ class SpeedDriver(Protocol):
 
 class OpenLoopSteering:
     """
-    Steering-wheel angle from a function of time, or a table (linear between points,
-    held beyond its ends).
+    Steering-wheel angle from a function of time, or a table.
+
+    A table is linear between its points and held beyond its ends.
     """
 
     def __init__(self, signal: Callable[[float], float] | None = None,
@@ -67,12 +68,14 @@ class OpenLoopSteering:
 
 class ReplaySteering(OpenLoopSteering):
     """
-    Steering-wheel angle replayed from a recorded signal (e.g. a bag's ``time`` and
-    ``steering_wheel_angle`` channels), optionally shifted in time.
+    Steering-wheel angle replayed from a recorded signal, optionally shifted in time.
+
+    The signal is e.g. a bag's ``time`` and ``steering_wheel_angle`` channels.
     """
 
-    def __init__(self, times: Sequence[float], angles: Sequence[float], offset: float = 0.0) -> None:
-        super().__init__(times=np.asarray(times, dtype=float) + offset, angles=angles)
+    def __init__(self, times: Sequence[float], angles: Sequence[float],
+                 offset: float = 0.0) -> None:
+        super().__init__(times=[float(t) + offset for t in times], angles=angles)
 
 
 @dataclass
@@ -82,14 +85,14 @@ class CirclePathFollower:
 
     The circle of ``radius`` starts at the origin heading +x and turns left (centre at
     (0, radius)). The driver looks ``preview_time`` * speed (at least ``min_preview``)
-    ahead, along an arc of the path's curvature from the body's heading, and steers the road wheels by the path's
-    Ackermann angle L / R plus a pure-pursuit correction L * 2 e / d^2 for the preview
-    point's radial error e (outside the circle positive) at preview distance d, plus
-    the integral of that correction over ``integral_time``: the integral removes the
-    steady error the vehicle's understeer would leave. Output in steering-wheel angle
-    through the steering ratio, after a first-order lag ``lag`` (the driver's
-    neuromuscular lag, which also keeps the loop clear of the tire's fast modes),
-    limited to ``max_angle``.
+    ahead, along an arc of the path's curvature from the body's heading, and steers the
+    road wheels by the path's Ackermann angle L / R plus a pure-pursuit correction
+    L * 2 e / d^2 for the preview point's radial error e (outside the circle positive)
+    at preview distance d, plus the integral of that correction over ``integral_time``:
+    the integral removes the steady error the vehicle's understeer would leave. Output
+    in steering-wheel angle through the steering ratio, after a first-order lag ``lag``
+    (the driver's neuromuscular lag, which also keeps the loop clear of the tire's fast
+    modes), limited to ``max_angle``.
     """
 
     radius: float

@@ -34,7 +34,8 @@ import numpy as np
 from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle
 from vd_solvers.analytical.from_config import vehicle_params
-from vd_solvers.analytical.params import STANDARD_GRAVITY as G
+from vd_solvers.constants import DEG
+from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
@@ -44,7 +45,6 @@ from .maps import WHEELS
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
 
-DEG = 180.0 / math.pi
 #: lateral-acceleration range of the linear gradients, m/s^2
 LINEAR_RANGE = (1.0, 3.0)
 #: sideslip beyond which the vehicle no longer holds the circle (spin), rad
@@ -75,7 +75,8 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                                   'radius counts as no longer held', minimum=0.05),
         'max_duration': Param('time', 90.0, 'longest simulated time', minimum=5.0,
                               maximum=600.0),
-        'drive_front': Param('dimensionless', 0.5, 'front share of the drive torque (0 rear, 1 front)',
+        'drive_front': Param('dimensionless', 0.5,
+                             'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
         'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
                              maximum=1.0),
@@ -88,7 +89,8 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
         'ramp_time': Param('time', 0.1, 'steering-wheel ramp time (ISO 7401: <= 0.15 s)',
                            minimum=0.01, maximum=1.0),
         'duration': Param('time', 6.0, 'simulated time', minimum=3.0, maximum=60.0),
-        'drive_front': Param('dimensionless', 0.5, 'front share of the drive torque (0 rear, 1 front)',
+        'drive_front': Param('dimensionless', 0.5,
+                             'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
         'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
                              maximum=1.0),
@@ -203,9 +205,9 @@ def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
         behaviour = f"radius held to the end ({v['max_duration']:g} s)"
     metrics = {
         'understeer_gradient': Metric(k_us, 'rad/(m/s^2)'),
-        'understeer_gradient_deg_per_g': Metric(k_us * DEG * G, 'deg/g'),
-        'roll_gradient': Metric(roll * DEG * G, 'deg/g'),
-        'sideslip_gradient': Metric(beta * DEG * G, 'deg/g'),
+        'understeer_gradient_deg_per_g': Metric(k_us / DEG * G, 'deg/g'),
+        'roll_gradient': Metric(roll / DEG * G, 'deg/g'),
+        'sideslip_gradient': Metric(beta / DEG * G, 'deg/g'),
         'max_lateral_acceleration': Metric(a_max, 'm/s^2'),
         'max_lateral_acceleration_g': Metric(a_max / G, 'g'),
         'limit_is_oversteer': Metric(1.0 if behaviour.startswith('oversteer') else 0.0, '-'),
@@ -234,7 +236,7 @@ def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
     for _ in range(STEP_AIM_ITERATIONS):
         if not 0.0 < swa <= limit:
             raise SolverError(f'step steer to {target:g} m/s^2 at {speed:g} m/s needs a '
-                              f'steering-wheel angle beyond the lock ({limit * DEG:.0f} deg)')
+                              f'steering-wheel angle beyond the lock ({limit / DEG:.0f} deg)')
         steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + ramp, v['duration']],
                                     angles=[0.0, 0.0, swa, swa])
         trace = simulate(model, steering, _speed_controller(model, lambda t: speed),
@@ -274,7 +276,7 @@ def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
         metrics[f'{name}_overshoot'] = Metric(100.0 * (float(y[i_peak]) / y_ss - 1.0), '%')
     metrics['sideslip_gain'] = Metric(float(np.mean(ch['sideslip'][steady])) / swa, 'rad/rad')
     metrics['roll_gain'] = Metric(float(np.mean(ch['roll'][steady])) / swa, 'rad/rad')
-    notes = [f'steering-wheel step {swa * DEG:.1f} deg in {ramp:g} s at t = {STEP_TIME:g} s; '
+    notes = [f'steering-wheel step {swa / DEG:.1f} deg in {ramp:g} s at t = {STEP_TIME:g} s; '
              f'steady a_y {reached:.3f} m/s^2 (aimed {target:g})',
              'response times from the 50 % steering-wheel instant (ISO 7401)']
     return metrics, channels, notes

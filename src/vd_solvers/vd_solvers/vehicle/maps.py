@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vd_data_server.model import Configuration
-from vd_solvers.analytical.params import STANDARD_GRAVITY
+from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.cache import NO_BAR, kc_model, kc_result
 from vd_solvers.kc.metrics import FORCE_WINDOW, slope_at
@@ -111,7 +111,7 @@ def _one_sided(x: np.ndarray, y: np.ndarray, sign: float) -> float:
 
 
 def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> SuspensionMaps:
-    """The maps of both axles of ``config`` (K&C results on demand, module doc)."""
+    """Return the maps of both axles of ``config`` (K&C results on demand, module doc)."""
     g = STANDARD_GRAVITY
     mass = config.group('mass')
     tag = f'{fidelity}, data hash {config.data_hash}'
@@ -142,7 +142,8 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
             raise SolverError(f'{label}: the full vehicle needs a damper')
         dampers_x.append(np.asarray(inp.damper.curve.x, dtype=float))
         dampers_y.append(np.asarray(inp.damper.curve.y, dtype=float))
-        prov['damper'] = prov.get('damper', '') + f"{axle}: {config.group(f'{axle}_damper').file}; "
+        damper_file = config.group(f'{axle}_damper').file
+        prov['damper'] = prov.get('damper', '') + f'{axle}: {damper_file}; '
         if inp.stabilizer is not None:
             opp = kc_result(config, axle, 'opposite_wheel_travel', fidelity, steps=KC_STEPS)
             bare = kc_result(config, axle, NO_BAR, fidelity, steps=KC_STEPS)
@@ -179,7 +180,8 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
         for key in ('compliance_steer_longitudinal', 'jacking_longitudinal'):
             prov[key] = prov.get(key, '') + f'{axle}: K&C longitudinal_force ({tag}); '
     if 'steering' not in config.groups:
-        raise SolverError(f"configuration '{config.name}': the full vehicle needs a steering group")
+        raise SolverError(f"configuration '{config.name}': the full vehicle needs a steering "
+                          'group')
     steer = kc_result(config, 'front', 'steering', fidelity, steps=KC_STEPS)
     swa = steer.channels['steering_wheel_angle']
     order = np.argsort(swa)

@@ -53,10 +53,10 @@ import pinocchio as pin
 
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
-from vd_solvers.analytical.from_config import static_wheel_loads
-from vd_solvers.analytical.params import STANDARD_GRAVITY
+from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
+from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
@@ -141,11 +141,7 @@ class VehicleModel:
         self.cd = np.array([self.tires[0].vertical_damping] * 2 + [self.tires[1].vertical_damping] * 2)
         vxlow = [t.props.number('MODEL', 'VXLOW', 0.0) for t in self.tires]
         self.vx_floor = max(VX_FLOOR, *vxlow)
-        centres = []
-        for axle in ('front', 'rear'):
-            x, y, z = config.group(f'{axle}_hardpoints').point('points.wheel_centre')
-            centres += [(x, abs(y), z), (x, -abs(y), z)]
-        self.wheel_centres = np.array(centres)  # (4, 3) body frame, design
+        self.wheel_centres = wheel_centres(config)  # (4, 3) body frame, design
         m_u = np.array([mass.scalar('unsprung_mass_front')] * 2 + [mass.scalar('unsprung_mass_rear')] * 2)
         self.unsprung = m_u
         self.spin_inertia = SPIN_INERTIA_FACTOR * m_u * self.r0**2

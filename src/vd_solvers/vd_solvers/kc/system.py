@@ -1,0 +1,456 @@
+"""
+The numerical model of one axle on the K&C rig: state, equations, tangent.
+
+A :class:`System` holds parts with poses (p, R), markers, primitives
+(:mod:`.joints`), constraint rows g(q) = g_design + load offsets, and
+potentials V(q) = sum_e V_e(y_e) on measures y = C x(q) - reference. It is
+built by :mod:`.builder` from what :mod:`.assembly` makes of a template.
+
+Both sides of the axle are modelled; the body is the ground (fixed, as on a
+K&C rig). Per side the rig adds
+
+* a wheel pad: the contact-point height is a constraint driven by the event
+  (its multiplier is the vertical pad force at the contact point);
+* applied loads: a force at the contact point (lateral, braking: the wheel is
+  locked to the upright, so the brake reaction stays in it) and a force at
+  the wheel centre (traction).
+
+:meth:`System.evaluate` gives the residuals and the exact tangent of the
+equilibrium ``grad V - Q + J^T lambda = 0, g = 0`` for a Newton step in
+local pose coordinates (dp, dtheta) per part.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse
+
+from vd_solvers.errors import SolverError
+from vd_solvers.flex.component import Condensed
+
+from .forces import EnergyLaw, MatrixLaw
+from .joints import PAIRS, PrimKind, kernel
+from .model import SIDES, Side
+
+_EYE = np.eye(3)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """
+    Rig inputs of one step; index 0 = left, 1 = right wheel.
+
+    ``pad``: contact-point height change from design (m); ``contact_force``:
+    force on the tire at the contact point (N, vehicle axes); ``centre_force``:
+    force at the wheel centre (N); ``rack``: commanded rack travel (m, +y);
+    ``contact_moment``: moment on the tire at the contact point (N*m, vehicle
+    axes; the aligning-torque rig test applies it about z).
+    """
+
+    pad: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    contact_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
+    centre_force: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
+    rack: float = 0.0
+    contact_moment: np.ndarray = field(default_factory=lambda: np.zeros((2, 3)))
+
+    def blend(self, other: LoadCase, t: float) -> LoadCase:
+        """Return the load case a fraction ``t`` of the way from self to ``other``."""
+        return LoadCase(
+            pad=(1 - t) * self.pad + t * other.pad,
+            contact_force=(1 - t) * self.contact_force + t * other.contact_force,
+            centre_force=(1 - t) * self.centre_force + t * other.centre_force,
+            rack=(1 - t) * self.rack + t * other.rack,
+            contact_moment=(1 - t) * self.contact_moment + t * other.contact_moment,
+        )
+
+
+@dataclass
+class State:
+    """Poses of the moving parts, p (P, 3) and R (P, 3, 3), and multipliers (m,)."""
+
+    p: np.ndarray
+    R: np.ndarray
+    lam: np.ndarray
+
+    def copy(self) -> State:
+        return State(self.p.copy(), self.R.copy(), self.lam.copy())
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """Per-side indices of the wheel: upright part, centre point, spin axis."""
+
+    part: int
+    centre: int  # point marker
+    axis: int  # vector marker (outward spin axis)
+    radius: float  # loaded radius, m
+
+
+def _unset() -> np.ndarray:
+    return np.full(2, -1, dtype=int)
+
+
+@dataclass
+class Outputs:
+    """
+    Where the reported quantities live in a :class:`System`.
+
+    Indices into its parts, point and vector markers, primitives, energy measures and
+    constraint rows; per side (0 = left, 1 = right) where shaped (2,). The assembly fills
+    one while it builds, with the indices the builder hands out; the builder renumbers the
+    primitive indices once it has ordered the primitives (``Builder.build``).
+    """
+
+    wheels: list[Wheel] = field(default_factory=lambda: [Wheel(-1, -1, -1, 0.0)] * 2)
+    pad_rows: np.ndarray = field(default_factory=_unset)  # constraint rows (2,)
+    #: per side, hard point -> point marker
+    tracked: tuple[dict[str, int], dict[str, int]] = field(default_factory=lambda: ({}, {}))
+    spring: np.ndarray = field(default_factory=_unset)  # energy measure (2,)
+    spring_length: np.ndarray = field(default_factory=_unset)  # primitive (2,)
+    damper_length: np.ndarray = field(default_factory=_unset)  # primitive (2,)
+    bump_stop: np.ndarray | None = None  # energy measure (2,)
+    rebound_stop: np.ndarray | None = None
+    bushings: dict[str, np.ndarray] = field(default_factory=dict)  # name -> measures (2, 6)
+    arb_twist: int | None = None  # energy measure
+    arb_arms: np.ndarray | None = None  # parts (2,)
+    droplink_rows: np.ndarray | None = None  # constraint rows (2,)
+    rack_part: int | None = None
+    rack_measure: int | None = None  # energy measure (compliant rack)
+    rack_row: int | None = None  # constraint row (rigid rack)
+    elastic: list[int] = field(default_factory=list)  # measures that store elastic energy
+    steer_sign: float = 1.0  # +1 if +y rack travel steers left
+    #: flexible components as built (left side, bar and subframe once)
+    components: list[Condensed] = field(default_factory=list)
+
+    def put(self, name: str, side: Side, index: int) -> None:
+        """Set the ``side`` entry of the per-side index pair ``name``."""
+        pair = getattr(self, name)
+        if pair is None:
+            pair = _unset()
+            setattr(self, name, pair)
+        pair[SIDES.index(side)] = index
+
+    def check(self) -> None:
+        """Raise SolverError if a quantity every axle reports was never placed."""
+        required = (self.pad_rows, self.spring, self.spring_length, self.damper_length,
+                    np.array([w.part for w in self.wheels]))
+        optional = (self.bump_stop, self.rebound_stop, self.arb_arms, self.droplink_rows)
+        placed = required + tuple(p for p in optional if p is not None) + tuple(
+            self.bushings.values())
+        if any(np.any(p < 0) for p in placed):
+            raise SolverError('internal: an output of the axle model was not placed')
+
+
+@dataclass(frozen=True)
+class Batch:
+    """All primitives of one kind: combined-marker index per slot, parameters."""
+
+    kind: PrimKind
+    offset: int
+    slot_idx: tuple[np.ndarray, ...]
+    param: np.ndarray
+
+
+class System:
+    """Numerical axle model; see the module docstring for the equations."""
+
+    def __init__(
+        self,
+        part_names: list[str],
+        origins: np.ndarray,
+        pt_part: np.ndarray,
+        pt_local: np.ndarray,
+        vec_part: np.ndarray,
+        vec_local: np.ndarray,
+        batches: list[Batch],
+        c_g: np.ndarray,
+        c_e: np.ndarray,
+        laws: list[tuple[EnergyLaw, np.ndarray]],
+        outputs: Outputs,
+    ) -> None:
+        self.part_names = part_names
+        self.origins = origins
+        self.n_parts = len(part_names)
+        self.n_dof = 6 * self.n_parts
+        self._batches = batches
+        # The primitive-combination matrices are very sparse (a few entries per row):
+        # products with them dominate an evaluation in dense form.
+        self.c_g, self.c_e = scipy.sparse.csr_matrix(c_g), scipy.sparse.csr_matrix(c_e)
+        self.laws = laws
+        self.coupled = [(idx, law.matrix) for law, idx in laws if isinstance(law, MatrixLaw)]
+        self.coupled_max = max((float(np.max(np.abs(k))) for _, k in self.coupled), default=0.0)
+        self.outputs = outputs
+        self.n_prim = c_g.shape[1]
+        self.n_con = c_g.shape[0]
+        self._build_scatter(pt_part, pt_local, vec_part, vec_local)
+        # per coupled law: the DOFs its measures touch (its nodes' parts), so its
+        # tangent block is assembled on those columns only
+        self._coupled_cols = []
+        for idx, _ in self.coupled:
+            prims = np.unique(self.c_e[idx].indices)
+            cols = np.unique(self._d_cols[np.isin(self._d_rows, prims)])
+            cols = cols[cols < self.n_dof]
+            self._coupled_cols.append((np.ix_(idx, cols), np.ix_(cols, cols)))
+        x0 = self.primitive_values(self.design_state())
+        self.g_design = c_g @ x0
+        self.e_design = c_e @ x0
+
+    # -- poses -------------------------------------------------------------
+    def design_state(self) -> State:
+        """All parts in the design pose, zero multipliers."""
+        return State(
+            self.origins.copy(), np.repeat(_EYE[None], self.n_parts, axis=0), np.zeros(self.n_con)
+        )
+
+    def _markers(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """
+        Return world value, rotation lever and pose Jacobian of all markers.
+
+        Shapes (M, 3), (M, 3) and (M, 3, 6); points first, then vectors.
+        """
+        # The ground is an extra part n_parts in the identity pose; its
+        # columns are dropped after assembly.
+        p = np.vstack((state.p, np.zeros((1, 3))))
+        R = np.concatenate((state.R, _EYE[None]))
+        lever = np.einsum('nij,nj->ni', R[self._marker_part], self._marker_local)
+        world = lever + self._is_point[:, None] * p[self._marker_part]
+        jac = self._jac_template.copy()
+        jac[:, :, 3:] = -_skew(lever)
+        return world, lever, jac
+
+    def marker_world(self, state: State) -> tuple[np.ndarray, np.ndarray]:
+        """World positions of all point markers (Mp, 3) and vector markers (Mv, 3)."""
+        world = self._markers(state)[0]
+        return world[: self._n_points], world[self._n_points :]
+
+    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
+        x = np.empty(self.n_prim)
+        grads: list[np.ndarray] = []
+        hess: list[np.ndarray] = []
+        for b in self._batches:
+            value, g, h = kernel(b.kind, [world[i] for i in b.slot_idx], b.param)
+            x[b.offset : b.offset + value.shape[0]] = value
+            grads.extend(g)
+            hess.extend(h)
+        return x, grads, hess
+
+    def primitive_values(self, state: State) -> np.ndarray:
+        """All primitive values x (n_prim,) in ``state``."""
+        return self._kernels(self._markers(state)[0])[0]
+
+    # -- static scatter indices ------------------------------------------------
+    def _build_scatter(self, pt_part: np.ndarray, pt_local: np.ndarray,
+                       vec_part: np.ndarray, vec_local: np.ndarray) -> None:
+        """
+        Build the combined marker table and the static scatter indices.
+
+        The indices scatter slot gradients into D and second-order blocks into
+        the tangent.
+        """
+        self._n_points = pt_part.shape[0]
+        self._marker_part = np.concatenate((pt_part, vec_part))
+        self._marker_local = np.concatenate((pt_local, vec_local)).reshape(-1, 3)
+        self._is_point = np.concatenate((np.ones(pt_part.shape[0]), np.zeros(vec_part.shape[0])))
+        self._jac_template = np.zeros((self._marker_part.shape[0], 3, 6))
+        self._jac_template[: self._n_points, :, :3] = _EYE
+        nc = 6 * (self.n_parts + 1)
+        self._nc = nc
+        slot_marker: list[np.ndarray] = []
+        slot_prim: list[np.ndarray] = []
+        pair_a: list[np.ndarray] = []
+        pair_b: list[np.ndarray] = []
+        pair_prim: list[np.ndarray] = []
+        for b in self._batches:
+            n = b.param.shape[0]
+            rows = b.offset + np.arange(n)
+            first = sum(len(m) for m in slot_marker)
+            base: list[int] = []
+            for idx in b.slot_idx:
+                base.append(first)
+                first += n
+                slot_marker.append(idx)
+                slot_prim.append(rows)
+            for i, j in PAIRS[b.kind]:
+                pair_a.append(base[i] + np.arange(n))
+                pair_b.append(base[j] + np.arange(n))
+                pair_prim.append(rows)
+        self._slot_marker = np.concatenate(slot_marker)
+        self._pair_a = np.concatenate(pair_a) if pair_a else np.zeros(0, dtype=int)
+        self._pair_b = np.concatenate(pair_b) if pair_b else np.zeros(0, dtype=int)
+        parts = self._marker_part[self._slot_marker]
+        prims = np.concatenate(slot_prim)
+        six, three = np.arange(6), np.arange(3)
+        self._d_rows = np.repeat(prims, 6)
+        self._d_cols = (6 * parts[:, None] + six).ravel()
+        pa, pb = parts[self._pair_a], parts[self._pair_b]
+        pair_idx = (6 * pa[:, None, None] + six[None, :, None]) * nc + 6 * pb[:, None, None] + six
+        chart_idx = (6 * parts[:, None, None] + 3 + three[None, :, None]) * nc + (
+            6 * parts[:, None, None] + 3 + three
+        )
+        self._so_idx = np.concatenate((pair_idx.ravel(), chart_idx.ravel()))
+        self._so_prim = np.concatenate(
+            (np.repeat(prims[self._pair_a], 36), np.repeat(prims, 9))
+        )
+
+    # -- evaluation -------------------------------------------------------------
+    def evaluate(self, state: State, load: LoadCase) -> Evaluation:
+        """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
+        world, lever, jac = self._markers(state)
+        x, grads, hess = self._kernels(world)
+        g_slot = np.concatenate(grads)
+        j_slot = jac[self._slot_marker]
+        d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
+        d = scipy.sparse.csr_matrix((d_vals.ravel(), (self._d_rows, self._d_cols)),
+                                    shape=(self.n_prim, self._nc))[:, : self.n_dof]
+        if hess:
+            ja = j_slot[self._pair_a]
+            blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)),
+                               j_slot[self._pair_b])
+        else:
+            blocks = np.zeros((0, 6, 6))
+        chart = _chart(g_slot, lever[self._slot_marker])
+        so_vals = np.concatenate((blocks.ravel(), chart.ravel()))
+        g = self.c_g @ x - self.g_design - self._constraint_offset(load)
+        jacobian, measure_jacobian = (self.c_g @ d).toarray(), (self.c_e @ d).toarray()
+        y = self.c_e @ x - self.e_design - self._energy_offset(load)
+        energy, d1, d2 = (np.empty_like(y) for _ in range(3))
+        for law, idx in self.laws:
+            energy[idx], d1[idx], d2[idx] = law.evaluate(y[idx])
+        n_pt = self._n_points
+        q_ext, k_ext = self._applied(state, world[:n_pt], world[n_pt:], load)
+        return Evaluation(
+            self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext, so_vals
+        )
+
+    def second_order(self, so_vals: np.ndarray, weights: np.ndarray) -> np.ndarray:
+        """
+        Return sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof).
+
+        From the unweighted blocks ``so_vals`` of an evaluation and primitive
+        weights (n_prim,).
+        """
+        nc = self._nc
+        so = np.bincount(self._so_idx, so_vals * weights[self._so_prim], minlength=nc * nc)
+        return so.reshape(nc, nc)[: self.n_dof, : self.n_dof]
+
+    def _constraint_offset(self, load: LoadCase) -> np.ndarray:
+        off = np.zeros(self.n_con)
+        off[self.outputs.pad_rows] = load.pad
+        if self.outputs.rack_row is not None:
+            off[self.outputs.rack_row] = load.rack
+        return off
+
+    def _energy_offset(self, load: LoadCase) -> np.ndarray:
+        off = np.zeros(self.c_e.shape[0])
+        if self.outputs.rack_measure is not None:
+            off[self.outputs.rack_measure] = load.rack
+        return off
+
+    def contact_points(self, state: State) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Wheel centres, outward spin axes and contact points, each (2, 3)."""
+        world, vec = self.marker_world(state)
+        return self._contact(world, vec)
+
+    def _contact(self, world: np.ndarray,
+                 vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        wheels = self.outputs.wheels
+        centre = np.array([world[w.centre] for w in wheels])
+        axis = np.array([vec[w.axis] for w in wheels])
+        radius = np.array([w.radius for w in wheels])
+        return centre, axis, centre + radius[:, None] * contact_direction(axis)
+
+    def _applied(
+        self, state: State, world: np.ndarray, vec: np.ndarray, load: LoadCase
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """
+        Generalised applied force Q (n_dof,) and the tangent of -Q.
+
+        Forces act on the upright at the current contact point and wheel
+        centre. The tangent treats both as material points (exact for the
+        wheel centre; the contact point's rolling along the tread is a small
+        second-order term that only slows convergence).
+        """
+        q = np.zeros(self.n_dof)
+        k = np.zeros((self.n_dof, self.n_dof))
+        if not (np.any(load.contact_force) or np.any(load.centre_force)
+                or np.any(load.contact_moment)):
+            return q, k
+        centre, _, contact = self._contact(world, vec)
+        for s, wheel in enumerate(self.outputs.wheels):
+            u = wheel.part
+            # a pure moment, fixed in the vehicle axes: no lever, no tangent term
+            q[6 * u + 3 : 6 * u + 6] += load.contact_moment[s]
+            for at, force in ((contact[s], load.contact_force[s]),
+                              (centre[s], load.centre_force[s])):
+                lever = at - state.p[u]
+                q[6 * u : 6 * u + 3] += force
+                q[6 * u + 3 : 6 * u + 6] += np.cross(lever, force)
+                rot = slice(6 * u + 3, 6 * u + 6)
+                k[rot, rot] += _chart(-force[None], lever[None])[0]
+        return q, k
+
+
+def contact_direction(axis: np.ndarray) -> np.ndarray:
+    """
+    Return the unit vectors (n, 3) from wheel centre to contact point.
+
+    The road normal (+z) projected into the wheel plane of spin axis ``axis``
+    (n, 3), negated.
+    """
+    up = np.array([0.0, 0.0, 1.0]) - axis[:, 2:3] * axis
+    return -up / np.linalg.norm(up, axis=1, keepdims=True)
+
+
+@dataclass
+class Evaluation:
+    """Everything one Newton iteration needs, in state q for loads."""
+
+    system: System
+    x: np.ndarray  # primitive values (n_prim,)
+    jacobian: np.ndarray  # constraint Jacobian J (m, n_dof)
+    measure_jacobian: np.ndarray  # energy-measure Jacobian (n_e, n_dof)
+    g: np.ndarray  # constraint residuals (m,)
+    y: np.ndarray  # energy deflections (n_e,)
+    energy: np.ndarray  # V_e (n_e,), J
+    d1: np.ndarray  # V_e' (n_e,), N or N*m (generalised force of the element)
+    d2: np.ndarray  # V_e'' (n_e,)
+    q_ext: np.ndarray  # applied generalised force (n_dof,)
+    k_ext: np.ndarray  # tangent of -q_ext (n_dof, n_dof)
+    so_vals: np.ndarray  # unweighted second-order blocks of the primitives
+
+    def force_residual(self, lam: np.ndarray) -> np.ndarray:
+        """Grad V - Q + J^T lambda (n_dof,), N and N*m."""
+        return self.measure_jacobian.T @ self.d1 - self.q_ext + self.jacobian.T @ lam
+
+    def tangent(self, lam: np.ndarray) -> np.ndarray:
+        """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
+        s, e = self.system, self.measure_jacobian
+        weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
+        stiff = np.nonzero(self.d2)[0]  # measures with a diagonal stiffness
+        k = e[stiff].T @ (self.d2[stiff, None] * e[stiff])
+        k += s.second_order(self.so_vals, weights) + self.k_ext
+        for (_, matrix), (rows, square) in zip(s.coupled, s._coupled_cols):
+            block = e[rows]
+            k[square] += block.T @ matrix @ block
+        return k
+
+
+def _skew(w: np.ndarray) -> np.ndarray:
+    out = np.zeros(w.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -w[..., 2], w[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = w[..., 2], -w[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -w[..., 1], w[..., 0]
+    return out
+
+
+def _chart(g: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """
+    Return the second-order rotation term of G.(R s) in exponential coordinates.
+
+    sym(G w^T) - (G.w) I, for G (n, 3) and w = R s (n, 3).
+    """
+    outer = g[:, :, None] * w[:, None, :]
+    dot = np.einsum('ni,ni->n', g, w)
+    return 0.5 * (outer + outer.transpose(0, 2, 1)) - dot[:, None, None] * _EYE
+

@@ -1,0 +1,15 @@
+"""The type check of the ROS-free cores (mypy.ini): part of the test suite, zero errors."""
+from __future__ import annotations
+
+from pathlib import Path
+import subprocess
+import sys
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def test_the_cores_type_check_clean() -> None:
+    run = subprocess.run([sys.executable, '-m', 'mypy', '--config-file', 'mypy.ini'],
+                         cwd=REPO, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.startswith('Success: no issues found'), run.stdout
