@@ -53,6 +53,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import commands
 
     commands.add_subcommands(sub)
+    from . import workbench_cmd
+
+    workbench_cmd.add_subcommands(sub, commands.HANDLERS)
     return parser
 
 
@@ -104,8 +107,10 @@ def cmd_data(args: argparse.Namespace) -> int:
 
 def _check_models(study) -> None:
     """
-    What a run builds from the data beyond loading it: each configuration's tire models
-    (finite forces over the working range), so `vd data check` and a run agree.
+    Build what a run builds from the data beyond loading it.
+
+    That is each configuration's tire models (finite forces over the working range), so
+    `vd data check` and a run agree.
     """
     from vd_data_server.errors import DataErrors
     from vd_data_server.tire_group import tire_properties
