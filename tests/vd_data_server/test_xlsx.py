@@ -14,8 +14,8 @@ import pytest
 
 from vd_data_server import schema
 from vd_data_server.errors import DataError
-from vd_data_server.masteredit import load_document
 from vd_data_server.master import load_master
+from vd_data_server.masteredit import load_document
 from vd_data_server.study import load_study
 from vd_data_server.xlsx import export_workbook, import_workbook
 from vdtest import tree_snapshot
