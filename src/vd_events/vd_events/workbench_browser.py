@@ -54,9 +54,12 @@ def browser(profile: Path) -> Iterator[Any]:
 
 
 def wait_for(driver: Any, condition: Any, timeout: float = LIVE_TIMEOUT) -> Any:
+    """Wait until ``condition(driver)`` holds; the page re-rendering meanwhile is fine."""
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
     from selenium.webdriver.support.ui import WebDriverWait
 
-    return WebDriverWait(driver, timeout, poll_frequency=0.05).until(condition)
+    return WebDriverWait(driver, timeout, poll_frequency=0.05, ignored_exceptions=(
+        NoSuchElementException, StaleElementReferenceException)).until(condition)
 
 
 def full_page_screenshot(driver: Any, path: Path) -> Path:
@@ -69,8 +72,9 @@ def full_page_screenshot(driver: Any, path: Path) -> Path:
     return path
 
 
-def save_screenshots(master: Path, out: Path, *, edits: bool = False) -> list[Path]:
-    """Save a PNG of the overview and of every group tab of the study into ``out``."""
+def save_screenshots(master: Path, out: Path, *, edits: bool = False,
+                     groups: list[str] | None = None) -> list[Path]:
+    """Save a PNG of the overview and of every group tab (or of ``groups``) into ``out``."""
     import tempfile
 
     from selenium.webdriver.common.by import By
@@ -92,8 +96,8 @@ def save_screenshots(master: Path, out: Path, *, edits: bool = False) -> list[Pa
             driver.get(server.url)
             wait_for(driver, lambda d: d.find_elements(By.ID, 'overview'))
             paths.append(full_page_screenshot(driver, out / 'workbench-overview.png'))
-            groups = server.workbench.state()['status']['groups']
-            for group in groups:
+            tabs = server.workbench.state()['status']['groups']
+            for group in [g for g in tabs if groups is None or g in groups]:
                 driver.find_element(By.ID, f'tab-{group}').click()
                 wait_for(driver, lambda d, g=group: d.find_elements(By.ID, f'group-{g}'))
                 paths.append(full_page_screenshot(driver, out / f'workbench-{group}.png'))
