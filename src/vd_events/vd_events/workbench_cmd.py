@@ -81,9 +81,14 @@ def marked_runner(master: Path) -> Callable[[Sequence[str]], Mapping[str, Any]]:
                 entry['metrics'].append({'event': result.request.event,
                                          'model': result.request.model, 'label': key,
                                          'value': metric.value, 'unit': metric.unit,
-                                         'text': f'{metric.value:.4g} {metric.unit}'.strip()})
+                                         'text': _text(metric.value, metric.unit)})
         return results
     return run
+
+
+def _text(value: float, unit: str) -> str:
+    """Format a metric for the page from its unit string."""
+    return f'{value:.4g} {unit}' if unit not in ('', '-') else f'{value:.4g}'
 
 
 def cmd_gui(args: argparse.Namespace) -> int:
