@@ -69,7 +69,17 @@ def full_page_screenshot(driver: Any, path: Path) -> Path:
     driver.set_window_size(max(WINDOW[0], int(width) + 20), min(int(height) + 140, 6000))
     driver.save_screenshot(str(path))
     driver.set_window_size(*WINDOW)
+    _shrink(path)
     return path
+
+
+def _shrink(path: Path) -> None:
+    """Store the screenshot with a palette of its colours (a page has few): ~4x smaller."""
+    from PIL import Image
+
+    with Image.open(path) as image:
+        small = image.convert('RGB').quantize(colors=128, method=Image.Quantize.MEDIANCUT)
+    small.save(path, optimize=True)
 
 
 def save_screenshots(master: Path, out: Path, *, edits: bool = False,
