@@ -365,6 +365,9 @@ class _Handler(BaseHTTPRequestHandler):
             self._json(HTTPStatus.UNPROCESSABLE_ENTITY, {'ok': False, 'error': str(err)})
         except (BrokenPipeError, ConnectionResetError):
             pass
+        except Exception as err:  # noqa: BLE001 - one failed request never ends the server
+            self._json(HTTPStatus.INTERNAL_SERVER_ERROR,
+                       {'ok': False, 'error': f'the request failed: {type(err).__name__}: {err}'})
 
     def do_GET(self) -> None:  # noqa: N802 - the base's name
         self._guarded(self._get)
@@ -448,6 +451,16 @@ class WorkbenchServer(ThreadingHTTPServer):
     @property
     def url(self) -> str:
         return self.origin + '/'
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        """Say nothing of a page that went away; one line for anything else."""
+        import sys
+
+        error = sys.exc_info()[1]
+        if isinstance(error, (ConnectionResetError, BrokenPipeError, TimeoutError)):
+            return
+        print(f'workbench: a request from {client_address[0]} failed: '
+              f'{type(error).__name__}: {error}', file=sys.stderr)
 
     def start(self) -> threading.Thread:
         """Serve and watch in background threads (tests, ``vd gui --screenshots``)."""
