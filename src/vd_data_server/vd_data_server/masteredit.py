@@ -19,7 +19,6 @@ from dataclasses import dataclass
 import io
 import os
 from pathlib import Path
-import re
 import tempfile
 from typing import Any
 
@@ -27,11 +26,10 @@ from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
 from .errors import DataError, DataErrors
-from .master import inside
+from .master import _NAME, inside  # the one rule for configuration and variant names
 from .study import Study, load_study
 from .yamlio import read_bytes
 
-_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_.-]*$')
 #: suffix of the copy of the previous content kept next to an edited master file
 BACKUP_SUFFIX = '.bak'
 

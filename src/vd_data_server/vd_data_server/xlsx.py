@@ -35,6 +35,7 @@ from openpyxl.utils import get_column_letter
 
 from . import schema
 from .errors import DataError, DataErrors
+from .master import _NAME  # the one rule for configuration and variant names
 from .masteredit import write_master
 from .study import NOT_USED, Study
 from .workbench import study_state
@@ -49,7 +50,6 @@ STUDY_FIELDS = ('name', 'description', 'vehicle', 'data_root')
 OVERVIEW_HEAD = ('input group', 'defaults')
 CONSISTENCY_HEAD = 'all configurations'
 OVERRIDE_HEAD = ('configuration', 'key', 'value', 'unit')
-_NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_.-]*$')
 _QUANTITY = re.compile(r'^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s+(\S.*?)\s*$')
 #: largest workbook read, bytes (a study of 50 configurations is < 200 kB)
 MAX_BYTES = 20 * 1024 * 1024
