@@ -26,7 +26,8 @@ def add_subcommands(sub: argparse._SubParsersAction,
                      'into DIR (headless Chromium) and exit')
     handlers['gui'] = cmd_gui
 
-    export = sub.add_parser('export', help='export the study').add_subparsers(
+    export = sub.add_parser('export', help='export the study (vd export xlsx; back with: vd '
+                            'import xlsx WORKBOOK --out MASTER)').add_subparsers(
         dest='export_format', required=True)
     xlsx = export.add_parser('xlsx', help='the overview and group tabs as an Excel workbook')
     xlsx.add_argument('--master', help='master file (default: the bundled sample study)')
@@ -34,14 +35,23 @@ def add_subcommands(sub: argparse._SubParsersAction,
                       'out/<master file name>.xlsx)')
     handlers['export'] = cmd_export
 
-    imp = sub.add_parser('import', help='import a master workbook').add_subparsers(
-        dest='import_format', required=True)
-    ixlsx = imp.add_parser('xlsx', help='a master workbook (vd export xlsx layout) into a '
-                           'master file')
-    ixlsx.add_argument('workbook')
-    ixlsx.add_argument('--out', required=True, help='master file to write (its folder decides '
-                       'the data root, as for any master file; a previous file is kept as .bak)')
-    handlers['import'] = cmd_import
+
+
+def import_xlsx_parser() -> argparse.ArgumentParser:
+    """
+    Build the parser of ``vd import xlsx WORKBOOK --out MASTER``.
+
+    ``vd import`` also takes measured data (``vd import FILE... --bag DIR``): ``cli.main``
+    hands ``vd import xlsx ...`` to this parser, so the two never share one.
+    """
+    parser = argparse.ArgumentParser(prog='vd import xlsx', description='a master workbook '
+                                     '(vd export xlsx layout) into a master file')
+    parser.add_argument('workbook')
+    parser.add_argument('--out', required=True, help='master file to write (its folder '
+                        'decides the data root, as for any master file; a previous file is '
+                        'kept as .bak)')
+    parser.set_defaults(command='import')
+    return parser
 
 
 def _master(path: str | None) -> Path:
