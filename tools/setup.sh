@@ -11,6 +11,20 @@ say() { printf '[setup] %s\n' "$*" >&2; }
 
 hash_of() { cat "$@" 2>/dev/null | sha256sum | cut -c1-16; }
 
+# 0. Debian's Chromium and ChromeDriver for the workbench's browser tests: installed only
+#    when missing, only as root with apt-get, never fatal (without them those tests skip
+#    and say why). VD_NO_APT=1 skips this step.
+if { [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; } && [ -z "${VD_NO_APT:-}" ]; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        say "installing Debian's chromium and chromium-driver (browser tests)"
+        { DEBIAN_FRONTEND=noninteractive timeout 900 apt-get update -qq \
+            && DEBIAN_FRONTEND=noninteractive timeout 900 apt-get install -y -qq chromium chromium-driver; } >&2 \
+            || say "could not install chromium/chromium-driver: the browser tests will skip"
+    else
+        say "chromium/chromium-driver missing (needs root and apt-get): the browser tests will skip"
+    fi
+fi
+
 # 1. virtual environment and pinned packages
 if [ ! -x "$VENV/bin/python" ]; then
     say "creating .venv"

@@ -53,6 +53,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import commands
 
     commands.add_subcommands(sub)
+    from . import workbench_cmd
+
+    workbench_cmd.add_subcommands(sub, commands.HANDLERS)
     return parser
 
 
@@ -104,8 +107,10 @@ def cmd_data(args: argparse.Namespace) -> int:
 
 def _check_models(study) -> None:
     """
-    What a run builds from the data beyond loading it: each configuration's tire models
-    (finite forces over the working range), so `vd data check` and a run agree.
+    Build what a run builds from the data beyond loading it.
+
+    That is each configuration's tire models (finite forces over the working range), so
+    `vd data check` and a run agree.
     """
     from vd_data_server.errors import DataErrors
     from vd_data_server.tire_group import tire_properties
@@ -129,11 +134,15 @@ def _check_models(study) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    handlers: dict[str, Callable[[argparse.Namespace], int]] = {'data': cmd_data}
-    from . import commands
+    from . import commands, workbench_cmd
 
+    argv = list(sys.argv[1:] if argv is None else argv)
+    handlers: dict[str, Callable[[argparse.Namespace], int]] = {'data': cmd_data}
+    if argv[:2] == ['import', 'xlsx']:  # beside `vd import FILE... --bag` (test data)
+        args = workbench_cmd.import_xlsx_parser().parse_args(argv[2:])
+        handlers['import'] = workbench_cmd.cmd_import
+    else:
+        args = build_parser().parse_args(argv)
     handlers.update(commands.HANDLERS)
     want_json = bool(getattr(args, 'json', False))
     previous = signal.signal(signal.SIGTERM, _terminate)

@@ -1,0 +1,173 @@
+"""
+The workbench server (vd gui) over HTTP: state, edits, live push and its security defaults.
+
+Every refused request checks the exact message and that nothing under the data root changed.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterator
+import http.client
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from vd_data_server.errors import DataError
+from vd_data_server.study import load_study
+from vd_data_server.workbench import EDITS_OFF, Workbench, WorkbenchServer
+from vdtest import line_no, replace_once, tree_snapshot
+
+CAMBER = {'op': 'override', 'configuration': 'baseline', 'key': 'front_alignment.camber',
+          'value': '-1.2 deg'}
+
+
+@pytest.fixture
+def server(sedan_master: Path) -> Iterator[WorkbenchServer]:
+    bench = WorkbenchServer(Workbench(sedan_master, edits=True))
+    bench.start()
+    yield bench
+    bench.stop()
+
+
+def call(server: WorkbenchServer, method: str, path: str, body: Any = None,
+         headers: dict[str, str] | None = None) -> tuple[int, Any]:
+    conn = http.client.HTTPConnection('127.0.0.1', server.port, timeout=30)
+    sent = {'Host': f'127.0.0.1:{server.port}', 'Origin': server.origin,
+            'Content-Type': 'application/json', **(headers or {})}
+    sent = {k: v for k, v in sent.items() if v is not None}
+    data = json.dumps(body).encode() if body is not None else None
+    conn.request(method, path, body=data, headers=sent)
+    response = conn.getresponse()
+    raw = response.read()
+    conn.close()
+    kind = response.getheader('Content-Type', '')
+    return response.status, json.loads(raw) if kind == 'application/json' else raw.decode()
+
+
+def test_the_state_carries_the_status_contract(server: WorkbenchServer,
+                                               sedan_master: Path) -> None:
+    status, state = call(server, 'GET', '/api/state')
+    assert status == 200
+    assert state['status'] == load_study(sedan_master).to_json()
+    assert state['edits'] is True
+    sport = next(c for c in state['configurations'] if c['name'] == 'sport')
+    assert sport['overrides'][0] == {'key': 'front_alignment.camber', 'value': '-1.5 deg',
+                                     'unit': 'deg'}
+    rows = {r['key']: r for r in state['groups']['front_alignment']['rows']}
+    assert rows['camber']['consistency'] == 'DIFFERS'
+    assert rows['camber']['cells']['sport'] == {
+        'text': '-1.5', 'unit': 'deg', 'source': 'master override '
+        'configurations.sport.overrides.front_alignment.camber', 'modified': True,
+        'data_value': '-0.5'}
+    lca = state['hardpoints']['front_hardpoints']['sport']['lca_outer']
+    assert lca == pytest.approx([18.4, 706.0, 171.0])
+    assert state['available']['front_spring'] == ['X', 'Y']
+    status, page = call(server, 'GET', '/')
+    assert status == 200 and '<script src="workbench.js"' in page
+
+
+def test_an_edit_lands_in_the_master_file(server: WorkbenchServer, sedan_master: Path) -> None:
+    status, answer = call(server, 'POST', '/api/edit', CAMBER)
+    assert (status, answer['ok'], answer['message']) == (
+        200, True, 'baseline: front_alignment.camber = -1.2 deg')
+    assert 'front_alignment.camber: -1.2 deg' in sedan_master.read_text()
+    entry = next(s for s in answer['state']['status']['status']
+                 if (s['configuration'], s['group']) == ('baseline', 'front_alignment'))
+    assert entry['state'] == 'MODIFIED'
+
+
+def refused(server: WorkbenchServer, root: Path, *args: Any, **kwargs: Any) -> tuple[int, str]:
+    before = tree_snapshot(root)
+    status, answer = call(server, *args, **kwargs)
+    assert tree_snapshot(root) == before
+    return status, answer['error']
+
+
+def test_a_bad_value_is_refused(server: WorkbenchServer, sample_root: Path,
+                                sedan_master: Path) -> None:
+    assert refused(server, sample_root, 'POST', '/api/edit', {**CAMBER, 'value': '-1.2 kg'}) == (
+        422, f'{sedan_master}: configurations.baseline.overrides.front_alignment.camber: unit '
+        "'kg' is not an angle unit (expected e.g. 'rad')")
+    assert refused(server, sample_root, 'POST', '/api/edit', {**CAMBER, 'value': 3}) == (
+        400, "'value' must be a text")
+    assert refused(server, sample_root, 'POST', '/api/edit', [1]) == (
+        400, 'the request body must be a JSON object')
+
+
+def test_a_foreign_origin_or_host_is_refused(server: WorkbenchServer,
+                                             sample_root: Path) -> None:
+    assert refused(server, sample_root, 'POST', '/api/edit', CAMBER,
+                   headers={'Origin': 'http://evil.example'}) == (
+        403, "origin 'http://evil.example' refused (edits are accepted only from "
+        f'{server.origin})')
+    assert refused(server, sample_root, 'POST', '/api/edit', CAMBER,
+                   headers={'Origin': None}) == (
+        403, f"origin 'none' refused (edits are accepted only from {server.origin})")
+    assert refused(server, sample_root, 'GET', '/api/state',
+                   headers={'Host': f'evil.example:{server.port}'}) == (
+        403, f"host 'evil.example:{server.port}' refused (the workbench answers only as "
+        f'{server.origin})')
+
+
+def test_edits_are_off_by_default(sedan_master: Path, sample_root: Path) -> None:
+    bench = WorkbenchServer(Workbench(sedan_master))
+    bench.start()
+    try:
+        assert refused(bench, sample_root, 'POST', '/api/edit', CAMBER) == (403, EDITS_OFF)
+        assert call(bench, 'GET', '/api/state')[1]['edits'] is False
+    finally:
+        bench.stop()
+
+
+def test_only_files_under_the_data_root_are_served(server: WorkbenchServer,
+                                                   sample_root: Path) -> None:
+    root = server.workbench.data_root
+    status, text = call(server, 'GET', '/api/file?path=sedan/front_spring/X.yaml')
+    assert status == 200 and text.startswith('kind: spring')
+    assert refused(server, sample_root, 'GET', '/api/file?path=../../etc/passwd') == (
+        403, f"'../../etc/passwd' is outside the data root {root}: not read")
+    assert refused(server, sample_root, 'GET', '/api/file?path=/etc/passwd') == (
+        403, f"'/etc/passwd' is outside the data root {root}: not read")
+
+
+def test_a_master_file_outside_its_data_root_is_refused(sample_root: Path,
+                                                        tmp_path: Path) -> None:
+    outside = tmp_path / 'elsewhere.yaml'
+    outside.write_text((sample_root / 'studies' / 'sedan.yaml').read_text().replace(
+        'data_root: ..', f'data_root: {sample_root}'))
+    with pytest.raises(DataError) as info:
+        Workbench(outside, edits=True)
+    assert str(info.value) == (f'{outside}: is outside its data root {sample_root}: the '
+                               'workbench edits only files under the data root')
+
+
+def test_a_change_on_disk_is_pushed(server: WorkbenchServer, sample_root: Path) -> None:
+    conn = http.client.HTTPConnection('127.0.0.1', server.port, timeout=30)
+    conn.request('GET', '/api/events', headers={'Host': f'127.0.0.1:{server.port}'})
+    stream = conn.getresponse()
+    assert stream.getheader('Content-Type') == 'text/event-stream'
+
+    def next_state() -> dict[str, Any]:
+        lines = []
+        while True:
+            line = stream.fp.readline().decode()
+            if line == '\n' and lines:
+                break
+            if line.startswith('data: '):
+                lines.append(line[6:])
+        return json.loads(''.join(lines))
+
+    first = next_state()
+    replace_once(sample_root / 'sedan/front_spring/X.yaml', 'rate: 30.0', 'rate: 31.0')
+    pushed = next_state()
+    conn.close()
+    assert pushed['version'] > first['version']
+    rate = next(r for r in pushed['groups']['front_spring']['rows'] if r['key'] == 'rate')
+    assert rate['cells']['baseline']['text'] == '31'
+    # a broken file: the last good data stays, with the loader's message
+    replace_once(sample_root / 'sedan/front_spring/X.yaml', 'rate: 31.0', 'rate: -31.0')
+    spring = sample_root / 'sedan/front_spring/X.yaml'
+    assert server.workbench.wait_change(pushed['version'], 10.0)['errors'] == [
+        f"sedan/front_spring/X.yaml: rate: must be positive, found -31.0 (line "
+        f"{line_no(spring, '  rate:')})"]
