@@ -13,6 +13,8 @@ Plan file::
         overrides: []                # optional GROUP.KEY=VALUE for these runs
         axle: front                  # optional (K&C events)
         fidelity: flexible           # optional (K&C: rigid, the default, or flexible)
+    measurements: [path/to/bag]      # optional: bags of vd import, relative to the plan;
+                                     # the study report compares them with the runs
 """
 from __future__ import annotations
 
@@ -40,6 +42,7 @@ class Plan:
     name: str
     master: Path
     runs: tuple[Mapping[str, Any], ...]
+    measurements: tuple[Path, ...] = ()
 
 
 def load_plan(path: Path) -> Plan:
@@ -48,8 +51,9 @@ def load_plan(path: Path) -> Plan:
     if not isinstance(raw, Mapping):
         raise DataError("expected a mapping with 'name' and 'runs'", file=file)
     for key in raw:
-        if key not in ('name', 'master', 'runs'):
-            raise DataError('unknown key (expected name, master, runs)', file=file, key=key)
+        if key not in ('name', 'master', 'runs', 'measurements'):
+            raise DataError('unknown key (expected name, master, runs, measurements)',
+                            file=file, key=key)
     name = raw.get('name')
     if not isinstance(name, str) or not _NAME.match(name):
         raise DataError("missing or invalid plan name (letters, digits, '_', '-', '.')",
@@ -71,7 +75,21 @@ def load_plan(path: Path) -> Plan:
                 raise DataError(f"unknown key (expected one of: {', '.join(RUN_KEYS)})",
                                 file=file, key=f'runs[{i}].{key}')
         _check_run_types(run, file, f'runs[{i}]')
-    return Plan(path, name, master, tuple(runs))
+    return Plan(path, name, master, tuple(runs), _measurements(raw, path))
+
+
+def _measurements(raw: Mapping[str, Any], path: Path) -> tuple[Path, ...]:
+    """The plan's ``measurements``: finished bags (vd import), relative to the plan."""
+    given = raw.get('measurements') or []
+    if not isinstance(given, list) or not all(isinstance(g, str) for g in given):
+        raise DataError(f'expected a list of bag paths, found {given!r}', file=str(path),
+                        key='measurements')
+    bags = tuple(Path(g) if Path(g).is_absolute() else path.parent / g for g in given)
+    for i, bag in enumerate(bags):
+        if not (bag / 'metadata.yaml').is_file():
+            raise DataError(f'{bag}: not a finished bag (vd import writes one)', file=str(path),
+                            key=f'measurements[{i}]')
+    return bags
 
 
 def _check_run_types(run: Mapping[str, Any], file: str, where: str) -> None:
@@ -116,6 +134,7 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
              progress: Callable | None = None) -> dict[str, Any]:
     """Validate every run, then run them all, then build the report."""
     from .report import build_report
+    from .study_report import build_study_report
 
     study = load_study(plan.master)
     requests = expand(plan, study.configuration_names, bags)
@@ -135,8 +154,11 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
     report = build_report([r.bag for r in done if r.bag], out) if done else None
+    study_report = build_study_report([*(r.bag for r in done if r.bag), *plan.measurements],
+                                      out) if done else None
     return {
         'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
+        'study_report': str(study_report),
         'bags': str(bags), 'errors': errors,
         'runs': [{'event': r.request.event, 'configuration': r.request.configuration,
                   'model': r.request.model, 'axle': r.request.axle, 'bag': str(r.bag) if r.bag else None,

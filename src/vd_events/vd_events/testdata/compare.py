@@ -11,7 +11,10 @@ every channel both have, on the **test's points**:
   the slopes at design (x = 0) of simulation and test, both from the same quadratic
   least-squares fit over the same window (``kc.metrics.slope_at`` with the K&C metrics'
   windows: 10 mm, 500 N, 25 N*m; 10 deg of steering-wheel angle): bump steer, camber
-  gain, lateral compliance steer and the other slopes.
+  gain, lateral compliance steer and the other slopes. It passes within
+  GRADIENT_TOLERANCE of the measured slope plus two standard errors of that slope (a
+  straight line through the window's measured points), so rig noise on a coarse sweep
+  is not counted as model error.
 * Vehicle (test model ``test``): the simulation is interpolated linearly at the log's
   times over the common time span. Where both signals are uniformly sampled at 20 Hz or
   more, both are low-passed first with the 12-pole phaseless Butterworth of the
@@ -75,6 +78,7 @@ class ChannelError:
     gradient_test: float | None = None
     gradient_unit: str = ''
     tolerance: Mapping[str, float] = field(default_factory=dict)
+    gradient_uncertainty: float = 0.0  # standard error of the measured slope
 
     @property
     def gradient_error(self) -> float | None:
@@ -89,8 +93,7 @@ class ChannelError:
         rel = self.tolerance.get('gradient')
         g = self.gradient_error
         if rel is not None and g is not None and self.gradient_test is not None:
-            scale = max(abs(self.gradient_test), 1e-12)
-            if abs(g) > rel * scale:
+            if abs(g) > rel * abs(self.gradient_test) + 2.0 * self.gradient_uncertainty:
                 out.append('gradient')
         return out
 
@@ -105,6 +108,7 @@ class ChannelError:
                 'rms': self.rms, 'max': self.max, 'bias': self.bias, 'test_rms': self.test_rms,
                 'gradient_sim': self.gradient_sim, 'gradient_test': self.gradient_test,
                 'gradient_error': self.gradient_error, 'gradient_unit': self.gradient_unit,
+                'gradient_uncertainty': self.gradient_uncertainty,
                 'tolerance': dict(self.tolerance), 'verdict': self.verdict,
                 'failures': self.failures}
 
@@ -151,6 +155,26 @@ def _tolerance(channel: str, unit: str, overrides: Mapping[str, Mapping[str, flo
     return tol
 
 
+def slope_uncertainty(x: np.ndarray, y: np.ndarray, half_width: float) -> float:
+    """
+    Return the standard error of the measured slope at x = 0.
+
+    A straight line is fitted to the points of the gradient window (those ``slope_at``
+    uses); its slope's standard error is the measurement noise in the slope.
+    """
+    distance = np.abs(x)
+    mask = distance <= half_width + 1e-12
+    if np.count_nonzero(mask) < 3:
+        mask = distance <= np.sort(distance)[min(2, distance.size - 1)] + 1e-12
+    xs, ys = x[mask], y[mask]
+    if xs.size < 3:
+        return 0.0
+    b, a = np.polyfit(xs, ys, 1)
+    spread = float(np.sum((xs - xs.mean()) ** 2))
+    residual = float(np.sum((ys - a - b * xs) ** 2))
+    return math.sqrt(residual / (xs.size - 2) / spread) if spread > 0.0 else 0.0
+
+
 def _uniform(t: np.ndarray) -> bool:
     dt = np.diff(t)
     return bool(dt.size and np.all(dt > 0) and np.ptp(dt) <= 1e-6 * dt.mean() + 1e-12)
@@ -167,8 +191,14 @@ def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> np.ndarray:
 
 
 def compare(sim: EventOutcome, test: EventOutcome,
-            overrides: Mapping[str, Mapping[str, float]] | None = None) -> Comparison:
-    """Compare ``sim`` with ``test`` on the test's points (module doc)."""
+            overrides: Mapping[str, Mapping[str, float]] | None = None,
+            inputs: Sequence[str] = ()) -> Comparison:
+    """
+    Compare ``sim`` with ``test`` on the test's points (module doc).
+
+    ``inputs``: channels the simulation took from the test (a replay's steering and
+    speed), named in the notes and not compared.
+    """
     overrides = overrides or {}
     kc = test.model == 'rig'
     axis = KC_SWEEP.get(test.event, 'wheel_travel_left') if kc else 'time'
@@ -194,9 +224,12 @@ def compare(sim: EventOutcome, test: EventOutcome,
     if filter_both:
         notes.append('both low-passed first: 12-pole phaseless Butterworth (fmvss126), '
                      '6 Hz responses, 10 Hz steering-wheel angle')
+    if inputs:
+        notes.append(f"inputs of the simulation, taken from the test: {', '.join(inputs)} "
+                     '(not compared)')
     errors, sim_x = [], {}
     for name in test.channels:
-        if name == axis or name in NOT_COMPARED or name not in sim.channels:
+        if name == axis or name in NOT_COMPARED or name in inputs or name not in sim.channels:
             continue
         unit = sim.channels[name].unit
         try:
@@ -217,17 +250,18 @@ def compare(sim: EventOutcome, test: EventOutcome,
         diff = y_sim - y_test[inside]
         sim_x[name] = y_sim
         grad_sim = grad_test = None
-        grad_unit = ''
+        grad_unit, grad_se = '', 0.0
         if kc and axis in GRADIENT_WINDOWS and xt[inside].min() < 0.0 < xt[inside].max():
             window = GRADIENT_WINDOWS[axis]
             grad_sim = float(slope_at(xs_sorted, y_sim_sorted, 0.0, window))
             grad_test = float(slope_at(xt, y_test, 0.0, window))
+            grad_se = slope_uncertainty(xt, y_test, window)
             grad_unit = f'{unit}/{test.channels[axis].unit}'
         errors.append(ChannelError(
             channel=name, unit=unit, points=int(diff.size), rms=float(np.sqrt(np.mean(diff**2))),
             max=float(np.max(np.abs(diff))), bias=float(np.mean(diff)),
             test_rms=float(np.sqrt(np.mean(y_test[inside]**2))), gradient_sim=grad_sim,
-            gradient_test=grad_test, gradient_unit=grad_unit,
+            gradient_test=grad_test, gradient_unit=grad_unit, gradient_uncertainty=grad_se,
             tolerance=_tolerance(name, unit, overrides, kc)))
     if not errors:
         raise InputError('comparison', f'{test.event}: the test and the simulation have no '

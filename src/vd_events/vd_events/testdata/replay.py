@@ -22,6 +22,8 @@ from .columns import InputError
 
 MODELS = ('bicycle', 'vehicle')
 NEEDED = ('time', 'steering_wheel_angle', 'speed')
+#: what the replay takes from the log (not compared)
+INPUTS = ('steering_wheel_angle', 'speed')
 UNITS = {'time': 's', 'yaw_rate': 'rad/s', 'lateral_acceleration': 'm/s^2', 'sideslip': 'rad',
          'lateral_velocity': 'm/s', 'speed': 'm/s', 'steering_wheel_angle': 'rad',
          'steer_angle': 'rad'}
@@ -107,7 +109,7 @@ def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
                          f"{', '.join(study.configuration_names)})")
     config = study.configurations[name]
     runs = [run for test in tests for run in replay_outcomes(config, test, models)]
-    comparisons = [compare(run, test) for test in tests for run in runs
+    comparisons = [compare(run, test, inputs=INPUTS) for test in tests for run in runs
                    if run.event == test.event]
     now = int(dt.datetime.now(dt.timezone.utc).timestamp()) * 1_000_000_000
     path = write_outcomes(bag, [(r, now) for r in runs], {
