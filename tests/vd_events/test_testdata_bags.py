@@ -69,7 +69,7 @@ def test_vbo_bag_holds_the_log_and_its_provenance(vbox_bag: Path) -> None:
     assert 'Slip Angle: {channel: sideslip, sign: -1}' in meta['vd.column_map']
     assert f'source: {source}' in outcome.notes
     states = [m.msg for m in read_bag(vbox_bag, {'/vd/vehicle/state'})]
-    odom = [m for m in read_bag(vbox_bag, {'/vd/vehicle/odom'})]
+    odom = list(read_bag(vbox_bag, {'/vd/vehicle/odom'}))
     assert len(states) == len(odom) == 161
     assert_allclose([s.yaw_rate for s in states], outcome.channels['yaw_rate'].values)
     assert all(math.isnan(s.front_left.load) for s in states)  # not measured
@@ -79,8 +79,12 @@ def test_vbo_bag_holds_the_log_and_its_provenance(vbox_bag: Path) -> None:
 
 
 def test_log_of_the_model_matches_the_model_within_the_noise(vbox_bag: Path) -> None:
-    """The sample log is the full vehicle's sine steer: heading, position and lateral
-    acceleration imported from minutes, degrees and g agree with each other."""
+    """
+    Check the imported log against itself: heading vs yaw rate, track vs speed.
+
+    Heading, position and speed imported from degrees, minutes and km/h agree with each
+    other within the sensor noise.
+    """
     (log,) = load_outcomes(vbox_bag)
     ch = {k: c.values for k, c in log.channels.items()}
     # yaw from the heading vs the integral of the logged yaw rate (ISO sign of both)
@@ -138,8 +142,12 @@ def test_kc_compared_at_the_measured_points(baseline) -> None:
 
 
 def test_replay_through_both_models(vbox_bag: Path, tmp_path: Path) -> None:
-    """The log was made by the full vehicle: its replay reproduces yaw rate and lateral
-    acceleration within the sensor noise, closer than the linear bicycle does."""
+    """
+    Replay the log through the full vehicle and the bicycle model.
+
+    The log was made by the full vehicle: its replay reproduces yaw rate and lateral
+    acceleration within the sensor noise, closer than the linear bicycle does.
+    """
     from vd_events.testdata.replay import replay_bag
 
     result = replay_bag(vbox_bag, ['bicycle', 'vehicle'], 'baseline', None,

@@ -108,8 +108,12 @@ def test_vbo_map_adds_module_channel_with_sign(tmp_path: Path) -> None:
 
 
 def test_vbo_without_channel_units(tmp_path: Path) -> None:
-    """No [channel units]: Racelogic's documented yaw-rate unit, noted; a steering unit is
-    then the map's to give (and is refused without one)."""
+    """
+    Read a log without [channel units].
+
+    Racelogic's documented yaw-rate unit is assumed and noted; a steering unit is then
+    the map's to give (and is refused without one).
+    """
     text = vbo(tmp_path, [
         '137 101405.00 +03120.00000 +00070.00000 072.000 090.00 +0.0 +1.0E+01 +3.0E+01',
         '137 101405.05 +03120.00000 +00070.00000 072.000 090.00 +0.0 +1.0E+01 +3.0E+01',
