@@ -189,7 +189,6 @@ def cmd_study(args: argparse.Namespace) -> int:
 
 def cmd_report(args: argparse.Namespace) -> int:
     from .report import build_report
-
     from .study_report import build_study_report
 
     path = build_report([Path(b) for b in args.bags], Path(args.out))

@@ -79,7 +79,7 @@ def load_plan(path: Path) -> Plan:
 
 
 def _measurements(raw: Mapping[str, Any], path: Path) -> tuple[Path, ...]:
-    """The plan's ``measurements``: finished bags (vd import), relative to the plan."""
+    """Return the plan's ``measurements``: finished bags (vd import), relative to it."""
     given = raw.get('measurements') or []
     if not isinstance(given, list) or not all(isinstance(g, str) for g in given):
         raise DataError(f'expected a list of bag paths, found {given!r}', file=str(path),
@@ -153,9 +153,9 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     results = runner(plan.master, requests, progress)
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
-    report = build_report([r.bag for r in done if r.bag], out) if done else None
-    study_report = build_study_report([*(r.bag for r in done if r.bag), *plan.measurements],
-                                      out) if done else None
+    bags_done = [*(r.bag for r in done if r.bag), *plan.measurements]
+    report = build_report(bags_done, out) if done else None
+    study_report = build_study_report(bags_done, out) if done else None
     return {
         'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
         'study_report': str(study_report),
