@@ -41,7 +41,7 @@ KC_TABLE = ('bump_steer', 'camber_gain', 'wheel_rate', 'ride_rate', 'track_chang
             'aligning_torque_compliance_steer', 'steering_ratio', 'ackermann')
 
 
-def _figure_html(xa, ya, runs, first: bool) -> str:
+def _figure_html(xa, ya, runs) -> str:
     """One interactive overlay (plotly) of ``ya`` over ``xa`` for ``runs``."""
     import plotly.graph_objects as go
 
@@ -67,6 +67,19 @@ def _plotly_js() -> str:
     return get_plotlyjs()
 
 
+def _vehicle_test_plots():
+    """Return the channel pairs of a vehicle log and its replays (event vehicle_test)."""
+    from .report import DEG, Axis
+
+    time = Axis('time', 'time [s]')
+    return tuple((time, Axis(c, label, scale)) for c, label, scale in (
+        ('yaw_rate', 'yaw rate [deg/s]', DEG),
+        ('lateral_acceleration', 'lateral acceleration [m/s²]', 1.0),
+        ('sideslip', 'sideslip angle [deg]', DEG), ('roll', 'roll angle [deg]', DEG),
+        ('steering_wheel_angle', 'steering-wheel angle [deg]', DEG),
+        ('speed', 'speed [km/h]', 3.6)))
+
+
 def _event_sections(runs) -> list[str]:
     from .report import KC_PLOTS, PLOTS, VEHICLE_PLOTS, _family, _generic_plots, _section
 
@@ -76,12 +89,13 @@ def _event_sections(runs) -> list[str]:
     out = []
     for (event, axle, family), members in groups.items():
         table = {'kc': KC_PLOTS, 'vehicle': VEHICLE_PLOTS}.get(family, PLOTS)
-        plots = table.get(event, _generic_plots(members[0]))
+        plots = table.get(event, _vehicle_test_plots() if event == 'vehicle_test'
+                          else _generic_plots(members[0]))
         figures = []
         for xa, ya in plots:
             usable = [r for r in members if xa.channel in r.channels and ya.channel in r.channels]
             if usable:
-                figures.append(f"<div class='fig'>{_figure_html(xa, ya, usable, not out)}</div>")
+                figures.append(f"<div class='fig'>{_figure_html(xa, ya, usable)}</div>")
         section = _section(event, axle, family, members, [])
         head, _, rest = section.partition('</h2>')
         out.append(f"{head}</h2><div class='figs'>{''.join(figures)}</div>{rest}")

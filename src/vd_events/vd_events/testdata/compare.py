@@ -61,6 +61,8 @@ TOLERANCES: Mapping[str, Mapping[str, float]] = {
     'N*m': {'rms': 10.0, 'max': 30.0, 'bias': 10.0},
 }
 GRADIENT_TOLERANCE = 0.10  # relative error of a slope at design
+#: a simulation's note naming the channels it took from the test (a replay's inputs)
+INPUTS_NOTE = 'inputs taken from the log: '
 #: how a unit is shown in tables (the values stay SI in JSON)
 DISPLAY = {'rad': ('deg', DEG), 'rad/s': ('deg/s', DEG), 'm': ('mm', 1e3)}
 
@@ -197,9 +199,12 @@ def compare(sim: EventOutcome, test: EventOutcome,
     Compare ``sim`` with ``test`` on the test's points (module doc).
 
     ``inputs``: channels the simulation took from the test (a replay's steering and
-    speed), named in the notes and not compared.
+    speed, also read from a sim note starting INPUTS_NOTE), named in the notes and not
+    compared.
     """
     overrides = overrides or {}
+    inputs = tuple(inputs) + tuple(c.strip() for n in sim.notes if n.startswith(INPUTS_NOTE)
+                                   for c in n[len(INPUTS_NOTE):].split(','))
     kc = test.model == 'rig'
     axis = KC_SWEEP.get(test.event, 'wheel_travel_left') if kc else 'time'
     notes: list[str] = []
@@ -225,8 +230,8 @@ def compare(sim: EventOutcome, test: EventOutcome,
         notes.append('both low-passed first: 12-pole phaseless Butterworth (fmvss126), '
                      '6 Hz responses, 10 Hz steering-wheel angle')
     if inputs:
-        notes.append(f"inputs of the simulation, taken from the test: {', '.join(inputs)} "
-                     '(not compared)')
+        notes.append(f"inputs of the simulation, taken from the test: "
+                     f"{', '.join(dict.fromkeys(inputs))} (not compared)")
     errors, sim_x = [], {}
     for name in test.channels:
         if name == axis or name in NOT_COMPARED or name in inputs or name not in sim.channels:

@@ -13,6 +13,7 @@ and its axle properties from the K&C results of the same data hash, as ``vd run`
 from __future__ import annotations
 
 from collections.abc import Sequence
+import dataclasses
 import datetime as dt
 from pathlib import Path
 
@@ -94,7 +95,7 @@ def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
 
     from ..bag import check_bag_path
     from ..outcome_bag import write_outcomes
-    from .compare import compare, load_outcomes, write_page
+    from .compare import INPUTS_NOTE, compare, load_outcomes, write_page
 
     check_bag_path(bag)
     tests = [o for o in load_outcomes(test_bag) if o.model == 'test']
@@ -108,8 +109,9 @@ def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
         raise InputError(master, f"configuration '{name}' does not exist (available: "
                          f"{', '.join(study.configuration_names)})")
     config = study.configurations[name]
-    runs = [run for test in tests for run in replay_outcomes(config, test, models)]
-    comparisons = [compare(run, test, inputs=INPUTS) for test in tests for run in runs
+    runs = [dataclasses.replace(run, notes=(*run.notes, INPUTS_NOTE + ', '.join(INPUTS)))
+            for test in tests for run in replay_outcomes(config, test, models)]
+    comparisons = [compare(run, test) for test in tests for run in runs
                    if run.event == test.event]
     now = int(dt.datetime.now(dt.timezone.utc).timestamp()) * 1_000_000_000
     path = write_outcomes(bag, [(r, now) for r in runs], {
