@@ -177,3 +177,38 @@ def test_study_report_from_bags_alone(sim_bounce: Path, vbox_bag: Path, tmp_path
     assert '<script src=' not in text  # self-contained: plotly.js inlined
     assert 'data:image/png;base64,' in text  # comparison PNGs embedded
     assert 'vd.source_sha256' in text  # provenance of the measurement
+
+
+def test_import_and_compare_json(capsys, sim_bounce: Path, tmp_path: Path) -> None:
+    import json
+
+    from vd_events.cli import main
+
+    rig = tmp_path / 'rig'
+    rc = main(['import', str(SAMPLES / 'kc_spmm_bounce_front.csv'), '--map',
+               str(SAMPLES / 'kc_spmm_bounce_front.map.yaml'), '--bag', str(rig), '--json'])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out['bag'] == str(rig)
+    (result,) = out['results']
+    assert (result['event'], result['model'], result['axle'], result['samples']) == (
+        'parallel_wheel_travel', 'rig', 'front', 41)
+    rc = main(['compare', str(sim_bounce), str(rig), '--out', str(tmp_path / 'cmp'), '--json'])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0
+    (c,) = out['comparisons']
+    assert (c['axis'], c['verdict'], c['sim']['model'], c['test']['model']) == (
+        'wheel_travel_left', 'PASS', 'kc', 'rig')
+    toe = next(ch for ch in c['channels'] if ch['channel'] == 'toe_left')
+    assert toe['unit'] == 'rad' and toe['gradient_unit'] == 'rad/m'
+
+
+def test_compare_without_a_matching_simulation(capsys, vbox_bag: Path, sim_bounce: Path,
+                                               tmp_path: Path) -> None:
+    from vd_events.cli import main
+
+    rc = main(['compare', str(sim_bounce), str(vbox_bag), '--out', str(tmp_path / 'cmp')])
+    out, err = capsys.readouterr()
+    assert (rc, out) == (2, '')
+    assert err.strip() == (f'{sim_bounce}: no simulation of the measured events (vehicle_test);'
+                           ' the bag has: parallel_wheel_travel front')
+    assert not (tmp_path / 'cmp').exists()
