@@ -212,3 +212,15 @@ def test_compare_without_a_matching_simulation(capsys, vbox_bag: Path, sim_bounc
     assert err.strip() == (f'{sim_bounce}: no simulation of the measured events (vehicle_test);'
                            ' the bag has: parallel_wheel_travel front')
     assert not (tmp_path / 'cmp').exists()
+
+
+def test_csv_vehicle_log_bag_has_states_but_no_pose(tmp_path: Path) -> None:
+    """A log without position and heading: typed states, no odometry or TF."""
+    bag = tmp_path / 'log'
+    import_files([SAMPLES / 'vehicle_log.csv'], SAMPLES / 'vehicle_log.map.yaml', bag)
+    topics = [m.topic for m in read_bag(bag)]
+    assert topics.count('/vd/vehicle/state') == 81
+    assert '/vd/vehicle/odom' not in topics and '/tf' not in topics
+    (outcome,) = load_outcomes(bag)
+    assert outcome.channels['speed'].unit == 'm/s'
+    assert_allclose(outcome.channels['time'].values[:3], [0.0, 0.1, 0.2])
