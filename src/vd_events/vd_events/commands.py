@@ -76,6 +76,10 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     bench.add_argument('--json', action='store_true')
     HANDLERS['bench'] = cmd_bench
 
+    from .testdata.cli import add_subcommands as add_testdata
+
+    add_testdata(sub, HANDLERS)
+
 
 def _study(master: str | None):
     from vd_data_server.paths import default_master
@@ -178,15 +182,19 @@ def cmd_study(args: argparse.Namespace) -> int:
         print(json.dumps(summary, indent=2))
     else:
         print(f"report: {summary['report']}")
+        print(f"study report (one self-contained file): {summary['study_report']}")
         print(f"bags:   {summary['bags']}")
     return 0 if not summary['errors'] else 1
 
 
 def cmd_report(args: argparse.Namespace) -> int:
     from .report import build_report
+    from .study_report import build_study_report
 
     path = build_report([Path(b) for b in args.bags], Path(args.out))
+    study = build_study_report([Path(b) for b in args.bags], Path(args.out))
     print(f'report: {path}')
+    print(f'study report (one self-contained file): {study}')
     return 0
 
 

@@ -236,7 +236,9 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
 
 
 def _family(model: str) -> str:
-    return 'analytical' if model in ('bicycle', 'two_track') else model
+    # measured results (vd import) overlay the simulations of their family
+    measured = {'rig': 'kc', 'test': 'vehicle'}
+    return 'analytical' if model in ('bicycle', 'two_track') else measured.get(model, model)
 
 
 def _generic_plots(run: Run) -> Sequence[tuple[Axis, Axis]]:

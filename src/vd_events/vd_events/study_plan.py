@@ -13,6 +13,8 @@ Plan file::
         overrides: []                # optional GROUP.KEY=VALUE for these runs
         axle: front                  # optional (K&C events)
         fidelity: flexible           # optional (K&C: rigid, the default, or flexible)
+    measurements: [path/to/bag]      # optional: bags of vd import, relative to the plan;
+                                     # the study report compares them with the runs
 """
 from __future__ import annotations
 
@@ -49,6 +51,8 @@ PLAN = schema.Section({
         'fidelity': schema.Text('K&C fidelity: rigid (the default) or flexible',
                                 required=False),
     }), 'the runs', what='runs', required=True, non_empty=True),
+    'measurements': schema.ListOf(schema.Text('bag path'),
+                                  'bags of vd import, relative to the plan', what='bag paths'),
 })
 
 
@@ -58,6 +62,7 @@ class Plan:
     name: str
     master: Path
     runs: tuple[Mapping[str, Any], ...]
+    measurements: tuple[Path, ...] = ()
 
 
 def load_plan(path: Path) -> Plan:
@@ -72,7 +77,21 @@ def load_plan(path: Path) -> Plan:
     master = Path(raw['master']) if raw.get('master') else default_master()
     if raw.get('master') and not master.is_absolute():
         master = path.parent / master
-    return Plan(path, raw['name'], master, tuple(raw['runs']))
+    return Plan(path, raw['name'], master, tuple(raw['runs']), _measurements(raw, path))
+
+
+def _measurements(raw: Mapping[str, Any], path: Path) -> tuple[Path, ...]:
+    """Return the plan's ``measurements``: finished bags (vd import), relative to it."""
+    given = raw.get('measurements') or []
+    if not isinstance(given, list) or not all(isinstance(g, str) for g in given):
+        raise DataError(f'expected a list of bag paths, found {given!r}', file=str(path),
+                        key='measurements')
+    bags = tuple(Path(g) if Path(g).is_absolute() else path.parent / g for g in given)
+    for i, bag in enumerate(bags):
+        if not (bag / 'metadata.yaml').is_file():
+            raise DataError(f'{bag}: not a finished bag (vd import writes one)', file=str(path),
+                            key=f'measurements[{i}]')
+    return bags
 
 
 def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
@@ -107,6 +126,7 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
              progress: Callable | None = None) -> dict[str, Any]:
     """Validate every run, then run them all, then build the report."""
     from .report import build_report
+    from .study_report import build_study_report
 
     study = load_study(plan.master)
     requests = expand(plan, study.configuration_names, bags)
@@ -125,9 +145,12 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     results = runner(plan.master, requests, progress)
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
-    report = build_report([r.bag for r in done if r.bag], out) if done else None
+    bags_done = [*(r.bag for r in done if r.bag), *plan.measurements]
+    report = build_report(bags_done, out) if done else None
+    study_report = build_study_report(bags_done, out) if done else None
     return {
         'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
+        'study_report': str(study_report),
         'bags': str(bags), 'errors': errors,
         'runs': [{'event': r.request.event, 'configuration': r.request.configuration,
                   'model': r.request.model, 'axle': r.request.axle,
