@@ -160,9 +160,10 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
         provenance: dict[str, list[str]] = {}
         for item in read_bag(bag):
             msg = item.msg
-            if item.topic == '/vd/data_status':
+            # topics of any namespace (/vd/data_status, /car2/data_status)
+            if item.topic.endswith('/data_status'):
                 status = msg
-            elif item.topic == '/vd/provenance':
+            elif item.topic.endswith('/provenance'):
                 provenance[msg.configuration] = [
                     f'{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}'.strip()
                     for g in msg.groups for k in g.modified_keys]

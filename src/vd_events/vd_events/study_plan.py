@@ -113,7 +113,7 @@ def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
 
 
 def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
-             progress: Callable | None = None) -> dict[str, Any]:
+             progress: Callable | None = None, namespace: str | None = None) -> dict[str, Any]:
     """Validate every run, then run them all, then build the report."""
     from .report import build_report
 
@@ -131,7 +131,8 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         seen.add(request.bag)
     requests = checked
     runner = run_distributed if distributed else run_embedded
-    results = runner(plan.master, requests, progress)
+    results = runner(plan.master, requests, progress,
+                     **({'namespace': namespace} if namespace else {}))
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
     report = build_report([r.bag for r in done if r.bag], out) if done else None
