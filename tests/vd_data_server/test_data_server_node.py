@@ -26,7 +26,7 @@ def server(ros_domain, sedan_master: Path):
 def _listener(name: str):
     from rclpy.node import Node
 
-    from vd_data_server.data_server_node import CONFIGURATION_DEPTH, latched
+    from vd_data_server.qos import CONFIGURATIONS, LATEST
     from vd_interfaces.msg import Configuration, DataStatus
 
     node = Node(name)
@@ -34,8 +34,8 @@ def _listener(name: str):
     node.statuses = []
     node.create_subscription(Configuration, '/vd/configuration',
                              lambda m: node.configs.__setitem__(m.name, m),
-                             latched(CONFIGURATION_DEPTH))
-    node.create_subscription(DataStatus, '/vd/data_status', node.statuses.append, latched(1))
+                             CONFIGURATIONS)
+    node.create_subscription(DataStatus, '/vd/data_status', node.statuses.append, LATEST)
     return node
 
 

@@ -122,7 +122,9 @@ def _bench_data_change(master: Path) -> float:
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import CONFIGURATION_DEPTH, DataServer, latched
+    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.names import CONFIGURATION, DEFAULT_NAMESPACE
+    from vd_data_server.qos import CONFIGURATIONS
     from vd_interfaces.msg import Configuration
 
     from .runner import _claim_domain, _ros_args, _spin_until
@@ -138,11 +140,11 @@ def _bench_data_change(master: Path) -> float:
         executor = SingleThreadedExecutor(context=context)
         server = DataServer(context=context, parameter_overrides=[
             Parameter('master_file', value=str(copy))])
-        listener = Node('bench_listener', context=context)
+        listener = Node('bench_listener', context=context, namespace=DEFAULT_NAMESPACE)
         hashes: dict[str, str] = {}
-        listener.create_subscription(Configuration, '/vd/configuration',
+        listener.create_subscription(Configuration, CONFIGURATION,
                                      lambda m: hashes.__setitem__(m.name, m.data_hash),
-                                     latched(CONFIGURATION_DEPTH))
+                                     CONFIGURATIONS)
         for node in (server, listener):
             executor.add_node(node)
         try:
