@@ -86,12 +86,12 @@ def stop(proc: subprocess.Popen, twice: bool = False) -> str:
     return out
 
 
-def wait_for_nodes(env, names: set[str], timeout: float = 40.0) -> set[str]:
-    """Poll ``ros2 node list`` until ``names`` are all there; return the last list."""
+def wait_for_nodes(env, names: set[str], timeout: float = 40.0, kind: str = 'node') -> set[str]:
+    """Poll ``ros2 node list`` (or ``topic``) until ``names`` are all there; return the list."""
     deadline = time.monotonic() + timeout
     seen: set[str] = set()
     while time.monotonic() < deadline:
-        done = ros2(env, 'node', 'list', '--no-daemon', '--spin-time', '1', check=False)
+        done = ros2(env, kind, 'list', '--no-daemon', '--spin-time', '2', check=False)
         seen = set(done.stdout.split())
         if names <= seen:
             return seen
@@ -119,9 +119,10 @@ def graph(env, tmp_path_factory):
 
 
 def test_launch_file_starts_the_graph_in_its_namespace(env, graph):
-    topics = ros2(env, 'topic', 'list', '--no-daemon', '--spin-time', '1').stdout.split()
-    assert {'/cli/configuration', '/cli/data_status', '/cli/kc/result', '/cli/kc/state',
-            '/cli/provenance', '/cli/vehicle/odom'} <= set(topics)
+    wanted = {'/cli/configuration', '/cli/data_status', '/cli/kc/result', '/cli/kc/state',
+              '/cli/provenance', '/cli/vehicle/odom'}
+    topics = wait_for_nodes(env, wanted, kind='topic')
+    assert wanted <= topics
     assert not [t for t in topics if t.startswith('/vd/')]
     params = ros2(env, 'param', 'get', '/cli/data_server', 'master_file').stdout
     assert str(graph['master']) in params
