@@ -33,7 +33,8 @@ from .service import DataService
 class DataServer(Node):
     """The data server node: configurations and feedback out, edits and reloads in."""
 
-    def __init__(self, **kwargs) -> None:
+    def __init__(self, *, study=None, **kwargs) -> None:
+        """Build the node; ``study``: the master file's study, already loaded in-process."""
         kwargs.setdefault('namespace', names.DEFAULT_NAMESPACE)
         super().__init__('data_server', **kwargs)
         self.declare_parameter('master_file', str(default_master()), ParameterDescriptor(
@@ -52,7 +53,7 @@ class DataServer(Node):
         self.create_service(GetConfiguration, names.GET_CONFIGURATION, self._get_configuration)
         self.create_service(SetOverride, names.SET_OVERRIDE, self._set_override)
         self.create_service(Reload, names.RELOAD, self._reload)
-        self._publish_outcome(self.service.load())
+        self._publish_outcome(self.service.load(study))
         period = float(self.get_parameter('watch_period').value)
         if period > 0.0:
             self.create_timer(period, self._poll)

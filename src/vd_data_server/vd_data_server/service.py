@@ -62,11 +62,20 @@ class DataService:
     def data_root(self) -> Path | None:
         return self.study.master.data_root if self.study else None
 
-    def load(self) -> ReloadOutcome:
-        """(Re)load everything now. On failure the previous study is kept."""
+    def load(self, loaded: Study | None = None) -> ReloadOutcome:
+        """
+        (Re)load everything now. On failure the previous study is kept.
+
+        ``loaded``: the study of this master file (without edits) as the caller has just
+        loaded it, used instead of loading it again (an embedded run's data server); a
+        study of another file is not used.
+        """
         signature = self._files_signature()
         try:
-            study = _load(self.master_file, self.edits, self.edit_source)
+            if loaded is None or self.edits or (
+                    Path(loaded.master.path).resolve() != self.master_file.resolve()):
+                loaded = _load(self.master_file, self.edits, self.edit_source)
+            study = loaded
         except DataError as err:
             self._signature = signature
             self.errors = tuple(str(err).splitlines())

@@ -160,6 +160,9 @@ def default_model(event: str) -> str:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
+    import time
+
+    t0 = time.perf_counter()
     from .runner import run_distributed, run_embedded, validate
 
     master, study = _study(args.master)
@@ -179,15 +182,22 @@ def cmd_run(args: argparse.Namespace) -> int:
     except (RunError, BagError) as err:
         raise DataError(str(err)) from None
     namespace = _namespace(args)
-    runner = run_distributed if args.distributed else run_embedded
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
-    (result,) = _with_progress(progress, lambda: runner(master, [request], progress,
-                                                        namespace=namespace))
+    # where the time goes (vd bench reports it): load + validate, then the runner's phases
+    timings = {'load_and_validate': time.perf_counter() - t0}
+    if args.distributed:
+        (result,) = _with_progress(progress, lambda: run_distributed(
+            master, [request], progress, namespace=namespace))
+    else:
+        (result,) = _with_progress(progress, lambda: run_embedded(
+            master, [request], progress, namespace=namespace, timings=timings, study=study))
     if result.error:
         raise DataError(result.error)
     assert result.outcome is not None
     if args.json:
-        print(json.dumps(result.outcome.to_json(str(result.bag) if result.bag else None)))
+        out = result.outcome.to_json(str(result.bag) if result.bag else None)
+        out['timings'] = {**timings, 'command': time.perf_counter() - t0}
+        print(json.dumps(out))
     else:
         _print_outcome(result)
     return 0

@@ -56,6 +56,9 @@ GOAL_ATTEMPTS = 3
 DISCOVERY_GRACE = 0.5  # s
 RECORD_TIMEOUT = 10.0  # s: for the recorder to confirm it wrote the result
 CANCEL_WAIT = 2.0  # s: for an interrupted goal to be cancelled before the nodes stop
+#: s: longest wait of one spin while nothing happens (events end it at once); each spin
+#: rebuilds the wait set, which costs the solver's worker thread the GIL
+SPIN_PERIOD = 0.1
 
 
 class RunError(Exception):
@@ -155,15 +158,18 @@ class EventClient:
     """
     The event runner's action clients (one per solver family) on a node.
 
-    The action names are relative: they resolve in ``node``'s namespace.
+    The action names are relative: they resolve in ``node``'s namespace. Before the
+    first goal to each family it waits ``discovery_grace`` s (see DISCOVERY_GRACE); nodes
+    of one process share one DDS participant, which matches its own endpoints at once.
     """
 
-    def __init__(self, node) -> None:
+    def __init__(self, node, discovery_grace: float = DISCOVERY_GRACE) -> None:
         from rclpy.action import ActionClient
 
         from vd_interfaces.action import RunEvent
 
         self.node = node
+        self.discovery_grace = discovery_grace
         self.warm: set[str] = set()
         self.running: list = []  # goal handles accepted and not finished (to cancel)
         self.clients = {name: ActionClient(node, RunEvent, family.action())
@@ -183,7 +189,7 @@ def _spin_until(executor, predicate: Callable[[], bool], timeout: float) -> bool
     while time.monotonic() < deadline:
         if predicate():
             return True
-        executor.spin_once(timeout_sec=0.02)
+        executor.spin_once(timeout_sec=SPIN_PERIOD)
     return predicate()
 
 
@@ -197,7 +203,7 @@ def send_goal(executor, client: EventClient, request: RunRequest,
     if request.family not in client.warm:
         # Fast DDS drops a service response sent before the server has discovered the
         # client's response reader ("failed to send response"): give discovery a moment.
-        _spin_until(executor, lambda: False, DISCOVERY_GRACE)
+        _spin_until(executor, lambda: False, client.discovery_grace)
         client.warm.add(request.family)
     last_news = [time.monotonic()]  # the latest feedback: a goal that reports is alive
 
@@ -260,10 +266,12 @@ def check_result(request: RunRequest, result) -> None:
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  namespace: str = names.DEFAULT_NAMESPACE, timings: dict | None = None,
-                 ) -> list[RunOutcome]:
+                 study: Study | None = None) -> list[RunOutcome]:
     """
     All nodes in this process, in ``namespace``; a recorder node per run with a bag.
 
+    ``study``: ``master`` as the caller loaded and validated it (the data server serves
+    it instead of loading the files again).
     Only the solvers the requests need are started. A multi-threaded executor: a
     solver's execute callback (a goal may take minutes) runs in a worker thread while
     this thread keeps spinning the accept and result futures, the feedback and the
@@ -289,15 +297,19 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
                signal_handler_options=None)
     executor = MultiThreadedExecutor(num_threads=EMBEDDED_THREADS, context=context)
-    nodes = [DataServer(context=context, namespace=namespace, parameter_overrides=[
+    # a private graph: no parameter services and no /rosout (fewer DDS endpoints to create
+    # and discover, a smaller wait set for every spin)
+    private = {'context': context, 'namespace': namespace, 'start_parameter_services': False,
+               'enable_rosout': False}
+    nodes = [DataServer(**private, study=study, parameter_overrides=[
                  Parameter('master_file', value=str(master)), Parameter('watch_period',
                                                                         value=0.0)])]
-    nodes += [cls(context=context, namespace=namespace) for cls in classes]
-    client_node = Node('event_runner', context=context, namespace=namespace)
+    nodes += [cls(**private) for cls in classes]
+    client_node = Node('event_runner', **private)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
-    client = EventClient(client_node)
+    client = EventClient(client_node, discovery_grace=0.0)
     solvers = nodes[1:-1]
     outcomes: list[RunOutcome] = []
     clock.lap('graph_start')
@@ -309,8 +321,8 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
             recorder = None
             try:
                 if request.bag is not None:
-                    recorder = Recorder(context=context, bag=str(request.bag),
-                                        namespace=namespace, parameter_overrides=[Parameter(
+                    recorder = Recorder(bag=str(request.bag), **private,
+                                        parameter_overrides=[Parameter(
                                             'configurations', value=[request.configuration])])
                     executor.add_node(recorder)
                     # let the recorder's latched subscriptions catch up before the run
