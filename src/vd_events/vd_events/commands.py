@@ -165,6 +165,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     from .runner import run_distributed, run_embedded, validate
 
+    namespace = _namespace(args)
     master, study = _study(args.master)
     model = args.model or default_model(args.event)
     config_name = args.config or study.configuration_names[0]
@@ -181,7 +182,6 @@ def cmd_run(args: argparse.Namespace) -> int:
         request = validate(study, request)
     except (RunError, BagError) as err:
         raise DataError(str(err)) from None
-    namespace = _namespace(args)
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
     # where the time goes (vd bench reports it): load + validate, then the runner's phases
     timings = {'load_and_validate': time.perf_counter() - t0}
