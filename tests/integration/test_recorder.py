@@ -1,6 +1,8 @@
 """
-The recorder process: a bag becomes final only when its owner says the recording is
-complete (``/vd/recorder/finish``); SIGTERM and SIGINT remove the partial bag and say so.
+The recorder process: a bag becomes final only when its owner says so.
+
+The owner says the recording is complete with ``/vd/recorder/finish``; SIGTERM and SIGINT
+remove the partial bag and say so.
 """
 from __future__ import annotations
 

@@ -248,8 +248,10 @@ def test_get_configuration_service(server):
 
 def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
     """
-    Not only data errors: whatever a reload raises (here a RecursionError, as from a
-    pathological file), the node keeps serving and reports it on its status topic.
+    Keep serving whatever a reload raises, not only data errors.
+
+    Here a RecursionError, as from a pathological file: the node keeps serving and
+    reports it on its status topic.
     """
     import vd_data_server.service as service
     from vdtest import spin_until

@@ -65,8 +65,9 @@ def run_bench() -> dict[str, Any]:
 
 def _bench_flex(config) -> dict[str, float]:
     """
-    101-step parallel wheel travel, rigid and flexible (every component of the flex
-    groups), per axle; target: flexible within 3x rigid.
+    Time the 101-step parallel wheel travel, rigid and flexible, per axle.
+
+    Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
     from vd_solvers.kc.events import KCModel
     from vd_solvers.kc.from_config import suspension_input
@@ -82,8 +83,9 @@ def _bench_flex(config) -> dict[str, float]:
 
 def _bench_capability(master: Path) -> float:
     """
-    The whole capability study of both axles (22 runs, 101 steps, through the ROS
-    graph, with bags); target: under 20 s.
+    Time the whole capability study of both axles; target: under 20 s.
+
+    22 runs of 101 steps, through the ROS graph, with bags.
     """
     from vd_data_server.study import load_study
 
@@ -148,8 +150,9 @@ def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
 
 def _bench_data_change(master: Path) -> float:
     """
-    Seconds from editing a data file on disk to the new configuration arriving at a
-    subscriber (data server watching every 0.5 s, its default).
+    Time from editing a data file on disk to the new configuration at a subscriber.
+
+    The data server watches every 0.5 s, its default.
     """
     import shutil
 
@@ -238,10 +241,12 @@ def print_bench(results: dict[str, Any]) -> None:
          'well under 1 s'),
         ('K&C six-event suite, both axles', f"{kc['suite_both_axles']:.2f} s", 'a few s'),
         ('flexible K&C 101-step parallel travel, front',
-         f"{results['flex']['front_flexible_s']:.3f} s ({results['flex']['front_ratio']:.2f}x rigid)",
+         f"{results['flex']['front_flexible_s']:.3f} s "
+         f"({results['flex']['front_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('flexible K&C 101-step parallel travel, rear',
-         f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
+         f"{results['flex']['rear_flexible_s']:.3f} s "
+         f"({results['flex']['rear_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('capability study, both axles (22 runs via ROS, one bag)',
          f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
@@ -270,7 +275,8 @@ def print_bench(results: dict[str, Any]) -> None:
     rows += [
         ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
-         f"{vehicle['step_s'] * 1e3:g} ms)", f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         f"{vehicle['step_s'] * 1e3:g} ms)",
+         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
          ''),
         ('  per step', f"{ss['us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),

@@ -23,7 +23,6 @@ from vd_data_server.study import load_study
 from .runner import EventClient, RunError, send_goal, validate
 from .study_plan import expand, load_plan
 
-
 #: exit code when Ctrl-C or SIGTERM stopped the plan (as a shell reports SIGINT)
 INTERRUPTED = 130
 

@@ -141,8 +141,9 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
 
 def _ros_args() -> list[str]:
     """
-    Node log level for in-process runs: the CLI reports errors itself, so the nodes
-    stay quiet unless VD_VERBOSE is set.
+    Return the node arguments of in-process runs: log level fatal unless VD_VERBOSE.
+
+    The CLI reports errors itself, so the nodes stay quiet.
     """
     return [] if os.environ.get('VD_VERBOSE') else ['--ros-args', '--log-level', 'fatal']
 
@@ -248,9 +249,10 @@ def _run_goal(executor, client: EventClient, request: RunRequest,
 
 def check_result(request: RunRequest, result) -> None:
     """
-    The result answers this request: its configuration, event, model, axle and data
-    hash are the ones asked for (a solver of another run on the same domain, or of
-    other data, answers with other values).
+    Check that the result answers this request, or raise RunError.
+
+    Its configuration, event, model, axle and data hash must be the ones asked for (a
+    solver of another run on the same domain, or of other data, answers with others).
     """
     asked = (request.configuration, request.event, request.model, request.axle)
     got = (result.configuration, result.event, result.model, result.axle)
@@ -515,7 +517,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
 
 
 def _finish_recording(executor, finish, recorder: subprocess.Popen, request: RunRequest) -> Path:
-    """The result is confirmed: the recorder closes the bag under its final name."""
+    """Have the recorder close the bag under its final name (the result is confirmed)."""
     assert request.bag is not None
     if not _spin_until(executor, finish.service_is_ready, SERVER_TIMEOUT):
         raise RunError(f'{request.label}: the recorder does not answer')
@@ -538,9 +540,10 @@ def _finish_recording(executor, finish, recorder: subprocess.Popen, request: Run
 
 def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> None:
     """
-    A failed or interrupted run: stop its recorder (which removes its partial bag)
-    and make sure nothing that looks like a result is left (validate() made sure the
-    paths did not exist before, so this removes only this run's files).
+    Clean up after a failed or interrupted run: nothing that looks like a result stays.
+
+    Its recorder is stopped (which removes its partial bag); validate() made sure the
+    paths did not exist before, so this removes only this run's files.
     """
     if recorder is not None:
         stop_processes([recorder])
@@ -552,8 +555,9 @@ def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> N
 
 def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> None:
     """
-    SIGINT (a node's clean shutdown) to every process still running, then wait;
-    kill what does not stop in time. A Ctrl-C during the wait does not cut it short.
+    Send SIGINT (a node's clean shutdown) to every process still running, then wait.
+
+    What does not stop in time is killed. A Ctrl-C during the wait does not cut it short.
     """
     for proc in procs:
         if proc.poll() is None:

@@ -76,8 +76,9 @@ def load_plan(path: Path) -> Plan:
 
 def _check_run_types(run: Mapping[str, Any], file: str, where: str) -> None:
     """
-    Texts where texts belong and lists of texts where lists do (``configurations``
-    may also be ``all``), before anything iterates over them.
+    Check that texts are where texts belong and lists of texts where lists do.
+
+    ``configurations`` may also be ``all``; checked before anything iterates over them.
     """
     for key in ('event', 'axle'):
         if key in run and not isinstance(run[key], str):
@@ -107,7 +108,8 @@ def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
                     bag = bag.with_name(f'{bag.name}_{fidelity}')
                 requests.append(RunRequest(
                     event=str(run['event']), configuration=str(config), model=str(model),
-                    axle=axle, fidelity=fidelity, overrides=tuple(str(o) for o in run.get('overrides', [])),
+                    axle=axle, fidelity=fidelity,
+                    overrides=tuple(str(o) for o in run.get('overrides', [])),
                     parameters=tuple(str(p) for p in run.get('parameters', [])), bag=bag))
     return requests
 
@@ -140,7 +142,8 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
         'bags': str(bags), 'errors': errors,
         'runs': [{'event': r.request.event, 'configuration': r.request.configuration,
-                  'model': r.request.model, 'axle': r.request.axle, 'bag': str(r.bag) if r.bag else None,
+                  'model': r.request.model, 'axle': r.request.axle,
+                  'bag': str(r.bag) if r.bag else None,
                   'error': r.error,
                   'metrics': {k: {'value': m.value, 'unit': m.unit}
                               for k, m in (r.outcome.metrics.items() if r.outcome else [])}}

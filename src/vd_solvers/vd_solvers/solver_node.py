@@ -104,8 +104,10 @@ class SolverNode(Node):
 
     def _wait_for_configuration(self, name: str) -> Configuration | None:
         """
+        Wait a little for a configuration that has not arrived yet.
+
         A solver started together with the data server may get a goal before the
-        latched configurations have arrived: wait a little for them.
+        latched configurations have arrived.
         """
         deadline = time.monotonic() + CONFIGURATION_WAIT
         while name not in self.configurations and time.monotonic() < deadline:
@@ -211,12 +213,12 @@ class SolverNode(Node):
 
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """The per-step messages of ``outcome`` (Sample: channel names and values)."""
+        """Return the per-step messages of ``outcome`` (Sample: channel names, values)."""
         return outcome_samples(outcome, stamp)
 
 
 def _warning_messages(caught) -> list[str]:
-    """The caught warnings' messages, each once, at most five."""
+    """Return the caught warnings' messages, each once, at most five."""
     return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
 
 
