@@ -92,6 +92,10 @@ class BagWriter:
     """Writes rclpy messages (serialised CDR) to an MCAP rosbag2 bag, atomically."""
 
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
+        # imported before anything is created on disk (the import takes a moment, in
+        # which a signal would otherwise leave a partial folder behind)
+        from rosbags.rosbag2 import StoragePlugin, Writer
+
         self.path = Path(path)
         check_bag_path(self.path)
         # rosbags names the storage file after the bag folder, so the bag is built
@@ -110,8 +114,6 @@ class BagWriter:
                 raise BagError(f'{self.partial}: another run is writing this bag') from None
             self._lock = os.open(self.partial / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
             fcntl.flock(self._lock, fcntl.LOCK_EX)
-            from rosbags.rosbag2 import StoragePlugin, Writer
-
             self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
                                   storage_plugin=StoragePlugin.MCAP)
             for key, value in (custom_data or {}).items():

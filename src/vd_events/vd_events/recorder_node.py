@@ -87,7 +87,6 @@ class Recorder(Node):
             raise ValueError("parameter 'bag' is required (the bag directory to create)")
         wanted = [c for c in self.get_parameter('configurations').value if c]
         self.only = set(wanted)
-        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
         self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
@@ -102,6 +101,9 @@ class Recorder(Node):
         # in-process runs spin this node on a multi-threaded executor while the runner
         # stops it from its own thread: writes and close never overlap
         self._lock = threading.Lock()
+        # the bag's partial folder exists from here on: whatever stops the constructor
+        # (a signal meanwhile) removes it
+        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
         try:
             self.create_service(Trigger, FINISH_SERVICE, self._finish)
             self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, LATEST)
