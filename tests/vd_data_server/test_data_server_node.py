@@ -298,3 +298,53 @@ def test_edit_that_used_to_crash_the_server_is_answered(editable_server):
         assert alive.success and alive.configuration.data_hash == before
     finally:
         client_node.destroy_node()
+
+
+def test_a_late_joiner_gets_exactly_the_current_version_of_every_configuration(
+        server, sample_root: Path, sedan_master: Path):
+    """After a data change and after a configuration was removed: no stale versions."""
+    from rclpy.node import Node
+
+    from vd_data_server.qos import CONFIGURATIONS
+    from vd_interfaces.msg import Configuration
+    from vdtest import replace_once, spin_until
+
+    def late_listener(name: str):
+        node = Node(name)
+        node.received = []
+        node.create_subscription(Configuration, '/vd/configuration', node.received.append,
+                                 CONFIGURATIONS)
+        return node
+
+    first = late_listener('before_listener')
+    try:
+        assert spin_until([server, first], lambda: len(first.received) == 3)
+        old = {m.name: m.data_hash for m in first.received}
+    finally:
+        first.destroy_node()
+    replace_once(sample_root / 'sedan' / 'front_spring' / 'X.yaml', 'rate: 30.0', 'rate: 33.0')
+    assert spin_until([server], lambda: server.service.study.configurations[
+        'baseline'].data_hash != old['baseline'], timeout=10.0)
+    second = late_listener('after_edit_listener')
+    try:
+        spin_until([server, second], lambda: len(second.received) > 3, timeout=2.0)
+        assert sorted(m.name for m in second.received) == ['baseline', 'sport', 'stiff_rear']
+        current = server.service.study.configurations
+        assert {m.name: m.data_hash for m in second.received} == {
+            n: c.data_hash for n, c in current.items()}
+        received = {m.name: m.data_hash for m in second.received}
+        assert received['baseline'] != old['baseline']  # the new version, not the old
+    finally:
+        second.destroy_node()
+    text = sedan_master.read_text(encoding='utf-8')
+    start = text.index('  stiff_rear:')
+    end = text.index('  sport:')
+    sedan_master.write_text(text[:start] + text[end:], encoding='utf-8')
+    assert spin_until([server], lambda: sorted(server.service.study.configurations) ==
+                      ['baseline', 'sport'], timeout=10.0)
+    third = late_listener('after_removal_listener')
+    try:
+        spin_until([server, third], lambda: len(third.received) > 2, timeout=2.0)
+        assert sorted(m.name for m in third.received) == ['baseline', 'sport']
+    finally:
+        third.destroy_node()
