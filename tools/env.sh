@@ -13,6 +13,13 @@ export COLCON_PYTHON_EXECUTABLE="$VIRTUAL_ENV/bin/python"
 # shellcheck disable=SC1091
 set +u
 source "$ROOT/install/local_setup.bash"
+# The ROS wheels' bootstrap (a .pth file) re-executes every Python process once with these
+# library paths; set them here once, so no process (the CLI, each node) starts twice.
+if [ -z "${_ROS_WHEELS_BOOTSTRAP_COMPLETE:-}" ]; then
+    ros_libs=$(printf '%s:' "$VIRTUAL_ENV"/lib/python3*/site-packages/ros_*.libs)
+    export LD_LIBRARY_PATH="$VIRTUAL_ENV/lib:${ros_libs}${LD_LIBRARY_PATH:-}"
+    export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1
+fi
 export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST}"
 export PYTHONUNBUFFERED=1
 # The dense K&C matrices are small (~100-300): BLAS threads only contend (20x slower on 2 busy cores)

@@ -48,9 +48,18 @@ if [ "$(cat "$VENV/.vd-req" 2>/dev/null)" != "$req_hash" ]; then
     rm -f "$ROOT/install/.vd-build"
 fi
 
-# 2. colcon build of the workspace (interfaces + python packages)
+# 2. the ros2 CLI and ros2 launch from the upstream sources beside the workspace (when that
+#    folder is present; a system ROS install, with ROS_DISTRO set, already has them).
+#    install.sh is idempotent (a stamp in the venv).
+TOOLS=$ROOT/../shared/ros-tools
+if [ -z "${ROS_DISTRO:-}" ] && [ -f "$TOOLS/install.sh" ]; then
+    bash "$TOOLS/install.sh" "$VENV" >&2 || { say "ros-tools install failed"; exit 1; }
+fi
+
+# 3. colcon build of the workspace (interfaces + python packages)
 src_hash=$( (find src -type f \( -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name 'CMakeLists.txt' \
-    -o -name 'package.xml' -o -name 'setup.py' -o -name 'setup.cfg' -o -path '*/plans/*' \) -print0 | sort -z | xargs -0 cat; \
+    -o -name 'package.xml' -o -name 'setup.py' -o -name 'setup.cfg' -o -path '*/plans/*' \
+    -o -path '*/launch/*' \) -print0 | sort -z | xargs -0 cat; \
     find src/vd_data_server/data -type f | sort; cat colcon.meta) | sha256sum | cut -c1-16)
 if [ "$(cat "$ROOT/install/.vd-build" 2>/dev/null)" != "$src_hash" ]; then
     say "colcon build"

@@ -1,3 +1,4 @@
+from glob import glob
 import os
 
 from setuptools import find_packages, setup
@@ -23,6 +24,7 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/launch', glob('launch/*.launch.*')),
         *data_tree('data'),
     ],
     install_requires=['setuptools'],

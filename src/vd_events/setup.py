@@ -13,6 +13,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/plans', glob('plans/*.yaml')),
         ('share/' + package_name + '/samples', glob('samples/*')),
+        ('share/' + package_name + '/launch', glob('launch/*.launch.*')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

@@ -1,6 +1,8 @@
 """
-The recorder process: a bag becomes final only when its owner says the recording is
-complete (``~/finish``); SIGTERM and SIGINT remove the partial bag and say so.
+The recorder process: a bag becomes final only when its owner says so.
+
+The owner says the recording is complete with ``/vd/recorder/finish``; SIGTERM and SIGINT
+remove the partial bag and say so.
 """
 from __future__ import annotations
 
@@ -56,7 +58,7 @@ def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
     answers = []
 
     def finish(node, proc) -> None:
-        client = node.create_client(Trigger, '/recorder/finish')
+        client = node.create_client(Trigger, '/vd/recorder/finish')
         assert spin_until([node], client.service_is_ready, timeout=10.0)
         future = client.call_async(Trigger.Request())
         assert spin_until([node], future.done, timeout=10.0)

@@ -26,7 +26,7 @@ def server(ros_domain, sedan_master: Path):
 def _listener(name: str):
     from rclpy.node import Node
 
-    from vd_data_server.data_server_node import CONFIGURATION_DEPTH, latched
+    from vd_data_server.qos import CONFIGURATIONS, LATEST
     from vd_interfaces.msg import Configuration, DataStatus
 
     node = Node(name)
@@ -34,8 +34,8 @@ def _listener(name: str):
     node.statuses = []
     node.create_subscription(Configuration, '/vd/configuration',
                              lambda m: node.configs.__setitem__(m.name, m),
-                             latched(CONFIGURATION_DEPTH))
-    node.create_subscription(DataStatus, '/vd/data_status', node.statuses.append, latched(1))
+                             CONFIGURATIONS)
+    node.create_subscription(DataStatus, '/vd/data_status', node.statuses.append, LATEST)
     return node
 
 
@@ -248,8 +248,10 @@ def test_get_configuration_service(server):
 
 def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
     """
-    Not only data errors: whatever a reload raises (here a RecursionError, as from a
-    pathological file), the node keeps serving and reports it on its status topic.
+    Keep serving whatever a reload raises, not only data errors.
+
+    Here a RecursionError, as from a pathological file: the node keeps serving and
+    reports it on its status topic.
     """
     import vd_data_server.service as service
     from vdtest import spin_until
@@ -296,3 +298,53 @@ def test_edit_that_used_to_crash_the_server_is_answered(editable_server):
         assert alive.success and alive.configuration.data_hash == before
     finally:
         client_node.destroy_node()
+
+
+def test_a_late_joiner_gets_exactly_the_current_version_of_every_configuration(
+        server, sample_root: Path, sedan_master: Path):
+    """After a data change and after a configuration was removed: no stale versions."""
+    from rclpy.node import Node
+
+    from vd_data_server.qos import CONFIGURATIONS
+    from vd_interfaces.msg import Configuration
+    from vdtest import replace_once, spin_until
+
+    def late_listener(name: str):
+        node = Node(name)
+        node.received = []
+        node.create_subscription(Configuration, '/vd/configuration', node.received.append,
+                                 CONFIGURATIONS)
+        return node
+
+    first = late_listener('before_listener')
+    try:
+        assert spin_until([server, first], lambda: len(first.received) == 3)
+        old = {m.name: m.data_hash for m in first.received}
+    finally:
+        first.destroy_node()
+    replace_once(sample_root / 'sedan' / 'front_spring' / 'X.yaml', 'rate: 30.0', 'rate: 33.0')
+    assert spin_until([server], lambda: server.service.study.configurations[
+        'baseline'].data_hash != old['baseline'], timeout=10.0)
+    second = late_listener('after_edit_listener')
+    try:
+        spin_until([server, second], lambda: len(second.received) > 3, timeout=2.0)
+        assert sorted(m.name for m in second.received) == ['baseline', 'sport', 'stiff_rear']
+        current = server.service.study.configurations
+        assert {m.name: m.data_hash for m in second.received} == {
+            n: c.data_hash for n, c in current.items()}
+        received = {m.name: m.data_hash for m in second.received}
+        assert received['baseline'] != old['baseline']  # the new version, not the old
+    finally:
+        second.destroy_node()
+    text = sedan_master.read_text(encoding='utf-8')
+    start = text.index('  stiff_rear:')
+    end = text.index('  sport:')
+    sedan_master.write_text(text[:start] + text[end:], encoding='utf-8')
+    assert spin_until([server], lambda: sorted(server.service.study.configurations) ==
+                      ['baseline', 'sport'], timeout=10.0)
+    third = late_listener('after_removal_listener')
+    try:
+        spin_until([server, third], lambda: len(third.received) > 2, timeout=2.0)
+        assert sorted(m.name for m in third.received) == ['baseline', 'sport']
+    finally:
+        third.destroy_node()

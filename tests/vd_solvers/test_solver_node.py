@@ -17,9 +17,11 @@ def _goal(client_node, solver, server, **fields):
     nodes = [server, solver, client_node]
     assert spin_until(nodes, client.server_is_ready)
     send = client.send_goal_async(RunEvent.Goal(**fields))
-    assert spin_until(nodes, send.done)
+    # one thread: the acceptance reaches the client only after the goal has run (the
+    # first analytical goal computes its K&C inputs, several seconds on a busy machine)
+    assert spin_until(nodes, send.done, timeout=60)
     result = send.result().get_result_async()
-    assert spin_until(nodes, result.done)
+    assert spin_until(nodes, result.done, timeout=60)
     return result.result().result
 
 
@@ -42,7 +44,7 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
                     overrides=['mass.sprung_cog.z=20000 mm'])
         assert not bad.success
         # a 20 m centre of gravity is refused at the boundary (plausibility bound)
-        assert bad.message == ("configuration 'baseline', event 'handling_diagram': --set: "
+        assert bad.message == ("configuration 'baseline', event 'handling_diagram': overrides: "
                                "mass.sprung_cog.z: '20000 mm' is implausible: every coordinate "
                                "must be within 8 m of the origin (plausibility bound)")
         good = _goal(client_node, solver, server, event='handling_diagram',
@@ -55,10 +57,60 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
             node.destroy_node()
 
 
+@pytest.mark.parametrize(('fields', 'reason'), [
+    ({'event': 'lateral_force', 'model': 'kc'},
+     "K&C events need axle front or rear (found '')"),
+    ({'event': 'lateral_force', 'model': 'kc', 'axle': 'front', 'fidelity': 'stiff'},
+     "unknown fidelity 'stiff' (rigid, flexible)"),
+    ({'event': 'handling_diagram', 'model': 'kc', 'axle': 'front'},
+     "event 'handling_diagram' does not run on model 'kc' (its events: parallel_wheel_travel"),
+    ({'event': 'lateral_force', 'model': 'two_track', 'axle': 'front'},
+     "model 'two_track' is not served here (models: kc)"),
+    ({'event': 'lateral_force', 'model': 'kc', 'axle': 'front', 'parameters': ['steps=x']},
+     'event lateral_force: steps:'),
+    ({'event': 'lateral_force', 'model': 'kc', 'axle': 'front', 'overrides': ['camber']},
+     "overrides: expected GROUP.KEY=VALUE, found 'camber'"),
+    ({'event': 'lateral_force', 'model': 'kc', 'axle': 'front', 'configuration': 'nope'},
+     "configuration 'nope' is not published (known: baseline, sport, stiff_rear)"),
+])
+def test_invalid_goals_are_rejected_with_the_reason_logged(ros_domain, sedan_master, capfd,
+                                                          fields, reason):
+    from rclpy.action import ActionClient
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+
+    from vd_data_server.data_server_node import DataServer
+    from vd_interfaces.action import RunEvent
+    from vd_solvers.kc_node import KCSolver
+
+    server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
+                                             Parameter('watch_period', value=0.0)])
+    solver = KCSolver()
+    client_node = Node('reject_client')
+    nodes = [server, solver, client_node]
+    try:
+        assert spin_until(nodes, lambda: solver.status is not None and
+                          len(solver.configurations) == 3)
+        client = ActionClient(client_node, RunEvent, '/vd/kc/run_event')
+        assert spin_until(nodes, client.server_is_ready)
+        send = client.send_goal_async(RunEvent.Goal(**{'configuration': 'baseline', **fields}))
+        assert spin_until(nodes, send.done)
+        assert not send.result().accepted
+        err = capfd.readouterr().err
+        label = f"configuration '{fields.get('configuration', 'baseline')}', event " \
+                f"'{fields['event']}'"
+        assert f'goal rejected: {label}: {reason}' in err
+    finally:
+        for node in reversed(nodes):
+            node.destroy_node()
+
+
 def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master):
     """
-    The real kc_solver process (multi-threaded, as ros2 run starts it): feedback rises to
-    1 during a run, and a cancel request stops a long sweep between two steps.
+    Run the real kc_solver process (multi-threaded, as ros2 run starts it).
+
+    Feedback rises to 1 during a run, and a cancel request stops a long sweep between two
+    steps.
     """
     import os
     import signal

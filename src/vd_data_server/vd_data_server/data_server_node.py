@@ -1,10 +1,11 @@
 """
 ``ros2 run vd_data_server data_server``: publishes the master file's data.
 
+Names are relative to the node's namespace (``/vd`` unless remapped with ``__ns:=``).
 Topics (reliable + transient_local, so late subscribers get everything):
-  /vd/configuration  vd_interfaces/Configuration, one message per configuration
-  /vd/data_status    vd_interfaces/DataStatus, the modified/unchanged feedback
-Services: /vd/get_configuration, /vd/set_override (only with allow_edits), /vd/reload.
+  configuration  vd_interfaces/Configuration, exactly one message per configuration
+  data_status    vd_interfaces/DataStatus, the modified/unchanged feedback
+Services: get_configuration, set_override (only with allow_edits), reload.
 Parameters (all read-only once the node runs): master_file, allow_edits, watch_period
 (s; 0 disables watching). The trust model is in docs/ros-api.md.
 
@@ -15,30 +16,26 @@ from __future__ import annotations
 
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from vd_interfaces.msg import Configuration as ConfigurationMsg
 from vd_interfaces.msg import DataStatus
 from vd_interfaces.srv import GetConfiguration, Reload, SetOverride
 
+from . import names
 from .conversions import configuration_to_msg, study_to_status_msg
 from .errors import DataError
 from .node_main import spin_node
 from .paths import default_master
+from .qos import LATEST, latched
 from .service import DataService
-
-#: deep enough to latch every configuration of a large study
-CONFIGURATION_DEPTH = 1000
-
-
-def latched(depth: int) -> QoSProfile:
-    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=depth,
-                      reliability=ReliabilityPolicy.RELIABLE,
-                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 class DataServer(Node):
-    def __init__(self, **kwargs) -> None:
+    """The data server node: configurations and feedback out, edits and reloads in."""
+
+    def __init__(self, *, study=None, **kwargs) -> None:
+        """Build the node; ``study``: the master file's study, already loaded in-process."""
+        kwargs.setdefault('namespace', names.DEFAULT_NAMESPACE)
         super().__init__('data_server', **kwargs)
         self.declare_parameter('master_file', str(default_master()), ParameterDescriptor(
             description='master file (study) to serve', read_only=True))
@@ -48,14 +45,15 @@ class DataServer(Node):
         self.declare_parameter('watch_period', 0.5, ParameterDescriptor(
             description='seconds between checks of the data files (0: do not watch)',
             read_only=True))
-        self.service = DataService(self.get_parameter('master_file').value)
-        self.config_pub = self.create_publisher(ConfigurationMsg, '/vd/configuration',
-                                                latched(CONFIGURATION_DEPTH))
-        self.status_pub = self.create_publisher(DataStatus, '/vd/data_status', latched(1))
-        self.create_service(GetConfiguration, '/vd/get_configuration', self._get_configuration)
-        self.create_service(SetOverride, '/vd/set_override', self._set_override)
-        self.create_service(Reload, '/vd/reload', self._reload)
-        self._publish_outcome(self.service.load())
+        edits = self.resolve_service_name(names.SET_OVERRIDE)
+        self.service = DataService(self.get_parameter('master_file').value,
+                                   edit_source=f'ROS edit {edits}')
+        self.config_pub = None  # created for the study's number of configurations
+        self.status_pub = self.create_publisher(DataStatus, names.DATA_STATUS, LATEST)
+        self.create_service(GetConfiguration, names.GET_CONFIGURATION, self._get_configuration)
+        self.create_service(SetOverride, names.SET_OVERRIDE, self._set_override)
+        self.create_service(Reload, names.RELOAD, self._reload)
+        self._publish_outcome(self.service.load(study))
         period = float(self.get_parameter('watch_period').value)
         if period > 0.0:
             self.create_timer(period, self._poll)
@@ -78,9 +76,22 @@ class DataServer(Node):
                                                stamp=self.get_clock().now().to_msg()))
 
     def publish_all(self) -> None:
+        """
+        Publish every configuration, then the status.
+
+        The publisher keeps exactly one message per configuration (its depth is their
+        number; a study with another number gets a new publisher), so a late joiner
+        receives the current version of each, never an older one or a removed one.
+        """
         stamp = self.get_clock().now().to_msg()
         study = self.service.study
         assert study is not None
+        depth = len(study.configurations)
+        if self.config_pub is None or self.config_pub.qos_profile.depth != depth:
+            if self.config_pub is not None:
+                self.destroy_publisher(self.config_pub)
+            self.config_pub = self.create_publisher(ConfigurationMsg, names.CONFIGURATION,
+                                                    latched(depth))
         for config in study.configurations.values():
             self.config_pub.publish(configuration_to_msg(config, stamp))
         self._publish_status()
@@ -131,6 +142,7 @@ class DataServer(Node):
 
 
 def main(args=None) -> None:
+    """Entry point of ``ros2 run vd_data_server data_server``."""
     spin_node(DataServer, args, threads=1)
 
 

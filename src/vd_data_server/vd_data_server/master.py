@@ -430,12 +430,17 @@ def _apply_one(groups: dict[str, GroupData], dotted: str, raw: Any, *, file: str
     return groups
 
 
-def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Configuration:
-    """``config`` with temporary overrides (``vd run --set``, action goals) applied."""
+def with_overrides(config: Configuration, overrides: Mapping[str, Any],
+                   source: str = '--set') -> Configuration:
+    """
+    Return ``config`` with temporary overrides (``vd run --set``, action goals) applied.
+
+    ``source`` names where they came from in messages (``--set``, ``overrides`` of a goal).
+    """
     if not overrides:
         return config
-    groups = apply_overrides(config.groups, overrides, file='--set', where='')
-    check_geometry(groups, file='--set', configuration=config.name)
+    groups = apply_overrides(config.groups, overrides, file=source, where='')
+    check_geometry(groups, file=source, configuration=config.name)
     for group in groups.values():
         if group.kind == 'tire':
             tire_properties(group)
@@ -445,12 +450,12 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any]) -> Confi
                          extra_hashes=config.extra_hashes)
 
 
-def parse_set(items: Sequence[str]) -> dict[str, str]:
+def parse_set(items: Sequence[str], source: str = '--set') -> dict[str, str]:
     """``["front_alignment.camber=-1 deg"]`` -> ``{"front_alignment.camber": "-1 deg"}``."""
     out: dict[str, str] = {}
     for item in items:
         key, sep, value = item.partition('=')
         if not sep or not key.strip() or not value.strip():
-            raise DataError(f'expected GROUP.KEY=VALUE, found {item!r}', file='--set')
+            raise DataError(f'expected GROUP.KEY=VALUE, found {item!r}', file=source)
         out[key.strip()] = value.strip()
     return out

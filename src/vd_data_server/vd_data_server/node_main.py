@@ -1,12 +1,17 @@
 """The standard ``main()`` of a vd node (ros2/examples style), shared by the packages."""
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 import os
 import signal
+import threading
 
 import rclpy
-from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import (
+    ExternalShutdownException,
+    MultiThreadedExecutor,
+    SingleThreadedExecutor,
+)
 from rclpy.node import Node
 
 #: set by a parent that starts nodes as its children (``vd run --distributed``): its pid
@@ -15,7 +20,7 @@ PARENT_ENV = 'VD_PARENT_PID'
 
 def die_with_parent() -> None:
     """
-    A child node of a ``vd`` run ends with its parent, even after ``kill -9``.
+    End this node process with its ``vd`` parent, even after ``kill -9``.
 
     Linux delivers SIGTERM to this process when the parent dies (prctl
     PR_SET_PDEATHSIG); SIGTERM is a node's clean shutdown. A parent that died
@@ -38,8 +43,9 @@ def die_with_parent() -> None:
 
 def spin_guarded(executor, node: Node) -> None:
     """
-    Spin until shutdown; a callback that fails (a bug the input triggered) is logged
-    and the node keeps serving instead of dying with it.
+    Spin until shutdown; a failing callback is logged and the node keeps serving.
+
+    A callback that fails (a bug the input triggered) does not kill the node.
     """
     while rclpy.ok(context=executor.context):
         try:
@@ -50,19 +56,58 @@ def spin_guarded(executor, node: Node) -> None:
             node.get_logger().error(f'a callback failed: {type(err).__name__}: {err}')
 
 
-def spin_node(factory: Callable[[], Node], args=None, threads: int = 2) -> None:
-    """init, build the node, spin; a clean shutdown on Ctrl-C and SIGTERM."""
+def make_executor(threads: int = 1, context=None):
+    """
+    Return a single-threaded executor for one thread, else a multi-threaded one.
+
+    A solver needs two threads (its execute callback runs while goal, cancel and
+    configuration callbacks are served); the data server needs one.
+    """
+    if threads <= 1:
+        return SingleThreadedExecutor(context=context)
+    return MultiThreadedExecutor(num_threads=threads, context=context)
+
+
+def quiet_teardown(nodes: Sequence[Node], context=None) -> None:
+    """
+    Destroy ``nodes`` and shut rclpy down; further SIGINT/SIGTERM are ignored meanwhile.
+
+    A Ctrl-C on a terminal (and ``ros2 launch``) signals the whole process group, so a
+    node often gets SIGINT twice: the first ends the spin, the second must not
+    interrupt the teardown with a traceback.
+    """
+    if threading.current_thread() is threading.main_thread():
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, signal.SIG_IGN)
+    for node in nodes:
+        node.destroy_node()
+    rclpy.try_shutdown(context=context)
+
+
+def run_node(factory: Callable[[], Node], body: Callable | None = None, args=None,
+             threads: int = 1):
+    """
+    Run one node the ros2/examples way; return what ``body(executor, node)`` returns.
+
+    ``rclpy.init``, build the node, ``body`` (default: spin until shutdown), and on every
+    end (Ctrl-C, SIGTERM, an exception of ``body``) a clean teardown. A Ctrl-C or SIGTERM
+    returns None. Exceptions of ``factory`` and ``body`` other than these propagate
+    after the teardown.
+    """
     die_with_parent()
     rclpy.init(args=args)
     node = None
     try:
         node = factory()
-        executor = MultiThreadedExecutor(num_threads=threads)
+        executor = make_executor(threads)
         executor.add_node(node)
-        spin_guarded(executor, node)
+        return (body or spin_guarded)(executor, node)
     except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+        return None
     finally:
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        quiet_teardown([node] if node is not None else [])
+
+
+def spin_node(factory: Callable[[], Node], args=None, threads: int = 2) -> None:
+    """Build the node and spin it; a clean shutdown on Ctrl-C (once or twice) and SIGTERM."""
+    run_node(factory, args=args, threads=threads)

@@ -15,18 +15,21 @@ from .errors import DataError
 from .master import load_master
 from .study import Study, load_study
 
-#: how edits made over ROS (/vd/set_override) are labelled in messages and value sources
+#: how edits made over ROS (the set_override service, here in the default namespace)
+#: are labelled in messages and value sources
 EDIT_SOURCE = 'ROS edit /vd/set_override'
 
 
-def _load(master_file: Path, edits: Mapping[str, Mapping[str, Any]]) -> Study:
+def _load(master_file: Path, edits: Mapping[str, Mapping[str, Any]],
+          source: str = EDIT_SOURCE) -> Study:
     """
-    load_study at the node boundary: any failure of the input is a DataError, so a
-    running data server keeps its last good data (RecursionError, MemoryError, a
+    Load the study at the node boundary: any failure of the input is a DataError.
+
+    So a running data server keeps its last good data (RecursionError, MemoryError, a
     bug triggered by odd input are reported like a bad value, never kill the node).
     """
     try:
-        return load_study(master_file, extra_overrides=edits, extra_source=EDIT_SOURCE)
+        return load_study(master_file, extra_overrides=edits, extra_source=source)
     except DataError:
         raise
     except Exception as err:  # noqa: BLE001 - the node boundary
@@ -42,12 +45,14 @@ class ReloadOutcome:
 
 class DataService:
     """
-    Holds the current study; reloads when a file under the data root or the
-    master file changes; applies validated temporary overrides.
+    Hold the current study, reload it on changes and apply validated overrides.
+
+    It reloads when a file under the data root or the master file changes.
     """
 
-    def __init__(self, master_file: str | Path) -> None:
+    def __init__(self, master_file: str | Path, edit_source: str = EDIT_SOURCE) -> None:
         self.master_file = Path(master_file)
+        self.edit_source = edit_source
         self.edits: dict[str, dict[str, Any]] = {}
         self.study: Study | None = None
         self.errors: tuple[str, ...] = ()
@@ -57,11 +62,20 @@ class DataService:
     def data_root(self) -> Path | None:
         return self.study.master.data_root if self.study else None
 
-    def load(self) -> ReloadOutcome:
-        """(Re)load everything now. On failure the previous study is kept."""
+    def load(self, loaded: Study | None = None) -> ReloadOutcome:
+        """
+        (Re)load everything now. On failure the previous study is kept.
+
+        ``loaded``: the study of this master file (without edits) as the caller has just
+        loaded it, used instead of loading it again (an embedded run's data server); a
+        study of another file is not used.
+        """
         signature = self._files_signature()
         try:
-            study = _load(self.master_file, self.edits)
+            if loaded is None or self.edits or (
+                    Path(loaded.master.path).resolve() != self.master_file.resolve()):
+                loaded = _load(self.master_file, self.edits, self.edit_source)
+            study = loaded
         except DataError as err:
             self._signature = signature
             self.errors = tuple(str(err).splitlines())
@@ -87,7 +101,7 @@ class DataService:
                             file=str(self.master_file))
         edits = {name: dict(values) for name, values in self.edits.items()}
         edits.setdefault(configuration, {})[key] = value
-        study = _load(self.master_file, edits)
+        study = _load(self.master_file, edits, self.edit_source)
         self.edits = edits
         self.study = study
 

@@ -49,6 +49,7 @@ from typing import Final
 import pint
 
 from vd_data_server.errors import DataError, DataErrors
+from vd_data_server.units import UREG
 
 __all__ = [
     'DIMENSIONAL_KEYS',
@@ -186,7 +187,7 @@ _TABLE_HEADER_RE: Final = re.compile(r'\{([^{}]*)\}')
 # A unit is one name; pint's expression parser would accept 'm,' or 'm=1'.
 _UNIT_NAME_RE: Final = re.compile(r'[A-Za-z][A-Za-z_]*')
 
-_UREG: Final[pint.UnitRegistry[float]] = pint.UnitRegistry()
+_UREG: Final[pint.UnitRegistry[float]] = UREG
 
 
 class _Required(enum.Enum):

@@ -18,11 +18,12 @@ from functools import lru_cache
 import os
 from pathlib import Path
 import shutil
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from rosbags.rosbag2 import Reader, StoragePlugin, Writer
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-from rosbags.typesys.store import Typestore
+# rosbags is imported where a bag is written or read: a run without a bag (and the
+# command line's start) does not pay for it
+if TYPE_CHECKING:
+    from rosbags.typesys.store import Typestore
 
 PARTIAL_SUFFIX = '.partial'
 LOCK_NAME = 'writer.lock'
@@ -38,6 +39,7 @@ class BagError(Exception):
 def typestore() -> Typestore:
     """Jazzy's types plus every vd_interfaces message, from the installed .msg files."""
     from ament_index_python.packages import get_package_share_directory
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     store = get_typestore(Stores.ROS2_JAZZY)
     msg_dir = Path(get_package_share_directory(INTERFACES)) / 'msg'
@@ -70,7 +72,7 @@ def _writable(folder: Path) -> bool:
 
 
 def _partial_is_live(partial: Path) -> bool:
-    """True while a writer holds the partial bag's lock (a live run writes it)."""
+    """Return True while a writer holds the partial bag's lock (a live run writes it)."""
     try:
         fd = os.open(partial / LOCK_NAME, os.O_RDONLY)
     except FileNotFoundError:
@@ -90,6 +92,10 @@ class BagWriter:
     """Writes rclpy messages (serialised CDR) to an MCAP rosbag2 bag, atomically."""
 
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
+        # imported before anything is created on disk (the import takes a moment, in
+        # which a signal would otherwise leave a partial folder behind)
+        from rosbags.rosbag2 import StoragePlugin, Writer
+
         self.path = Path(path)
         check_bag_path(self.path)
         # rosbags names the storage file after the bag folder, so the bag is built
@@ -181,6 +187,8 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
     path = Path(path)
     if not (path / 'metadata.yaml').is_file():
         raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')
+    from rosbags.rosbag2 import Reader
+
     store = typestore()
     with Reader(path) as reader:
         conns = [c for c in reader.connections if topics is None or c.topic in topics]

@@ -57,6 +57,7 @@ def run_bench() -> dict[str, Any]:
 
     results['vehicle'] = bench_vehicle(config)
     results['embedded_run'] = _bench_embedded(master)
+    results['cli_run'] = bench_cli()
     results['data_change_to_republish_s'] = _bench_data_change(master)
     results['bag_write'] = _bench_bag()
     return results
@@ -64,8 +65,9 @@ def run_bench() -> dict[str, Any]:
 
 def _bench_flex(config) -> dict[str, float]:
     """
-    101-step parallel wheel travel, rigid and flexible (every component of the flex
-    groups), per axle; target: flexible within 3x rigid.
+    Time the 101-step parallel wheel travel, rigid and flexible, per axle.
+
+    Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
     from vd_solvers.kc.events import KCModel
     from vd_solvers.kc.from_config import suspension_input
@@ -81,8 +83,9 @@ def _bench_flex(config) -> dict[str, float]:
 
 def _bench_capability(master: Path) -> float:
     """
-    The whole capability study of both axles (22 runs, 101 steps, through the ROS
-    graph, with bags); target: under 20 s.
+    Time the whole capability study of both axles; target: under 20 s.
+
+    22 runs of 101 steps, through the ROS graph, with bags.
     """
     from vd_data_server.study import load_study
 
@@ -110,10 +113,46 @@ def _bench_embedded(master: Path) -> dict[str, float]:
             'goal_to_result_s': outcome.timings['run']}
 
 
+#: the command ``bench_cli`` times (one K&C event through the embedded ROS graph)
+CLI_RUN = ('run', 'parallel_wheel_travel', '--axle', 'front', '--model', 'kc', '--json')
+#: the phases of ``vd run --json``'s timings, in order (seconds)
+CLI_PHASES = ('load_and_validate', 'imports', 'graph_start', 'discovery', 'record', 'solve',
+              'shutdown')
+
+
+def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
+    """
+    Time ``vd run parallel_wheel_travel --axle front --model kc`` as a user runs it.
+
+    A new process each time (the median of ``repeats``): ``total`` is its wall time;
+    ``startup`` is what passes before the command starts (interpreter, imports of the
+    command line), the other phases come from the run's own timings (``--json``):
+    loading and validating the study, the imports of the ROS side, starting the graph,
+    discovery, recording, the goal (``solve``: goal sent to result received) and shutdown.
+    """
+    import json
+    import subprocess
+    import sys
+
+    runs = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        done = subprocess.run([sys.executable, '-m', 'vd_events.cli', *CLI_RUN],
+                              capture_output=True, text=True, check=True)
+        total = time.perf_counter() - t0
+        timings = json.loads(done.stdout)['timings']
+        runs.append({'total': total, 'startup': total - timings['command'],
+                     **{k: timings.get(k, 0.0) for k in CLI_PHASES},
+                     'other': timings['command'] - sum(timings.get(k, 0.0)
+                                                       for k in CLI_PHASES)})
+    return {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+
+
 def _bench_data_change(master: Path) -> float:
     """
-    Seconds from editing a data file on disk to the new configuration arriving at a
-    subscriber (data server watching every 0.5 s, its default).
+    Time from editing a data file on disk to the new configuration at a subscriber.
+
+    The data server watches every 0.5 s, its default.
     """
     import shutil
 
@@ -122,7 +161,9 @@ def _bench_data_change(master: Path) -> float:
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import CONFIGURATION_DEPTH, DataServer, latched
+    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.names import CONFIGURATION, DEFAULT_NAMESPACE
+    from vd_data_server.qos import CONFIGURATIONS
     from vd_interfaces.msg import Configuration
 
     from .runner import _claim_domain, _ros_args, _spin_until
@@ -138,11 +179,11 @@ def _bench_data_change(master: Path) -> float:
         executor = SingleThreadedExecutor(context=context)
         server = DataServer(context=context, parameter_overrides=[
             Parameter('master_file', value=str(copy))])
-        listener = Node('bench_listener', context=context)
+        listener = Node('bench_listener', context=context, namespace=DEFAULT_NAMESPACE)
         hashes: dict[str, str] = {}
-        listener.create_subscription(Configuration, '/vd/configuration',
+        listener.create_subscription(Configuration, CONFIGURATION,
                                      lambda m: hashes.__setitem__(m.name, m.data_hash),
-                                     latched(CONFIGURATION_DEPTH))
+                                     CONFIGURATIONS)
         for node in (server, listener):
             executor.add_node(node)
         try:
@@ -200,10 +241,12 @@ def print_bench(results: dict[str, Any]) -> None:
          'well under 1 s'),
         ('K&C six-event suite, both axles', f"{kc['suite_both_axles']:.2f} s", 'a few s'),
         ('flexible K&C 101-step parallel travel, front',
-         f"{results['flex']['front_flexible_s']:.3f} s ({results['flex']['front_ratio']:.2f}x rigid)",
+         f"{results['flex']['front_flexible_s']:.3f} s "
+         f"({results['flex']['front_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('flexible K&C 101-step parallel travel, rear',
-         f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
+         f"{results['flex']['rear_flexible_s']:.3f} s "
+         f"({results['flex']['rear_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('capability study, both axles (22 runs via ROS, one bag)',
          f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
@@ -217,6 +260,10 @@ def print_bench(results: dict[str, Any]) -> None:
         ('embedded run, K&C event with bag, incl. start-up',
          f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ''),
         ('  of which goal to result', f"{results['embedded_run']['goal_to_result_s']:.3f} s", ''),
+        ('vd run, K&C event, new process (wall)', f"{results['cli_run']['total']:.2f} s",
+         'under 1.5 s'),
+        *((f'  {name}', f"{results['cli_run'][name]:.3f} s", '')
+          for name in ('startup', *CLI_PHASES, 'other')),
         ('data file edited -> new configuration received',
          f"{results['data_change_to_republish_s']:.2f} s", 'about 1 s'),
         ('bag write rate (Sample, 16 channels)',
@@ -228,7 +275,8 @@ def print_bench(results: dict[str, Any]) -> None:
     rows += [
         ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
-         f"{vehicle['step_s'] * 1e3:g} ms)", f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         f"{vehicle['step_s'] * 1e3:g} ms)",
+         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
          ''),
         ('  per step', f"{ss['us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),

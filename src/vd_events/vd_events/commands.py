@@ -39,6 +39,7 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     run.add_argument('--bag', help='bag directory to write (must not exist)')
     run.add_argument('--distributed', action='store_true',
                      help='one process per node (DDS on loopback) instead of one process')
+    _namespace_arg(run)
     run.add_argument('--json', action='store_true')
     HANDLERS['run'] = cmd_run
 
@@ -47,6 +48,7 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     study.add_argument('--bag', help='folder for the bags (default: out/<plan name>/bags)')
     study.add_argument('--report', help='folder for the report (default: out/<plan name>)')
     study.add_argument('--distributed', action='store_true')
+    _namespace_arg(study)
     study.add_argument('--json', action='store_true')
     HANDLERS['study'] = cmd_study
 
@@ -58,6 +60,9 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     launch = sub.add_parser('launch', help='start the nodes and keep them running')
     launch.add_argument('--distributed', action='store_true')
     launch.add_argument('--master', help='master file')
+    _namespace_arg(launch)
+    launch.add_argument('--allow-edits', action='store_true',
+                        help='start the data server with allow_edits:=true (set_override)')
     HANDLERS['launch'] = cmd_launch
 
     cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
@@ -81,6 +86,18 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     add_testdata(sub, HANDLERS)
 
 
+def _namespace_arg(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--namespace', default=None, metavar='NS',
+                        help='ROS namespace of the nodes (default: /vd): /car2 gives '
+                        '/car2/configuration, /car2/kc/run_event, ...')
+
+
+def _namespace(args: argparse.Namespace) -> str:
+    from vd_data_server.names import DEFAULT_NAMESPACE, check_namespace
+
+    return check_namespace(args.namespace) if args.namespace is not None else DEFAULT_NAMESPACE
+
+
 def _study(master: str | None):
     from vd_data_server.paths import default_master
     from vd_data_server.study import load_study
@@ -89,22 +106,57 @@ def _study(master: str | None):
     return path, load_study(path)
 
 
-def _progress_printer(enabled: bool):
-    if not enabled:
-        return None
+class _ProgressBar:
+    """
+    A rich progress bar on the terminal (stderr) for the runs' action feedback.
 
-    def show(request: RunRequest, fraction: float, stage: str) -> None:
-        print(f'\r  {request.configuration} / {request.event} / {request.model}: '
-              f'{stage} {100 * fraction:3.0f}%', end='', file=sys.stderr, flush=True)
-    return show
+    One task per run; a context manager, so the bar is closed however the runs end.
+    """
+
+    def __init__(self) -> None:
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn
+
+        self.progress = Progress(TextColumn('{task.description}'), BarColumn(),
+                                 TaskProgressColumn(), TextColumn('{task.fields[stage]}'),
+                                 console=Console(stderr=True), transient=False)
+        self.tasks: dict[RunRequest, object] = {}
+
+    def __call__(self, request: RunRequest, fraction: float, stage: str) -> None:
+        if request not in self.tasks:
+            self.tasks[request] = self.progress.add_task(
+                f'{request.configuration} / {request.event} / {request.model}', total=1.0,
+                stage=stage)
+        self.progress.update(self.tasks[request], completed=fraction, stage=stage)
+
+    def __enter__(self):
+        self.progress.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.progress.stop()
+
+
+def _progress_printer(enabled: bool):
+    """Return a progress bar for the terminal, or None (not a terminal, --json)."""
+    return _ProgressBar() if enabled else None
+
+
+def _with_progress(progress, work):
+    """Run ``work()`` with the progress bar (if any) shown."""
+    if progress is None:
+        return work()
+    with progress:
+        return work()
 
 
 def default_model(event: str) -> str:
     """
-    The model ``vd run EVENT`` uses without --model: two_track where it applies,
-    else the first model that runs the event.
+    Return the model ``vd run EVENT`` uses without --model.
+
+    two_track where it applies, else the first model that runs the event.
     """
-    from .runner import MODELS, events_for
+    from vd_solvers.families import MODELS, events_for
 
     if event in events_for('two_track'):
         return 'two_track'
@@ -112,8 +164,12 @@ def default_model(event: str) -> str:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
+    import time
+
+    t0 = time.perf_counter()
     from .runner import run_distributed, run_embedded, validate
 
+    namespace = _namespace(args)
     master, study = _study(args.master)
     model = args.model or default_model(args.event)
     config_name = args.config or study.configuration_names[0]
@@ -130,16 +186,22 @@ def cmd_run(args: argparse.Namespace) -> int:
         request = validate(study, request)
     except (RunError, BagError) as err:
         raise DataError(str(err)) from None
-    runner = run_distributed if args.distributed else run_embedded
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
-    (result,) = runner(master, [request], progress)
-    if progress:
-        print(file=sys.stderr)
+    # where the time goes (vd bench reports it): load + validate, then the runner's phases
+    timings = {'load_and_validate': time.perf_counter() - t0}
+    if args.distributed:
+        (result,) = _with_progress(progress, lambda: run_distributed(
+            master, [request], progress, namespace=namespace))
+    else:
+        (result,) = _with_progress(progress, lambda: run_embedded(
+            master, [request], progress, namespace=namespace, timings=timings, study=study))
     if result.error:
         raise DataError(result.error)
     assert result.outcome is not None
     if args.json:
-        print(json.dumps(result.outcome.to_json(str(result.bag) if result.bag else None)))
+        out = result.outcome.to_json(str(result.bag) if result.bag else None)
+        out['timings'] = {**timings, 'command': time.perf_counter() - t0}
+        print(json.dumps(out))
     else:
         _print_outcome(result)
     return 0
@@ -176,8 +238,10 @@ def cmd_study(args: argparse.Namespace) -> int:
     plan = load_plan(Path(args.plan))
     out = Path(args.report) if args.report else Path('out') / plan.name
     bags = Path(args.bag) if args.bag else out / 'bags'
-    summary = run_plan(plan, bags, out, distributed=args.distributed,
-                       progress=_progress_printer(sys.stderr.isatty() and not args.json))
+    namespace = _namespace(args)
+    progress = _progress_printer(sys.stderr.isatty() and not args.json)
+    summary = _with_progress(progress, lambda: run_plan(
+        plan, bags, out, distributed=args.distributed, progress=progress, namespace=namespace))
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
@@ -201,7 +265,8 @@ def cmd_report(args: argparse.Namespace) -> int:
 def cmd_launch(args: argparse.Namespace) -> int:
     from .launch import launch
 
-    return launch(Path(args.master) if args.master else None, distributed=args.distributed)
+    return launch(Path(args.master) if args.master else None, distributed=args.distributed,
+                  namespace=_namespace(args), allow_edits=args.allow_edits)
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -231,9 +296,8 @@ def cmd_capability(args: argparse.Namespace) -> int:
         raise DataError("vd capability takes only the parameter 'steps' (every event has it)")
     out = Path(args.out) if args.out else Path('out') / 'capability' / name
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
-    tables = run_study(master, study, name, axles, out, args.parameters, progress=progress)
-    if progress:
-        print(file=sys.stderr)
+    tables = _with_progress(progress, lambda: run_study(master, study, name, axles, out,
+                                                        args.parameters, progress=progress))
     if args.json:
         print(json.dumps({'configuration': name, 'out': str(out),
                           'tables': [t.to_json() for t in tables]}))

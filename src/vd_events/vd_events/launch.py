@@ -1,9 +1,12 @@
 """
-``vd launch [--distributed]``: start the data server and the solvers and keep them up.
+``vd launch [--distributed] [--namespace NS]``: start the graph and keep it up.
 
-Unlike ``vd run`` this uses the caller's ROS graph (ROS_DOMAIN_ID as set), so
-other tools (a recorder, Foxglove, ``ros2 run vd_events event_runner``) can use
-the nodes. Ctrl-C stops everything cleanly.
+The nodes are those of ``graph.graph()`` (the one definition the launch files use too):
+the data server and the three solvers, in ``NS`` (``/vd`` by default). Unlike ``vd run``
+this uses the caller's ROS graph (ROS_DOMAIN_ID as set), so other tools (a recorder,
+Foxglove, ``ros2 run vd_events event_runner``, the ``ros2`` CLI) can use the nodes. It
+is the path that needs no ``ros2 launch``; where that is installed, ``ros2 launch
+vd_events vd.launch.py`` starts the same graph. Ctrl-C stops everything cleanly.
 """
 from __future__ import annotations
 
@@ -13,55 +16,57 @@ import signal
 import subprocess
 import time
 
+from vd_data_server import names
 
-def launch(master: Path | None, *, distributed: bool) -> int:
+
+def launch(master: Path | None, *, distributed: bool,
+           namespace: str = names.DEFAULT_NAMESPACE, allow_edits: bool = False) -> int:
+    """Start the graph (validated first: bad data starts nothing); return the exit code."""
     from vd_data_server.paths import default_master
     from vd_data_server.study import load_study
 
+    from . import graph
+
     master = master or default_master()
     load_study(master)  # refuse bad data before anything starts
+    specs = graph.graph(master, allow_edits=allow_edits or None)
     if distributed:
-        return _distributed(master)
-    return _embedded(master)
+        return _distributed(specs, master, namespace)
+    return _embedded(specs, master, namespace)
 
 
-def _embedded(master: Path) -> int:
+def _embedded(specs, master: Path, namespace: str) -> int:
     import rclpy
-    from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+    from rclpy.executors import ExternalShutdownException
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
-    from vd_data_server.node_main import spin_guarded
-    from vd_solvers.analytical_node import AnalyticalSolver
-    from vd_solvers.kc_node import KCSolver
-    from vd_solvers.vehicle_node import VehicleSolver
+    from vd_data_server.node_main import make_executor, quiet_teardown, spin_guarded
+
+    from . import graph
 
     rclpy.init()
-    nodes = [DataServer(parameter_overrides=[Parameter('master_file', value=str(master))]),
-             AnalyticalSolver(), KCSolver(), VehicleSolver()]
-    executor = MultiThreadedExecutor(num_threads=2)
+    nodes = [graph.node_class(spec)(namespace=namespace, parameter_overrides=[
+        Parameter(k, value=v) for k, v in spec.parameters.items()]) for spec in specs]
+    executor = make_executor(threads=2)
     for node in nodes:
         executor.add_node(node)
-    print(f'vd nodes running in one process ({master}); Ctrl-C stops them')
+    print(f'vd nodes running in one process in {namespace} ({master}); Ctrl-C stops them',
+          flush=True)
     try:
         spin_guarded(executor, nodes[0])
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
-        for node in nodes:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        quiet_teardown(nodes)
     return 0
 
 
-def _distributed(master: Path) -> int:
-    from .runner import _executable, stop_processes
+def _distributed(specs, master: Path, namespace: str) -> int:
+    from . import graph
+    from .runner import stop_processes
 
-    commands = [[_executable('vd_data_server', 'data_server'), '--ros-args', '-p',
-                 f'master_file:={master}'],
-                [_executable('vd_solvers', 'analytical_solver')],
-                [_executable('vd_solvers', 'kc_solver')],
-                [_executable('vd_solvers', 'vehicle_solver')]]
+    commands = [graph.command(spec, namespace) for spec in specs]
+
     def stop(signum, frame):  # SIGTERM (and SIGINT where a shell ignores it) end the launch
         raise KeyboardInterrupt
 
@@ -69,7 +74,8 @@ def _distributed(master: Path) -> int:
     # the nodes end with the launch, even after kill -9 (node_main.die_with_parent)
     env = dict(os.environ, VD_PARENT_PID=str(os.getpid()))
     procs = [subprocess.Popen(cmd, env=env) for cmd in commands]
-    print(f'vd nodes running as {len(procs)} processes ({master}); Ctrl-C stops them')
+    print(f'vd nodes running as {len(procs)} processes in {namespace} ({master}); Ctrl-C '
+          'stops them', flush=True)
     try:
         while all(p.poll() is None for p in procs):
             time.sleep(0.5)

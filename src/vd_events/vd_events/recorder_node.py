@@ -4,7 +4,7 @@
 The role ``ros2 bag record`` plays (which pip-installed ROS lacks). Parameter
 ``bag``: the bag directory to create (refused if it exists). The bag is
 written under ``<bag>.partial`` and becomes ``<bag>`` only when its owner says
-the recording is complete: the service ``~/finish`` (std_srvs/Trigger, called by
+the recording is complete: the service ``recorder/finish`` (std_srvs/Trigger, called by
 the runner once it has confirmed every result it asked for) or ``stop()``.
 Any other end (Ctrl-C, SIGTERM, the parent run dying) removes the partial bag
 and says so: an interrupted recording never looks finished. The run's
@@ -18,15 +18,14 @@ import time
 
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
-import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
 from tf2_msgs.msg import TFMessage
-from vd_data_server.node_main import die_with_parent
+from vd_data_server import names
+from vd_data_server.node_main import run_node
+from vd_data_server.qos import CONFIGURATIONS, LATEST, STATES
 from vd_events.bag import BagError, BagWriter
 from vd_interfaces.msg import (
     Configuration,
@@ -36,43 +35,35 @@ from vd_interfaces.msg import (
     Sample,
     VehicleState,
 )
-from vd_solvers.solver_node import LATCHED, SAMPLES
+from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC
 
-# the publishers' own profiles: latched data, results and samples kept for late joiners
-_LATCHED = LATCHED
-_STREAM = SAMPLES
-#: where the recorder says how many event results it has written completely (latched)
-RECORDED_TOPIC = '/vd/recorder/recorded'
-
-#: the full vehicle's pose, one message per recorded step (odometry and TF)
-ODOMETRY_TOPIC = '/vd/vehicle/odom'
-TF_TOPIC = '/tf'
-#: seconds the recorder process stays up after ~/finish, for its response to be delivered
+#: where the recorder says how many event results it has written completely (latched),
+#: relative to the namespace (``/vd/recorder/recorded``)
+RECORDED_TOPIC = 'recorder/recorded'
+#: the service that closes the bag under its final name (``/vd/recorder/finish``)
+FINISH_SERVICE = 'recorder/finish'
+#: seconds the recorder process stays up after finish, for its response to be delivered
 FINISH_LINGER = 0.3
 
-#: topic -> (type, QoS) recorded by default
+#: each family's per-step message type
+STATE_TYPES = {'steady_state': Sample, 'kc': Sample, 'vehicle': VehicleState}
+
+#: topic (relative to the namespace, or absolute) -> (type, QoS) recorded by default;
+#: the subscriptions use the publishers' own profiles
 TOPICS = {
-    '/vd/configuration': (Configuration, _LATCHED),
-    '/vd/data_status': (DataStatus, _LATCHED),
-    '/vd/provenance': (Provenance, _STREAM),
-    '/vd/steady_state/result': (EventResult, _STREAM),
-    '/vd/steady_state/state': (Sample, _STREAM),
-    '/vd/kc/result': (EventResult, _STREAM),
-    '/vd/kc/state': (Sample, _STREAM),
-    '/vd/vehicle/result': (EventResult, _STREAM),
-    '/vd/vehicle/state': (VehicleState, _STREAM),
-    ODOMETRY_TOPIC: (Odometry, _STREAM),
-    TF_TOPIC: (TFMessage, _STREAM),
+    names.CONFIGURATION: (Configuration, CONFIGURATIONS),
+    names.DATA_STATUS: (DataStatus, LATEST),
+    names.PROVENANCE: (Provenance, STATES),
+    **{topic: spec for family in FAMILIES.values() for topic, spec in (
+        (family.result_topic, (EventResult, STATES)),
+        (family.state_topic, (STATE_TYPES[family.name], STATES)))},
+    ODOMETRY_TOPIC: (Odometry, STATES),
+    TF_TOPIC: (TFMessage, STATES),
 }
 
 
-_LATCHED_ONE = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1,
-                          reliability=ReliabilityPolicy.RELIABLE,
-                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
-
-
 def _stamp_ns(msg) -> int | None:
-    """The stamp of a result, sample or provenance message (None for data topics)."""
+    """Return the stamp of a result, sample or provenance message (None for data topics)."""
     stamp = getattr(msg, 'stamp', None)
     if stamp is None and hasattr(msg, 'header'):
         stamp = msg.header.stamp
@@ -82,7 +73,10 @@ def _stamp_ns(msg) -> int | None:
 
 
 class Recorder(Node):
+    """Record the graph's topics of one namespace to a bag; final only when finished."""
+
     def __init__(self, bag: str | None = None, **kwargs) -> None:
+        kwargs.setdefault('namespace', names.DEFAULT_NAMESPACE)
         super().__init__('recorder', **kwargs)
         self.declare_parameter('bag', bag or '', ParameterDescriptor(
             description='bag directory to create', read_only=True))
@@ -93,7 +87,6 @@ class Recorder(Node):
             raise ValueError("parameter 'bag' is required (the bag directory to create)")
         wanted = [c for c in self.get_parameter('configurations').value if c]
         self.only = set(wanted)
-        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
         self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
@@ -102,12 +95,18 @@ class Recorder(Node):
         self.complete = 0  # results written together with all their step samples
         self.error: str | None = None  # a write failed (full disk...): the bag is dropped
         self.finished = False
+        self.interrupted = False  # destroyed before the recording was complete
+        # the bag holds the resolved names (/vd/kc/result, /car2/kc/result, /tf)
+        self._bag_topics = {t: self.resolve_topic_name(t) for t in TOPICS}
         # in-process runs spin this node on a multi-threaded executor while the runner
         # stops it from its own thread: writes and close never overlap
         self._lock = threading.Lock()
+        # the bag's partial folder exists from here on: whatever stops the constructor
+        # (a signal meanwhile) removes it
+        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
         try:
-            self.create_service(Trigger, '~/finish', self._finish)
-            self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, _LATCHED_ONE)
+            self.create_service(Trigger, FINISH_SERVICE, self._finish)
+            self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, LATEST)
             for topic, (msg_type, qos) in TOPICS.items():
                 self.create_subscription(msg_type, topic, self._callback(topic), qos)
         except BaseException:  # e.g. a SIGTERM that shut the context down meanwhile
@@ -130,21 +129,21 @@ class Recorder(Node):
 
     def _record(self, topic: str, msg) -> None:
         name = getattr(msg, 'configuration', None)
-        if topic == '/vd/configuration':
+        if topic == names.CONFIGURATION:
             name = msg.name
         if self.only and name is not None and name not in self.only:
             return
         stamp = _stamp_ns(msg)
         if stamp is not None and stamp < self.start:
             return  # kept by a solver from an earlier run: not this recording's
-        if topic == '/vd/provenance':
+        if topic == names.PROVENANCE:
             for key in ('configuration', 'data_hash', 'model', 'fidelity', 'event',
                         'master_file', 'software_version'):
                 self.writer.set_custom_data(f'vd.{key}', str(getattr(msg, key)))
             self.writer.set_custom_data('vd.modified', '; '.join(
                 f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
                 for g in msg.groups for k in g.modified_keys) or 'none')
-        self.writer.write(topic, msg, time.time_ns())
+        self.writer.write(self._bag_topics[topic], msg, time.time_ns())
         self.counts[topic] += 1
         if topic.endswith('/state'):
             key = (msg.configuration, msg.event, msg.model)
@@ -159,8 +158,10 @@ class Recorder(Node):
 
     def _publish_complete(self) -> None:
         """
-        Count the results whose every step sample (and, for the full vehicle, every
-        odometry message) is written too, and say so.
+        Count the results written completely, and say so.
+
+        Complete: every step sample (and, for the full vehicle, every odometry and TF
+        message) is written too.
         """
         odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending
@@ -191,32 +192,38 @@ class Recorder(Node):
         return response
 
 
+    def destroy_node(self) -> None:
+        """Whatever ended the recording: no unfinished bag stays."""
+        if not self.finished:
+            self.abort()
+            self.interrupted = True
+        super().destroy_node()
+
+
+def _record(executor, node: Recorder) -> None:
+    """Spin until the bag is finished, then a little longer for the finish response."""
+    while executor.context.ok() and not node.finished:
+        executor.spin_once(timeout_sec=0.1)
+    linger = time.monotonic() + FINISH_LINGER  # the finish response reaches the runner
+    while executor.context.ok() and time.monotonic() < linger:
+        executor.spin_once(timeout_sec=0.05)
+
+
 def main(args=None) -> None:
-    die_with_parent()
-    rclpy.init(args=args)
-    node = None
-    interrupted = False
+    """Entry point of ``ros2 run vd_events recorder``."""
+    made: list[Recorder] = []
+
+    def factory() -> Recorder:
+        made.append(Recorder())
+        return made[-1]
+
     try:
-        node = Recorder()
-        while rclpy.ok() and not node.finished:
-            rclpy.spin_once(node, timeout_sec=0.1)
-        linger = time.monotonic() + FINISH_LINGER  # the finish response reaches the runner
-        while rclpy.ok() and time.monotonic() < linger:
-            rclpy.spin_once(node, timeout_sec=0.05)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+        run_node(factory, _record, args)
     except Exception as err:  # noqa: BLE001 - report a bad parameter without a traceback
         print(f'recorder: {err}', flush=True)
         raise SystemExit(2) from None
-    finally:
-        # first of all, whatever ended the recording: no unfinished bag may stay
-        if node is not None and not node.finished:
-            node.abort()
-            interrupted = True
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
-    if interrupted:
+    node = made[0] if made else None
+    if node is not None and node.interrupted:
         print(f"recorder: interrupted before the recording was complete: no bag written "
               f"({node.writer.path}{'' if node.error else '.partial removed'})", flush=True)
         sys.exit(1)

@@ -161,9 +161,10 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
         provenance: dict[str, list[str]] = {}
         for item in read_bag(bag):
             msg = item.msg
-            if item.topic == '/vd/data_status':
+            # topics of any namespace (/vd/data_status, /car2/data_status)
+            if item.topic.endswith('/data_status'):
                 status = msg
-            elif item.topic == '/vd/provenance':
+            elif item.topic.endswith('/provenance'):
                 provenance[msg.configuration] = [
                     f'{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}'.strip()
                     for g in msg.groups for k in g.modified_keys]
@@ -273,7 +274,7 @@ def _section(event: str, axle: str, family: str, runs: list[Run], images: list[s
 
 
 def _budget(run: Run) -> str:
-    """The understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
+    """Return the understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
     names = [f'understeer_budget_{t}_deg_per_g' for t in BUDGET_TERMS]
     if not all(n in run.metrics for n in names):
         return ''
@@ -372,7 +373,7 @@ def load_capability(bags: Sequence[Path]) -> list:
 
 
 def _capability_section(table) -> str:
-    """The table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
+    """Return the table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
     from .capability import DISPLAY, QUANTITIES, format_table
 
     head = ''.join(f'<th>{html.escape(q)}</th>' for q in QUANTITIES)

@@ -26,26 +26,29 @@ import subprocess
 import tempfile
 import time
 
+from vd_data_server import names
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import Study
-from vd_solvers.analytical.events import EVENT_MODELS as ANALYTICAL_EVENTS
-from vd_solvers.analytical.events import EVENT_PARAMS as ANALYTICAL_PARAMS
+from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
-from vd_solvers.kc.from_config import EVENT_PARAMS as KC_PARAMS
+from vd_solvers.families import (
+    CLI_FIELDS,
+    FAMILIES,
+    MODEL_FAMILY,
+    MODELS,
+    check_request,
+    event_params,
+    events_for,
+)
 from vd_solvers.results import EventOutcome
-from vd_solvers.vehicle.events import EVENT_PARAMS as VEHICLE_PARAMS
 
 from .bag import PARTIAL_SUFFIX, BagError, check_bag_path
 from .domain import DomainError, claim_domain
 
-#: model -> (solver family, events it runs)
-FAMILIES = {'bicycle': 'steady_state', 'two_track': 'steady_state', 'kc': 'kc',
-            'vehicle': 'vehicle'}
 ALL_EVENTS = ('steady_state_circular', 'handling_diagram', 'parallel_wheel_travel',
               'opposite_wheel_travel', 'lateral_force', 'longitudinal_force', 'steering',
               'aligning_torque', 'constant_radius_turn', 'sine_with_dwell', 'step_steer')
-MODELS = ('bicycle', 'two_track', 'kc', 'vehicle')
 GOAL_TIMEOUT = 60.0  # s: a solver silent (no result, no feedback) this long has died or hung
 SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
 ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again
@@ -53,6 +56,9 @@ GOAL_ATTEMPTS = 3
 DISCOVERY_GRACE = 0.5  # s
 RECORD_TIMEOUT = 10.0  # s: for the recorder to confirm it wrote the result
 CANCEL_WAIT = 2.0  # s: for an interrupted goal to be cancelled before the nodes stop
+#: s: longest wait of one spin while nothing happens (events end it at once); each spin
+#: rebuilds the wait set, which costs the solver's worker thread the GIL
+SPIN_PERIOD = 0.1
 
 
 class RunError(Exception):
@@ -79,7 +85,7 @@ class RunRequest:
 
     @property
     def family(self) -> str:
-        return FAMILIES[self.model]
+        return MODEL_FAMILY[self.model]
 
     @property
     def label(self) -> str:
@@ -95,24 +101,6 @@ class RunOutcome:
     timings: dict[str, float] = field(default_factory=dict)
 
 
-def events_for(model: str) -> tuple[str, ...]:
-    if model in ('bicycle', 'two_track'):
-        return tuple(e for e, models in ANALYTICAL_EVENTS.items() if model in models)
-    if model == 'kc':
-        return tuple(KC_PARAMS)
-    if model == 'vehicle':
-        return tuple(VEHICLE_PARAMS)
-    return ()
-
-
-def event_params(model: str, event: str):
-    if model == 'kc':
-        return KC_PARAMS[event]
-    if model == 'vehicle':
-        return VEHICLE_PARAMS[event]
-    return ANALYTICAL_PARAMS[event]
-
-
 def validate(study: Study, request: RunRequest) -> RunRequest:
     """
     Every check that can be made before starting: raises DataError / RunError / BagError.
@@ -123,23 +111,13 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
         raise RunError(f"unknown event '{request.event}' (events: {', '.join(ALL_EVENTS)})")
     if request.model not in MODELS:
         raise RunError(f"unknown model '{request.model}' (models: {', '.join(MODELS)})")
-    if request.model not in FAMILIES:
-        raise RunError(f"model '{request.model}' is not available yet (available: "
-                       f"{', '.join(FAMILIES)})")
-    if request.event not in events_for(request.model):
-        raise RunError(f"event '{request.event}' does not run on model '{request.model}' "
-                       f"(its events: {', '.join(events_for(request.model))})")
-    if request.fidelity not in ('rigid', 'flexible'):
-        raise RunError(f"unknown fidelity '{request.fidelity}' (rigid, flexible)")
-    # the K&C model has flexible components; the full vehicle passes the fidelity to its
-    # K&C maps (flexible K&C results when the configuration has flex data)
-    if request.fidelity == 'flexible' and request.model not in ('kc', 'vehicle'):
-        raise RunError(f"fidelity 'flexible' is available for models 'kc' and 'vehicle' only "
-                       f"(model '{request.model}' has no flexible components)")
-    if request.model == 'kc' and request.axle not in ('front', 'rear'):
-        raise RunError(f"K&C events need --axle front or rear (found '{request.axle}')")
-    if request.model != 'kc' and request.axle:
-        raise RunError(f"model '{request.model}' is a whole-vehicle model: no --axle")
+    if not request.fidelity:
+        raise RunError("unknown fidelity '' (rigid, flexible)")
+    try:  # the checks the solver's goal callback makes too, in command-line words
+        check_request(request.family, request.event, request.model, request.fidelity,
+                      request.axle, None, fields=CLI_FIELDS)
+    except SolverError as err:
+        raise RunError(str(err)) from None
     if request.configuration not in study.configurations:
         raise DataError(f"configuration '{request.configuration}' does not exist (available: "
                         f"{', '.join(study.configuration_names)})", file=str(study.master.path))
@@ -163,8 +141,9 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
 
 def _ros_args() -> list[str]:
     """
-    Node log level for in-process runs: the CLI reports errors itself, so the nodes
-    stay quiet unless VD_VERBOSE is set.
+    Return the node arguments of in-process runs: log level fatal unless VD_VERBOSE.
+
+    The CLI reports errors itself, so the nodes stay quiet.
     """
     return [] if os.environ.get('VD_VERBOSE') else ['--ros-args', '--log-level', 'fatal']
 
@@ -176,19 +155,26 @@ def _claim_domain():
         raise RunError(str(err)) from None
 
 
-class _Client:
-    """The event runner's action clients (one per solver family) on a node."""
+class EventClient:
+    """
+    The event runner's action clients (one per solver family) on a node.
 
-    def __init__(self, node) -> None:
+    The action names are relative: they resolve in ``node``'s namespace. Before the
+    first goal to each family it waits ``discovery_grace`` s (see DISCOVERY_GRACE); nodes
+    of one process share one DDS participant, which matches its own endpoints at once.
+    """
+
+    def __init__(self, node, discovery_grace: float = DISCOVERY_GRACE) -> None:
         from rclpy.action import ActionClient
 
         from vd_interfaces.action import RunEvent
 
         self.node = node
+        self.discovery_grace = discovery_grace
         self.warm: set[str] = set()
         self.running: list = []  # goal handles accepted and not finished (to cancel)
-        self.clients = {family: ActionClient(node, RunEvent, f'/vd/{family}/run_event')
-                        for family in set(FAMILIES.values())}
+        self.clients = {name: ActionClient(node, RunEvent, family.action())
+                        for name, family in FAMILIES.items()}
 
     def goal(self, request: RunRequest):
         from vd_interfaces.action import RunEvent
@@ -204,19 +190,21 @@ def _spin_until(executor, predicate: Callable[[], bool], timeout: float) -> bool
     while time.monotonic() < deadline:
         if predicate():
             return True
-        executor.spin_once(timeout_sec=0.02)
+        executor.spin_once(timeout_sec=SPIN_PERIOD)
     return predicate()
 
 
-def _send(executor, client: _Client, request: RunRequest, progress: Callable[[float, str], None]):
+def send_goal(executor, client: EventClient, request: RunRequest,
+              progress: Callable[[float, str], None]):
     """Send one goal and wait for its result; returns (success, message, EventResult)."""
     action = client.clients[request.family]
     if not _spin_until(executor, action.server_is_ready, SERVER_TIMEOUT):
-        raise RunError(f'{request.label}: no solver answers on /vd/{request.family}/run_event')
+        name = client.node.resolve_topic_name(FAMILIES[request.family].action())
+        raise RunError(f'{request.label}: no solver answers on {name}')
     if request.family not in client.warm:
         # Fast DDS drops a service response sent before the server has discovered the
         # client's response reader ("failed to send response"): give discovery a moment.
-        _spin_until(executor, lambda: False, DISCOVERY_GRACE)
+        _spin_until(executor, lambda: False, client.discovery_grace)
         client.warm.add(request.family)
     last_news = [time.monotonic()]  # the latest feedback: a goal that reports is alive
 
@@ -232,7 +220,7 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
         raise RunError(f'{request.label}: the solver did not accept the goal in time')
     handle = send.result()
     if not handle.accepted:
-        raise RunError(f'{request.label}: goal rejected')
+        raise RunError(f'{request.label}: goal rejected (the solver logs why)')
     result_future = handle.get_result_async()
     client.running.append(handle)
     last_news[0] = time.monotonic()
@@ -246,13 +234,13 @@ def _send(executor, client: _Client, request: RunRequest, progress: Callable[[fl
     return result.success, result.message, result.result
 
 
-def _run_goal(executor, client: _Client, request: RunRequest,
+def _run_goal(executor, client: EventClient, request: RunRequest,
               progress: Callable[[RunRequest, float, str], None] | None) -> EventOutcome:
     """One goal to its solver; the result as an EventOutcome, or RunError."""
     from vd_solvers.conversions import outcome_from_msg
 
-    ok, message, result = _send(executor, client, request,
-                                lambda p, s: progress(request, p, s) if progress else None)
+    ok, message, result = send_goal(executor, client, request,
+                                     lambda p, s: progress(request, p, s) if progress else None)
     if not ok:
         raise RunError(message)
     check_result(request, result)
@@ -261,9 +249,10 @@ def _run_goal(executor, client: _Client, request: RunRequest,
 
 def check_result(request: RunRequest, result) -> None:
     """
-    The result answers this request: its configuration, event, model, axle and data
-    hash are the ones asked for (a solver of another run on the same domain, or of
-    other data, answers with other values).
+    Check that the result answers this request, or raise RunError.
+
+    Its configuration, event, model, axle and data hash must be the ones asked for (a
+    solver of another run on the same domain, or of other data, answers with others).
     """
     asked = (request.configuration, request.event, request.model, request.axle)
     got = (result.configuration, result.event, result.model, result.axle)
@@ -278,60 +267,73 @@ def check_result(request: RunRequest, result) -> None:
 
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
-                 ) -> list[RunOutcome]:
+                 namespace: str = names.DEFAULT_NAMESPACE, timings: dict | None = None,
+                 study: Study | None = None) -> list[RunOutcome]:
     """
-    All nodes in this process; a recorder node per run with a bag.
+    All nodes in this process, in ``namespace``; a recorder node per run with a bag.
 
-    A multi-threaded executor: a solver's execute callback (a goal may take minutes)
-    runs in a worker thread while this thread keeps spinning the accept and result
-    futures, the feedback and the recorder.
+    ``study``: ``master`` as the caller loaded and validated it (the data server serves
+    it instead of loading the files again).
+    Only the solvers the requests need are started. A multi-threaded executor: a
+    solver's execute callback (a goal may take minutes) runs in a worker thread while
+    this thread keeps spinning the accept and result futures, the feedback and the
+    recorder. ``timings`` (if given) receives the seconds of each phase.
     """
+    clock = _Phases(timings)
     import rclpy
     from rclpy.executors import MultiThreadedExecutor
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
     from vd_data_server.data_server_node import DataServer
-    from vd_solvers.analytical_node import AnalyticalSolver
-    from vd_solvers.kc_node import KCSolver
-    from vd_solvers.vehicle_node import VehicleSolver
 
+    from .graph import solver_class
     from .recorder_node import Recorder
 
+    families = sorted({r.family for r in requests})
+    classes = [solver_class(f) for f in families]
+    clock.lap('imports')
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     claim = _claim_domain()
     context = rclpy.Context()
     rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
                signal_handler_options=None)
     executor = MultiThreadedExecutor(num_threads=EMBEDDED_THREADS, context=context)
-    nodes = [DataServer(context=context, parameter_overrides=[
+    # a private graph: no parameter services and no /rosout (fewer DDS endpoints to create
+    # and discover, a smaller wait set for every spin)
+    private = {'context': context, 'namespace': namespace, 'start_parameter_services': False,
+               'enable_rosout': False}
+    nodes = [DataServer(**private, study=study, parameter_overrides=[
                  Parameter('master_file', value=str(master)), Parameter('watch_period',
-                                                                        value=0.0)]),
-             AnalyticalSolver(context=context), KCSolver(context=context),
-             VehicleSolver(context=context)]
-    client_node = Node('event_runner', context=context)
+                                                                        value=0.0)])]
+    nodes += [cls(**private) for cls in classes]
+    client_node = Node('event_runner', **private)
     nodes.append(client_node)
     for node in nodes:
         executor.add_node(node)
-    client = _Client(client_node)
-    solvers = nodes[1:4]
+    client = EventClient(client_node, discovery_grace=0.0)
+    solvers = nodes[1:-1]
     outcomes: list[RunOutcome] = []
+    clock.lap('graph_start')
     try:
         _spin_until(executor, lambda: all(len(n.configurations) > 0 and n.status is not None
                                           for n in solvers), SERVER_TIMEOUT)
+        clock.lap('discovery')
         for request in requests:
             recorder = None
             try:
                 if request.bag is not None:
-                    recorder = Recorder(context=context, bag=str(request.bag),
+                    recorder = Recorder(bag=str(request.bag), **private,
                                         parameter_overrides=[Parameter(
                                             'configurations', value=[request.configuration])])
                     executor.add_node(recorder)
                     # let the recorder's latched subscriptions catch up before the run
-                    _spin_until(executor, lambda: recorder.counts['/vd/configuration'] > 0
+                    _spin_until(executor, lambda: recorder.counts[names.CONFIGURATION] > 0
                                 or recorder.error is not None, 5.0)
                 t0 = time.perf_counter()
+                clock.lap('record')  # the recorder's start
                 outcome = _run_goal(executor, client, request, progress)
+                clock.lap('solve')
                 bag = None
                 if recorder is not None:
                     if not _spin_until(executor, lambda: recorder.complete >= 1 or
@@ -342,6 +344,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                         bag = recorder.stop()
                     except BagError as err:
                         raise RunError(f'{request.label}: {err}') from None
+                    clock.lap('record')
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={'run': time.perf_counter() - t0}))
             except RunError as err:
@@ -355,17 +358,33 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                     executor.remove_node(recorder)
                     recorder.destroy_node()
     finally:
+        clock.lap('record')
         for node in nodes:
             executor.remove_node(node)
             node.destroy_node()
         executor.shutdown(timeout_sec=CANCEL_WAIT)
         rclpy.try_shutdown(context=context)
         claim.release()
+        clock.lap('shutdown')
     return outcomes
 
 
 #: worker threads of an embedded run: a goal's execute callback + everything else
 EMBEDDED_THREADS = 4
+
+
+class _Phases:
+    """Seconds spent in each phase of a run, accumulated into ``out`` (if given)."""
+
+    def __init__(self, out: dict | None) -> None:
+        self.out = out
+        self.t = time.perf_counter()
+
+    def lap(self, phase: str) -> None:
+        now = time.perf_counter()
+        if self.out is not None:
+            self.out[phase] = self.out.get(phase, 0.0) + now - self.t
+        self.t = now
 
 
 def _interrupted(request: RunRequest) -> str:
@@ -374,7 +393,7 @@ def _interrupted(request: RunRequest) -> str:
     return f'{request.label}: interrupted{where}'
 
 
-def _cancel_running(executor, client: _Client) -> None:
+def _cancel_running(executor, client: EventClient) -> None:
     """Ask the solver to drop the goal in progress (it stops at its next step)."""
     for handle in list(client.running):
         future = handle.cancel_goal_async()
@@ -382,20 +401,11 @@ def _cancel_running(executor, client: _Client) -> None:
     client.running.clear()
 
 
-def _executable(package: str, name: str) -> str:
-    from ament_index_python.packages import get_package_prefix
-
-    path = Path(get_package_prefix(package)) / 'lib' / package / name
-    if not path.exists():
-        raise RunError(f'executable {path} not found (is the workspace built?)')
-    return str(path)
-
-
 def run_distributed(master: Path, requests: Sequence[RunRequest],
                     progress: Callable[[RunRequest, float, str], None] | None = None,
-                    ) -> list[RunOutcome]:
+                    namespace: str = names.DEFAULT_NAMESPACE) -> list[RunOutcome]:
     """
-    One process per node (as ``ros2 run`` starts them), DDS on loopback.
+    One process per node (as ``ros2 run`` starts them), DDS on loopback, in ``namespace``.
 
     The nodes are this process's children in their own session (a Ctrl-C at the
     terminal reaches only this process, which stops them in order) and end with
@@ -404,12 +414,14 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
-    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import UInt32
     from std_srvs.srv import Trigger
 
+    from vd_data_server.qos import LATEST
+
+    from . import graph
     from .bag import read_bag
-    from .recorder_node import RECORDED_TOPIC
+    from .recorder_node import FINISH_SERVICE, RECORDED_TOPIC
 
     claim = _claim_domain()
     env = dict(os.environ, ROS_DOMAIN_ID=str(claim.domain), VD_PARENT_PID=str(os.getpid()),
@@ -431,39 +443,37 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     recorder = None
     request = None
     try:
-        procs.append(start([_executable('vd_data_server', 'data_server'), '--ros-args',
-                            '--log-level', 'warn', '-p', f'master_file:={master}', '-p',
-                            'watch_period:=0.0']))
-        procs.extend(start([_executable('vd_solvers', exe), '--ros-args', '--log-level',
-                            'warn'])
-                     for exe in sorted({f"{'analytical' if f == 'steady_state' else f}_solver"
-                                        for f in {r.family for r in requests}}))
+        quiet = ('--log-level', 'warn')
+        try:
+            procs.extend(start(graph.command(spec, namespace, quiet)) for spec in graph.graph(
+                master, watch_period=0.0, families={r.family for r in requests}))
+        except FileNotFoundError as err:
+            raise RunError(str(err)) from None
         context = rclpy.Context()
         rclpy.init(context=context, domain_id=claim.domain, signal_handler_options=None)
         executor = SingleThreadedExecutor(context=context)
-        node = Node('event_runner', context=context)
+        node = Node('event_runner', context=context, namespace=namespace)
         executor.add_node(node)
-        client = _Client(node)
-        finish = node.create_client(Trigger, '/recorder/finish')
+        client = EventClient(node)
+        finish = node.create_client(Trigger, FINISH_SERVICE)
         recorded = [0]  # results the current run's recorder says it has written
 
         def on_recorded(msg) -> None:
             recorded[0] = msg.data
 
-        node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, QoSProfile(
-            depth=1, reliability=ReliabilityPolicy.RELIABLE,
-            durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, LATEST)
         for request in requests:
             recorded[0] = 0
+            family = FAMILIES[request.family]
             if request.bag is not None:
-                recorder = start([_executable('vd_events', 'recorder'), '--ros-args', '-p',
-                                  f'bag:={request.bag}', '-p',
-                                  f"configurations:=['{request.configuration}']"])
+                recorder = start(graph.command(graph.NodeSpec('vd_events', 'recorder', {
+                    'bag': str(request.bag), 'configurations': [request.configuration]}),
+                    namespace))
             t0 = time.perf_counter()
             try:
                 if recorder is not None:
                     # the recorder's subscriptions must be matched before the results flow
-                    topics = (f'/vd/{request.family}/result', f'/vd/{request.family}/state')
+                    topics = (family.result_topic, family.state_topic)
                     if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
                                                              for t in topics), SERVER_TIMEOUT):
                         raise RunError(f'{request.label}: the recorder did not start')
@@ -475,7 +485,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                     bag = _finish_recording(executor, finish, recorder, request)
                     recorder = None
                     topics = {m.topic for m in read_bag(bag)}
-                    if f'/vd/{request.family}/result' not in topics:
+                    if node.resolve_topic_name(family.result_topic) not in topics:
                         raise RunError(f'{request.label}: the recorder missed the result')
                 outcomes.append(RunOutcome(request, outcome, bag,
                                            timings={'run': time.perf_counter() - t0}))
@@ -507,7 +517,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
 
 
 def _finish_recording(executor, finish, recorder: subprocess.Popen, request: RunRequest) -> Path:
-    """The result is confirmed: the recorder closes the bag under its final name."""
+    """Have the recorder close the bag under its final name (the result is confirmed)."""
     assert request.bag is not None
     if not _spin_until(executor, finish.service_is_ready, SERVER_TIMEOUT):
         raise RunError(f'{request.label}: the recorder does not answer')
@@ -530,9 +540,10 @@ def _finish_recording(executor, finish, recorder: subprocess.Popen, request: Run
 
 def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> None:
     """
-    A failed or interrupted run: stop its recorder (which removes its partial bag)
-    and make sure nothing that looks like a result is left (validate() made sure the
-    paths did not exist before, so this removes only this run's files).
+    Clean up after a failed or interrupted run: nothing that looks like a result stays.
+
+    Its recorder is stopped (which removes its partial bag); validate() made sure the
+    paths did not exist before, so this removes only this run's files.
     """
     if recorder is not None:
         stop_processes([recorder])
@@ -544,8 +555,9 @@ def _drop_recording(recorder: subprocess.Popen | None, request: RunRequest) -> N
 
 def stop_processes(procs: Sequence[subprocess.Popen], timeout: float = 10.0) -> None:
     """
-    SIGINT (a node's clean shutdown) to every process still running, then wait;
-    kill what does not stop in time. A Ctrl-C during the wait does not cut it short.
+    Send SIGINT (a node's clean shutdown) to every process still running, then wait.
+
+    What does not stop in time is killed. A Ctrl-C during the wait does not cut it short.
     """
     for proc in procs:
         if proc.poll() is None:

@@ -1,8 +1,9 @@
 """
 ``ros2 run vd_solvers analytical_solver``: bicycle and two-track models.
 
-Action ``/vd/steady_state/run_event`` (vd_interfaces/RunEvent); results on
-``/vd/steady_state/result`` and ``/vd/steady_state/state`` (see solver_node).
+Action ``steady_state/run_event`` (vd_interfaces/RunEvent); results on
+``steady_state/result`` and ``steady_state/state``, relative to the node's namespace
+(``/vd`` by default; see solver_node).
 
 Cooperation with the K&C rung: the roll properties and the compliance of
 both axles come from K&C results of the same configuration and data hash,
@@ -22,6 +23,8 @@ FAMILY = 'steady_state'
 
 
 class AnalyticalSolver(SolverNode):
+    """The analytical (bicycle, two-track) solver node."""
+
     def __init__(self, **kwargs) -> None:
         super().__init__('analytical_solver', FAMILY, self._solve, **kwargs)
 
@@ -30,6 +33,7 @@ class AnalyticalSolver(SolverNode):
 
 
 def main(args=None) -> None:
+    """Entry point of ``ros2 run vd_solvers analytical_solver``."""
     spin_node(AnalyticalSolver, args)
 
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vd_data_server.names import BODY_FRAME, ODOM_FRAME
 from vd_interfaces.msg import Channel as ChannelMsg
 from vd_interfaces.msg import EventResult, NamedScalar, Sample
 from vd_solvers.results import Channel, EventOutcome, Metric
@@ -54,7 +55,7 @@ def outcome_samples(outcome: EventOutcome, stamp=None) -> list[Sample]:
         sample = Sample(event=outcome.event, configuration=outcome.configuration,
                         model=outcome.model, step=step, names=names,
                         values=[float(v) for v in columns[step]] if columns is not None else [])
-        sample.header.frame_id = 'vehicle'
+        sample.header.frame_id = BODY_FRAME
         if stamp is not None:
             sample.header.stamp = stamp if time is None else _offset(stamp, float(time[step]))
         samples.append(sample)
@@ -84,7 +85,7 @@ def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
         msg = VehicleState(event=outcome.event, configuration=outcome.configuration,
                            model=outcome.model, step=i)
         msg.header.stamp = _offset(stamp, float(t))
-        msg.header.frame_id = 'odom'
+        msg.header.frame_id = ODOM_FRAME
         for name in VEHICLE_FIELDS:
             setattr(msg, name, float(ch[name][i]))
         for wheel in ('front_left', 'front_right', 'rear_left', 'rear_right'):
@@ -130,8 +131,8 @@ def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     for i, t in enumerate(ch['time']):
         msg = Odometry()
         msg.header.stamp = _offset(stamp, float(t))
-        msg.header.frame_id = 'odom'
-        msg.child_frame_id = 'base_link'
+        msg.header.frame_id = ODOM_FRAME
+        msg.child_frame_id = BODY_FRAME
         msg.pose.pose.position.x = float(ch['x'][i])
         msg.pose.pose.position.y = float(ch['y'][i])
         roll, pitch, yaw = float(ch['roll'][i]), float(ch['pitch'][i]), float(ch['yaw'][i])

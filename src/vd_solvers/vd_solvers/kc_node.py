@@ -3,8 +3,9 @@
 
 Goal fidelity 'rigid' or 'flexible'; empty: the configuration's ``flexible`` switch.
 
-Action ``/vd/kc/run_event`` (vd_interfaces/RunEvent, goal.axle front|rear);
-results on ``/vd/kc/result`` and per step on ``/vd/kc/state`` (see solver_node).
+Action ``kc/run_event`` (vd_interfaces/RunEvent, goal.axle front|rear); results on
+``kc/result`` and per step on ``kc/state``, relative to the node's namespace (``/vd`` by
+default; see solver_node).
 """
 from __future__ import annotations
 
@@ -29,11 +30,14 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
 
 
 class KCSolver(SolverNode):
+    """The K&C solver node."""
+
     def __init__(self, **kwargs) -> None:
         super().__init__('kc_solver', FAMILY, _run, **kwargs)
 
 
 def main(args=None) -> None:
+    """Entry point of ``ros2 run vd_solvers kc_solver``."""
     spin_node(KCSolver, args)
 
 

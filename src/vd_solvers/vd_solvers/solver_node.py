@@ -1,13 +1,16 @@
 """
 The shell every solver node shares: configurations in, RunEvent action, results out.
 
-A solver node subscribes to the latched ``/vd/configuration`` and
-``/vd/data_status`` topics, serves ``/vd/<family>/run_event``
-(vd_interfaces/RunEvent, with progress feedback, cancellable between stages),
-and publishes each result on ``/vd/<family>/result`` (EventResult), one
-``Sample`` per step on ``/vd/<family>/state`` and the run's provenance on
-``/vd/provenance``. A failure answers the goal with an error naming the
-configuration and event; the node keeps serving.
+Names are relative to the node's namespace (``/vd`` unless remapped with ``__ns:=``).
+A solver node subscribes to the latched ``configuration`` and ``data_status``
+topics, serves ``<family>/run_event`` (vd_interfaces/RunEvent, with progress
+feedback, cancellable between stages; see ``families`` for other instances), and
+publishes each result on ``<family>/result`` (EventResult), one message per step on
+``<family>/state`` and the run's provenance on ``provenance``. A goal that cannot
+run (unknown event or model, bad axle, fidelity, parameter or override, a
+configuration the data server does not publish) is rejected in the goal callback and
+the reason logged; a failure during the run answers the goal with an error naming
+the configuration and event. The node keeps serving.
 """
 from __future__ import annotations
 
@@ -19,12 +22,13 @@ import warnings
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
+from vd_data_server import names
 from vd_data_server.conversions import configuration_from_msg
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.model import Configuration
+from vd_data_server.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
 from vd_data_server.study import modified_keys
 from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
@@ -32,6 +36,7 @@ from vd_interfaces.msg import DataStatus, EventResult, Provenance, Sample
 from vd_solvers import __version__
 from vd_solvers.conversions import outcome_samples, outcome_to_msg
 from vd_solvers.errors import SolverError
+from vd_solvers.families import FAMILIES, check_request
 from vd_solvers.results import EventOutcome
 
 #: seconds a goal waits for its configuration to arrive on /vd/configuration
@@ -41,54 +46,68 @@ CONFIGURATION_WAIT = 5.0
 RunFn = Callable[[Configuration, RunEvent.Goal, Callable[[float, str], None]], EventOutcome]
 #: least interval between two feedback messages, s
 FEEDBACK_PERIOD = 0.1
+#: how a goal's overrides are named in messages
+OVERRIDES_SOURCE = 'overrides'
+#: the profiles every subscriber of the solvers' topics uses (the publishers' own)
+SAMPLES = STATES
 
 
 class Cancelled(Exception):
     """The client cancelled the goal while it was being solved."""
 
-LATCHED = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1000,
-                     reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
-# Results are kept for late joiners (a recorder or a solver started after the run):
-# discovery between two processes takes a moment, and a result must not be lost in it.
-# Subscribers that only want new results compare the stamps with their own start.
-RESULTS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=100,
-                     reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
-SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
-                     reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 class SolverNode(Node):
+    """A solver: the family's RunEvent action over a run function of the ROS-free core."""
+
     #: message type of the per-step states on /vd/<family>/state
     STATE_TYPE: type = Sample
 
     def __init__(self, name: str, family: str, run: RunFn, **kwargs) -> None:
-        super().__init__(name, **kwargs)
+        spec = FAMILIES[family]
+        kwargs.setdefault('namespace', names.DEFAULT_NAMESPACE)
+        # ``node_name``: another instance of the family (it serves its own action)
+        super().__init__(kwargs.pop('node_name', name), **kwargs)
         self.family = family
         self._run = run
         self.configurations: dict[str, Configuration] = {}
         self.status: DataStatus | None = None
         group = ReentrantCallbackGroup()
-        self.create_subscription(ConfigurationMsg, '/vd/configuration', self._on_configuration,
-                                 LATCHED, callback_group=group)
-        self.create_subscription(DataStatus, '/vd/data_status', self._on_status,
-                                 QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                                            durability=DurabilityPolicy.TRANSIENT_LOCAL),
+        self.create_subscription(ConfigurationMsg, names.CONFIGURATION, self._on_configuration,
+                                 CONFIGURATIONS, callback_group=group)
+        self.create_subscription(DataStatus, names.DATA_STATUS, self._on_status, LATEST,
                                  callback_group=group)
-        self.result_pub = self.create_publisher(EventResult, f'/vd/{family}/result', RESULTS)
-        self.sample_pub = self.create_publisher(self.STATE_TYPE, f'/vd/{family}/state', SAMPLES)
-        self.provenance_pub = self.create_publisher(Provenance, '/vd/provenance', RESULTS)
-        self.action = ActionServer(self, RunEvent, f'/vd/{family}/run_event', self._execute,
-                                   goal_callback=lambda _: GoalResponse.ACCEPT,
+        self.result_pub = self.create_publisher(EventResult, spec.result_topic, RESULTS)
+        self.sample_pub = self.create_publisher(self.STATE_TYPE, spec.state_topic, STATES)
+        self.provenance_pub = self.create_publisher(Provenance, names.PROVENANCE, RESULTS)
+        self.action = ActionServer(self, RunEvent, spec.action(self.get_name()), self._execute,
+                                   goal_callback=self._check_goal,
                                    cancel_callback=lambda _: CancelResponse.ACCEPT,
                                    callback_group=group)
 
+    def _check_goal(self, goal) -> GoalResponse:
+        """Reject a goal that cannot run, and log why (the action protocol has no reason)."""
+        try:
+            check_request(self.family, goal.event, goal.model or FAMILIES[self.family].
+                          default_model, goal.fidelity, goal.axle, goal.parameters)
+            parse_set(goal.overrides, source=OVERRIDES_SOURCE)
+            published = set(self.configurations) | set(
+                self.status.configurations if self.status is not None else ())
+            if self.status is not None and goal.configuration not in published:
+                raise DataError(f"configuration '{goal.configuration}' is not published "
+                                f"(known: {', '.join(sorted(published)) or 'none'})")
+        except (DataError, SolverError) as err:
+            self.get_logger().error(f"goal rejected: configuration '{goal.configuration}', "
+                                    f"event '{goal.event}': {err}")
+            return GoalResponse.REJECT
+        return GoalResponse.ACCEPT
+
     def _wait_for_configuration(self, name: str) -> Configuration | None:
         """
+        Wait a little for a configuration that has not arrived yet.
+
         A solver started together with the data server may get a goal before the
-        latched configurations have arrived: wait a little for them.
+        latched configurations have arrived.
         """
         deadline = time.monotonic() + CONFIGURATION_WAIT
         while name not in self.configurations and time.monotonic() < deadline:
@@ -100,6 +119,10 @@ class SolverNode(Node):
 
     def _on_status(self, msg: DataStatus) -> None:
         self.status = msg
+        if not msg.errors and msg.configurations:
+            # a reload that removed a configuration: it is no longer served
+            for name in set(self.configurations) - set(msg.configurations):
+                del self.configurations[name]
 
     def _execute(self, goal_handle):
         goal = goal_handle.request
@@ -116,7 +139,8 @@ class SolverNode(Node):
                 raise DataError(f"configuration '{goal.configuration}' is not published "
                                 f"(known: {', '.join(sorted(self.configurations)) or 'none'})")
             base = config
-            config = with_overrides(config, parse_set(goal.overrides))
+            config = with_overrides(config, parse_set(goal.overrides, OVERRIDES_SOURCE),
+                                    OVERRIDES_SOURCE)
             last = [0.0]
 
             def progress(fraction: float, stage: str) -> None:
@@ -189,12 +213,12 @@ class SolverNode(Node):
 
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """The per-step messages of ``outcome`` (Sample: channel names and values)."""
+        """Return the per-step messages of ``outcome`` (Sample: channel names, values)."""
         return outcome_samples(outcome, stamp)
 
 
 def _warning_messages(caught) -> list[str]:
-    """The caught warnings' messages, each once, at most five."""
+    """Return the caught warnings' messages, each once, at most five."""
     return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
 
 

@@ -1,0 +1,108 @@
+"""
+The one definition of the vd graph: which nodes ``vd launch`` and the launch files start.
+
+``graph()`` lists the nodes (package, executable, parameters): the data server and one
+solver per family. ``vd launch`` starts them in one process (``node_class``) or as
+processes (``command``); ``vd run --distributed`` starts the ones its runs need; the
+launch file ``vd_events/launch/vd.launch.py`` turns the same list into
+``launch_ros`` Node actions for ``ros2 launch``. Every node starts in ``namespace``
+(``/vd`` by default; ``__ns:=`` remaps it), so its relative names move with it.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from vd_data_server import names
+from vd_solvers.families import FAMILIES
+
+
+@dataclass(frozen=True)
+class NodeSpec:
+    """One node of the graph: ``ros2 run PACKAGE EXECUTABLE -p NAME:=VALUE ...``."""
+
+    package: str
+    executable: str
+    parameters: Mapping[str, object] = field(default_factory=dict)
+
+
+def data_server(master: Path | str | None = None, *, watch_period: float | None = None,
+                allow_edits: bool | None = None) -> NodeSpec:
+    """Return the data server's node (parameters left out keep the node's defaults)."""
+    params: dict[str, object] = {}
+    if master is not None:
+        params['master_file'] = str(master)
+    if watch_period is not None:
+        params['watch_period'] = float(watch_period)
+    if allow_edits is not None:
+        params['allow_edits'] = bool(allow_edits)
+    return NodeSpec('vd_data_server', 'data_server', params)
+
+
+def solver(family: str) -> NodeSpec:
+    """Return the solver node of ``family`` (``steady_state``, ``kc``, ``vehicle``)."""
+    return NodeSpec('vd_solvers', FAMILIES[family].executable)
+
+
+def graph(master: Path | str | None = None, *, watch_period: float | None = None,
+          allow_edits: bool | None = None,
+          families: Iterable[str] | None = None) -> list[NodeSpec]:
+    """Return the graph: the data server and a solver per family (default: every family)."""
+    chosen = list(FAMILIES) if families is None else sorted(set(families))
+    return [data_server(master, watch_period=watch_period, allow_edits=allow_edits),
+            *(solver(f) for f in chosen)]
+
+
+def parameter_text(value: object) -> str:
+    """Return ``value`` as ``-p NAME:=TEXT`` takes it (YAML: true, 0.5, ['a'])."""
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if isinstance(value, (list, tuple)):
+        return '[' + ', '.join(f"'{v}'" for v in value) + ']'
+    return str(value)
+
+
+def executable(package: str, name: str) -> Path:
+    """Return the path ``ros2 run PACKAGE NAME`` starts, or FileNotFoundError."""
+    from ament_index_python.packages import get_package_prefix
+
+    path = Path(get_package_prefix(package)) / 'lib' / package / name
+    if not path.exists():
+        raise FileNotFoundError(f'executable {path} not found (is the workspace built?)')
+    return path
+
+
+def command(spec: NodeSpec, namespace: str = names.DEFAULT_NAMESPACE,
+            ros_args: Sequence[str] = ()) -> list[str]:
+    """Return the command line that starts ``spec`` in ``namespace`` as ``ros2 run`` does."""
+    args = [str(executable(spec.package, spec.executable)), '--ros-args',
+            '-r', f'__ns:={namespace}', *ros_args]
+    for name, value in spec.parameters.items():
+        args += ['-p', f'{name}:={parameter_text(value)}']
+    return args
+
+
+def solver_class(family: str) -> type:
+    """Return the node class of ``family``'s solver (imported on demand: imports cost)."""
+    if family == 'steady_state':
+        from vd_solvers.analytical_node import AnalyticalSolver
+
+        return AnalyticalSolver
+    if family == 'kc':
+        from vd_solvers.kc_node import KCSolver
+
+        return KCSolver
+    from vd_solvers.vehicle_node import VehicleSolver
+
+    return VehicleSolver
+
+
+def node_class(spec: NodeSpec) -> type:
+    """Return the node class that ``spec``'s executable runs."""
+    if spec.executable == 'data_server':
+        from vd_data_server.data_server_node import DataServer
+
+        return DataServer
+    family = next(f.name for f in FAMILIES.values() if f.executable == spec.executable)
+    return solver_class(family)
