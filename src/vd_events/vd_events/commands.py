@@ -58,6 +58,8 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     launch = sub.add_parser('launch', help='start the nodes and keep them running')
     launch.add_argument('--distributed', action='store_true')
     launch.add_argument('--master', help='master file')
+    launch.add_argument('--solvers', default='', metavar='FAMILY=N,...', help='solver '
+                        'instances per family, e.g. kc=2 (default one of each)')
     HANDLERS['launch'] = cmd_launch
 
     cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
@@ -71,6 +73,10 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
                      metavar='NAME=VALUE', help='event parameter for every event, e.g. steps=41')
     cap.add_argument('--json', action='store_true')
     HANDLERS['capability'] = cmd_capability
+
+    from .sweep_cli import add_subcommands as add_sweep_commands
+
+    add_sweep_commands(sub, HANDLERS)
 
     bench = sub.add_parser('bench', help='the benchmark suite')
     bench.add_argument('--json', action='store_true')
@@ -97,8 +103,9 @@ def _progress_printer(enabled: bool):
 
 def default_model(event: str) -> str:
     """
-    The model ``vd run EVENT`` uses without --model: two_track where it applies,
-    else the first model that runs the event.
+    Return the model ``vd run EVENT`` uses without --model.
+
+    two_track where it applies, else the first model that runs the event.
     """
     from .runner import MODELS, events_for
 
@@ -193,7 +200,8 @@ def cmd_report(args: argparse.Namespace) -> int:
 def cmd_launch(args: argparse.Namespace) -> int:
     from .launch import launch
 
-    return launch(Path(args.master) if args.master else None, distributed=args.distributed)
+    return launch(Path(args.master) if args.master else None, distributed=args.distributed,
+                  solvers=args.solvers)
 
 
 def cmd_bench(args: argparse.Namespace) -> int:

@@ -14,18 +14,21 @@ import subprocess
 import time
 
 
-def launch(master: Path | None, *, distributed: bool) -> int:
+def launch(master: Path | None, *, distributed: bool, solvers: str = '') -> int:
     from vd_data_server.paths import default_master
     from vd_data_server.study import load_study
 
+    from .dispatch import parse_solvers
+
+    counts = parse_solvers(solvers)  # instances per family (vd_events.dispatch); default 1
     master = master or default_master()
     load_study(master)  # refuse bad data before anything starts
     if distributed:
-        return _distributed(master)
-    return _embedded(master)
+        return _distributed(master, counts)
+    return _embedded(master, counts)
 
 
-def _embedded(master: Path) -> int:
+def _embedded(master: Path, counts: dict[str, int] | None = None) -> int:
     import rclpy
     from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
     from rclpy.parameter import Parameter
@@ -39,6 +42,11 @@ def _embedded(master: Path) -> int:
     rclpy.init()
     nodes = [DataServer(parameter_overrides=[Parameter('master_file', value=str(master))]),
              AnalyticalSolver(), KCSolver(), VehicleSolver()]
+    from .dispatch import instance_names
+
+    kinds = {'steady_state': AnalyticalSolver, 'kc': KCSolver, 'vehicle': VehicleSolver}
+    nodes += [kinds[family](cli_args=['--ros-args', '-r', f'__node:={name}'])
+              for family, n in (counts or {}).items() for name in instance_names(family, n)[1:]]
     executor = MultiThreadedExecutor(num_threads=2)
     for node in nodes:
         executor.add_node(node)
@@ -54,7 +62,8 @@ def _embedded(master: Path) -> int:
     return 0
 
 
-def _distributed(master: Path) -> int:
+def _distributed(master: Path, counts: dict[str, int] | None = None) -> int:
+    from .dispatch import instance_names, solver_command
     from .runner import _executable, stop_processes
 
     commands = [[_executable('vd_data_server', 'data_server'), '--ros-args', '-p',
@@ -62,6 +71,9 @@ def _distributed(master: Path) -> int:
                 [_executable('vd_solvers', 'analytical_solver')],
                 [_executable('vd_solvers', 'kc_solver')],
                 [_executable('vd_solvers', 'vehicle_solver')]]
+    # extra instances (--solvers kc=2): named kc_solver_2, ... (one action each)
+    commands += [solver_command(family, name) for family, n in (counts or {}).items()
+                 for name in instance_names(family, n)[1:]]
     def stop(signum, frame):  # SIGTERM (and SIGINT where a shell ignores it) end the launch
         raise KeyboardInterrupt
 

@@ -60,6 +60,11 @@ SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
+def instance_action(family: str) -> str:
+    """Name the action of one solver instance, relative to its node: ``<node>/<family>/...``."""
+    return f'~/{family}/run_event'
+
+
 class SolverNode(Node):
     #: message type of the per-step states on /vd/<family>/state
     STATE_TYPE: type = Sample
@@ -80,15 +85,22 @@ class SolverNode(Node):
         self.result_pub = self.create_publisher(EventResult, f'/vd/{family}/result', RESULTS)
         self.sample_pub = self.create_publisher(self.STATE_TYPE, f'/vd/{family}/state', SAMPLES)
         self.provenance_pub = self.create_publisher(Provenance, '/vd/provenance', RESULTS)
-        self.action = ActionServer(self, RunEvent, f'/vd/{family}/run_event', self._execute,
-                                   goal_callback=lambda _: GoalResponse.ACCEPT,
-                                   cancel_callback=lambda _: CancelResponse.ACCEPT,
-                                   callback_group=group)
+        # The family's shared action for the default instance only (several servers on one
+        # name all receive a goal); every instance also serves its own (vd_events.dispatch).
+        names = [instance_action(family)]
+        if self.get_name() == name:
+            names.insert(0, f'/vd/{family}/run_event')
+        self.actions = [ActionServer(self, RunEvent, action, self._execute,
+                                     goal_callback=lambda _: GoalResponse.ACCEPT,
+                                     cancel_callback=lambda _: CancelResponse.ACCEPT,
+                                     callback_group=group) for action in names]
 
     def _wait_for_configuration(self, name: str) -> Configuration | None:
         """
+        Wait a little for the configuration ``name`` to arrive.
+
         A solver started together with the data server may get a goal before the
-        latched configurations have arrived: wait a little for them.
+        latched configurations have arrived.
         """
         deadline = time.monotonic() + CONFIGURATION_WAIT
         while name not in self.configurations and time.monotonic() < deadline:
@@ -189,12 +201,12 @@ class SolverNode(Node):
 
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """The per-step messages of ``outcome`` (Sample: channel names and values)."""
+        """Return the per-step messages of ``outcome`` (Sample: channel names and values)."""
         return outcome_samples(outcome, stamp)
 
 
 def _warning_messages(caught) -> list[str]:
-    """The caught warnings' messages, each once, at most five."""
+    """Return the caught warnings' messages, each once, at most five."""
     return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
 
 
