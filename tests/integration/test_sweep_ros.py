@@ -111,35 +111,40 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
         launcher.send_signal(signal.SIGTERM)
         log, _ = launcher.communicate(timeout=30)
     summary = json.loads(capsys.readouterr().out)
-    assert code == 0, (summary, log)
+    assert code == 0, (summary['errors'], log)
     assert summary['computed'] == 4 and summary['failed'] == 0
     assert {r.instance for r in load_records(out).values()} == {'/kc_solver', '/kc_solver_2'}
     # the default instance keeps the shared name; the second serves only its own
-    assert '/vd/kc/run_event' in names
-    assert {'/kc_solver/kc/run_event', '/kc_solver_2/kc/run_event'} <= names
-    assert not any(n.startswith('/kc_solver_2/') and n != '/kc_solver_2/kc/run_event'
-                   for n in names if n.endswith('run_event'))
+    assert names == {'kc_solver': {'/vd/kc/run_event', '/kc_solver/kc/run_event'},
+                     'kc_solver_2': {'/kc_solver_2/kc/run_event'}}
     assert launcher.returncode == 0, log
     assert (out / 'table.csv').is_file()
 
 
-def _action_names(domain: int) -> set[str]:
+def _action_names(domain: int) -> dict[str, set[str]]:
+    """Return the RunEvent actions each kc solver node serves, once both are discovered."""
+    import time
+
     import rclpy
-    from rclpy.action.graph import get_action_names_and_types
+    from rclpy.action.graph import get_action_server_names_and_types_by_node
     from rclpy.node import Node
 
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=domain, signal_handler_options=None)
     node = Node('probe', context=context)
     try:
-        import time
-
-        deadline = time.monotonic() + 10
-        names: set[str] = set()
-        while time.monotonic() < deadline and '/kc_solver_2/kc/run_event' not in names:
-            names = {n for n, _ in get_action_names_and_types(node)}
+        deadline = time.monotonic() + 15
+        servers: dict[str, set[str]] = {}
+        while time.monotonic() < deadline:
+            try:
+                servers = {name: {n for n, _ in get_action_server_names_and_types_by_node(
+                    node, name, '/')} for name in ('kc_solver', 'kc_solver_2')}
+            except Exception:  # noqa: BLE001 - RCLError until the node is discovered
+                servers = {}
+            if servers and all(servers.values()) and len(servers['kc_solver']) >= 2:
+                break
             time.sleep(0.2)
-        return names
+        return servers
     finally:
         node.destroy_node()
         rclpy.try_shutdown(context=context)

@@ -45,8 +45,9 @@ ACTION_TYPE = 'vd_interfaces/action/RunEvent'
 SILENCE = 30.0
 #: times a goal is sent before its run counts as failed (instances died under it)
 ATTEMPTS = 3
-#: s to wait for the first instance of a family needed by the runs
-DISCOVERY_TIMEOUT = 30.0
+#: s to wait for the first instance of a family the runs need (a loaded machine starts a
+#: solver process in 10-40 s)
+DISCOVERY_TIMEOUT = 90.0
 #: s between two looks at the graph
 DISCOVERY_PERIOD = 0.5
 #: executable of each solver family
