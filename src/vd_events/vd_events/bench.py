@@ -258,7 +258,7 @@ def print_bench(results: dict[str, Any]) -> None:
         ('  on 1 solver process (vd sweep --solvers 1)', f"{sw['1_process_s']:.2f} s", ''),
         ('  on 2 solver processes (vd sweep --solvers 2)', f"{sw['2_process_s']:.2f} s", ''),
         ('  speed-up 1 -> 2 processes', f"{sw['speed_up']:.2f}x", '>= 1.8x on 2 cores'),
-        ('  dispatch overhead per run',
+        (f"  dispatch overhead per run (median of {sw['pairs']} pairs)",
          f"{sw['overhead_per_run_s'] * 1e3:.0f} ms ({100 * sw['overhead_fraction']:.1f} % of a "
          'run)', 'under 5 %'),
     ]

@@ -6,8 +6,13 @@ points of two hard-point heights (40 data hashes: nothing is cached). Timed from
 first goal to the last result, with the instances started, discovered and warmed up
 (one run each) before; the same 40 runs computed in this process, one by one, with
 the solver's own core (``run_kc_event`` on the configuration with the overrides)
-give the compute time. Overhead per run = (one process's sweep time - the compute
-time) / 40, as a fraction of one run's compute time.
+give the compute time.
+
+The dispatch overhead per run is measured in pairs, so that the load of a shared
+machine falls on both halves alike: a run computed here, then the same run as a
+goal to the one solver process (its result back, converted and checked); the
+overhead is the median of (goal time - local time) / local time over
+:data:`PAIRS` pairs.
 """
 from __future__ import annotations
 
@@ -17,6 +22,7 @@ import time
 from typing import Any
 
 RUNS = 40
+PAIRS = 10
 PLAN = """\
 name: bench_sweep
 master: {master}
@@ -48,10 +54,13 @@ def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
         plan = load_plan(path)
     study = load_study(master)
     requests = [row[0] for row in requests_for(plan, study, points(plan))]
-    t0 = time.perf_counter()
-    for r in requests:
+    def local(r) -> None:
         config = with_overrides(study.configurations[r.configuration], parse_set(r.overrides))
         run_kc_event(config, r.event, r.axle, list(r.parameters))
+
+    t0 = time.perf_counter()
+    for r in requests:
+        local(r)
     compute = time.perf_counter() - t0
     out: dict[str, Any] = {'runs': runs, 'in_process_s': compute,
                            'per_run_s': compute / runs}
@@ -61,16 +70,22 @@ def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
 
     # a warm-up run per instance (imports, first allocation) on the base configuration
     warm = validate(study, dataclasses.replace(requests[0], overrides=(), data_hash=''))
+    pairs: list[tuple[float, float]] = []
     for n in (1, 2):
-        out[f'{n}_process_s'] = _timed(master, requests, [warm] * n, n)
+        out[f'{n}_process_s'] = _timed(master, requests, [warm] * n, n,
+                                       local if n == 1 else None, pairs)
     one, two = out['1_process_s'], out['2_process_s']
     out['speed_up'] = one / two
-    out['overhead_per_run_s'] = (one - compute) / runs
-    out['overhead_fraction'] = out['overhead_per_run_s'] / out['per_run_s']
+    import statistics
+
+    out['overhead_per_run_s'] = statistics.median(goal - here for here, goal in pairs)
+    out['overhead_fraction'] = statistics.median((goal - here) / here for here, goal in pairs)
+    out['pairs'] = len(pairs)
     return out
 
 
-def _timed(master: Path, requests, warm, n: int) -> float:
+def _timed(master: Path, requests, warm, n: int, local=None,
+           pairs: list[tuple[float, float]] | None = None) -> float:
     from .dispatch import SolverGraph
 
     failures: list[str] = []
@@ -89,6 +104,12 @@ def _timed(master: Path, requests, warm, n: int) -> float:
         t0 = time.perf_counter()
         dispatcher.run(requests, done)
         elapsed = time.perf_counter() - t0
+        for r in requests[:PAIRS] if local is not None and pairs is not None else ():
+            t0 = time.perf_counter()
+            local(r)
+            t1 = time.perf_counter()
+            dispatcher.run([r], done)
+            pairs.append((t1 - t0, time.perf_counter() - t1))
     if failures:
         raise RuntimeError(failures[0])
     return elapsed
