@@ -14,10 +14,11 @@ from pathlib import Path
 from numpy.testing import assert_allclose
 import pytest
 
+from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import load_study
 from vd_events import cli
-from vd_events.optimize import optimize
+from vd_events.optimize import check_plan, optimize
 from vd_events.sweep import RUNS_FILE, sweep
 from vd_events.sweep_plan import convert, load_plan
 from vd_solvers.kc.from_config import bar_stiffness, run_kc_event
@@ -180,6 +181,9 @@ def test_optimize_reaches_the_target_and_writes_the_configuration(tmp_path, seda
     # the source master file is untouched, the other configurations are kept
     assert 'zero_bump_steer' not in load_study(sedan_master).configurations
     assert set(study.configuration_names) < set(new.configuration_names)
+    # a second optimisation into the same folder would write the same name: refused
+    with pytest.raises(DataError, match="configuration 'zero_bump_steer' already exists in"):
+        check_plan(plan, study, out)
 
 
 def test_optimize_refuses_an_existing_configuration(tmp_path, sedan_master, capsys):

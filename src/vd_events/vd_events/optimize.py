@@ -85,7 +85,7 @@ def meets(plan: SweepPlan, y: Sequence[float]) -> bool:
     return True
 
 
-def check_plan(plan: SweepPlan, study) -> str:
+def check_plan(plan: SweepPlan, study, out: Path | None = None) -> str:
     """Refuse a plan that cannot be optimised; return the new configuration's name."""
     file = str(plan.path)
     if not any(r.target is not None for r in plan.responses):
@@ -98,10 +98,25 @@ def check_plan(plan: SweepPlan, study) -> str:
     spec = plan.optimize
     name = (spec.configuration if spec and spec.configuration
             else f'{plan.configuration}_{plan.name}'.replace('.', '_'))
-    target = output_master(plan, None)
-    if target.resolve() == plan.master.resolve() and name in study.configurations:
+    target = output_master(plan, out)
+    if target.resolve() == plan.master.resolve():
+        existing = study.configuration_names
+    elif target.exists():
+        from vd_data_server.study import load_study
+
+        existing = load_study(target).configuration_names
+    else:
+        existing = []
+    if name in existing:
         raise DataError(f'configuration {name!r} already exists in {target} (choose another '
                         'name: optimize.configuration)', file=file, key='optimize.configuration')
+    # the bounds of every factor, each with the others at the start, are points that run
+    for j, f in enumerate(plan.factors):
+        for bound in (f.low, f.high):
+            x = [g.start if g.start is not None else min(max(g.base, g.low), g.high)
+                 for g in plan.factors]
+            x[j] = bound
+            requests_for(plan, study, [tuple(x)])
     return name
 
 
@@ -116,7 +131,7 @@ def optimize(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *,
     """Run the optimisation, record its history and write the best configuration."""
     from scipy import optimize as so
 
-    name = check_plan(plan, study)
+    name = check_plan(plan, study, out)
     spec = plan.optimize
     method = spec.method if spec else 'least_squares'
     budget = spec.max_evaluations if spec else 60

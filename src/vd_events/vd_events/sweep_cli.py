@@ -130,9 +130,9 @@ def cmd_optimize(args: argparse.Namespace) -> int:
 
     plan = load_plan(Path(args.plan), optimize=True)
     study = load_study(plan.master)
-    check_plan(plan, study)
     _solvers(args.solvers)
     out = Path(args.out) if args.out else Path('out') / plan.name
+    check_plan(plan, study, out)
 
     def log(text: str) -> None:
         if not args.json:
