@@ -220,3 +220,20 @@ def test_plans_folder_file_is_valid():
     plan = load_plan(Path(__file__).resolve().parents[2] / 'src' / 'vd_events' / 'plans' /
                      'optimize_sedan.yaml', optimize=True)
     assert plan.optimize is not None and not plan.design
+
+
+def test_configuration_written_beside_the_bundled_study(tmp_path):
+    """The sample plans' master is the installed share (links to the sources): still loads."""
+    from vd_events.optimize import Evaluation, write_configuration
+
+    plan = load_plan(Path(__file__).resolve().parents[2] / 'src' / 'vd_events' / 'plans' /
+                     'optimize_sedan.yaml', optimize=True)
+    study = load_study(plan.master)
+    target = tmp_path / 'opt' / 'sedan.yaml'
+    write_configuration(plan, study, 'front_kinematics', Evaluation((341.8, 189.5), (0.0, 60.0),
+                                                                    0.0, True), target)
+    new = load_study(target)
+    points = new.configurations['front_kinematics'].group('front_hardpoints').values
+    assert points['points.tierod_inner'].si[2] == pytest.approx(0.3418)
+    assert points['points.lca_outer'].si[2] == pytest.approx(0.1895)
+    assert new.configurations['baseline'].data_hash == study.configurations['baseline'].data_hash

@@ -277,7 +277,8 @@ def write_configuration(plan: SweepPlan, study, name: str, best: Evaluation,
         raise DataError(f'configuration {name!r} already exists', file=str(target),
                         key=f'configurations.{name}')
     if source == plan.master and target.resolve() != plan.master.resolve():
-        root = plan.master.parent / str(doc['study'].get('data_root', '..'))
+        # the real folder of the master (an installed share may hold links to the sources)
+        root = plan.master.resolve().parent / str(doc['study'].get('data_root', '..'))
         target.parent.mkdir(parents=True, exist_ok=True)
         doc['study']['data_root'] = os.path.relpath(root.resolve(), target.parent.resolve())
     base = configs[plan.configuration]
