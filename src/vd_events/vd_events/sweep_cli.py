@@ -57,15 +57,24 @@ def _graph(plan, args):
         if not args.json:
             print(text, file=sys.stderr)
 
-    with SolverGraph(plan.master, counts, attach=args.attach, log=log) as dispatcher:
-        def evaluator(requests, done):
-            try:
-                dispatcher.run(requests, done)
-            except KeyboardInterrupt:
-                dispatcher.cancel()
-                raise Interrupted('interrupted; the finished runs are kept in runs.jsonl '
-                                  '(a rerun computes only the others)') from None
+    # started at the first runs to compute (a sweep whose runs are all known starts nothing)
+    graph = SolverGraph(plan.master, counts, attach=args.attach, log=log)
+    dispatchers = []
+
+    def evaluator(requests, done):
+        if not dispatchers:
+            dispatchers.append(graph.__enter__())
+        try:
+            dispatchers[0].run(requests, done)
+        except KeyboardInterrupt:
+            dispatchers[0].cancel()
+            raise Interrupted('interrupted; the finished runs are kept in runs.jsonl '
+                              '(a rerun computes only the others)') from None
+    try:
         yield evaluator, quiet
+    finally:
+        if dispatchers:
+            graph.__exit__(None, None, None)
 
 
 def _bar(quiet: bool):
