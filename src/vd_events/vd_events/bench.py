@@ -60,6 +60,9 @@ def run_bench() -> dict[str, Any]:
     results['cli_run'] = bench_cli()
     results['data_change_to_republish_s'] = _bench_data_change(master)
     results['bag_write'] = _bench_bag()
+    from .sweep_bench import bench_sweep
+
+    results['sweep'] = bench_sweep(master)
     return results
 
 
@@ -289,6 +292,17 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ''),
         ('vd / CommonRoad real-time factor, step steer',
          f"{vehicle['ratio_vs_commonroad']:.2f}", '>= 20'),
+    ]
+    sw = results['sweep']
+    rows += [
+        (f"K&C sweep, {sw['runs']} runs of 101 steps: in this process, one by one",
+         f"{sw['in_process_s']:.2f} s", ''),
+        ('  on 1 solver process (vd sweep --solvers 1)', f"{sw['1_process_s']:.2f} s", ''),
+        ('  on 2 solver processes (vd sweep --solvers 2)', f"{sw['2_process_s']:.2f} s", ''),
+        ('  speed-up 1 -> 2 processes', f"{sw['speed_up']:.2f}x", '>= 1.8x on 2 cores'),
+        (f"  dispatch overhead per run (median of {sw['pairs']} pairs)",
+         f"{sw['overhead_per_run_s'] * 1e3:.0f} ms ({100 * sw['overhead_fraction']:.1f} % of a "
+         'run)', 'under 5 %'),
     ]
     for row in rows:
         table.add_row(*row)

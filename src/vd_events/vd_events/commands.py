@@ -63,6 +63,8 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
     _namespace_arg(launch)
     launch.add_argument('--allow-edits', action='store_true',
                         help='start the data server with allow_edits:=true (set_override)')
+    launch.add_argument('--solvers', default='', metavar='FAMILY=N,...', help='solver '
+                        'instances per family, e.g. kc=2 (default one of each)')
     HANDLERS['launch'] = cmd_launch
 
     cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
@@ -76,6 +78,10 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
                      metavar='NAME=VALUE', help='event parameter for every event, e.g. steps=41')
     cap.add_argument('--json', action='store_true')
     HANDLERS['capability'] = cmd_capability
+
+    from .sweep_cli import add_subcommands as add_sweep_commands
+
+    add_sweep_commands(sub, HANDLERS)
 
     bench = sub.add_parser('bench', help='the benchmark suite')
     bench.add_argument('--json', action='store_true')
@@ -266,7 +272,8 @@ def cmd_launch(args: argparse.Namespace) -> int:
     from .launch import launch
 
     return launch(Path(args.master) if args.master else None, distributed=args.distributed,
-                  namespace=_namespace(args), allow_edits=args.allow_edits)
+                  namespace=_namespace(args), allow_edits=args.allow_edits,
+                  solvers=args.solvers)
 
 
 def cmd_bench(args: argparse.Namespace) -> int:

@@ -25,6 +25,8 @@ class NodeSpec:
     package: str
     executable: str
     parameters: Mapping[str, object] = field(default_factory=dict)
+    #: node name of another instance of the executable (``-r __node:=NAME``); None: default
+    name: str | None = None
 
 
 def data_server(master: Path | str | None = None, *, watch_period: float | None = None,
@@ -40,18 +42,32 @@ def data_server(master: Path | str | None = None, *, watch_period: float | None 
     return NodeSpec('vd_data_server', 'data_server', params)
 
 
-def solver(family: str) -> NodeSpec:
+def instance_names(family: str, count: int) -> list[str]:
+    """Return the node names of ``count`` instances: the executable, then _2, _3, ..."""
+    base = FAMILIES[family].executable
+    return [base] + [f'{base}_{i}' for i in range(2, count + 1)]
+
+
+def solver(family: str, name: str | None = None) -> NodeSpec:
     """Return the solver node of ``family`` (``steady_state``, ``kc``, ``vehicle``)."""
-    return NodeSpec('vd_solvers', FAMILIES[family].executable)
+    executable = FAMILIES[family].executable
+    return NodeSpec('vd_solvers', executable, name=None if name == executable else name)
 
 
 def graph(master: Path | str | None = None, *, watch_period: float | None = None,
-          allow_edits: bool | None = None,
-          families: Iterable[str] | None = None) -> list[NodeSpec]:
-    """Return the graph: the data server and a solver per family (default: every family)."""
+          allow_edits: bool | None = None, families: Iterable[str] | None = None,
+          instances: Mapping[str, int] | None = None) -> list[NodeSpec]:
+    """
+    Return the graph: the data server and the solvers (default: one of every family).
+
+    ``instances`` (family -> count, ``vd launch --solvers kc=2``) adds instances named
+    ``kc_solver_2``, ... (each serves its own action, ``families.Family.action``).
+    """
     chosen = list(FAMILIES) if families is None else sorted(set(families))
+    counts = {f: 1 for f in chosen}
+    counts.update(instances or {})
     return [data_server(master, watch_period=watch_period, allow_edits=allow_edits),
-            *(solver(f) for f in chosen)]
+            *(solver(f, name) for f, n in counts.items() for name in instance_names(f, n))]
 
 
 def parameter_text(value: object) -> str:
@@ -78,6 +94,8 @@ def command(spec: NodeSpec, namespace: str = names.DEFAULT_NAMESPACE,
     """Return the command line that starts ``spec`` in ``namespace`` as ``ros2 run`` does."""
     args = [str(executable(spec.package, spec.executable)), '--ros-args',
             '-r', f'__ns:={namespace}', *ros_args]
+    if spec.name is not None:
+        args += ['-r', f'__node:={spec.name}']
     for name, value in spec.parameters.items():
         args += ['-p', f'{name}:={parameter_text(value)}']
     return args

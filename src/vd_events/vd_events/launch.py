@@ -1,5 +1,5 @@
 """
-``vd launch [--distributed] [--namespace NS]``: start the graph and keep it up.
+``vd launch [--distributed] [--namespace NS] [--solvers kc=2,...]``: start the graph.
 
 The nodes are those of ``graph.graph()`` (the one definition the launch files use too):
 the data server and the three solvers, in ``NS`` (``/vd`` by default). Unlike ``vd run``
@@ -20,16 +20,19 @@ from vd_data_server import names
 
 
 def launch(master: Path | None, *, distributed: bool,
-           namespace: str = names.DEFAULT_NAMESPACE, allow_edits: bool = False) -> int:
+           namespace: str = names.DEFAULT_NAMESPACE, allow_edits: bool = False,
+           solvers: str = '') -> int:
     """Start the graph (validated first: bad data starts nothing); return the exit code."""
     from vd_data_server.paths import default_master
     from vd_data_server.study import load_study
 
     from . import graph
+    from .dispatch import parse_solvers
 
+    counts = parse_solvers(solvers)  # instances per family (vd_events.dispatch); default 1
     master = master or default_master()
     load_study(master)  # refuse bad data before anything starts
-    specs = graph.graph(master, allow_edits=allow_edits or None)
+    specs = graph.graph(master, allow_edits=allow_edits or None, instances=counts)
     if distributed:
         return _distributed(specs, master, namespace)
     return _embedded(specs, master, namespace)
@@ -45,8 +48,10 @@ def _embedded(specs, master: Path, namespace: str) -> int:
     from . import graph
 
     rclpy.init()
-    nodes = [graph.node_class(spec)(namespace=namespace, parameter_overrides=[
-        Parameter(k, value=v) for k, v in spec.parameters.items()]) for spec in specs]
+    nodes = [graph.node_class(spec)(
+        namespace=namespace,
+        parameter_overrides=[Parameter(k, value=v) for k, v in spec.parameters.items()],
+        **({'node_name': spec.name} if spec.name else {})) for spec in specs]
     executor = make_executor(threads=2)
     for node in nodes:
         executor.add_node(node)
