@@ -199,6 +199,10 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     for run in runs:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
     for (event, axle, family), members in groups.items():
+        if event == 'sine_with_dwell':
+            from .swd_report import sine_with_dwell_section
+            sections.append(sine_with_dwell_section(members, out, family))
+            continue
         images = []
         table = {'kc': KC_PLOTS, 'vehicle': VEHICLE_PLOTS}.get(family, PLOTS)
         plots = table.get(event, _generic_plots(members[0]))
@@ -270,7 +274,7 @@ def _section(event: str, axle: str, family: str, runs: list[Run], images: list[s
 
 
 def _budget(run: Run) -> str:
-    """The understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
+    """Return the understeer-gradient budget of one run (Gillespie ch. 6) as HTML."""
     names = [f'understeer_budget_{t}_deg_per_g' for t in BUDGET_TERMS]
     if not all(n in run.metrics for n in names):
         return ''
@@ -369,7 +373,7 @@ def load_capability(bags: Sequence[Path]) -> list:
 
 
 def _capability_section(table) -> str:
-    """The table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
+    """Return the table coloured as the thesis' Tables 5.2.1/5.2.2 (worst per cell)."""
     from .capability import DISPLAY, QUANTITIES, format_table
 
     head = ''.join(f'<th>{html.escape(q)}</th>' for q in QUANTITIES)
