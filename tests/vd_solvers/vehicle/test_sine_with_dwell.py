@@ -141,15 +141,22 @@ def test_more_front_roll_stiffness_lowers_lateral_acceleration_roll_and_yaw_rate
         assert np.all(new[name][at_2a] < old[name][at_2a]), name
 
 
-@pytest.mark.parametrize('params, message', [
-    (['max_amplitude=30 deg', 'a_reference=26.7 deg'],
-     'max_amplitude 30.0 deg is below the first amplitude of the series, 1.5A = 40.1 deg'),
-    (['a_reference=60 deg'], 'the series needs 300 deg of steering-wheel angle, beyond the '
-     'steering lock of the model'),
-])
-def test_an_unusable_series_is_an_error(sedan, params, message):
+def test_a_series_cut_below_its_first_amplitude_is_an_error(sedan):
     with pytest.raises(SolverError) as err:
-        run_vehicle_event(sedan['baseline'], 'sine_with_dwell', params)
+        run_vehicle_event(sedan['baseline'], 'sine_with_dwell',
+                          ['max_amplitude=30 deg', 'a_reference=26.7 deg'])
+    assert str(err.value) == ("configuration 'baseline', event 'sine_with_dwell': "
+                              'max_amplitude 30.0 deg is below the first amplitude of the '
+                              'series, 1.5A = 40.1 deg')
+
+
+@pytest.mark.parametrize('param, message', [
+    ('a_reference=400 deg', '400 deg is outside [0, 5.23599] rad'),
+    ('gvwr=-5 kg', '-5 kg is outside [0, 20000] kg'),
+])
+def test_a_parameter_out_of_range_is_a_data_error(sedan, param, message):
+    with pytest.raises(DataError) as err:
+        run_vehicle_event(sedan['baseline'], 'sine_with_dwell', [param])
     assert message in str(err.value)
 
 

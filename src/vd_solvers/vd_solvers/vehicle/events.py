@@ -121,7 +121,12 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
     except SolverError as err:
         raise SolverError(f'{label}: {err}') from err
     if event == 'sine_with_dwell':
-        metrics, channels, notes = run_procedure(model, values, progress, _channels)
+        try:
+            metrics, channels, notes = run_procedure(model, values, progress, _channels)
+        except SolverError as err:
+            if config.name in str(err):
+                raise
+            raise SolverError(f'{label}: {err}') from err
     else:
         run = _constant_radius if event == 'constant_radius_turn' else _step_steer
         metrics, channels, notes = run(model, values, progress)

@@ -171,8 +171,8 @@ def run_procedure(model: VehicleModel, values: Mapping[str, float],
     channels.update(_table(grades))
     channels.update(_series(traces))
     metrics = _metrics(verdict, a_ref, gvwr, reduced, decide)
-    notes += _notes(verdict, reduced, series, full, decide)
-    return metrics, channels, notes
+    table = _notes(verdict, reduced, series, full, decide)
+    return metrics, channels, [table[0], *notes, *table[1:]]
 
 
 def _table(grades) -> dict[str, Channel]:
