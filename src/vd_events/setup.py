@@ -12,6 +12,7 @@ setup(
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/plans', glob('plans/*.yaml')),
+        ('share/' + package_name + '/launch', ['launch/lockstep.launch.py']),
     ],
     install_requires=['setuptools'],
     zip_safe=True,
@@ -23,6 +24,7 @@ setup(
         'console_scripts': [
             'event_runner = vd_events.event_runner_node:main',
             'recorder = vd_events.recorder_node:main',
+            'path_follower = vd_events.path_follower_node:main',
             'vd = vd_events.cli:main',
         ],
     },

@@ -2,8 +2,8 @@
 The sine-with-dwell section of ``vd report``: the thesis' Figs. 4.4.4-4.4.6 and the verdicts.
 
 Figures over time, runs and configurations overlaid: lateral acceleration (Fig. 4.4.4),
-roll angle (Fig. 4.4.5) and yaw rate (Fig. 4.4.6), from the ``series_*`` channels of a
-``sine_with_dwell`` result (every run of the procedure at 50 Hz). Shown per
+roll angle (Fig. 4.4.5) and yaw rate (Fig. 4.4.6), from the ``series_<signal>_<run>``
+channels of a ``sine_with_dwell`` result (every run of the procedure at 50 Hz). Shown per
 configuration: the left-first runs at the amplitude nearest 5A and at the largest
 amplitude of the series (colour per configuration, line style per amplitude). The table
 lists every run with its yaw-rate ratios, lateral displacement and verdict, and each
@@ -42,16 +42,15 @@ def sine_with_dwell_section(runs: Sequence, out: Path, family: str) -> str:
     """Write the figures into ``out``; return the HTML section."""
     import matplotlib.pyplot as plt
 
-    usable = [r for r in runs if 'series_run' in r.channels]
+    usable = [r for r in runs if 'series_time' in r.channels]
     images = []
     for channel, label, scale, fig_no in FIGURES:
         fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
         for c, run in enumerate(usable):
             ch = run.channels
             for s, k in enumerate(_picked(run)):
-                mask = ch['series_run'] == k
                 amp = ch['run_amplitude'][k] * DEG
-                ax.plot(ch['series_time'][mask], ch[channel][mask] * scale,
+                ax.plot(ch['series_time'], ch[f'{channel}_{k + 1:02d}'] * scale,
                         color=COLOURS[c % len(COLOURS)], linestyle=STYLES[s % len(STYLES)],
                         label=f'{run.label}, {amp:.0f} deg')
         ax.set_xlabel('time [s]')

@@ -81,8 +81,7 @@ class Stepper:
         self._cog = np.array(model.config.group('mass').point('sprung_cog'))
         self._last_swa = 0.0
         self._last_torque = 0.0
-        self._cog_velocity = None
-        self._acceleration = np.zeros(2)
+        self._state: dict[str, float] | None = None  # the current state's row, once built
         self.wheel: WheelState | None = None
         # the wheel quantities at the initial state, for the first published state
         _, self.wheel, _ = self.model.forces(self.q, self.v, 0.0, np.zeros(4), self.slip,
@@ -104,6 +103,7 @@ class Stepper:
         tau, wheel, update = model.forces(self.q, self.v, command.steering_wheel_angle, torques,
                                           self.slip, self.previous, self.h)
         before = self.state()
+        self._state = None
         a = model.acceleration(self.q, self.v, tau)
         q, v = model.integrate(self.q, self.v, a, self.h)
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
@@ -115,21 +115,27 @@ class Stepper:
         self.step += 1
         self._last_swa = command.steering_wheel_angle
         self._last_torque = command.drive_torque - command.brake_torque
-        after = self.state()
+        after = self._row()
         # lateral and longitudinal acceleration of the CoG over the step (horizontal, yaw axes)
         ax = (after['cog_velocity_x'] - before['cog_velocity_x']) / self.h
         ay = (after['cog_velocity_y'] - before['cog_velocity_y']) / self.h
         c, s = math.cos(after['yaw']), math.sin(after['yaw'])
-        self._acceleration = np.array([ax * c + ay * s, -ax * s + ay * c])
+        after['longitudinal_acceleration'] = ax * c + ay * s
+        after['lateral_acceleration'] = -ax * s + ay * c
+        self._state = after
 
     def state(self) -> dict[str, float]:
         """Return the TRACE quantities of the current state, plus the accelerations (SI)."""
+        if self._state is None:
+            row = self._row()
+            row['longitudinal_acceleration'] = row['lateral_acceleration'] = 0.0
+            self._state = row
+        return dict(self._state)
+
+    def _row(self) -> dict[str, float]:
         assert self.wheel is not None
-        row = dict(zip(TRACE, _row(self.model, self.q, self.v, self.time, self._last_swa,
-                                   self.wheel, self._cog, self._last_torque)))
-        row['longitudinal_acceleration'] = float(self._acceleration[0])
-        row['lateral_acceleration'] = float(self._acceleration[1])
-        return row
+        return dict(zip(TRACE, _row(self.model, self.q, self.v, self.time, self._last_swa,
+                                    self.wheel, self._cog, self._last_torque)))
 
     def wheels(self) -> dict[str, np.ndarray]:
         """Return the per-wheel quantities of the last step (PER_WHEEL, arrays FL FR RL RR)."""

@@ -202,22 +202,25 @@ def _table(grades) -> dict[str, Channel]:
 
 
 def _series(traces) -> dict[str, Channel]:
-    """Every run's signals over time at SERIES_RATE, concatenated, with the run index."""
-    parts: dict[str, list[np.ndarray]] = {k: [] for k in (
-        'series_run', 'series_time', 'series_steering_wheel_angle',
-        'series_lateral_acceleration', 'series_roll', 'series_yaw_rate')}
+    """
+    Return every run's signals over time at SERIES_RATE, one channel per run and signal.
+
+    ``series_time`` (s, from the start of the run; the same for every run) and
+    ``series_<signal>_<run>`` with the run's number in series order (01, 02, ...). No
+    channel is longer than the deciding run's own time channel (a result's step count).
+    """
+    out: dict[str, Channel] = {}
+    units = {'steering_wheel_angle': 'rad', 'lateral_acceleration': 'm/s^2', 'roll': 'rad',
+             'yaw_rate': 'rad/s'}
     for k, trace in enumerate(traces):
         ch = trace.channels()
         every = max(1, int(round(1.0 / (SERIES_RATE * (ch['time'][1] - ch['time'][0])))))
         pick = slice(None, None, every)
-        parts['series_run'].append(np.full(ch['time'][pick].size, float(k)))
-        for name in ('time', 'steering_wheel_angle', 'lateral_acceleration', 'roll',
-                     'yaw_rate'):
-            parts[f'series_{name}'].append(ch[name][pick])
-    units = {'series_run': '-', 'series_time': 's', 'series_steering_wheel_angle': 'rad',
-             'series_lateral_acceleration': 'm/s^2', 'series_roll': 'rad',
-             'series_yaw_rate': 'rad/s'}
-    return {k: Channel(units[k], np.concatenate(v)) for k, v in parts.items()}
+        if k == 0:
+            out['series_time'] = Channel('s', ch['time'][pick])
+        for name, unit in units.items():
+            out[f'series_{name}_{k + 1:02d}'] = Channel(unit, ch[name][pick])
+    return out
 
 
 def _metrics(verdict, a_ref: float, gvwr: float, reduced: bool, decide: int) -> dict:
