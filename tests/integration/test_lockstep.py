@@ -200,3 +200,15 @@ def test_vd_launch_lockstep_refuses_bad_arguments_and_writes_nothing(capsys, tmp
     _, err = capsys.readouterr()
     assert rc == 2 and message in err
     assert sorted(e.name for e in tmp_path.iterdir()) == ['data']  # no bag, no partial bag
+
+
+def test_free_mode_runs_on_its_own_and_holds_the_newest_command(harness):
+    """Mode free: steps without waiting; the newest good command is held, a bad one refused."""
+    h = harness(mode='free', real_time_factor=1.0, duration=0.5)
+    h.command(123.0, steering_wheel_angle=0.1)  # free mode does not check the stamp
+    h.spin_until(lambda: h.session.held.steering_wheel_angle == 0.1, 3.0)
+    h.command(0.0, steering_wheel_angle=math.nan)  # refused: the previous command is held
+    h.spin_until(lambda: not h.session.active, 10.0)
+    assert h.session.status == 'finished at t = 0.500000 s (100 steps)'
+    assert h.session.held.steering_wheel_angle == 0.1
+    assert h.session.stepper.state()['steering_wheel_angle'] == 0.1
