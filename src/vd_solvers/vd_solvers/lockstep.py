@@ -45,6 +45,10 @@ from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_comma
 from vd_solvers.vehicle.maps import WHEELS
 
 COMMAND_TOPIC = '/vd/vehicle/command'
+#: VehicleState fields filled from the Stepper state
+STATE_FIELDS = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
+                'lateral_acceleration', 'longitudinal_acceleration', 'steering_wheel_angle',
+                'wheel_torque')
 STATUS_TOPIC = '/vd/vehicle/lockstep_status'
 #: wall seconds between repeats of a step's messages while its command is awaited
 REPEAT_PERIOD = 0.25
@@ -102,6 +106,15 @@ class LockstepSession:
         self.status = 'running'
         self.held = Command()
         self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command, COMMANDS)
+        self._state_msg = VehicleState(event='lockstep', configuration=configuration,
+                                       model='vehicle')
+        self._state_msg.header.frame_id = 'odom'
+        self._wheel_msgs = [VehicleWheel() for _ in WHEELS]
+        for wheel, m in zip(WHEELS, self._wheel_msgs):
+            setattr(self._state_msg, wheel, m)
+        self._wheel_msgs = [getattr(self._state_msg, wheel) for wheel in WHEELS]
+        self._odom_msg = Odometry()
+        self._tf_msg = None
         self._published_at = time.monotonic()
         self._waiting_since = self._published_at
         self.started = time.monotonic()
@@ -192,21 +205,20 @@ class LockstepSession:
         self.clock_pub.publish(Clock(clock=stamp))
         s = self.stepper.state()
         wheels = self.stepper.wheels()
-        msg = VehicleState(event='lockstep', configuration=self.configuration,
-                           model='vehicle', step=self.stepper.step)
+        # one message object per topic, refilled each step (publish serialises at once)
+        msg = self._state_msg
+        msg.step = self.stepper.step
         msg.header.stamp = stamp
-        msg.header.frame_id = 'odom'
-        for name in ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed',
-                     'sideslip', 'lateral_acceleration', 'longitudinal_acceleration',
-                     'steering_wheel_angle', 'wheel_torque'):
+        for name in STATE_FIELDS:
             setattr(msg, name, float(s[name]))
-        for w, wheel in enumerate(WHEELS):
-            setattr(msg, wheel, VehicleWheel(**{f: float(wheels[c][w])
-                                                for f, c in WHEEL_FIELDS.items()}))
-        odom = odometry(s, stamp)
+        for w, wheel in enumerate(self._wheel_msgs):
+            for f, c in WHEEL_FIELDS.items():
+                setattr(wheel, f, float(wheels[c][w]))
+        odom = odometry(s, stamp, self._odom_msg)
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)
-        self.tf_pub.publish(transform(odom))
+        self._tf_msg = transform(odom, self._tf_msg)
+        self.tf_pub.publish(self._tf_msg)
         self._published_at = time.monotonic()
         self.timings['publish'] += time.perf_counter() - c0
 
@@ -224,9 +236,9 @@ class LockstepSession:
         self._publish_status(self.status)
 
 
-def odometry(state, stamp) -> Odometry:
-    """Return the nav_msgs/Odometry of a Stepper state: odom -> base_link (REP 105), body twist."""
-    msg = Odometry()
+def odometry(state, stamp, msg: Odometry | None = None) -> Odometry:
+    """Return the nav_msgs/Odometry of a Stepper state (filled into ``msg`` if given)."""
+    msg = msg if msg is not None else Odometry()
     msg.header.stamp = stamp
     msg.header.frame_id = 'odom'
     msg.child_frame_id = 'base_link'
@@ -249,17 +261,19 @@ def odometry(state, stamp) -> Odometry:
     return msg
 
 
-def transform(odom: Odometry) -> TFMessage:
-    """Return the TF odom -> base_link of an Odometry."""
+def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
+    """Return the TF odom -> base_link of an Odometry (filled into ``msg`` if given)."""
     from geometry_msgs.msg import TransformStamped
 
-    t = TransformStamped()
+    if msg is None or not msg.transforms:
+        msg = TFMessage(transforms=[TransformStamped()])
+    t = msg.transforms[0]
     t.header = odom.header
     t.child_frame_id = odom.child_frame_id
     p = odom.pose.pose.position
     t.transform.translation.x, t.transform.translation.y = p.x, p.y
     t.transform.rotation = odom.pose.pose.orientation
-    return TFMessage(transforms=[t])
+    return msg
 
 
 __all__ = ['LockstepSession', 'COMMAND_TOPIC', 'STATUS_TOPIC', 'command_from_msg', 'odometry',
