@@ -1,10 +1,13 @@
 """
-Sine-with-dwell processing (FMVSS 126) on synthetic signals whose answers are known
-in closed form: a filtered pure sine, the analytic steering profile, a first-order yaw
+Sine-with-dwell processing and grading (FMVSS 126) on synthetic signals.
+
+Their answers are known in closed form: a filtered pure sine, the analytic steering
+profile, a first-order yaw
 decay, a smooth lateral acceleration with an exact double integral, a linear SIS.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -30,6 +33,8 @@ def test_the_filter_is_phaseless_with_the_butterworth_gain():
 
 def test_bos_and_cos_of_the_analytic_steer():
     """
+    Find BOS and COS of the analytic steer.
+
     BOS from the sine's own closed form; COS where the filtered steer returns to zero:
     the 10 Hz filter rounds the corner at the end of the steer (rate A w -> 0), which
     moves the crossing by 1/(2 pi 10 Hz) at most (16 ms).
@@ -50,6 +55,8 @@ def _bump(t, centre, width):
 
 def test_yaw_rate_ratios_of_a_first_order_decay():
     """
+    Grade the yaw-rate ratios of a first-order decay.
+
     A smooth yaw response (Gaussian bumps: +R1 with the first steer, -P after the
     reversal) that decays as r(COS) exp(-(t - COS)/tau) once the steer is complete: the
     first local peak after the reversal is -P, and the ratios are known in closed form.
@@ -71,6 +78,8 @@ def test_yaw_rate_ratios_of_a_first_order_decay():
 
 def test_lateral_displacement_is_the_double_integral_from_bos():
     """
+    Integrate the lateral displacement twice from BOS.
+
     a_y = a0 (1 - cos(W (t - start))), smooth at the start: its double integral from BOS
     has a closed form.
     """
@@ -139,3 +148,117 @@ def test_no_steer_is_refused():
     with pytest.raises(f.ProcessingError) as err:
         f.grade_run(T, zero, zero, zero, a_reference=20 * DEG)
     assert str(err.value) == 'the steering-wheel rate never exceeds 75 deg/s for 200 ms'
+
+
+def _run(a_deg, direction=1, decay=0.8, hold=0.3, speed=None, a_ref=20.0):
+    """
+    Grade a run whose yaw rate decays after the steer.
+
+    The yaw rate peaks at -P 1.5 s into the steer (the first local peak after the
+    reversal), falls linearly to -hold P at the end of the steer and then decays as
+    exp(-(t - COS)/decay): the ratios are about hold exp(-dt/decay).
+    """
+    a = a_deg * DEG
+    steer = f.sine_with_dwell(T, a, direction, START, FREQ, DWELL)
+    cos = START + PERIOD + DWELL
+    t2, big_p = START + 1.5, 0.5
+    rise = 0.3 * _bump(T, START + 0.6, 0.15) - big_p * _bump(T, t2, 0.25)
+    fall = -big_p * (1.0 - (1.0 - hold) * (T - t2) / (cos - t2))
+    after = -hold * big_p * np.exp(-(T - cos) / decay)
+    yaw = np.where(T < t2, rise, np.where(T < cos, fall, after))
+    return f.grade_run(T, steer, direction * yaw, 10.0 * direction * yaw,
+                       a_reference=a_ref * DEG, speed=speed, commanded_amplitude=a)
+
+
+def test_the_procedure_fails_on_the_first_failing_run_and_names_it():
+    """
+    Fail the procedure on the first failing run, and name it.
+
+    A slow decay (ratio about 0.8 exp(-1/3) = 57 % at COS + 1 s) fails S5.2.1, a
+    fast one (0.3 exp(-1/0.3) = 1 %) passes: the first failing run in series order
+    decides.
+    """
+    runs = [_run(30.0, decay=0.3), _run(100.0, decay=3.0, hold=0.8),
+            _run(120.0, decay=3.0, hold=0.8), _run(30.0, -1, decay=0.3)]
+    assert runs[0].stable_1_00 and not runs[1].stable_1_00
+    verdict = f.grade_procedure(runs, 20.0 * DEG)
+    assert not verdict.passed and verdict.valid
+    assert verdict.deciding_run == 1 and verdict.deciding_criterion == 'yaw_rate_ratio_1_00'
+    by = {c.name: c for c in verdict.criteria}
+    assert not by['yaw_rate_ratio_1_00'].passed and by['yaw_rate_ratio_1_00'].runs == 4
+    assert by['yaw_rate_ratio_1_00'].deciding_value == pytest.approx(
+        runs[1].yaw_rate_ratio_1_00)
+    # responsiveness from 5A = 100 deg: graded on the two runs at 100 and 120 deg only
+    assert by['lateral_displacement'].runs == 2
+
+
+def test_a_passing_procedure_names_the_run_of_least_margin():
+    runs = [_run(30.0, decay=0.3), _run(60.0, decay=0.5, hold=0.5),
+            _run(60.0, -1, decay=0.4, hold=0.6)]
+    verdict = f.grade_procedure(runs, 20.0 * DEG)
+    assert verdict.passed
+    ratios = [g.yaw_rate_ratio_1_00 / 0.35 for g in runs] + \
+        [g.yaw_rate_ratio_1_75 / 0.20 for g in runs]
+    worst = int(np.argmax(ratios))
+    assert verdict.deciding_run == worst % 3
+    assert verdict.deciding_criterion == ('yaw_rate_ratio_1_00' if worst < 3
+                                          else 'yaw_rate_ratio_1_75')
+
+
+def test_a_ratio_exactly_at_the_limit_passes():
+    """'Shall not exceed' is <=: a run whose ratio equals 35 % passes S5.2.1."""
+    base = _run(30.0, decay=0.5)
+    at_limit = dataclasses.replace(base, yaw_rate_ratio_1_00=0.35, stable_1_00=0.35 <= 0.35)
+    assert f.grade_procedure([at_limit], 20.0 * DEG).passed
+
+
+def test_entry_speed_outside_80_plus_minus_2_kmh_makes_the_procedure_invalid():
+    ok = _run(30.0, speed=np.full_like(T, 81.9 / 3.6))
+    slow = _run(30.0, speed=np.full_like(T, 77.9 / 3.6))
+    assert ok.entry_speed == pytest.approx(81.9 / 3.6) and ok.speed_valid
+    assert not slow.speed_valid
+    verdict = f.grade_procedure([ok, slow], 20.0 * DEG)
+    assert not verdict.valid and not verdict.passed
+
+
+def test_responsiveness_applies_by_the_commanded_amplitude():
+    """S5.2.3 counts commanded angles of 5A and more, whatever the filter did to the peak."""
+    g = _run(100.0, a_ref=20.0)
+    assert g.responsiveness_applies
+    g = _run(99.0, a_ref=20.0)
+    assert not g.responsiveness_applies and g.responsive is None
+
+
+def test_heavy_vehicles_have_the_lower_displacement_limit():
+    steer = f.sine_with_dwell(T, 150.0 * DEG, 1, START, FREQ, DWELL)
+    yaw = 0.3 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, FREQ, DWELL)
+    light = f.grade_run(T, steer, yaw, 6.0 * yaw, a_reference=30 * DEG, gvwr=3500.0)
+    heavy = f.grade_run(T, steer, yaw, 6.0 * yaw, a_reference=30 * DEG, gvwr=3500.1)
+    assert light.displacement_limit == 1.83 and heavy.displacement_limit == 1.52
+
+
+@pytest.mark.parametrize('kwargs, message', [
+    ({'roll': np.zeros(10)}, f'roll has 10 samples, time has {T.size}'),
+    ({'speed': np.full(T.size, np.nan)}, 'speed holds non-finite samples'),
+    ({'gvwr': -1.0}, 'GVWR must be a positive mass, got -1.0'),
+    ({'a_reference': 0.0}, 'A must be a positive angle, got 0.0'),
+])
+def test_bad_measured_signals_are_refused_with_the_quantity_named(kwargs, message):
+    steer = f.sine_with_dwell(T, 100.0 * DEG, 1, START, FREQ, DWELL)
+    yaw = 0.3 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, FREQ, DWELL)
+    args = {'a_reference': 20.0 * DEG, **kwargs}
+    with pytest.raises(f.ProcessingError) as err:
+        f.grade_run(T, steer, yaw, yaw, **args)
+    assert str(err.value) == message
+
+
+def test_no_runs_is_refused():
+    with pytest.raises(f.ProcessingError) as err:
+        f.grade_procedure([], 20.0 * DEG)
+    assert str(err.value) == 'no sine-with-dwell runs to grade'
+
+
+def test_the_grading_is_the_solver_s_one_implementation():
+    from vd_solvers import fmvss126 as core
+
+    assert f.grade_run is core.grade_run and f.grade_procedure is core.grade_procedure

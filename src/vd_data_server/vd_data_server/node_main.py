@@ -85,23 +85,24 @@ def quiet_teardown(nodes: Sequence[Node], context=None) -> None:
 
 
 def run_node(factory: Callable[[], Node], body: Callable | None = None, args=None,
-             threads: int = 1):
+             threads: int = 1, executor: Callable[[Node], object] | None = None):
     """
     Run one node the ros2/examples way; return what ``body(executor, node)`` returns.
 
     ``rclpy.init``, build the node, ``body`` (default: spin until shutdown), and on every
     end (Ctrl-C, SIGTERM, an exception of ``body``) a clean teardown. A Ctrl-C or SIGTERM
     returns None. Exceptions of ``factory`` and ``body`` other than these propagate
-    after the teardown.
+    after the teardown. ``executor(node)``, if given, makes the executor (default:
+    :func:`make_executor` with ``threads``).
     """
     die_with_parent()
     rclpy.init(args=args)
     node = None
     try:
         node = factory()
-        executor = make_executor(threads)
-        executor.add_node(node)
-        return (body or spin_guarded)(executor, node)
+        spinner = executor(node) if executor is not None else make_executor(threads)
+        spinner.add_node(node)
+        return (body or spin_guarded)(spinner, node)
     except (KeyboardInterrupt, ExternalShutdownException):
         return None
     finally:

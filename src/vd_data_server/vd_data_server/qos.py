@@ -38,3 +38,12 @@ LATEST = latched(1)
 RESULTS = latched(RESULTS_DEPTH)
 #: per-step states, odometry and TF of the runs, kept for late joiners
 STATES = latched(STATES_DEPTH)
+
+#: lock-step commands: reliable, volatile, a few in flight (one per step is expected)
+COMMANDS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10,
+                      reliability=ReliabilityPolicy.RELIABLE,
+                      durability=DurabilityPolicy.VOLATILE)
+#: the lock-step session's status: the latest one, latched
+STATUS = latched(1)
+#: /clock as ROS publishes it (rclpy's time source subscribes reliable, depth 1..10)
+CLOCK = COMMANDS

@@ -56,6 +56,11 @@ def run_bench() -> dict[str, Any]:
     from vd_solvers.vehicle.bench import bench_vehicle
 
     results['vehicle'] = bench_vehicle(config)
+    from vd_solvers.vehicle.bench import bench_sine_with_dwell
+
+    from .lockstep_run import bench_lockstep
+    results['lockstep'] = bench_lockstep()
+    results['sine_with_dwell'] = bench_sine_with_dwell(study)
     results['embedded_run'] = _bench_embedded(master)
     results['cli_run'] = bench_cli()
     results['data_change_to_republish_s'] = _bench_data_change(master)
@@ -304,6 +309,16 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{sw['overhead_per_run_s'] * 1e3:.0f} ms ({100 * sw['overhead_fraction']:.1f} % of a "
          'run)', 'under 5 %'),
     ]
+    for name, r in results.get('lockstep', {}).items():
+        us = r['us_per_step']
+        rows.append((f'lock-step over DDS, events executor ({name})',
+                     f"{r['steps_per_second']:.0f} steps/s", '>= 1000'))
+        rows.append(('  per step: model, messages, DDS + executor + controller',
+                     f"{us['model']:.0f} / {us['publish']:.0f} / {us['rest']:.0f} us", ''))
+    for name, r in results.get('sine_with_dwell', {}).items():
+        rows.append((f"FMVSS 126 procedure, {name} ({r['runs']} runs, "
+                     f"A {r['a_reference_deg']:.1f} deg)",
+                     f"{r['wall_s']:.0f} s, {'PASS' if r['passed'] else 'FAIL'}", ''))
     for row in rows:
         table.add_row(*row)
     console().print(table)

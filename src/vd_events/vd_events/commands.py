@@ -25,7 +25,8 @@ HEADLINE = ('understeer_gradient_deg_per_g', 'characteristic_speed_kmh', 'critic
 def add_subcommands(sub: argparse._SubParsersAction) -> None:
     run = sub.add_parser('run', help='run one event on one configuration')
     run.add_argument('event')
-    run.add_argument('--config', default=None, help='configuration (default: the first)')
+    run.add_argument('--config', default=None,
+                     help="configuration (default: the first; 'all': every configuration)")
     run.add_argument('--model', default=None, help='bicycle | two_track | kc | vehicle')
     run.add_argument('--fidelity', default='', help="rigid | flexible (K&C; default: the "
                      "configuration's 'flexible' switch in the master file)")
@@ -65,6 +66,15 @@ def add_subcommands(sub: argparse._SubParsersAction) -> None:
                         help='start the data server with allow_edits:=true (set_override)')
     launch.add_argument('--solvers', default='', metavar='FAMILY=N,...', help='solver '
                         'instances per family, e.g. kc=2 (default one of each)')
+    launch.add_argument('--lockstep', action='store_true',
+                        help='the lock-step vehicle and the example path follower, closed loop')
+    launch.add_argument('--config', default='', help='lock-step configuration (default: first)')
+    launch.add_argument('--duration', type=float, default=20.0,
+                        help='lock-step simulated time, s')
+    launch.add_argument('--radius', type=float, default=40.0, help='lock-step circle radius, m')
+    launch.add_argument('--speed', type=float, default=12.0, help='lock-step speed, m/s')
+    launch.add_argument('--bag', help='lock-step: bag directory to write (must not exist)')
+    launch.add_argument('--json', action='store_true')
     HANDLERS['launch'] = cmd_launch
 
     cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
@@ -178,38 +188,49 @@ def cmd_run(args: argparse.Namespace) -> int:
     namespace = _namespace(args)
     master, study = _study(args.master)
     model = args.model or default_model(args.event)
-    config_name = args.config or study.configuration_names[0]
-    fidelity = args.fidelity
-    if not fidelity:
-        config = study.configurations.get(config_name)
-        fidelity = 'flexible' if model == 'kc' and config is not None and config.flexible \
-            else 'rigid'
-    request = RunRequest(event=args.event, configuration=config_name, model=model,
-                         fidelity=fidelity, axle=args.axle or '',
-                         overrides=tuple(args.overrides), parameters=tuple(args.parameters),
-                         bag=Path(args.bag) if args.bag else None)
-    try:
-        request = validate(study, request)
-    except (RunError, BagError) as err:
-        raise DataError(str(err)) from None
+    every = args.config == 'all'
+    names = study.configuration_names if every else [args.config or
+                                                     study.configuration_names[0]]
+    if every and args.bag:
+        raise DataError('--config all writes no single bag; run each configuration with '
+                        'its own --bag')
+    requests = []
+    for config_name in names:
+        fidelity = args.fidelity
+        if not fidelity:
+            config = study.configurations.get(config_name)
+            fidelity = 'flexible' if model == 'kc' and config is not None and \
+                config.flexible else 'rigid'
+        request = RunRequest(event=args.event, configuration=config_name, model=model,
+                             fidelity=fidelity, axle=args.axle or '',
+                             overrides=tuple(args.overrides),
+                             parameters=tuple(args.parameters),
+                             bag=Path(args.bag) if args.bag else None)
+        try:
+            requests.append(validate(study, request))
+        except (RunError, BagError) as err:
+            raise DataError(str(err)) from None
     progress = _progress_printer(sys.stderr.isatty() and not args.json)
     # where the time goes (vd bench reports it): load + validate, then the runner's phases
     timings = {'load_and_validate': time.perf_counter() - t0}
     if args.distributed:
-        (result,) = _with_progress(progress, lambda: run_distributed(
-            master, [request], progress, namespace=namespace))
+        results = _with_progress(progress, lambda: run_distributed(
+            master, requests, progress, namespace=namespace))
     else:
-        (result,) = _with_progress(progress, lambda: run_embedded(
-            master, [request], progress, namespace=namespace, timings=timings, study=study))
-    if result.error:
-        raise DataError(result.error)
-    assert result.outcome is not None
+        results = _with_progress(progress, lambda: run_embedded(
+            master, requests, progress, namespace=namespace, timings=timings, study=study))
+    for result in results:
+        if result.error:
+            raise DataError(result.error)
+    outcomes = [r.outcome.to_json(str(r.bag) if r.bag else None) for r in results
+                if r.outcome is not None]
     if args.json:
-        out = result.outcome.to_json(str(result.bag) if result.bag else None)
-        out['timings'] = {**timings, 'command': time.perf_counter() - t0}
-        print(json.dumps(out))
+        for out in outcomes:
+            out['timings'] = {**timings, 'command': time.perf_counter() - t0}
+        print(json.dumps(outcomes if every else outcomes[0]))
     else:
-        _print_outcome(result)
+        for result in results:
+            _print_outcome(result)
     return 0
 
 
@@ -232,8 +253,13 @@ def _print_outcome(result: RunOutcome) -> None:
         table.add_row(name, f'{metric.value:.5g}', metric.unit)
     term = console()
     term.print(table)
-    for note in [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith('inner '))]:
-        term.print(note)
+    notes = [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith('inner '))]
+    if outcome.event == 'sine_with_dwell':  # the verdict, A, the series and the run table
+        end = next((i for i, n in enumerate(outcome.notes) if n.startswith('integrator step')),
+                   len(outcome.notes))
+        notes = list(outcome.notes[:end])
+    for note in notes:
+        term.print(note, highlight=False, markup=False)
     if result.bag:
         term.print(f'bag: {result.bag}')
 
@@ -271,9 +297,37 @@ def cmd_report(args: argparse.Namespace) -> int:
 def cmd_launch(args: argparse.Namespace) -> int:
     from .launch import launch
 
+    if args.lockstep:
+        return _launch_lockstep(args)
     return launch(Path(args.master) if args.master else None, distributed=args.distributed,
                   namespace=_namespace(args), allow_edits=args.allow_edits,
                   solvers=args.solvers)
+
+
+def _launch_lockstep(args: argparse.Namespace) -> int:
+    from .lockstep_run import run_lockstep
+
+    for name, low, high in (('duration', 0.01, 3600.0), ('radius', 5.0, 1000.0),
+                            ('speed', 0.5, 60.0)):
+        value = getattr(args, name)
+        if not low <= value <= high:
+            raise DataError(f'--{name} {value:g} is outside [{low:g}, {high:g}]')
+    if args.distributed:
+        raise DataError('--lockstep runs embedded; for separate processes start '
+                        'vehicle_solver (mode:=lockstep) and path_follower (docs/ros-api.md)')
+    master, study = _study(args.master)
+    if args.config and args.config not in study.configurations:
+        raise DataError(f"configuration '{args.config}' is not in the study "
+                        f"(configurations: {', '.join(study.configuration_names)})")
+    out = run_lockstep(configuration=args.config, master=master, duration=args.duration,
+                       radius=args.radius, speed=args.speed,
+                       bag=Path(args.bag) if args.bag else None)
+    if args.json:
+        print(json.dumps(out.to_json()))
+    else:
+        print(f'lock-step {out.status}; {out.steps} steps in {out.wall:.1f} s '
+              f'({out.steps_per_second:.0f} steps/s)' + (f'; bag: {out.bag}' if out.bag else ''))
+    return 0 if out.status.startswith('finished') else 1
 
 
 def cmd_bench(args: argparse.Namespace) -> int:

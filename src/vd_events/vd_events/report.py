@@ -201,6 +201,10 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     for run in runs:
         groups.setdefault((run.event, run.axle, _family(run.model)), []).append(run)
     for (event, axle, family), members in groups.items():
+        if event == 'sine_with_dwell':
+            from .swd_report import sine_with_dwell_section
+            sections.append(sine_with_dwell_section(members, out, family))
+            continue
         images = []
         table = {'kc': KC_PLOTS, 'vehicle': VEHICLE_PLOTS}.get(family, PLOTS)
         plots = table.get(event, _generic_plots(members[0]))

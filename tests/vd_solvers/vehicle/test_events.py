@@ -48,6 +48,8 @@ def _m(outcome, name):
 
 def test_stiffer_rear_roll_stiffness_gives_the_thesis_trends(turns):
     """
+    Check: stiffer rear roll stiffness gives the thesis trends.
+
     Thesis 4.4.1 (Figs. 4.4.1-4.4.3): more rear roll stiffness reaches a higher lateral
     acceleration, with less body roll and a slower rise of the steering angle.
     """
@@ -66,6 +68,8 @@ def test_stiffer_rear_roll_stiffness_gives_the_thesis_trends(turns):
 
 def _axle_forces(outcome, config):
     """
+    Check: axle forces.
+
     Effective lateral force of each axle, N: the axle's yaw moment about the CoG over its
     lever arm (a for the front, -b for the rear), from the wheels' forces in body axes
     (steer angles), the track offsets of their longitudinal forces and their aligning
@@ -91,6 +95,8 @@ def _axle_forces(outcome, config):
 
 def _effective_slips(outcome, config):
     """
+    Check: effective slips.
+
     Single-track slip angles with every steer effect in the axle characteristic:
     alpha_f = delta_sw / i_s - beta - a r / v, alpha_r = -beta + b r / v (at the CoG).
     """
@@ -105,6 +111,8 @@ def _effective_slips(outcome, config):
 
 def test_understeer_gradient_agrees_with_the_bicycle_model_of_the_same_axles(sedan, turns):
     """
+    Check: understeer gradient agrees with the bicycle model of the same axles.
+
     Ladder: feed the bicycle model (thesis eq. 2, K = m/L (b/C_f - a/C_r)) the effective
     axle cornering stiffnesses of the full vehicle's own linear range (axle force over the
     single-track slip angle, every steer effect included). Its K must equal the full
@@ -127,6 +135,8 @@ def test_understeer_gradient_agrees_with_the_bicycle_model_of_the_same_axles(sed
 
 def test_yaw_rate_gain_agrees_with_the_bicycle_model_of_the_same_axles(sedan, step):
     """
+    Check: yaw rate gain agrees with the bicycle model of the same axles.
+
     Ladder: the steady yaw-rate gain of the step steer against the bicycle model's
     r / delta = (v / L) / (1 + K v^2 / L), with K from the effective axle stiffnesses of the
     same steady state (secants). Within 3 %: as above, without the speed ramp.
@@ -148,6 +158,8 @@ def test_yaw_rate_gain_agrees_with_the_bicycle_model_of_the_same_axles(sedan, st
 
 def test_maximum_lateral_acceleration_is_near_the_two_track_model(sedan, turns):
     """
+    Check: maximum lateral acceleration is near the two track model.
+
     Ladder: the two-track model with the same K&C roll stiffness and roll centres reaches
     its steady-state limit within 10 % of the full vehicle's (which loses the radius when
     the front axle saturates; the two-track has no compliance, camber or jacking).
@@ -192,6 +204,8 @@ def test_a_step_beyond_the_steering_lock_is_an_error(sedan):
 
 def test_flexible_fidelity_drives_on_the_flexible_kc_maps(sedan, step):
     """
+    Check: flexible fidelity drives on the flexible kc maps.
+
     The same configuration on its flexible K&C results: every suspension map says so,
     and the more compliant suspension changes the response.
     """
@@ -204,7 +218,7 @@ def test_flexible_fidelity_drives_on_the_flexible_kc_maps(sedan, step):
 
 def test_unknown_event_is_an_error(sedan):
     with pytest.raises(SolverError) as err:
-        run_vehicle_event(sedan['baseline'], 'sine_with_dwell')
-    assert str(err.value) == ("configuration 'baseline', event 'sine_with_dwell': the "
-                              "full-vehicle model has no event 'sine_with_dwell' (events: "
-                              "constant_radius_turn, step_steer)")
+        run_vehicle_event(sedan['baseline'], 'double_lane_change')
+    assert str(err.value) == ("configuration 'baseline', event 'double_lane_change': the "
+                              "full-vehicle model has no event 'double_lane_change' (events: "
+                              "constant_radius_turn, step_steer, sine_with_dwell)")

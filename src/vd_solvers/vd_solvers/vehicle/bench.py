@@ -45,7 +45,7 @@ def _micro(fn: Callable[[], Any]) -> float:
 
 
 def bench_vehicle(config) -> dict[str, Any]:
-    """The figures of the module doc for ``config``."""
+    """Return the figures of the module doc for ``config``."""
     t0 = time.perf_counter()
     model = VehicleModel(config)
     build = time.perf_counter() - t0
@@ -113,7 +113,9 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
 
 def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
     """
-    The 10 s step steer on CommonRoad's multibody model (module doc), its road-wheel
+    Run the 10 s step steer on CommonRoad's multibody model (module doc).
+
+    Its road-wheel
     step scaled so that its steady yaw rate is ``yaw_rate`` (rad/s; from one untimed
     run with a small step, the response being linear there).
     """
@@ -151,3 +153,20 @@ def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
 
 
 __all__ = ['bench_vehicle', 'bench_commonroad']
+
+
+def bench_sine_with_dwell(study) -> dict[str, Any]:
+    """
+    Run the full FMVSS 126 procedure on every configuration of ``study`` (``vd bench``).
+
+    Per configuration: wall time, A, the number of runs and the verdict.
+    """
+    out: dict[str, Any] = {}
+    for name, config in study.configurations.items():
+        t0 = time.perf_counter()
+        result = run_vehicle_event(config, 'sine_with_dwell')
+        m = {k: v.value for k, v in result.metrics.items()}
+        out[name] = {'wall_s': time.perf_counter() - t0, 'a_reference_deg': np.degrees(
+            m['a_reference']), 'runs': int(m['runs']), 'passed': bool(m['passed']),
+            'verdict': result.notes[0]}
+    return out

@@ -1,5 +1,5 @@
 """
-Full-vehicle events: constant radius turn (ISO 4138) and step steer (ISO 7401).
+Full-vehicle events: constant radius turn (ISO 4138), step steer (ISO 7401), sine with dwell.
 
 ``run_vehicle_event(config, event, params, fidelity, progress)`` builds the vehicle of
 ``config`` (suspension maps from the K&C results of the same data hash and fidelity),
@@ -23,6 +23,9 @@ ratio aimed/reached), speed held by the PI controller. Response times are measur
 from the instant the steering-wheel angle passes 50 % of its step (ISO 7401 5.3):
 t90 (first reaching 90 % of the steady value) and the peak time; overshoot is
 peak / steady - 1; steady values are means over the last STEADY_WINDOW s.
+
+sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
+:mod:`.sine_with_dwell`.
 """
 from __future__ import annotations
 
@@ -44,6 +47,8 @@ from .drivers import CirclePathFollower, OpenLoopSteering, SpeedController
 from .maps import WHEELS
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
+from .sine_with_dwell import PARAMS as SWD_PARAMS
+from .sine_with_dwell import run_procedure
 
 #: lateral-acceleration range of the linear gradients, m/s^2
 LINEAR_RANGE = (1.0, 3.0)
@@ -95,6 +100,7 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
         'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
                              maximum=1.0),
     },
+    'sine_with_dwell': SWD_PARAMS,
 }
 EVENTS = tuple(EVENT_PARAMS)
 
@@ -114,8 +120,16 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         model = VehicleModel(config, fidelity)
     except SolverError as err:
         raise SolverError(f'{label}: {err}') from err
-    run = _constant_radius if event == 'constant_radius_turn' else _step_steer
-    metrics, channels, notes = run(model, values, progress)
+    if event == 'sine_with_dwell':
+        try:
+            metrics, channels, notes = run_procedure(model, values, progress, _channels)
+        except SolverError as err:
+            if config.name in str(err):
+                raise
+            raise SolverError(f'{label}: {err}') from err
+    else:
+        run = _constant_radius if event == 'constant_radius_turn' else _step_steer
+        metrics, channels, notes = run(model, values, progress)
     step = TURN_STEP if event == 'constant_radius_turn' else STEP
     notes = [*notes, f'integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; '
              'transient slip integrated exactly per step, wheel spin linearly implicit',

@@ -1,0 +1,37 @@
+"""
+``ros2 launch vd_events lockstep.launch.py``: the lock-step vehicle and the example controller.
+
+Starts ``vehicle_solver`` in ``lockstep`` mode (the sample study's first configuration,
+5 ms steps) and ``path_follower`` (pure pursuit on the 40 m constant radius circle at
+12 m/s), both with ``use_sim_time``. Arguments: ``configuration``, ``mode`` (lockstep |
+free), ``duration`` (simulated s), ``radius``, ``speed``, ``real_time_factor`` (free mode).
+``vd launch --lockstep`` starts the same pair where the launch tools are not installed.
+"""
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+
+from launch import LaunchDescription
+
+
+def generate_launch_description() -> LaunchDescription:
+    """Declare the arguments and the two nodes."""
+    args = {'configuration': '', 'mode': 'lockstep', 'duration': '30.0', 'radius': '40.0',
+            'speed': '12.0', 'real_time_factor': '1.0'}
+    declared = [DeclareLaunchArgument(k, default_value=v) for k, v in args.items()]
+
+    def value(name, kind=float):
+        return ParameterValue(LaunchConfiguration(name), value_type=kind)
+
+    solver = Node(package='vd_solvers', executable='vehicle_solver', output='screen',
+                  parameters=[{'mode': value('mode', str),
+                               'configuration': value('configuration', str),
+                               'duration': value('duration'),
+                               'initial_speed': value('speed'),
+                               'real_time_factor': value('real_time_factor'),
+                               'use_sim_time': False}])
+    follower = Node(package='vd_events', executable='path_follower', output='screen',
+                    parameters=[{'radius': value('radius'), 'speed': value('speed'),
+                                 'use_sim_time': True}])
+    return LaunchDescription([*declared, solver, follower])

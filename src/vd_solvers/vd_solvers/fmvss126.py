@@ -1,0 +1,381 @@
+"""
+FMVSS 126 / UN R140 / GTR 8 sine-with-dwell processing and grading.
+
+On any time series -- a simulation or a measured vehicle log.
+
+Implemented as the rule states it (49 CFR 571.126 S5.2, S7.6, S7.9, S7.11; GTR 8):
+
+* **Filtering**: 12-pole phaseless Butterworth low-pass -- a 6-pole Butterworth run
+  forward and backward (``scipy.signal.sosfiltfilt``): steering-wheel angle at 10 Hz,
+  yaw rate and lateral acceleration at 6 Hz.
+* **Zeroing**: each filtered signal minus its mean over the 1.0 s before the instant the
+  steering-wheel rate first exceeds 75 deg/s and stays above it for 200 ms.
+* **BOS** (beginning of steer): the first instant the zeroed steering-wheel angle reaches
+  5 deg in the direction of the first steer. **COS** (completion of steer): the instant the
+  steering wheel returns to zero after the dwell (the last zero crossing of the steer).
+* **Peak yaw rate**: the first local peak of yaw rate after the steering-wheel angle
+  changes sign (between its first and second peaks) -- not the window maximum.
+* **Lateral stability** (S5.2.1, S5.2.2): yaw rate at COS + 1.0 s <= 35 % and at
+  COS + 1.75 s <= 20 % of the peak yaw rate "during the same test run". "Shall not
+  exceed" is <=. The rule's text bounds these criteria by no amplitude, so every run of
+  the series is graded (STABILITY_FROM = 0 x A).
+* **Responsiveness** (S5.2.3): lateral displacement of the CoG, the double integral of
+  the (filtered, zeroed) lateral acceleration from BOS, at BOS + 1.07 s >= 1.83 m for a
+  GVWR <= 3 500 kg (>= 1.52 m above), for runs with an amplitude of 5A or more.
+* **A** (S7.6): steering-wheel angle at 0.3 g from the slowly-increasing-steer runs, by
+  linear regression of steering-wheel angle on lateral acceleration over 0.1..0.375 g per
+  run, averaged over the runs, rounded to 0.1 deg. **Amplitude series** (S7.9): 1.5A, then
+  steps of 0.5A up to the greater of 6.5A and 270 deg, no run beyond 300 deg.
+* **Entry speed** (S7.9.2): each sine-with-dwell run starts coasting from 80 +/- 2 km/h;
+  with a speed signal the speed at BOS is checked and a run outside it is not valid.
+* **Procedure** (:func:`grade_procedure`): the vehicle passes when every graded run of
+  both series meets every criterion that applies to it; the deciding run is the first
+  failing run (series order, lowest amplitude first), or, when all pass, the run with
+  the least margin to its limit.
+
+Signals in SI (rad, rad/s, m/s^2, s); signs ISO 8855 (left positive). Results carry SI.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+import math
+
+import numpy as np
+import scipy.signal
+
+DEG = math.pi / 180.0
+G = 9.80665
+STEER_CUTOFF = 10.0  # Hz
+RESPONSE_CUTOFF = 6.0  # Hz
+BUTTERWORTH_POLES = 6  # per pass; forward and backward make the rule's 12 poles
+ZERO_RATE = 75.0 * DEG  # rad/s
+ZERO_HOLD = 0.2  # s the rate must stay above ZERO_RATE
+ZERO_WINDOW = 1.0  # s
+BOS_ANGLE = 5.0 * DEG  # rad
+YAW_TIMES = (1.0, 1.75)  # s after COS
+YAW_LIMITS = (0.35, 0.20)
+DISPLACEMENT_TIME = 1.07  # s after BOS
+DISPLACEMENT_LIMIT = {'light': 1.83, 'heavy': 1.52}  # m, GVWR <= / > 3 500 kg
+HEAVY_GVWR = 3500.0  # kg
+RESPONSIVENESS_FROM = 5.0  # x A (S5.2.3: commanded amplitudes of 5A and greater)
+STABILITY_FROM = 0.0  # x A (S5.2.1, S5.2.2: every run)
+ENTRY_SPEED, ENTRY_TOLERANCE = 80.0 / 3.6, 2.0 / 3.6  # m/s (S7.9.2)
+SIS_RANGE = (0.1 * G, 0.375 * G)  # m/s^2, regression window of the SIS runs
+SIS_TARGET = 0.3 * G
+SERIES_START, SERIES_STEP, SERIES_TOP = 1.5, 0.5, 6.5  # x A
+SERIES_MIN_LAST, SERIES_CAP = 270.0 * DEG, 300.0 * DEG  # rad
+
+
+class ProcessingError(ValueError):
+    """The signals do not hold what the procedure needs (names the quantity)."""
+
+
+def lowpass(t: np.ndarray, x: np.ndarray, cutoff: float) -> np.ndarray:
+    """12-pole phaseless Butterworth low-pass of ``x`` sampled at times ``t`` (uniform)."""
+    t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
+    if t.size < 30 or t.shape != x.shape:
+        raise ProcessingError('need at least 30 samples of equal-length time and signal')
+    dt = np.diff(t)
+    if not np.all(dt > 0.0) or np.ptp(dt) > 1e-6 * dt.mean() + 1e-12:
+        raise ProcessingError('time must be strictly increasing with a uniform step')
+    fs = 1.0 / dt.mean()
+    if not cutoff < 0.5 * fs:
+        raise ProcessingError(f'sample rate {fs:.1f} Hz is too low for a {cutoff:g} Hz filter')
+    sos = scipy.signal.butter(BUTTERWORTH_POLES, cutoff, fs=fs, output='sos')
+    return scipy.signal.sosfiltfilt(sos, x)
+
+
+def zeroing_end(t: np.ndarray, steering: np.ndarray) -> float:
+    """
+    Find the end of the zeroing window (S7.11.3).
+
+    The instant the steering-wheel rate first exceeds 75 deg/s and stays above it for
+    at least 200 ms.
+    """
+    above = np.abs(np.gradient(steering, t)) > ZERO_RATE
+    starts = np.flatnonzero(above & ~np.r_[False, above[:-1]])
+    for i in starts:
+        j = i
+        while j + 1 < t.size and above[j + 1]:
+            j += 1
+        if t[j] - t[i] >= ZERO_HOLD:
+            return float(t[i])
+    raise ProcessingError('the steering-wheel rate never exceeds 75 deg/s for 200 ms')
+
+
+def _zeroed(t: np.ndarray, x: np.ndarray, end: float) -> np.ndarray:
+    window = (t >= end - ZERO_WINDOW) & (t < end)
+    if not np.any(window):
+        raise ProcessingError('no samples in the 1 s zeroing window before the steer')
+    return x - x[window].mean()
+
+
+def _crossing(t: np.ndarray, x: np.ndarray, i: int) -> float:
+    """Time where x crosses zero between samples i and i + 1 (linear)."""
+    return float(t[i] - x[i] * (t[i + 1] - t[i]) / (x[i + 1] - x[i]))
+
+
+@dataclass(frozen=True)
+class SwdGrade:
+    """One sine-with-dwell run, processed and graded (SI; ratios as fractions)."""
+
+    amplitude: float  # rad, steering-wheel, |first peak|
+    direction: int  # +1 first steer to the left, -1 to the right
+    bos: float  # s
+    cos: float  # s
+    peak_yaw_rate: float  # rad/s, signed (first local peak after the steering reversal)
+    yaw_rate_ratio_1_00: float
+    yaw_rate_ratio_1_75: float
+    lateral_displacement: float  # m at BOS + 1.07 s, in the direction of the first steer
+    peak_lateral_acceleration: float  # m/s^2, |max|
+    peak_roll: float | None  # rad, |max|, when a roll signal is given
+    responsiveness_applies: bool
+    stable_1_00: bool
+    stable_1_75: bool
+    responsive: bool | None  # None when the criterion does not apply to this amplitude
+    peak_yaw_rate_abs: float = float('nan')  # rad/s, |max| of the filtered yaw rate
+    entry_speed: float | None = None  # m/s at BOS, when a speed signal is given
+    displacement_limit: float = DISPLACEMENT_LIMIT['light']  # m
+
+    @property
+    def speed_valid(self) -> bool:
+        """Entry speed within 80 +/- 2 km/h (True without a speed signal)."""
+        return self.entry_speed is None or abs(self.entry_speed - ENTRY_SPEED) <= \
+            ENTRY_TOLERANCE * (1.0 + 1e-9)
+
+    @property
+    def passed(self) -> bool:
+        """Every criterion that applies to the run is met."""
+        return self.stable_1_00 and self.stable_1_75 and self.responsive is not False
+
+
+def grade_run(t, steering, yaw_rate, lateral_acceleration, *, a_reference: float,
+              roll=None, gvwr: float = 2000.0, speed=None,
+              commanded_amplitude: float | None = None) -> SwdGrade:
+    """
+    Process and grade one run (see the module doc). ``a_reference`` is A (rad).
+
+    ``commanded_amplitude`` (rad) decides whether responsiveness applies (S5.2.3: the
+    commanded angle); without it the measured first-peak amplitude does. ``speed``
+    (m/s, optional) gives the entry speed at BOS.
+    """
+    t = np.asarray(t, dtype=float)
+    if not (math.isfinite(a_reference) and a_reference > 0.0):
+        raise ProcessingError(f'A must be a positive angle, got {a_reference!r}')
+    if not (math.isfinite(gvwr) and gvwr > 0.0):
+        raise ProcessingError(f'GVWR must be a positive mass, got {gvwr!r}')
+    signals = [('steering', steering), ('yaw_rate', yaw_rate),
+               ('lateral_acceleration', lateral_acceleration)]
+    signals += [(name, x) for name, x in (('roll', roll), ('speed', speed)) if x is not None]
+    for name, x in signals:
+        x = np.asarray(x, dtype=float)
+        if x.shape != t.shape:
+            raise ProcessingError(f'{name} has {x.size} samples, time has {t.size}')
+        if not np.all(np.isfinite(x)):
+            raise ProcessingError(f'{name} holds non-finite samples')
+    delta = lowpass(t, steering, STEER_CUTOFF)
+    r = lowpass(t, yaw_rate, RESPONSE_CUTOFF)
+    ay = lowpass(t, lateral_acceleration, RESPONSE_CUTOFF)
+    end = zeroing_end(t, delta)
+    delta, r, ay = (_zeroed(t, x, end) for x in (delta, r, ay))
+    after = t >= end
+    first = int(np.argmax(np.abs(delta) * after >= BOS_ANGLE))
+    if not abs(delta[first]) >= BOS_ANGLE:
+        raise ProcessingError('the steering-wheel angle never reaches 5 deg')
+    direction = 1 if delta[first] > 0 else -1
+    i = first
+    while i > 0 and direction * delta[i - 1] >= BOS_ANGLE:
+        i -= 1
+    bos = float(np.interp(BOS_ANGLE, direction * delta[i - 1: i + 1], t[i - 1: i + 1])) if i > 0 \
+        else float(t[i])
+    s = direction * delta
+    crossings = [k for k in range(first, t.size - 1) if (s[k] > 0) != (s[k + 1] > 0)
+                 and abs(s[k] - s[k + 1]) > 0]
+    if len(crossings) < 2:
+        raise ProcessingError('the steer does not reverse and return to zero')
+    reversal = crossings[0]
+    back = [k for k in crossings[1:] if s[k] < 0 <= s[k + 1]]
+    if not back:
+        raise ProcessingError('the steering wheel does not return to zero after the dwell')
+    cos = _crossing(t, s, back[0])
+    amplitude = float(np.max(np.abs(delta[first: reversal + 1])))
+    # the first local peak of yaw rate (opposite to the first steer) after the reversal
+    ry = -direction * r
+    peak_i = None
+    for k in range(reversal + 1, t.size - 1):
+        if ry[k] > 0 and ry[k] >= ry[k - 1] and ry[k] > ry[k + 1]:
+            peak_i = k
+            break
+    if peak_i is None:
+        raise ProcessingError('no yaw-rate peak after the steering reversal')
+    peak = float(r[peak_i])
+    if t[-1] < cos + YAW_TIMES[1]:
+        raise ProcessingError(f'the record ends {t[-1] - cos:.2f} s after COS; the rule '
+                              f'needs {YAW_TIMES[1]:g} s')
+    ratios = [float(np.interp(cos + dt, t, r) / peak) for dt in YAW_TIMES]
+    if t[-1] < bos + DISPLACEMENT_TIME:
+        raise ProcessingError('the record ends before BOS + 1.07 s')
+    window = t >= bos
+    tt = np.concatenate(([bos], t[window]))
+    aa = np.concatenate(([np.interp(bos, t, ay)], ay[window]))
+    vy = np.concatenate(([0.0], np.cumsum(0.5 * (aa[1:] + aa[:-1]) * np.diff(tt))))
+    yy = np.concatenate(([0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * np.diff(tt))))
+    displacement = direction * float(np.interp(bos + DISPLACEMENT_TIME, tt, yy))
+    nominal = amplitude if commanded_amplitude is None else commanded_amplitude
+    applies = nominal >= RESPONSIVENESS_FROM * a_reference * (1.0 - 1e-3)
+    limit = DISPLACEMENT_LIMIT['heavy' if gvwr > HEAVY_GVWR else 'light']
+    return SwdGrade(
+        amplitude=amplitude, direction=direction, bos=bos, cos=cos, peak_yaw_rate=peak,
+        yaw_rate_ratio_1_00=ratios[0], yaw_rate_ratio_1_75=ratios[1],
+        lateral_displacement=displacement,
+        peak_lateral_acceleration=float(np.max(np.abs(ay[after]))),
+        peak_roll=None if roll is None else float(np.max(np.abs(np.asarray(roll)))),
+        responsiveness_applies=applies,
+        stable_1_00=ratios[0] <= YAW_LIMITS[0], stable_1_75=ratios[1] <= YAW_LIMITS[1],
+        responsive=(displacement >= limit) if applies else None,
+        peak_yaw_rate_abs=float(np.max(np.abs(r[after]))),
+        entry_speed=None if speed is None else float(np.interp(bos, t, np.asarray(speed, float))),
+        displacement_limit=limit)
+
+
+@dataclass(frozen=True)
+class CriterionVerdict:
+    """One criterion over the graded runs of a procedure."""
+
+    name: str  # 'yaw_rate_ratio_1_00' | 'yaw_rate_ratio_1_75' | 'lateral_displacement'
+    limit: float
+    passed: bool
+    runs: int  # how many runs the criterion was graded on
+    deciding_run: int | None  # index into the runs; None when graded on no run
+    deciding_value: float
+
+
+@dataclass(frozen=True)
+class ProcedureGrade:
+    """Every run of a sine-with-dwell procedure, and the verdicts."""
+
+    a_reference: float  # rad
+    runs: tuple[SwdGrade, ...]
+    criteria: tuple[CriterionVerdict, ...]
+    valid: bool  # every run's entry speed within 80 +/- 2 km/h
+    passed: bool
+    deciding_run: int | None
+    deciding_criterion: str
+
+
+def grade_procedure(runs: Sequence[SwdGrade], a_reference: float) -> ProcedureGrade:
+    """
+    Grade a series of graded runs: per criterion and overall, with the deciding run.
+
+    Runs must be graded against the same A (module doc).
+    """
+    if not runs:
+        raise ProcessingError('no sine-with-dwell runs to grade')
+    criteria = []
+    for name, limit_of, value_of, applies, ok in (
+            ('yaw_rate_ratio_1_00', lambda g_: YAW_LIMITS[0], lambda g_: g_.yaw_rate_ratio_1_00,
+             lambda g_: True, lambda g_: g_.stable_1_00),
+            ('yaw_rate_ratio_1_75', lambda g_: YAW_LIMITS[1], lambda g_: g_.yaw_rate_ratio_1_75,
+             lambda g_: True, lambda g_: g_.stable_1_75),
+            ('lateral_displacement', lambda g_: g_.displacement_limit,
+             lambda g_: g_.lateral_displacement, lambda g_: g_.responsiveness_applies,
+             lambda g_: bool(g_.responsive))):
+        graded = [k for k, g_ in enumerate(runs) if applies(g_)]
+        failing = [k for k in graded if not ok(runs[k])]
+        if failing:
+            decide = failing[0]
+        elif graded:
+            # least margin: ratio closest to its limit from below, displacement from above
+            sign = -1.0 if name == 'lateral_displacement' else 1.0
+            decide = max(graded, key=lambda k: sign * (value_of(runs[k]) - limit_of(runs[k])))
+        else:
+            decide = None
+        criteria.append(CriterionVerdict(
+            name=name, limit=limit_of(runs[0]), passed=not failing, runs=len(graded),
+            deciding_run=decide,
+            deciding_value=float('nan') if decide is None else value_of(runs[decide])))
+    valid = all(g_.speed_valid for g_ in runs)
+    passed = valid and all(c.passed for c in criteria)
+    failed = [c for c in criteria if not c.passed]
+    if failed:
+        first = min(failed, key=lambda c: c.deciding_run)
+    else:
+        def margin(c: CriterionVerdict) -> float:
+            if c.deciding_run is None:
+                return math.inf
+            if c.name == 'lateral_displacement':
+                return c.deciding_value / c.limit - 1.0
+            return 1.0 - c.deciding_value / c.limit
+        first = min(criteria, key=margin)
+    return ProcedureGrade(a_reference=a_reference, runs=tuple(runs), criteria=tuple(criteria),
+                          valid=valid, passed=passed, deciding_run=first.deciding_run,
+                          deciding_criterion=first.name)
+
+
+def amplitude_from_sis(runs: Sequence[tuple[np.ndarray, np.ndarray]]) -> float:
+    """
+    Find A (rad) from slowly-increasing-steer runs.
+
+    Each run is (steering-wheel angle, lateral acceleration), filtered and zeroed: per
+    run the steering angle at 0.3 g of the linear regression of |steering| on |lateral
+    acceleration| over 0.1..0.375 g; averaged over the runs and rounded to 0.1 deg.
+    """
+    if not runs:
+        raise ProcessingError('no slowly-increasing-steer runs')
+    values = []
+    for k, (steer, ay) in enumerate(runs):
+        steer, ay = np.abs(np.asarray(steer, float)), np.abs(np.asarray(ay, float))
+        window = (ay >= SIS_RANGE[0]) & (ay <= SIS_RANGE[1])
+        if np.count_nonzero(window) < 3:
+            raise ProcessingError(f'SIS run {k}: fewer than 3 samples between 0.1 and 0.375 g '
+                                  '(the run must reach 0.375 g)')
+        slope, intercept = np.polyfit(ay[window], steer[window], 1)
+        values.append(slope * SIS_TARGET + intercept)
+    return round(float(np.mean(values)) / DEG, 1) * DEG
+
+
+def amplitude_series(a_reference: float) -> list[float]:
+    """
+    Return the commanded amplitudes (rad) of the series.
+
+    1.5A, 2A, ... up to the greater of 6.5A and 270 deg, none beyond 300 deg.
+    """
+    if not (math.isfinite(a_reference) and a_reference > 0.0):
+        raise ProcessingError(f'A must be a positive angle, got {a_reference!r}')
+    last = min(max(SERIES_TOP * a_reference, SERIES_MIN_LAST), SERIES_CAP)
+    out, k = [], SERIES_START
+    while k * a_reference <= last * (1.0 + 1e-12):
+        out.append(k * a_reference)
+        k += SERIES_STEP
+    if out[-1] < last * (1.0 - 1e-12) and last > out[-1]:
+        out.append(last)
+    return out
+
+
+def sine_with_dwell(t: np.ndarray, amplitude: float, direction: int = 1,
+                    start: float = 1.0, frequency: float = 0.7, dwell: float = 0.5) -> np.ndarray:
+    """
+    Return the steering-wheel angle of the manoeuvre (S7.9.1).
+
+    A 0.7 Hz sine, held for the dwell at its second peak, then the last quarter cycle
+    back to zero.
+    """
+    w = 2.0 * math.pi * frequency
+    period = 1.0 / frequency
+    tau = np.asarray(t, dtype=float) - start
+    out = np.zeros_like(tau)
+    a = tau < 0.75 * period
+    out[(tau >= 0) & a] = np.sin(w * tau[(tau >= 0) & a])
+    d = (tau >= 0.75 * period) & (tau < 0.75 * period + dwell)
+    out[d] = -1.0
+    e = (tau >= 0.75 * period + dwell) & (tau < period + dwell)
+    out[e] = np.sin(w * (tau[e] - dwell))
+    return direction * amplitude * out
+
+
+__all__ = ['ProcessingError', 'SwdGrade', 'CriterionVerdict', 'ProcedureGrade', 'lowpass',
+           'zeroing_end', 'grade_run', 'grade_procedure', 'amplitude_from_sis',
+           'amplitude_series', 'sine_with_dwell', 'DISPLACEMENT_LIMIT', 'YAW_LIMITS',
+           'RESPONSIVENESS_FROM', 'STABILITY_FROM', 'ENTRY_SPEED', 'ENTRY_TOLERANCE',
+           'SIS_TARGET', 'HEAVY_GVWR']
