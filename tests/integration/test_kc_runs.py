@@ -1,6 +1,8 @@
 """
-K&C events over the ROS graph: every event on every configuration of both sample
-vehicles (embedded), one distributed run, JSON contract, bags and report.
+K&C events over the ROS graph.
+
+Every event on every configuration of both sample vehicles (embedded), one
+distributed run, JSON contract, bags and report.
 """
 from __future__ import annotations
 
@@ -64,7 +66,7 @@ def test_kc_run_json_contract_and_distributed(capsys, tmp_path, sedan_master):
     assert (embedded['event'], embedded['configuration'], embedded['model'],
             embedded['fidelity'], embedded['axle']) == ('parallel_wheel_travel', 'sport', 'kc',
                                                         'flexible', 'front')
-    assert embedded['metrics']['camber']['unit'] == 'deg'
+    assert embedded['metrics']['camber']['unit'] == 'rad'
     assert len(embedded['channels']['toe_left']['values']) == 21
     bag = tmp_path / 'kc_bag'
     rc, out, err = _vd(capsys, *args, '--distributed', '--bag', str(bag))
@@ -111,7 +113,9 @@ def test_kc_bad_input(capsys, tmp_path, sedan_master):
 @pytest.mark.slow
 def test_flexible_kc_runs_embedded_and_distributed(capsys, tmp_path, sedan_master):
     """
-    `vd run lateral_force --model kc --fidelity flexible` over the ROS graph: the same
+    Run the flexible K&C lateral-force event over the ROS graph.
+
+    `vd run lateral_force --model kc --fidelity flexible`: the same
     numbers embedded and distributed, softer than rigid, labelled flexible, in a bag.
     """
     from vd_events.bag import read_bag
@@ -132,7 +136,8 @@ def test_flexible_kc_runs_embedded_and_distributed(capsys, tmp_path, sedan_maste
     for name in ('lateral_stiffness', 'lateral_compliance_camber'):
         assert runs['distributed']['metrics'][name]['value'] == pytest.approx(
             flex['metrics'][name]['value'], rel=1e-12)
-    assert flex['metrics']['lateral_stiffness']['value'] < rigid['metrics']['lateral_stiffness']['value']
+    stiffness = 'lateral_stiffness'
+    assert flex['metrics'][stiffness]['value'] < rigid['metrics'][stiffness]['value']
     assert flex['metrics']['component_mass.lca']['value'] > 0.0
     results = [m.msg for m in read_bag(tmp_path / 'embedded') if m.topic == '/vd/kc/result']
     assert [r.fidelity for r in results] == ['flexible']

@@ -95,7 +95,7 @@ def test_sedan_geometry_is_credible(name: str) -> None:
     config = STUDIES['sedan'].configurations[name]
     front = kc(config, 'front', 'parallel_wheel_travel')
     rear = kc(config, 'rear', 'parallel_wheel_travel')
-    assert -10.0 <= front['scrub_radius'] <= 40.0  # mm
+    assert -0.010 <= front['scrub_radius'] <= 0.040  # m
     assert 14.0 <= kc(config, 'front', 'steering')['steering_ratio'] <= 17.0
     assert rear['roll_centre_height_kinematic'] > front['roll_centre_height_kinematic']
     k_f = kc(config, 'front', 'opposite_wheel_travel')['roll_stiffness']
