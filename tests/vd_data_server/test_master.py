@@ -380,3 +380,11 @@ def test_a_data_root_that_is_no_folder_is_refused(sample_root: Path, sedan_maste
     assert refused(sample_root, sedan_master) == [
         f'{sedan_master}: study.data_root: the data root {root} is not a folder '
         f"(line {line_no(sedan_master, '  data_root:')})"]
+
+
+def test_flexible_components_must_be_a_list(sample_root: Path, sedan_master: Path) -> None:
+    replace_once(sedan_master, '    flexible_components: [lca, strut, upright]\n',
+                 '    flexible_components: 3\n')
+    assert refused(sample_root, sedan_master) == [
+        f'{sedan_master}: configurations.sport.flexible_components: expected a non-empty list '
+        f"of component names, found 3 (line {line_no(sedan_master, '    flexible_components:')})"]

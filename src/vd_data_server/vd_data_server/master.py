@@ -129,11 +129,12 @@ def load_master(path: str | Path, *, data_root: str | Path | None = None) -> Mas
                         "nor in the configuration)", configs_raw, name)
         flexible = body.get('flexible') or False
         components = tuple(flexible) if isinstance(flexible, list) else ()
-        if body.get('flexible_components'):
+        chosen = body.get('flexible_components')
+        if isinstance(chosen, list) and chosen:  # anything else is reported by the walker
             if components:
                 col.add(f'{where}.flexible_components', "give the components either as the "
                         "'flexible' list or here, not both", body, 'flexible_components')
-            components = tuple(body['flexible_components'])
+            components = tuple(str(c) for c in chosen)
         configs[name] = ConfigurationSpec(name, str(body.get('description') or ''),
                                           {str(k): str(v) for k, v in merged.items()},
                                           dict(overrides), bool(flexible or components),
