@@ -44,8 +44,9 @@ import math
 import numpy as np
 import scipy.signal
 
-DEG = math.pi / 180.0
-G = 9.80665
+from vd_solvers.constants import DEG
+from vd_solvers.constants import STANDARD_GRAVITY as G
+
 STEER_CUTOFF = 10.0  # Hz
 RESPONSE_CUTOFF = 6.0  # Hz
 BUTTERWORTH_POLES = 6  # per pass; forward and backward make the rule's 12 poles
