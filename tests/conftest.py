@@ -14,7 +14,7 @@ SAMPLE_DATA = REPO / 'src' / 'vd_data_server' / 'data'
 
 @pytest.fixture
 def sample_root(tmp_path: Path) -> Path:
-    """A writable copy of the bundled data root (tests edit it)."""
+    """Return a writable copy of the bundled data root (tests edit it)."""
     root = tmp_path / 'data'
     shutil.copytree(SAMPLE_DATA, root)
     return root

@@ -1,6 +1,8 @@
 """
-Strategies and the property shared by the fuzz tests: either a clean error or a valid
-result - never a traceback (an exception of another type), a hang or a huge message.
+Strategies and the property shared by the fuzz tests.
+
+The property: either a clean error or a valid result - never a traceback (an exception
+of another type), a hang or a huge message.
 """
 from __future__ import annotations
 
@@ -36,7 +38,7 @@ def no_hang(seconds: float = HANG) -> Iterator[None]:
 
 
 def clean(err: Exception) -> None:
-    """A clean error: one or more readable lines, bounded."""
+    """Check that ``err`` is a clean error: one or more readable lines, bounded."""
     text = str(err)
     assert text, f'empty message from {type(err).__name__}'
     assert len(text) <= MAX_MESSAGE, len(text)
@@ -79,7 +81,7 @@ def paths(tree: Any, prefix: tuple = ()) -> list[tuple]:
 
 
 def mutate(data: st.DataObject, tree: Any, rounds: int = 3) -> Any:
-    """The tree with a few random edits: replace a node, delete a key, add a key."""
+    """Return the tree with a few random edits: replace a node, delete a key, add a key."""
     import copy
 
     tree = copy.deepcopy(tree)

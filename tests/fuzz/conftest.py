@@ -1,5 +1,7 @@
 """
-Hypothesis profiles: ``ci`` (the default, part of ``make test``: seconds, deterministic)
+Hypothesis profiles for the tests.
+
+``ci`` (the default, part of ``make test``: seconds, deterministic)
 and ``fuzz`` (``make fuzz``: many more examples, random).
 """
 from __future__ import annotations

@@ -1,7 +1,9 @@
 """
-Property-based fuzzing of every input the data side reads: data files, raw YAML,
-master files, .tir files and edits. Property: either a clean DataError or a valid result;
-never another exception (a traceback), a hang or a huge message (issue 10).
+Property-based fuzzing of every input the data side reads.
+
+Data files, raw YAML, master files, .tir files and edits. Property: either a clean
+DataError or a valid result; never another exception (a traceback), a hang or a huge
+message (issue 10).
 """
 from __future__ import annotations
 
@@ -27,8 +29,10 @@ FILES = sorted((p.parent.name, p) for p in (SAMPLE / 'sedan').glob('*/*.yaml'))
 @pytest.fixture(scope='module')
 def root(tmp_path_factory) -> Path:
     """
-    One writable copy of the sample data for the whole module (hypothesis reruns the
-    test body many times; each example writes only its own fuzz files).
+    Return one writable copy of the sample data for the whole module.
+
+    Hypothesis reruns the test body many times; each example writes only its own
+    fuzz files.
     """
     copy = tmp_path_factory.mktemp('fuzz') / 'data'
     shutil.copytree(SAMPLE, copy)
@@ -104,7 +108,9 @@ def test_mutated_tir_files(data):
         elif action == 'insert':
             lines.insert(index, data.draw(st.text(max_size=30)))
         else:
-            lines.insert(index, f"{data.draw(st.sampled_from(['PKY2', 'FNOMIN', 'LFZO', 'PCY1', 'PDX1', 'LMUY', 'UNLOADED_RADIUS']))} = {data.draw(TOKENS)}")
+            key = data.draw(st.sampled_from(
+                ['PKY2', 'FNOMIN', 'LFZO', 'PCY1', 'PDX1', 'LMUY', 'UNLOADED_RADIUS']))
+            lines.insert(index, f'{key} = {data.draw(TOKENS)}')
     with no_hang():
         try:
             props = parse_tir_text('\n'.join(lines), 'fuzz.tir')
@@ -158,9 +164,11 @@ def test_edit_requests(configuration, key, value, root):
 @settings(suppress_health_check=[HealthCheck.function_scoped_fixture])
 def test_cli_arguments(argv, root, monkeypatch, capsys):
     """
-    Any argument list: a usage message (argparse, exit 2) or the command's clean error
-    (exit 2) or success. The runner is replaced: starting ROS graphs is not what is
-    fuzzed here, the arguments' way to it is.
+    Check that any argument list gives a usage message, the command's clean error or success.
+
+    The usage message comes from argparse (exit 2), the clean error exits 2 too. The
+    runner is replaced: starting ROS graphs is not what is fuzzed here, the arguments'
+    way to it is.
     """
     from vd_events import runner
     from vd_events.cli import main
@@ -188,8 +196,9 @@ _STUDY: dict = {}  # the sample study, loaded once per data copy
 @given(data=st.data())
 def test_mutated_study_plans(data, root):
     """
-    A plan is loaded, expanded and every run validated, as `vd study` does before it
-    starts anything.
+    Load a plan, expand it and validate every run.
+
+    This is what `vd study` does before it starts anything.
     """
     from vd_data_server.study import load_study
     from vd_events.bag import BagError

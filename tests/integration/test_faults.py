@@ -1,6 +1,7 @@
 """
-Signals at chosen points of embedded and distributed runs (issue 10, causes 1 and 6):
-afterwards no finished-looking bag, no orphan process, and a rerun works.
+Signals at chosen points of embedded and distributed runs (issue 10, causes 1 and 6).
+
+Afterwards there is no finished-looking bag, no orphan process, and a rerun works.
 
 The signal goes out once the run's recorder has started (``<bag>.partial`` exists), i.e.
 while the goal is being sent or solved. ``make fuzz`` adds SIGTERM and a random extra
@@ -32,7 +33,7 @@ def _vd(*argv: str, **kwargs) -> subprocess.Popen:
 
 
 def _children_of(pid: int) -> list[int]:
-    """Processes started by the run ``pid`` (they carry VD_PARENT_PID=pid)."""
+    """Return the processes started by the run ``pid`` (they carry VD_PARENT_PID=pid)."""
     mark = f'VD_PARENT_PID={pid}'.encode()
     found = []
     for entry in Path('/proc').iterdir():

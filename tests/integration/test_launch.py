@@ -1,4 +1,6 @@
 """
+The distributed launch: nodes kept up, a plan driven against them, SIGTERM.
+
 `vd launch --distributed` keeps the nodes up; `ros2 run vd_events event_runner` drives
 a plan against them; SIGTERM stops everything.
 """

@@ -171,8 +171,10 @@ def test_unwritable_bag_path_is_refused(capsys, tmp_path, sedan_master):
 
 def test_beyond_limit_answers_with_error_and_no_bag(capsys, tmp_path, sedan_master):
     """
-    A bicycle sweep beyond the critical speed of an oversteering variant is an error
-    naming configuration and event; no bag is left behind.
+    Check that a bicycle sweep beyond the critical speed is an error.
+
+    The variant is oversteering; the error names configuration and event; no bag is
+    left behind.
     """
     bag = tmp_path / 'beyond'
     rc, out, err = _vd(capsys, 'run', 'step_steer', '--model', 'bicycle', '--master',

@@ -22,7 +22,7 @@ def cells(line: str) -> list[str]:
 
 
 def kind_section(kind: str) -> str:
-    """The text under '### `kind`' up to the next heading."""
+    """Return the text under '### `kind`' up to the next heading."""
     match = re.search(rf'(?ms)^### `{kind}`\n(.*?)(?=^#)', text())
     assert match, f"no section '### `{kind}`' in {DOC.name}"
     return match.group(1)

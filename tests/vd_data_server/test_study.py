@@ -1,6 +1,8 @@
 """
-Resolution and feedback: UNCHANGED/MODIFIED against the shared file, SAME/DIFFERS
-across configurations (the thesis' overview tab, §2.3), and the --json contract.
+Resolution and feedback of a study, and the --json contract.
+
+UNCHANGED/MODIFIED against the shared file, SAME/DIFFERS across configurations (the
+thesis' overview tab, §2.3).
 """
 from __future__ import annotations
 
@@ -78,15 +80,21 @@ def test_different_variants_with_identical_content_are_the_same(sample_root: Pat
                  '      rear_spring: Z\n')
     study = load_study(sedan_master)
     assert study.status_of('stiff_rear', 'rear_spring').variant == 'Z'
-    assert {study.status_of(c, 'rear_spring').consistency for c in study.configurations} == {'SAME'}
+    assert {study.status_of(c, 'rear_spring').consistency for c in study.configurations} == {
+        'SAME'
+    }
     assert {study.status_of(c, 'rear_spring').state for c in study.configurations} == {'UNCHANGED'}
 
 
 def test_an_override_equal_to_the_data_value_stays_unchanged(sedan_master: Path) -> None:
     # rear_alignment/X.yaml: camber -1.2 (deg); rear_hardpoints/X.yaml wheel_centre z 332 (mm)
-    replace_once(sedan_master, '      front_damper.scale: 120 %\n', '      front_damper.scale: 120 %\n'
-                 '      rear_alignment.camber: -1.2 deg\n'
-                 '      rear_hardpoints.points.wheel_centre.z: 0.332 m\n')
+    replace_once(
+        sedan_master,
+        '      front_damper.scale: 120 %\n',
+        '      front_damper.scale: 120 %\n'
+        '      rear_alignment.camber: -1.2 deg\n'
+        '      rear_hardpoints.points.wheel_centre.z: 0.332 m\n',
+    )
     study = load_study(sedan_master)
     for group in ('rear_alignment', 'rear_hardpoints'):
         entry = study.status_of('sport', group)
@@ -185,14 +193,31 @@ def test_extra_overrides_count_as_modifications(sedan_master: Path) -> None:
 
 def test_flexible_switch_is_part_of_the_feedback(sedan_master):
     """
-    The overview shows each configuration's flexible-components switch (thesis
-    Fig. 2.3.2) and whether the configurations agree on it.
+    Check that the overview shows each configuration's flexible-components switch.
+
+    The switch is the one of thesis Fig. 2.3.2; the overview also shows whether the
+    configurations agree on it.
     """
     from vd_data_server.study import load_study
 
     status = load_study(sedan_master).to_json()['flexible']
     assert status == [
-        {'configuration': 'baseline', 'flexible': False, 'components': [], 'consistency': 'DIFFERS'},
-        {'configuration': 'stiff_rear', 'flexible': False, 'components': [], 'consistency': 'DIFFERS'},
-        {'configuration': 'sport', 'flexible': True, 'components': ['lca', 'strut', 'upright'],
-         'consistency': 'DIFFERS'}]
+        {
+            'configuration': 'baseline',
+            'flexible': False,
+            'components': [],
+            'consistency': 'DIFFERS',
+        },
+        {
+            'configuration': 'stiff_rear',
+            'flexible': False,
+            'components': [],
+            'consistency': 'DIFFERS',
+        },
+        {
+            'configuration': 'sport',
+            'flexible': True,
+            'components': ['lca', 'strut', 'upright'],
+            'consistency': 'DIFFERS',
+        },
+    ]

@@ -87,24 +87,34 @@ def expect_read_error(tmp_path: Path, text: str, error: type[DataError] = DataEr
         (HMMWV, 'LATERAL_COEFFICIENTS', 'PDY1', 0.73957),
     ],
 )
-def test_sample_file_values_are_read_as_written(path: Path, block: str, key: str, expected: float) -> None:
+def test_sample_file_values_are_read_as_written(
+    path: Path, block: str, key: str, expected: float
+) -> None:
     npt.assert_allclose(read_tir(path).number(block, key), expected, rtol=RTOL)
 
 
 @pytest.mark.parametrize('path', [SEDAN, HMMWV])
 def test_sample_files_are_pac2002_left_tires(path: Path) -> None:
     props = read_tir(path)
-    assert (props.file_format, props.get('MODEL', 'TYRESIDE'), props.path) == ('PAC2002', 'LEFT', str(path))
+    assert (props.file_format, props.get('MODEL', 'TYRESIDE'), props.path) == (
+        'PAC2002',
+        'LEFT',
+        str(path),
+    )
 
 
 @pytest.mark.parametrize(
     ('path', 'radius', 'fnomin', 'stiffness'),
     [(SEDAN, 0.344, 4850.0, 280835.2941), (HMMWV, 0.4699, 35000.0, 1.0e6)],
 )
-def test_helpers_return_radius_load_and_stiffness(path: Path, radius: float, fnomin: float, stiffness: float) -> None:
+def test_helpers_return_radius_load_and_stiffness(
+    path: Path, radius: float, fnomin: float, stiffness: float
+) -> None:
     props = read_tir(path)
     npt.assert_allclose(
-        (props.unloaded_radius, props.fnomin, props.vertical_stiffness), (radius, fnomin, stiffness), rtol=RTOL
+        (props.unloaded_radius, props.fnomin, props.vertical_stiffness),
+        (radius, fnomin, stiffness),
+        rtol=RTOL,
     )
 
 
@@ -138,9 +148,14 @@ def test_crlf_and_tabs_give_the_same_result() -> None:
 
 
 def test_keys_and_blocks_are_case_insensitive() -> None:
-    text = set_line(sedan_text(), 'PDY1', 'pdy1 = 1.5').replace('[LATERAL_COEFFICIENTS]', '[Lateral_Coefficients]')
+    text = set_line(sedan_text(), 'PDY1', 'pdy1 = 1.5').replace(
+        '[LATERAL_COEFFICIENTS]', '[Lateral_Coefficients]'
+    )
     props = parse_tir_text(text, 'x')
-    assert (props.sections['LATERAL_COEFFICIENTS']['PDY1'], props.get('lateral_coefficients', 'Pdy1')) == (1.5, 1.5)
+    assert (
+        props.sections['LATERAL_COEFFICIENTS']['PDY1'],
+        props.get('lateral_coefficients', 'Pdy1'),
+    ) == (1.5, 1.5)
 
 
 def test_double_quotes_and_trailing_bang_comment() -> None:
@@ -160,7 +175,9 @@ def test_bare_word_is_a_string() -> None:
 
 def test_latin1_comment_is_accepted(tmp_path: Path) -> None:
     path = tmp_path / 'tire.tir'
-    path.write_bytes(sedan_text().replace('! 245/40 R 18', '! 245/40 R 18, 20 \xb0C').encode('latin-1'))
+    path.write_bytes(
+        sedan_text().replace('! 245/40 R 18', '! 245/40 R 18, 20 \xb0C').encode('latin-1')
+    )
     npt.assert_allclose(read_tir(path).fnomin, 4850.0, rtol=RTOL)
 
 
@@ -201,13 +218,31 @@ INCH = 0.0254  # m, definition
         ("LENGTH = 'centimeter'", 'RIM_RADIUS = 22.86', 'DIMENSION', 'RIM_RADIUS', 0.2286),
         ("LENGTH = 'inch'", 'RIM_WIDTH = 8.5', 'DIMENSION', 'RIM_WIDTH', 8.5 * INCH),
         ("LENGTH = 'METER'", 'UNLOADED_RADIUS = 0.35', 'DIMENSION', 'UNLOADED_RADIUS', 0.35),
-        ("LENGTH = 'mm'", 'VERTICAL_STIFFNESS = 280.8352941', 'VERTICAL', 'VERTICAL_STIFFNESS', 280835.2941),
+        (
+            "LENGTH = 'mm'",
+            'VERTICAL_STIFFNESS = 280.8352941',
+            'VERTICAL',
+            'VERTICAL_STIFFNESS',
+            280835.2941,
+        ),
         ("LENGTH = 'mm'", 'LONGVL = 16600', 'MODEL', 'LONGVL', 16.6),
         ("FORCE = 'kN'", 'FNOMIN = 4.85', 'VERTICAL', 'FNOMIN', 4850.0),
         ("FORCE = 'pound_force'", 'FZMAX = 1000', 'VERTICAL_FORCE_RANGE', 'FZMAX', 1000.0 * LBF),
-        ("FORCE = 'kN'", 'VERTICAL_STIFFNESS = 280.8352941', 'VERTICAL', 'VERTICAL_STIFFNESS', 280835.2941),
+        (
+            "FORCE = 'kN'",
+            'VERTICAL_STIFFNESS = 280.8352941',
+            'VERTICAL',
+            'VERTICAL_STIFFNESS',
+            280835.2941,
+        ),
         ("ANGLE = 'deg'", 'ALPMAX = 90', 'SLIP_ANGLE_RANGE', 'ALPMAX', math.pi / 2.0),
-        ("ANGLE = 'degree'", 'CAMMIN = -15', 'INCLINATION_ANGLE_RANGE', 'CAMMIN', -15.0 * math.pi / 180.0),
+        (
+            "ANGLE = 'degree'",
+            'CAMMIN = -15',
+            'INCLINATION_ANGLE_RANGE',
+            'CAMMIN',
+            -15.0 * math.pi / 180.0,
+        ),
         ("TIME = 'millisecond'", 'VERTICAL_DAMPING = 2e6', 'VERTICAL', 'VERTICAL_DAMPING', 2000.0),
         ("TIME = 'sec'", 'VXLOW = 1.5', 'MODEL', 'VXLOW', 1.5),
         ("MASS = 'gram'", 'MBELT = 5400', 'ALIGNING_COEFFICIENTS', 'MBELT', 5.4),
@@ -224,20 +259,31 @@ def test_dimensional_values_are_converted_to_si(
 
 @pytest.mark.parametrize(
     ('unit', 'value', 'expected'),
-    [("'bar'", '2.5', 2.5e5), ("'kPa'", '250', 2.5e5), ("'psi'", '36', 36.0 * LBF / INCH**2), ("'Pa'", '8e5', 8e5)],
+    [
+        ("'bar'", '2.5', 2.5e5),
+        ("'kPa'", '250', 2.5e5),
+        ("'psi'", '36', 36.0 * LBF / INCH**2),
+        ("'Pa'", '8e5', 8e5),
+    ],
 )
 def test_pressure_is_converted_to_pascal(unit: str, value: str, expected: float) -> None:
     text = set_line(HMMWV.read_text(encoding='ascii'), 'PRESSURE', f'PRESSURE = {unit}')
     text = set_line(text, 'IP', f'IP = {value}')
-    npt.assert_allclose(parse_tir_text(text, 'x').number('TIRE_CONDITIONS', 'IP'), expected, rtol=RTOL)
+    npt.assert_allclose(
+        parse_tir_text(text, 'x').number('TIRE_CONDITIONS', 'IP'), expected, rtol=RTOL
+    )
 
 
 def test_magic_formula_coefficients_are_not_converted() -> None:
     text = set_line(set_line(sedan_text(), 'LENGTH', "LENGTH = 'mm'"), 'FORCE', "FORCE = 'kN'")
-    text = set_line(text, 'UNLOADED_RADIUS', 'UNLOADED_RADIUS = 344')  # keep the file physical in mm
+    # keep the file physical in mm
+    text = set_line(text, 'UNLOADED_RADIUS', 'UNLOADED_RADIUS = 344')
     props = parse_tir_text(text, 'x')
     npt.assert_allclose(
-        (props.number('LATERAL_COEFFICIENTS', 'PKY1'), props.number('SCALING_COEFFICIENTS', 'LFZO')),
+        (
+            props.number('LATERAL_COEFFICIENTS', 'PKY1'),
+            props.number('SCALING_COEFFICIENTS', 'LFZO'),
+        ),
         (-21.92, 0.81),
         rtol=RTOL,
     )
@@ -253,7 +299,10 @@ def test_absent_unit_entry_means_si() -> None:
 
 def test_get_returns_default_for_absent_key_and_block() -> None:
     props = read_tir(SEDAN)
-    assert (props.get('MODEL', 'NO_SUCH_KEY', 7.0), props.get('NO_SUCH_BLOCK', 'X', 'd')) == (7.0, 'd')
+    assert (props.get('MODEL', 'NO_SUCH_KEY', 7.0), props.get('NO_SUCH_BLOCK', 'X', 'd')) == (
+        7.0,
+        'd',
+    )
 
 
 def test_get_without_default_names_missing_key() -> None:
@@ -281,7 +330,10 @@ def test_vertical_stiffness_helper_names_missing_key() -> None:
     props = parse_tir_text(drop_line(sedan_text(), 'VERTICAL_STIFFNESS'), 'x')
     with pytest.raises(DataError) as info:
         _ = props.vertical_stiffness
-    assert str(info.value) == "x: VERTICAL_STIFFNESS: key 'VERTICAL_STIFFNESS' missing in block [VERTICAL]"
+    assert (
+        str(info.value)
+        == "x: VERTICAL_STIFFNESS: key 'VERTICAL_STIFFNESS' missing in block [VERTICAL]"
+    )
 
 
 # --- bad input ----------------------------------------------------------------------
@@ -327,7 +379,9 @@ def test_several_problems_are_reported_together(tmp_path: Path) -> None:
         ('LONGVL = fast', 'MODEL', 'LONGVL', 'fast'),
     ],
 )
-def test_value_that_is_not_a_number(tmp_path: Path, line: str, block: str, key: str, found: str) -> None:
+def test_value_that_is_not_a_number(
+    tmp_path: Path, line: str, block: str, key: str, found: str
+) -> None:
     text = set_line(sedan_text(), key, line)
     error = expect_read_error(tmp_path, text)
     number = line_of(text, f'{key} ')
@@ -380,14 +434,18 @@ def test_unknown_fittyp(tmp_path: Path) -> None:
 
 def test_no_format_given(tmp_path: Path) -> None:
     error = expect_read_error(tmp_path, drop_line(sedan_text(), 'PROPERTY_FILE_FORMAT'))
-    assert (error.detail, error.key) == ('block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP', None)
+    assert (error.detail, error.key) == (
+        'block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP',
+        None,
+    )
 
 
 def test_generic_format_without_fittyp(tmp_path: Path) -> None:
     text = set_line(sedan_text(), 'PROPERTY_FILE_FORMAT', "PROPERTY_FILE_FORMAT = 'MF-TYRE'")
     error = expect_read_error(tmp_path, text)
     assert (error.detail, error.key) == (
-        f"line {line_of(text, 'PROPERTY_FILE_FORMAT')}: PROPERTY_FILE_FORMAT 'MF-TYRE' needs FITTYP in block [MODEL]",
+        f"line {line_of(text, 'PROPERTY_FILE_FORMAT')}: "
+        "PROPERTY_FILE_FORMAT 'MF-TYRE' needs FITTYP in block [MODEL]",
         'FITTYP',
     )
 
@@ -425,7 +483,10 @@ def test_missing_file(tmp_path: Path) -> None:
 def test_directory_instead_of_file(tmp_path: Path) -> None:
     with pytest.raises(DataError) as info:
         read_tir(tmp_path)
-    assert (info.value.detail, info.value.file) == ('cannot read tire property file: Is a directory', str(tmp_path))
+    assert (info.value.detail, info.value.file) == (
+        'cannot read tire property file: Is a directory',
+        str(tmp_path),
+    )
     assert list(tmp_path.iterdir()) == []
 
 
@@ -446,21 +507,30 @@ def with_messages(line: str) -> Callable[[str], str]:
             with_messages('GARBAGE LINE'),
             lambda t: (
                 f"line {line_of(t, 'GARBAGE')}: cannot read 'GARBAGE LINE' in block [MODEL]: "
-                "expected KEY = value, a {column header} or a row of numbers"
+                'expected KEY = value, a {column header} or a row of numbers'
             ),
         ),
         (
             with_messages("MESSAGES = 'YES"),
-            lambda t: f'line {line_of(t, "MESSAGES")}: unterminated quoted string in "MESSAGES = \'YES"',
+            lambda t: (
+                f'line {line_of(t, "MESSAGES")}: unterminated quoted string in "MESSAGES = \'YES"'
+            ),
         ),
         (
             with_messages('MESSAGES ='),
-            lambda t: f"line {line_of(t, 'MESSAGES')}: key 'MESSAGES' in block [MODEL] has no value",
+            lambda t: (
+                f"line {line_of(t, 'MESSAGES')}: key 'MESSAGES' in block [MODEL] has no value"
+            ),
         ),
-        (with_messages('2ND KEY = 1'), lambda t: f"line {line_of(t, '2ND')}: '2ND KEY' is not a key name"),
+        (
+            with_messages('2ND KEY = 1'),
+            lambda t: f"line {line_of(t, '2ND')}: '2ND KEY' is not a key name",
+        ),
         (
             with_messages("TYRESIDE = 'RIGHT'"),
-            lambda t: "line {1}: key 'TYRESIDE' repeats line {0} in block [MODEL]".format(*lines_of(t, 'TYRESIDE')),
+            lambda t: "line {1}: key 'TYRESIDE' repeats line {0} in block [MODEL]".format(
+                *lines_of(t, 'TYRESIDE')
+            ),
         ),
         (
             with_messages('[UNITS]'),
@@ -468,11 +538,23 @@ def with_messages(line: str) -> Callable[[str], str]:
         ),
         (
             lambda t: t.replace(' 0.9    1.0', ' 0.9    1.0    2.0'),
-            lambda t: f"line {line_of(t, ' 0.9    1.0    2.0')}: table row in block [SHAPE] has 3 values, expected 2",
+            lambda t: (
+                f"line {line_of(t, ' 0.9    1.0    2.0')}: "
+                'table row in block [SHAPE] has 3 values, expected 2'
+            ),
         ),
         (lambda t: 'KEY = 1\n' + t, lambda t: "line 1: 'KEY = 1' comes before the first [BLOCK]"),
     ],
-    ids=['garbage', 'open-quote', 'no-value', 'bad-key', 'repeated-key', 'repeated-block', 'table-row', 'before-block'],
+    ids=[
+        'garbage',
+        'open-quote',
+        'no-value',
+        'bad-key',
+        'repeated-key',
+        'repeated-block',
+        'table-row',
+        'before-block',
+    ],
 )
 def test_syntax_error_names_the_line(
     tmp_path: Path, edit: Callable[[str], str], expected: Callable[[str], str]

@@ -29,7 +29,7 @@ def load(tmp_path: Path, group: str, text: str) -> GroupData:
 
 
 def refused(tmp_path: Path, group: str, text: str) -> str:
-    """The error message of a bad file; the loader must not write anything."""
+    """Return the error message of a bad file; the loader must not write anything."""
     path = tmp_path / 'X.yaml'
     path.write_text(textwrap.dedent(text), encoding='utf-8')
     before = tree_snapshot(tmp_path)

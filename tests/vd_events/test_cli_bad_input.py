@@ -1,6 +1,8 @@
 """
-Hostile input at the CLI boundary: each class of bad input gives one clean message,
-exit code 2 and changes nothing (issue 10, causes 3, 4, 7, 8, 9).
+Hostile input at the CLI boundary.
+
+Each class of bad input gives one clean message, exit code 2 and changes nothing
+(issue 10, causes 3, 4, 7, 8, 9).
 """
 from __future__ import annotations
 
@@ -238,6 +240,8 @@ def test_bag_under_proc_is_refused(capsys, sample_root, sedan_master):
 def test_tire_coefficients_that_overflow_together_fail_the_check(capsys, sample_root,
                                                                  sedan_master):
     """
+    Check that tire coefficients that overflow together fail the check.
+
     Each value is finite, but exp(PKX3 dfz) overflows over the load range: the check
     builds the tire model a run builds and refuses it the same way.
     """

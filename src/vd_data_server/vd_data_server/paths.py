@@ -8,7 +8,7 @@ SAMPLE_STUDY = 'studies/sedan.yaml'
 
 
 def sample_data_root() -> Path:
-    """The bundled data root: the installed share folder if there is one."""
+    """Return the bundled data root: the installed share folder if there is one."""
     try:
         from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
     except ImportError:  # a plain Python environment without ROS
@@ -25,5 +25,5 @@ def _source_root() -> Path:
 
 
 def default_master() -> Path:
-    """The bundled sample study (the sedan)."""
+    """Return the bundled sample study (the sedan)."""
     return sample_data_root() / SAMPLE_STUDY

@@ -71,7 +71,7 @@ def check_point(xyz: tuple[float, float, float], *, file: str, key: str, raw: ob
 
 
 def unusual_scalar(si: float, quantity: str) -> str | None:
-    """A warning text for a possible but unusual value, None if it is usual."""
+    """Return a warning text for a possible but unusual value, None if it is usual."""
     if quantity not in USUAL:
         return None
     low, high = USUAL[quantity]

@@ -56,8 +56,10 @@ _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _constru
 
 def _check_size(text: str, file: str) -> None:
     """
-    Depth and alias-expanded node count from the event stream (no recursion, no
-    expansion): refuse a file over :data:`MAX_DEPTH` or :data:`MAX_NODES`.
+    Refuse a file over :data:`MAX_DEPTH` or :data:`MAX_NODES`.
+
+    Depth and alias-expanded node count come from the event stream (no recursion,
+    no expansion).
     """
     stack: list[int] = [0]  # expanded node count of each open collection
     anchors: list[str | None] = [None]
@@ -98,13 +100,15 @@ def loads(text: str, *, file: str) -> Any:
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
         where = f' (line {mark.line + 1}, column {mark.column + 1})' if mark else ''
-        raise DataError(f'malformed YAML: {err.problem or err.context}{where}', file=file) from None
+        raise DataError(
+            f'malformed YAML: {err.problem or err.context}{where}', file=file
+        ) from None
     except yaml.YAMLError as err:
         raise DataError(f'malformed YAML: {err}', file=file) from None
 
 
 def read_bytes(path: Path, *, display: str) -> bytes:
-    """A file's bytes, refused above :data:`MAX_FILE_BYTES` (checked before reading)."""
+    """Return a file's bytes, refused above :data:`MAX_FILE_BYTES` (checked before reading)."""
     try:
         with path.open('rb') as stream:
             data = stream.read(MAX_FILE_BYTES + 1)

@@ -60,7 +60,7 @@ def _try_lock(domain: int) -> DomainClaim | None:
 
 
 def holder(domain: int) -> str:
-    """The pid written by the run holding ``domain`` (for messages)."""
+    """Return the pid written by the run holding ``domain`` (for messages)."""
     try:
         return (lock_dir() / f'domain-{domain}.lock').read_text().strip() or '?'
     except OSError:

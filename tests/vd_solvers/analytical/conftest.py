@@ -42,7 +42,7 @@ CarFactory = Callable[..., VehicleParams]
 
 
 def build_car(front_share: float = 0.58, **overrides: object) -> VehicleParams:
-    """The fixture car with ``front_share`` of its weight on the front axle."""
+    """Build the fixture car with ``front_share`` of its weight on the front axle."""
     car = VehicleParams(
         mass=1500.0,
         wheelbase=WHEELBASE,
@@ -78,5 +78,5 @@ def passenger_car() -> VehicleParams:
 
 @pytest.fixture
 def oversteering_car() -> VehicleParams:
-    """Same car, 40/60 rear-heavy: the load-sensitive tires make it oversteer."""
+    """Return the same car, 40/60 rear-heavy: the load-sensitive tires make it oversteer."""
     return build_car(front_share=0.40, roll_stiffness_front=45000.0, roll_stiffness_rear=55000.0)

@@ -49,7 +49,8 @@ def test_ackermann_steer_at_vanishing_speed(passenger_car: VehicleParams) -> Non
 def test_right_turn_mirrors_left_turn(passenger_car: VehicleParams) -> None:
     speeds = np.array([5.0, 15.0, 25.0])
     np.testing.assert_allclose(
-        bicycle.steer_angle(passenger_car, -RADIUS, speeds), -bicycle.steer_angle(passenger_car, RADIUS, speeds)
+        bicycle.steer_angle(passenger_car, -RADIUS, speeds),
+        -bicycle.steer_angle(passenger_car, RADIUS, speeds),
     )
     left = bicycle.steady_state(passenger_car, RADIUS, 20.0)
     right = bicycle.steady_state(passenger_car, -RADIUS, 20.0)
@@ -69,7 +70,9 @@ def test_eq2_gradient_is_slope_of_excess_steer_over_lateral_acceleration(
     a_y_in_g = speeds**2 / RADIUS / p.g
     slope_rad_per_g = np.diff(excess)[0] / np.diff(a_y_in_g)[0]
     assert slope_rad_per_g == pytest.approx(bicycle.understeer_gradient(p) * p.g, rel=1e-9)
-    assert math.degrees(slope_rad_per_g) == pytest.approx(bicycle.understeer_gradient_deg_per_g(p), rel=1e-9)
+    assert math.degrees(slope_rad_per_g) == pytest.approx(
+        bicycle.understeer_gradient_deg_per_g(p), rel=1e-9
+    )
 
 
 def test_yaw_rate_gain_peaks_at_characteristic_speed(passenger_car: VehicleParams) -> None:
@@ -91,7 +94,9 @@ def test_critical_speed_zeroes_the_gain_denominator(oversteering_car: VehiclePar
         bicycle.characteristic_speed(p)
     # V/(r/delta) = L + K V^2 goes to zero, so the gain grows without bound ...
     just_below = v_crit * (1.0 - 1e-9)
-    assert just_below / bicycle.yaw_rate_gain(p, just_below) == pytest.approx(0.0, abs=1e-7 * p.wheelbase)
+    assert just_below / bicycle.yaw_rate_gain(p, just_below) == pytest.approx(
+        0.0, abs=1e-7 * p.wheelbase
+    )
     # ... and the transient model loses its stiffness (det A -> 0) there too.
     det_low = np.linalg.det(bicycle.state_space(p, 0.5 * v_crit).a)
     det_crit = np.linalg.det(bicycle.state_space(p, v_crit).a)
@@ -103,7 +108,9 @@ def test_critical_speed_zeroes_the_gain_denominator(oversteering_car: VehiclePar
         bicycle.steer_step_response(p, 1.01 * v_crit, 0.01, 2.0)
 
 
-def test_lateral_acceleration_gain_is_speed_times_yaw_rate_gain(passenger_car: VehicleParams) -> None:
+def test_lateral_acceleration_gain_is_speed_times_yaw_rate_gain(
+    passenger_car: VehicleParams,
+) -> None:
     speeds = np.array([0.0, 10.0, 30.0])
     np.testing.assert_allclose(
         bicycle.lateral_acceleration_gain(passenger_car, speeds),
@@ -118,12 +125,18 @@ def test_steady_state_point(passenger_car: VehicleParams) -> None:
     point = bicycle.steady_state(p, RADIUS, speed)
     assert point.lateral_acceleration == pytest.approx(speed**2 / RADIUS)
     assert point.yaw_rate == pytest.approx(speed / RADIUS)
-    assert point.steer_angle == pytest.approx(float(bicycle.steer_angle(p, RADIUS, speed)), rel=1e-14)
+    assert point.steer_angle == pytest.approx(
+        float(bicycle.steer_angle(p, RADIUS, speed)), rel=1e-14
+    )
     assert point.slip_angle_front - point.slip_angle_rear == pytest.approx(
         bicycle.understeer_gradient(p) * point.lateral_acceleration, rel=1e-9
     )
-    assert point.yaw_rate / point.steer_angle == pytest.approx(float(bicycle.yaw_rate_gain(p, speed)), rel=1e-12)
-    assert point.sideslip / point.steer_angle == pytest.approx(float(bicycle.sideslip_gain(p, speed)), rel=1e-12)
+    assert point.yaw_rate / point.steer_angle == pytest.approx(
+        float(bicycle.yaw_rate_gain(p, speed)), rel=1e-12
+    )
+    assert point.sideslip / point.steer_angle == pytest.approx(
+        float(bicycle.sideslip_gain(p, speed)), rel=1e-12
+    )
     # Kinematic limit: the COG velocity points b/R into the turn.
     slow = bicycle.steady_state(p, RADIUS, 1e-3)
     assert slow.sideslip == pytest.approx(p.cog_to_rear_axle / RADIUS, rel=1e-6)
@@ -146,14 +159,18 @@ def test_transient_mode_matches_closed_form(passenger_car: VehicleParams, speed:
     result = bicycle.bicycle_response(passenger_car, speed)
     assert result.natural_frequency == pytest.approx(omega, rel=1e-12)
     assert result.damping_ratio == pytest.approx(zeta, rel=1e-12)
-    eigenvalues = np.sort_complex(np.linalg.eigvals(bicycle.state_space(passenger_car, speed).a).astype(complex))
+    eigenvalues = np.sort_complex(
+        np.linalg.eigvals(bicycle.state_space(passenger_car, speed).a).astype(complex)
+    )
     roots = np.sort_complex(np.roots([1.0, 2 * zeta * omega, omega**2]).astype(complex))
     np.testing.assert_allclose(eigenvalues, roots, rtol=1e-9)
     assert np.all(eigenvalues.real < 0.0)
 
 
 @pytest.mark.parametrize('car', ['passenger_car', 'oversteering_car'])
-def test_state_space_steady_state_equals_the_gains(car: str, request: pytest.FixtureRequest) -> None:
+def test_state_space_steady_state_equals_the_gains(
+    car: str, request: pytest.FixtureRequest
+) -> None:
     p: VehicleParams = request.getfixturevalue(car)
     speed = 20.0
     ss = bicycle.state_space(p, speed)
@@ -176,8 +193,12 @@ def test_step_response_settles_to_steady_state(passenger_car: VehicleParams) -> 
     c_front, _ = bicycle.axle_cornering_stiffness(p)
     assert response.lateral_acceleration[0] == pytest.approx(c_front * steer / p.mass, rel=1e-12)
     assert response.yaw_rate[-1] == pytest.approx(result.yaw_rate_gain * steer, rel=1e-5)
-    assert response.lateral_acceleration[-1] == pytest.approx(result.lateral_acceleration_gain * steer, rel=1e-5)
-    assert response.lateral_velocity[-1] == pytest.approx(result.sideslip_gain * steer * speed, rel=1e-5)
+    assert response.lateral_acceleration[-1] == pytest.approx(
+        result.lateral_acceleration_gain * steer, rel=1e-5
+    )
+    assert response.lateral_velocity[-1] == pytest.approx(
+        result.sideslip_gain * steer * speed, rel=1e-5
+    )
     # ζ < 1 here: the yaw rate overshoots its final value.
     assert result.damping_ratio < 1.0
     assert response.yaw_rate.max() > response.yaw_rate[-1]

@@ -37,14 +37,18 @@ def deg_per_g(k: float, p: VehicleParams) -> float:
 
 @pytest.fixture
 def rigid_car(make_car: CarFactory) -> VehicleParams:
-    """The fixture car without unsprung masses, so eq. 3 is the thesis' own."""
+    """Return the fixture car without unsprung masses, so eq. 3 is the thesis' own."""
     return make_car(unsprung_mass_front=0.0, unsprung_mass_rear=0.0)
 
 
 def roll_gradient_eq3(p: VehicleParams) -> float:
     """Thesis eq. 3 per unit a_y: m h1 / (K_phi - m g h1), roll axis at the COG."""
-    axis = p.roll_centre_height_front + (p.roll_centre_height_rear
-                                         - p.roll_centre_height_front) * p.cog_to_front_axle / p.wheelbase
+    axis = (
+        p.roll_centre_height_front
+        + (p.roll_centre_height_rear - p.roll_centre_height_front)
+        * p.cog_to_front_axle
+        / p.wheelbase
+    )
     h1 = p.cog_height - axis
     return p.mass * h1 / (p.roll_stiffness - p.mass * p.g * h1)
 
@@ -60,7 +64,7 @@ def with_compliance(p: VehicleParams, axle: str, **values: float) -> VehiclePara
 
 
 def only_term(p: VehicleParams, name: str) -> float:
-    """The one nonzero compliance term; all others must be exactly zero."""
+    """Return the one nonzero compliance term, checking that all others are exactly zero."""
     budget = understeer_budget(p)
     for term in budget.terms:
         if term.name not in ('tire', name):
@@ -79,7 +83,9 @@ def test_lateral_compliance_steer_term(rigid_car: VehicleParams, axle: str, sign
     p = with_compliance(rigid_car, axle, lateral_compliance_steer=c / DEG / 1e3)
     load = p.axle_load_front if axle == 'front' else p.axle_load_rear
     expected = sign * c * (load / 2.0) / 1000.0  # deg/g
-    assert deg_per_g(only_term(p, 'lateral_compliance_steer'), p) == pytest.approx(expected, rel=1e-12)
+    assert deg_per_g(only_term(p, 'lateral_compliance_steer'), p) == pytest.approx(
+        expected, rel=1e-12
+    )
     change = deg_per_g(bicycle.understeer_gradient(p) - bicycle.understeer_gradient(rigid_car), p)
     assert change == pytest.approx(expected, rel=1e-9)
 
@@ -97,7 +103,9 @@ def test_roll_steer_term(rigid_car: VehicleParams, axle: str, sign: float) -> No
 def test_aligning_torque_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     # Mz = -t F_y turns each wheel by -c_Mz t F_y: out of the turn
     c_mz, trail = 3.0 / DEG / 1e3, 0.03  # rad/(N*m), m
-    p = with_compliance(rigid_car, axle, aligning_torque_compliance_steer=c_mz, pneumatic_trail=trail)
+    p = with_compliance(
+        rigid_car, axle, aligning_torque_compliance_steer=c_mz, pneumatic_trail=trail
+    )
     load = p.axle_load_front if axle == 'front' else p.axle_load_rear
     expected = sign * c_mz * trail * load / 2.0  # rad per g
     assert only_term(p, 'aligning_torque') * p.g == pytest.approx(expected, rel=1e-12)
@@ -135,12 +143,24 @@ def test_tire_term_is_eq_2_and_load_transfer_vanishes(rigid_car: VehicleParams) 
 
 
 def all_terms(p: VehicleParams) -> VehicleParams:
-    front = AxleCompliance(lateral_compliance_steer=-0.1 / DEG / 1e3, lateral_compliance_camber=0.02 / DEG / 1e3,
-                           roll_steer=-0.05, roll_camber=-0.8, aligning_torque_compliance_steer=3e-3 / DEG,
-                           pneumatic_trail=0.03, camber_stiffness=4000.0)
-    rear = AxleCompliance(lateral_compliance_steer=0.09 / DEG / 1e3, lateral_compliance_camber=0.08 / DEG / 1e3,
-                          roll_steer=0.03, roll_camber=-0.45, aligning_torque_compliance_steer=0.26e-3 / DEG,
-                          pneumatic_trail=0.03, camber_stiffness=3500.0)
+    front = AxleCompliance(
+        lateral_compliance_steer=-0.1 / DEG / 1e3,
+        lateral_compliance_camber=0.02 / DEG / 1e3,
+        roll_steer=-0.05,
+        roll_camber=-0.8,
+        aligning_torque_compliance_steer=3e-3 / DEG,
+        pneumatic_trail=0.03,
+        camber_stiffness=4000.0,
+    )
+    rear = AxleCompliance(
+        lateral_compliance_steer=0.09 / DEG / 1e3,
+        lateral_compliance_camber=0.08 / DEG / 1e3,
+        roll_steer=0.03,
+        roll_camber=-0.45,
+        aligning_torque_compliance_steer=0.26e-3 / DEG,
+        pneumatic_trail=0.03,
+        camber_stiffness=3500.0,
+    )
     return replace(p, compliance_front=front, compliance_rear=rear)
 
 
@@ -183,7 +203,9 @@ def test_bicycle_steady_state_uses_the_effective_stiffness(passenger_car: Vehicl
     p = all_terms(passenger_car)
     state = bicycle.steady_state(p, RADIUS, 20.0)
     k = bicycle.understeer_gradient(p)
-    assert state.steer_angle == pytest.approx(p.wheelbase / RADIUS + k * state.lateral_acceleration, rel=1e-12)
+    assert state.steer_angle == pytest.approx(
+        p.wheelbase / RADIUS + k * state.lateral_acceleration, rel=1e-12
+    )
     assert state.steer_angle == pytest.approx(
         p.wheelbase / RADIUS + state.slip_angle_front - state.slip_angle_rear, rel=1e-12)
     assert bicycle.characteristic_speed(p) == pytest.approx(math.sqrt(p.wheelbase / k), rel=1e-12)
@@ -193,23 +215,34 @@ def test_bicycle_steady_state_uses_the_effective_stiffness(passenger_car: Vehicl
 
 
 def test_zero_compliance_gives_the_bare_tire_values_exactly(passenger_car: VehicleParams) -> None:
-    labelled = replace(passenger_car, compliance_front=AxleCompliance(sources={'roll_steer': 'K&C'}),
-                       compliance_rear=AxleCompliance(pneumatic_trail=0.03))
+    labelled = replace(
+        passenger_car,
+        compliance_front=AxleCompliance(sources={'roll_steer': 'K&C'}),
+        compliance_rear=AxleCompliance(pneumatic_trail=0.03),
+    )
     for p in (passenger_car, labelled):
         c_f = 2.0 * float(p.tire_front.cornering_stiffness(p.axle_load_front / 2.0))
         c_r = 2.0 * float(p.tire_rear.cornering_stiffness(p.axle_load_rear / 2.0))
         assert effective_axle_cornering_stiffness(p) == (c_f, c_r)
-        assert bicycle.understeer_gradient(p) == (p.axle_load_front / c_f - p.axle_load_rear / c_r) / p.g
+        assert (
+            bicycle.understeer_gradient(p)
+            == (p.axle_load_front / c_f - p.axle_load_rear / c_r) / p.g
+        )
         assert understeer_budget(p).total == bicycle.understeer_gradient(p)
         ss = bicycle.state_space(p, 25.0)
         bare = bicycle.state_space(passenger_car, 25.0)
         np.testing.assert_array_equal(ss.a, bare.a)
         np.testing.assert_array_equal(ss.b, bare.b)
-        assert two_track.understeer_gradient_linear(p) == two_track.understeer_gradient_linear(passenger_car)
+        assert two_track.understeer_gradient_linear(p) == two_track.understeer_gradient_linear(
+            passenger_car
+        )
         limit = two_track.max_lateral_acceleration(p, RADIUS)
         assert limit == two_track.max_lateral_acceleration(passenger_car, RADIUS)
     sources = {t.name: t.source for t in understeer_budget(passenger_car).terms}
-    assert sources['roll_steer'] == 'front: bare tire: no K&C results; rear: bare tire: no K&C results'
+    assert (
+        sources['roll_steer']
+        == 'front: bare tire: no K&C results; rear: bare tire: no K&C results'
+    )
 
 
 def test_compliance_that_cancels_the_tires_is_refused(passenger_car: VehicleParams) -> None:

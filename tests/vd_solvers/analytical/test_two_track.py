@@ -19,7 +19,7 @@ CarFactory = Callable[..., VehicleParams]  # the conftest make_car fixture
 
 
 def _thesis_car(p: VehicleParams) -> VehicleParams:
-    """The car without unsprung masses: the thesis' eqs. 3-4 literally."""
+    """Return the car without unsprung masses: the thesis' eqs. 3-4 literally."""
     return replace(p, unsprung_mass_front=0.0, unsprung_mass_rear=0.0)
 
 
@@ -28,30 +28,39 @@ def test_roll_and_load_transfer_are_eqs_3_and_4(passenger_car: VehicleParams) ->
     a_y = 6.0
     m, g, h = p.mass, p.g, p.cog_height
     b = p.wheelbase - p.cog_to_front_axle
-    h_axis = p.roll_centre_height_front + (p.roll_centre_height_rear - p.roll_centre_height_front) * (
-        p.cog_to_front_axle / p.wheelbase
-    )
+    h_axis = p.roll_centre_height_front + (
+        p.roll_centre_height_rear - p.roll_centre_height_front
+    ) * (p.cog_to_front_axle / p.wheelbase)
     h1 = h - h_axis
     k_phi = p.roll_stiffness_front + p.roll_stiffness_rear
     phi = m * a_y * h1 / (k_phi - m * g * h1)  # eq. 3 with V^2/R = a_y
     m_f, m_r = m * b / p.wheelbase, m * p.cog_to_front_axle / p.wheelbase
-    d_front = m_f * a_y * p.roll_centre_height_front / p.track_front + p.roll_stiffness_front * m * a_y * h1 / (
-        p.track_front * (k_phi - m * g * h1)
+    d_front = (
+        m_f * a_y * p.roll_centre_height_front / p.track_front
+        + p.roll_stiffness_front * m * a_y * h1 / (p.track_front * (k_phi - m * g * h1))
     )
-    d_rear = m_r * a_y * p.roll_centre_height_rear / p.track_rear + p.roll_stiffness_rear * m * a_y * h1 / (
-        p.track_rear * (k_phi - m * g * h1)
+    d_rear = (
+        m_r * a_y * p.roll_centre_height_rear / p.track_rear
+        + p.roll_stiffness_rear * m * a_y * h1 / (p.track_rear * (k_phi - m * g * h1))
     )
     assert two_track.roll_angle(p, a_y) == pytest.approx(phi, rel=1e-12)
     np.testing.assert_allclose(two_track.load_transfer(p, a_y), [d_front, d_rear], rtol=1e-12)
     n_f, n_r = m * g * b / p.wheelbase, m * g * p.cog_to_front_axle / p.wheelbase
     np.testing.assert_allclose(
-        two_track.wheel_loads(p, a_y), [n_f / 2 - d_front, n_f / 2 + d_front, n_r / 2 - d_rear, n_r / 2 + d_rear]
+        two_track.wheel_loads(p, a_y),
+        [n_f / 2 - d_front, n_f / 2 + d_front, n_r / 2 - d_rear, n_r / 2 + d_rear],
     )
 
 
 @pytest.mark.parametrize('unsprung', [True, False])
-def test_load_transfer_balances_the_overturning_moment(passenger_car: VehicleParams, unsprung: bool) -> None:
-    """Sum of dF_z t = m a_y h + m_s g h1 phi (inertia at the COG plus the rolled body's weight shift)."""
+def test_load_transfer_balances_the_overturning_moment(
+    passenger_car: VehicleParams, unsprung: bool
+) -> None:
+    """
+    Check that the sum of dF_z t is m a_y h + m_s g h1 phi.
+
+    That is the inertia at the COG plus the rolled body's weight shift.
+    """
     p = passenger_car if unsprung else _thesis_car(passenger_car)
     geometry = two_track.roll_geometry(p)
     a_y = np.linspace(-8.0, 8.0, 9)
@@ -69,11 +78,15 @@ def test_roll_is_outward_and_loads_the_outer_wheels(passenger_car: VehicleParams
     fl, fr, rl, rr = two_track.wheel_loads(passenger_car, 5.0)
     assert fr > fl and rr > rl
     # A mid-range passenger-car roll gradient.
-    gradient_deg_per_g = math.degrees(two_track.roll_geometry(passenger_car).roll_gradient * passenger_car.g)
+    gradient_deg_per_g = math.degrees(
+        two_track.roll_geometry(passenger_car).roll_gradient * passenger_car.g
+    )
     assert 3.0 < gradient_deg_per_g < 7.0
 
 
-def test_two_track_tends_to_bicycle_at_small_lateral_acceleration(passenger_car: VehicleParams) -> None:
+def test_two_track_tends_to_bicycle_at_small_lateral_acceleration(
+    passenger_car: VehicleParams,
+) -> None:
     p = passenger_car
     static = two_track.steady_state(p, 0.0, RADIUS)
     np.testing.assert_allclose(
@@ -82,7 +95,9 @@ def test_two_track_tends_to_bicycle_at_small_lateral_acceleration(passenger_car:
     c_front, c_rear = bicycle.axle_cornering_stiffness(p)
     assert static.cornering_stiffness[:2].sum() == pytest.approx(c_front, rel=1e-14)
     assert static.cornering_stiffness[2:].sum() == pytest.approx(c_rear, rel=1e-14)
-    assert two_track.understeer_gradient_linear(p) == pytest.approx(bicycle.understeer_gradient(p), rel=1e-3)
+    assert two_track.understeer_gradient_linear(p) == pytest.approx(
+        bicycle.understeer_gradient(p), rel=1e-3
+    )
 
 
 def test_linear_gradient_sign_follows_weight_distribution(oversteering_car: VehicleParams) -> None:
@@ -97,16 +112,22 @@ def test_every_solved_point_is_in_equilibrium(car: str, request: pytest.FixtureR
     diagram = two_track.handling_diagram(p, RADIUS, n=25)
     a, b = p.cog_to_front_axle, p.cog_to_rear_axle
     front, rear = diagram.axle_force_front, diagram.axle_force_rear
-    np.testing.assert_allclose(front + rear, p.mass * diagram.lateral_acceleration, rtol=0, atol=FORCE_RESIDUAL)
+    np.testing.assert_allclose(
+        front + rear, p.mass * diagram.lateral_acceleration, rtol=0, atol=FORCE_RESIDUAL
+    )
     np.testing.assert_allclose(a * front - b * rear, 0.0, rtol=0, atol=FORCE_RESIDUAL)
-    np.testing.assert_allclose(diagram.wheel_loads.sum(axis=1), p.mass * p.g, rtol=0, atol=FORCE_RESIDUAL)
+    np.testing.assert_allclose(
+        diagram.wheel_loads.sum(axis=1), p.mass * p.g, rtol=0, atol=FORCE_RESIDUAL
+    )
     # Each wheel's friction, stiffness and force come from its own load (eqs. 6-9).
     tires = [p.tire_front, p.tire_front, p.tire_rear, p.tire_rear]
     alphas = np.stack([diagram.slip_angle_front] * 2 + [diagram.slip_angle_rear] * 2, axis=1)
     for wheel, tire in enumerate(tires):
         fz = diagram.wheel_loads[:, wheel]
         np.testing.assert_allclose(diagram.friction[:, wheel], tire.friction(fz), rtol=1e-15)
-        np.testing.assert_allclose(diagram.cornering_stiffness[:, wheel], tire.cornering_stiffness(fz), rtol=1e-15)
+        np.testing.assert_allclose(
+            diagram.cornering_stiffness[:, wheel], tire.cornering_stiffness(fz), rtol=1e-15
+        )
         force = tire.lateral_force(fz, alphas[:, wheel])
         np.testing.assert_allclose(diagram.lateral_force[:, wheel], force, rtol=1e-15)
 
@@ -122,7 +143,9 @@ def test_handling_diagram_shape_and_steer(passenger_car: VehicleParams) -> None:
     np.testing.assert_allclose(
         diagram.steer_angle, p.wheelbase / RADIUS + diagram.slip_angle_difference, rtol=1e-15
     )
-    assert np.all(np.diff(diagram.slip_angle_front) > 0.0) and np.all(np.diff(diagram.slip_angle_rear) > 0.0)
+    assert np.all(np.diff(diagram.slip_angle_front) > 0.0) and np.all(
+        np.diff(diagram.slip_angle_rear) > 0.0
+    )
     # Understeer grows towards the front-limited end: the front slips ever more than the rear.
     assert np.all(np.diff(diagram.slip_angle_difference) > 0.0)
     assert np.all(np.diff(diagram.steer_angle) > 0.0)
@@ -132,8 +155,14 @@ def test_right_turn_mirrors_left_turn(passenger_car: VehicleParams) -> None:
     left = two_track.steady_state(passenger_car, 7.0, RADIUS)
     right = two_track.steady_state(passenger_car, -7.0, -RADIUS)
     assert right.speed == pytest.approx(left.speed)
-    assert (right.slip_angle_front, right.slip_angle_rear, right.steer_angle, right.roll_angle) == pytest.approx(
-        (-left.slip_angle_front, -left.slip_angle_rear, -left.steer_angle, -left.roll_angle), rel=1e-12
+    assert (
+        right.slip_angle_front,
+        right.slip_angle_rear,
+        right.steer_angle,
+        right.roll_angle,
+    ) == pytest.approx(
+        (-left.slip_angle_front, -left.slip_angle_rear, -left.steer_angle, -left.roll_angle),
+        rel=1e-12,
     )
     np.testing.assert_allclose(right.wheel_loads, left.wheel_loads[[1, 0, 3, 2]], rtol=1e-14)
     np.testing.assert_allclose(right.lateral_force, -left.lateral_force[[1, 0, 3, 2]], rtol=1e-10)
@@ -154,7 +183,9 @@ def test_symmetric_car_is_neutral(make_car: CarFactory) -> None:
     )
     assert bicycle.understeer_gradient(p) == 0.0
     diagram = two_track.handling_diagram(p, RADIUS, n=20)
-    np.testing.assert_allclose(diagram.slip_angle_front, diagram.slip_angle_rear, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(
+        diagram.slip_angle_front, diagram.slip_angle_rear, rtol=1e-9, atol=1e-15
+    )
     np.testing.assert_allclose(diagram.steer_angle, p.wheelbase / RADIUS, rtol=1e-9)
 
 
@@ -176,7 +207,8 @@ def test_tire_peak_slip_is_where_the_force_peaks(passenger_car: VehicleParams) -
     for fz in (2000.0, 4000.0, 6000.0):
         alpha = float(two_track.tire_peak_slip(tire, fz))
         force = float(tire.lateral_force(fz, alpha))
-        assert force == pytest.approx(float(tire.friction(fz)) * fz, rel=1e-12)  # sin(.) = 1 at the peak
+        # sin(.) = 1 at the peak
+        assert force == pytest.approx(float(tire.friction(fz)) * fz, rel=1e-12)
         assert tire.lateral_force(fz, alpha * 0.99) < force > tire.lateral_force(fz, alpha * 1.01)
 
 
@@ -189,7 +221,9 @@ def test_limit_is_solvable_and_just_beyond_it_is_not(passenger_car: VehicleParam
     assert limit.speed == pytest.approx(math.sqrt(limit.lateral_acceleration * RADIUS))
     two_track.steady_state(p, limit.lateral_acceleration, RADIUS)
     with pytest.raises(BeyondLimitError, match='front axle saturates'):
-        two_track.steady_state(p, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
+        two_track.steady_state(
+            p, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS
+        )
     with pytest.raises(BeyondLimitError, match=r'front axle .* a_y = 10\.5'):
         two_track.steady_state(p, 10.5, RADIUS)
 
@@ -198,7 +232,9 @@ def test_oversteering_car_is_rear_limited(oversteering_car: VehicleParams) -> No
     limit = two_track.max_lateral_acceleration(oversteering_car, RADIUS)
     assert limit.limiting_axle == 'rear' and limit.behaviour == 'limit oversteer'
     with pytest.raises(BeyondLimitError, match='rear axle saturates'):
-        two_track.steady_state(oversteering_car, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
+        two_track.steady_state(
+            oversteering_car, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS
+        )
 
 
 def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> None:
@@ -209,9 +245,11 @@ def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> 
     assert axle == 'front'
     geo = two_track.roll_geometry(car)
     # eq. 4 with both wheels down reaches N_f/2 exactly at the onset
-    transfer = (geo.sprung_mass_front * onset * car.roll_centre_height_front
-                + car.roll_stiffness_front * geo.roll_gradient * onset
-                + car.unsprung_mass_front * onset * car.unsprung_cog_height_front) / car.track_front
+    transfer = (
+        geo.sprung_mass_front * onset * car.roll_centre_height_front
+        + car.roll_stiffness_front * geo.roll_gradient * onset
+        + car.unsprung_mass_front * onset * car.unsprung_cog_height_front
+    ) / car.track_front
     assert transfer == pytest.approx(car.axle_load_front / 2.0, rel=1e-12)
     limit = two_track.max_lateral_acceleration(car, RADIUS)
     assert (limit.limiting_axle, limit.cause) == ('front', 'saturation')
@@ -226,8 +264,12 @@ def test_inner_wheel_lift_is_carried_to_the_axle_limit(make_car: CarFactory) -> 
     phi = point.roll_angle
     d_front, d_rear = (loads[1] - loads[0]) / 2.0, (loads[3] - loads[2]) / 2.0
     overturning = car.mass * a_y * car.cog_height + geo.sprung_mass * car.g * geo.roll_arm * phi
-    assert d_front * car.track_front + d_rear * car.track_rear == pytest.approx(overturning, rel=1e-12)
-    assert point.axle_force_front + point.axle_force_rear == pytest.approx(car.mass * a_y, rel=1e-9)
+    assert d_front * car.track_front + d_rear * car.track_rear == pytest.approx(
+        overturning, rel=1e-12
+    )
+    assert point.axle_force_front + point.axle_force_rear == pytest.approx(
+        car.mass * a_y, rel=1e-9
+    )
     assert (car.cog_to_front_axle * point.axle_force_front
             - car.cog_to_rear_axle * point.axle_force_rear) == pytest.approx(0.0, abs=1e-6)
     # the body rolls against the rear alone: m_s h1 (a_y + g phi) = front moment at lift + K_r phi
@@ -249,7 +291,9 @@ def test_rollover_when_both_inner_wheels_lift(make_car: CarFactory) -> None:
     loads = two_track.steady_state(tall, limit.lateral_acceleration, RADIUS).wheel_loads
     assert loads[0] == pytest.approx(0.0, abs=1e-9) and loads[2] > 0.0
     with pytest.raises(BeyondLimitError, match='rolls over'):
-        two_track.steady_state(tall, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS)
+        two_track.steady_state(
+            tall, limit.lateral_acceleration + 2 * two_track.LIMIT_TOLERANCE, RADIUS
+        )
 
 
 def test_roll_instability_is_a_solver_error(passenger_car: VehicleParams) -> None:
@@ -286,18 +330,28 @@ def _front_heavy(make_car: CarFactory, front: float, rear: float) -> VehiclePara
 
 
 def _rear_heavy(make_car: CarFactory, height: float) -> VehicleParams:
-    return make_car(front_share=0.40, cog_height=height, roll_stiffness_front=45000.0, roll_stiffness_rear=55000.0)
+    return make_car(
+        front_share=0.40,
+        cog_height=height,
+        roll_stiffness_front=45000.0,
+        roll_stiffness_rear=55000.0,
+    )
 
 
 def test_trend_a_rear_roll_stiffness_raises_the_understeer_limit(make_car: CarFactory) -> None:
-    """Moving roll stiffness rearward unloads the front's load transfer: more grip where it limits."""
+    """
+    Moving roll stiffness rearward unloads the front's load transfer.
+
+    That gives more grip where it limits.
+    """
     cars = [_front_heavy(make_car, front, rear) for front, rear in ROLL_STIFFNESS_VARIANTS]
     limits = [two_track.max_lateral_acceleration(car, RADIUS) for car in cars]
     assert [limit.behaviour for limit in limits] == ['limit understeer'] * 3
     assert all(two_track.understeer_gradient_linear(car) > 0.0 for car in cars)
     a_max = [limit.lateral_acceleration for limit in limits]
     assert a_max[0] < a_max[1] < a_max[2]
-    assert a_max[2] - a_max[0] > 100 * two_track.LIMIT_TOLERANCE  # a real effect, not bisection noise
+    # a real effect, not bisection noise
+    assert a_max[2] - a_max[0] > 100 * two_track.LIMIT_TOLERANCE
 
 
 def test_trend_b_higher_cog_lowers_the_oversteer_limit(make_car: CarFactory) -> None:
@@ -314,8 +368,10 @@ def test_trend_b_higher_cog_lowers_the_oversteer_limit(make_car: CarFactory) -> 
 @pytest.mark.parametrize('variants', ['roll_stiffness', 'cog_height'])
 def test_trends_vanish_with_load_insensitive_tires(make_car: CarFactory, variants: str) -> None:
     """
-    Control: with mu1 = c1 = 0 an axle's force is mu0 N f(alpha) whatever the load transfer,
-    so both trends disappear and every car reaches mu0 g: the trends come from the tire physics.
+    Control: with load-insensitive tires (mu1 = c1 = 0) both trends disappear.
+
+    An axle's force is then mu0 N f(alpha) whatever the load transfer, so every car
+    reaches mu0 g: the trends come from the tire physics.
     """
     insensitive = replace(make_car().tire_front, mu1=0.0, c1=0.0)
     if variants == 'roll_stiffness':
@@ -325,4 +381,6 @@ def test_trends_vanish_with_load_insensitive_tires(make_car: CarFactory, variant
     for car in cars:
         car = replace(car, tire_front=insensitive, tire_rear=insensitive)
         limit = two_track.max_lateral_acceleration(car, RADIUS)
-        assert limit.lateral_acceleration == pytest.approx(insensitive.mu0 * car.g, abs=2 * two_track.LIMIT_TOLERANCE)
+        assert limit.lateral_acceleration == pytest.approx(
+            insensitive.mu0 * car.g, abs=2 * two_track.LIMIT_TOLERANCE
+        )

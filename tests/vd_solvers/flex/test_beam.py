@@ -75,8 +75,10 @@ def test_euler_bernoulli_when_no_shear_area():
 
 def test_condensation_reproduces_the_full_model():
     """
-    Static loads at the attachment nodes: the condensed stiffness gives the full
-    model's attachment displacements (Guyan reduction is exact for statics).
+    Check that the condensed stiffness gives the full model's attachment displacements.
+
+    The loads are static loads at the attachment nodes (Guyan reduction is exact for
+    statics).
     """
     pts = {'front': np.array([0.26, 0.2, 0.2]), 'rear': np.array([-0.26, 0.19, 0.22]),
            'outer': np.array([0.02, 0.62, 0.18]), 'seat': np.array([0.0, 0.45, 0.25])}
@@ -137,7 +139,10 @@ def test_coincident_member_points_are_refused():
     pts = {'a': np.zeros(3), 'b': np.array([0.004, 0.0, 0.0])}
     with pytest.raises(SolverError) as err:
         build('lca', pts, [('a', 'b')], STEEL, sec.solid_round(0.02, 0.3))
-    assert str(err.value) == "component 'lca': hard points 'a' and 'b' coincide (a member needs length)"
+    assert (
+        str(err.value)
+        == "component 'lca': hard points 'a' and 'b' coincide (a member needs length)"
+    )
 
 
 def test_disconnected_frame_is_refused():

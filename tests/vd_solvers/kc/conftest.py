@@ -1,6 +1,7 @@
 """
-K&C fixtures built from Project Chrono's vehicle data (BSD-3, (c) 2016
-Project Chrono Development Team), copied from
+K&C fixtures built from Project Chrono's vehicle data.
+
+The data (BSD-3, (c) 2016 Project Chrono Development Team) is copied from
 /work/shared/reference-data/chrono/ -- not read at test time.
 
 Chrono gives left-side hard points (m) in each suspension's frame, placed at
@@ -71,7 +72,8 @@ MACPHERSON = {
     'arb_link_upper': [-0.030, 0.860, 0.220],
     'arb_pivot': [0.220, 0.450, 0.220],
 }
-MACPHERSON_MASSES = {'upright': 20.0, 'lca': 5.091, 'strut': 5.0, 'wheel': 1.103}  # kg (spindle as wheel)
+# kg (spindle as wheel)
+MACPHERSON_MASSES = {'upright': 20.0, 'lca': 5.091, 'strut': 5.0, 'wheel': 1.103}
 MACPHERSON_SPRING_RATE = 369149.0  # N/m
 
 # generic__suspension__MultiLink.json, suspension frame.
@@ -98,7 +100,11 @@ MULTILINK = {
 # Chrono's universal joint of the trailing link: (chassis axis, link axis).
 MULTILINK_TRAILING_CROSS = ([-0.272, 0.962, 0.0], [0.0, 0.0, 1.0])
 MULTILINK_MASSES = {
-    'upright': 3.201, 'upper_arm': 4.744, 'trailing_link': 15.204, 'lateral_link': 1.910, 'wheel': 1.103,
+    'upright': 3.201,
+    'upper_arm': 4.744,
+    'trailing_link': 15.204,
+    'lateral_link': 1.910,
+    'wheel': 1.103,
 }
 MULTILINK_SPRING_RATE = 120000.0  # N/m
 
@@ -143,7 +149,13 @@ HMMWV_FRONT = {
     'wheel_centre': [-0.040, 0.910, -0.026],
 }
 HMMWV_LOCATION = [1.688965, 0.0, 0.0]
-HMMWV_MASSES = {'upright': 19.450, 'lca': 23.965, 'uca': 5.813, 'wheel': 14.705 + 18.8, 'tierod': 6.0}
+HMMWV_MASSES = {
+    'upright': 19.450,
+    'lca': 23.965,
+    'uca': 5.813,
+    'wheel': 14.705 + 18.8,
+    'tierod': 6.0,
+}
 # Spring Curve Data (deflection m, force N) and free length.
 HMMWV_SPRING_CURVE = Curve(
     np.array([-0.2, -0.18, -0.16, -0.14, -0.12, -0.1, -0.08, -0.06, -0.04, -0.02, 0.0,
@@ -194,12 +206,16 @@ GENERIC_ORIGIN = np.array(
 )
 
 
-def rig_points(points: Mapping[str, list[float]], location: list[float], origin: np.ndarray) -> dict[str, np.ndarray]:
+def rig_points(
+    points: Mapping[str, list[float]], location: list[float], origin: np.ndarray
+) -> dict[str, np.ndarray]:
     """Suspension-frame points moved into the rig frame."""
     return {k: np.array(v, dtype=float) + np.array(location) - origin for k, v in points.items()}
 
 
-BUMP_STOP = StopSpec(0.060, Curve(np.array([0.0, 0.01, 0.02, 0.03]), np.array([0.0, 1000.0, 4000.0, 10000.0])))
+BUMP_STOP = StopSpec(
+    0.060, Curve(np.array([0.0, 0.01, 0.02, 0.03]), np.array([0.0, 1000.0, 4000.0, 10000.0]))
+)
 REBOUND_STOP = StopSpec(0.070, Curve(np.array([0.0, 0.01, 0.02]), np.array([0.0, 2000.0, 8000.0])))
 ARB = StabilizerSpec(torsional_stiffness=10000.0)  # generic__antirollbar__AntirollBarRSD.json
 STEERING = SteeringSpec(rack_ratio=0.05 / (2 * np.pi), rack_travel_limit=0.1 * np.radians(30.0))
@@ -245,8 +261,9 @@ def multilink_rear_input(**overrides: object) -> SuspensionInput:
 
 def double_wishbone_input(**overrides: object) -> SuspensionInput:
     """
-    Chrono generic double wishbone (free length from Chrono), no bar, as a
-    rear axle at the generic rear location.
+    Build the Chrono generic double wishbone as a rear axle at the generic rear location.
+
+    Free length from Chrono, no bar.
     """
     inp = SuspensionInput(
         template='double_wishbone',
@@ -265,7 +282,11 @@ def hmmwv_front_input(with_bushings: bool = True, **overrides: object) -> Suspen
     """HMMWV front double wishbone with Chrono's arm bushings (or ideal joints)."""
     radius = TIRE_UNLOADED_RADIUS - 6000.0 / TIRE_STIFFNESS  # hmmwv__tire__HMMWV_Pac02Tire.tir
     origin = np.array(
-        [HMMWV_LOCATION[0] + HMMWV_FRONT['wheel_centre'][0], 0.0, HMMWV_FRONT['wheel_centre'][2] - radius]
+        [
+            HMMWV_LOCATION[0] + HMMWV_FRONT['wheel_centre'][0],
+            0.0,
+            HMMWV_FRONT['wheel_centre'][2] - radius,
+        ]
     )
     points = rig_points(HMMWV_FRONT, HMMWV_LOCATION, origin)
     arm_bushings: dict[str, Bushing] = {}

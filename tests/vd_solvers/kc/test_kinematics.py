@@ -1,6 +1,7 @@
 """
-Kinematics of the K&C rig: symmetry, design pose, a closed-form four-bar,
-residuals, continuation and steering.
+Kinematics of the K&C rig.
+
+Symmetry, design pose, a closed-form four-bar, residuals, continuation and steering.
 """
 from __future__ import annotations
 
@@ -16,23 +17,33 @@ MIRROR = np.array([1.0, -1.0, 1.0])
 
 
 @pytest.mark.parametrize('factory', ['macpherson_front', 'multilink_rear', 'hmmwv_front'])
-def test_parallel_travel_left_equals_mirrored_right(factory: str, request: pytest.FixtureRequest) -> None:
+def test_parallel_travel_left_equals_mirrored_right(
+    factory: str, request: pytest.FixtureRequest
+) -> None:
     result = run_event(request.getfixturevalue(factory)(), 'parallel_wheel_travel')
     ch = result.channels
     for name in ('toe', 'camber', 'caster', 'kingpin_inclination', 'scrub_radius',
                  'mechanical_trail', 'pad_force', 'spring_length', 'wheel_travel'):
-        np.testing.assert_allclose(ch[name][:, 0], ch[name][:, 1], atol=1e-9, rtol=1e-9, err_msg=name)
+        np.testing.assert_allclose(
+            ch[name][:, 0], ch[name][:, 1], atol=1e-9, rtol=1e-9, err_msg=name
+        )
     for name in ('wheel_centre', 'contact_point'):
-        np.testing.assert_allclose(ch[name][:, 0], ch[name][:, 1] * MIRROR, atol=1e-9, err_msg=name)
+        np.testing.assert_allclose(
+            ch[name][:, 0], ch[name][:, 1] * MIRROR, atol=1e-9, err_msg=name
+        )
     for name in (k for k in ch if k.startswith('bushing_')):
-        np.testing.assert_allclose(ch[name][:, 0], ch[name][:, 1], atol=1e-6, rtol=1e-7, err_msg=name)
+        np.testing.assert_allclose(
+            ch[name][:, 0], ch[name][:, 1], atol=1e-6, rtol=1e-7, err_msg=name
+        )
     # Parallel travel does not twist the bar.
     if 'arb_twist' in ch:
         np.testing.assert_allclose(ch['arb_twist'], 0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize('factory', ['macpherson_front', 'multilink_rear', 'double_wishbone'])
-def test_design_toe_and_camber_reproduced_at_zero_travel(factory: str, request: pytest.FixtureRequest) -> None:
+def test_design_toe_and_camber_reproduced_at_zero_travel(
+    factory: str, request: pytest.FixtureRequest
+) -> None:
     inp = request.getfixturevalue(factory)(toe=np.radians(0.15), camber=np.radians(-1.2))
     result = run_event(inp, 'parallel_wheel_travel')
     at = int(np.argmin(np.abs(result.channels['pad_travel'][:, 0])))
@@ -42,7 +53,9 @@ def test_design_toe_and_camber_reproduced_at_zero_travel(factory: str, request: 
     np.testing.assert_allclose(result.channels['wheel_travel'][at], 0.0, atol=1e-12)
 
 
-@pytest.mark.parametrize('factory', ['macpherson_front', 'multilink_rear', 'double_wishbone', 'hmmwv_front'])
+@pytest.mark.parametrize(
+    'factory', ['macpherson_front', 'multilink_rear', 'double_wishbone', 'hmmwv_front']
+)
 def test_every_step_meets_the_tolerances(factory: str, request: pytest.FixtureRequest) -> None:
     inp = request.getfixturevalue(factory)()
     model = KCModel(inp)
@@ -59,11 +72,18 @@ def test_every_step_meets_the_tolerances(factory: str, request: pytest.FixtureRe
 # pivots (on axes parallel to x) and the tie rod, which is the lower arm
 # shifted 0.12 m rearward, so the upright moves in its plane as a four-bar.
 PLANAR = {
-    'lca_front': [0.20, 0.30, 0.15], 'lca_rear': [-0.20, 0.30, 0.15], 'lca_outer': [0.0, 0.72, 0.12],
-    'uca_front': [0.15, 0.42, 0.45], 'uca_rear': [-0.15, 0.42, 0.45], 'uca_outer': [0.0, 0.68, 0.48],
-    'tierod_inner': [-0.12, 0.30, 0.15], 'tierod_outer': [-0.12, 0.72, 0.12],
-    'spring_upper': [0.0, 0.50, 0.60], 'spring_lower': [0.0, 0.55, 0.14],
-    'damper_upper': [0.0, 0.50, 0.60], 'damper_lower': [0.0, 0.55, 0.14],
+    'lca_front': [0.20, 0.30, 0.15],
+    'lca_rear': [-0.20, 0.30, 0.15],
+    'lca_outer': [0.0, 0.72, 0.12],
+    'uca_front': [0.15, 0.42, 0.45],
+    'uca_rear': [-0.15, 0.42, 0.45],
+    'uca_outer': [0.0, 0.68, 0.48],
+    'tierod_inner': [-0.12, 0.30, 0.15],
+    'tierod_outer': [-0.12, 0.72, 0.12],
+    'spring_upper': [0.0, 0.50, 0.60],
+    'spring_lower': [0.0, 0.55, 0.14],
+    'damper_upper': [0.0, 0.50, 0.60],
+    'damper_lower': [0.0, 0.55, 0.14],
     'wheel_centre': [0.0, 0.80, 0.30],
 }
 PLANAR_RADIUS = 0.30
@@ -85,8 +105,9 @@ def _planar_input() -> SuspensionInput:
 
 def _four_bar(travel: float) -> tuple[float, float]:
     """
-    Camber (rad) and contact-point y (m) at contact-point travel, by circle
-    intersection in the y-z plane.
+    Return camber (rad) and contact-point y (m) at contact-point travel.
+
+    Both come from circle intersection in the y-z plane.
     """
     p = {k: np.array(v[1:]) for k, v in PLANAR.items()}
     a0, b0 = p['lca_front'], p['uca_front']
@@ -121,7 +142,9 @@ def _four_bar(travel: float) -> tuple[float, float]:
 
 
 def test_planar_double_wishbone_matches_closed_form_four_bar() -> None:
-    result = run_event(_planar_input(), 'parallel_wheel_travel', travel_min=-0.06, travel_max=0.06, steps=25)
+    result = run_event(
+        _planar_input(), 'parallel_wheel_travel', travel_min=-0.06, travel_max=0.06, steps=25
+    )
     ch = result.channels
     np.testing.assert_allclose(ch['toe'], 0.0, atol=1e-12)  # stays planar
     for i in (0, 6, 12, 18, 24):
@@ -138,7 +161,9 @@ def test_solution_does_not_depend_on_the_step_size(double_wishbone) -> None:
     fine = model.run('parallel_wheel_travel', steps=101).channels
     coarse = model.run('parallel_wheel_travel', steps=5).channels
     for name in ('toe', 'camber', 'pad_force', 'wheel_centre'):
-        np.testing.assert_allclose(coarse[name], fine[name][::25], atol=1e-9, rtol=1e-10, err_msg=name)
+        np.testing.assert_allclose(
+            coarse[name], fine[name][::25], atol=1e-9, rtol=1e-10, err_msg=name
+        )
 
 
 def test_opposite_travel_is_antisymmetric(multilink_rear) -> None:

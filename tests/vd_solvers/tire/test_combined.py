@@ -138,7 +138,11 @@ def test_combined_slip_matches_the_pac2002_equations(path, kappa, alpha, gamma) 
 
 
 def test_the_hmmwv_file_reduces_each_force_under_the_other_slip() -> None:
-    """Friction ellipse (Pacejka 4.3.2): combined slip lowers |Fy| with kappa and |Fx| with alpha."""
+    """
+    Friction ellipse (Pacejka 4.3.2).
+
+    Combined slip lowers |Fy| with kappa and |Fx| with alpha.
+    """
     tire = MagicFormula(read_tir(HMMWV))
     fz = tire.nominal_load
     pure = tire.steady_state(fz, 0.0, 0.08)
@@ -180,8 +184,9 @@ def test_mirrored_wheel_forces_and_moments_are_the_mirror_image() -> None:
 
 def test_aligning_moment_is_restoring_at_small_slip_and_falls_off_beyond_the_trail_peak() -> None:
     """
-    Pneumatic trail: Mz opposes the slip angle near zero (Fy < 0 for alpha > 0 in TYDEX,
-    so Mz > 0), and decays at large slip angles (Pacejka fig. 4.16).
+    Pneumatic trail: Mz opposes the slip angle near zero and decays at large slip angles.
+
+    Near zero Fy < 0 for alpha > 0 in TYDEX, so Mz > 0; the decay is Pacejka fig. 4.16.
     """
     tire = MagicFormula(read_tir(SEDAN))
     fz = tire.nominal_load

@@ -102,7 +102,9 @@ def test_fit_reproduces_cornering_stiffness_around_the_reference_load(
 
 
 @pytest.mark.parametrize('fz', [2000.0, 4000.0, 6000.0])
-def test_simple_tire_slope_at_zero_is_its_cornering_stiffness(sedan_fit: SimpleTire, fz: float) -> None:
+def test_simple_tire_slope_at_zero_is_its_cornering_stiffness(
+    sedan_fit: SimpleTire, fz: float
+) -> None:
     step = 1e-6
     slope = (sedan_fit.lateral_force(fz, step) - sedan_fit.lateral_force(fz, -step)) / (2.0 * step)
     npt.assert_allclose(slope, sedan_fit.cornering_stiffness(fz), rtol=1e-6)
@@ -117,10 +119,15 @@ def test_simple_tire_slope_at_zero_matches_magic_formula(
     npt.assert_allclose(slope, -sedan_mf.cornering_stiffness(fz), rtol=STIFFNESS_FIT_RTOL)
 
 
-def test_simple_tire_peak_is_magic_formula_peak(sedan_mf: MagicFormula, sedan_fit: SimpleTire) -> None:
+def test_simple_tire_peak_is_magic_formula_peak(
+    sedan_mf: MagicFormula, sedan_fit: SimpleTire
+) -> None:
     fz = 5000.0
     result = minimize_scalar(
-        lambda a: -float(sedan_fit.lateral_force(fz, a)), bounds=(0.0, 1.0), method='bounded', options={'xatol': 1e-10}
+        lambda a: -float(sedan_fit.lateral_force(fz, a)),
+        bounds=(0.0, 1.0),
+        method='bounded',
+        options={'xatol': 1e-10},
     )
     npt.assert_allclose(-result.fun, sedan_mf.peak_lateral_friction(fz) * fz, rtol=1e-9)
 
@@ -137,7 +144,9 @@ def test_source_names_file_and_range(sedan_fit: SimpleTire) -> None:
 # --- bad input --------------------------------------------------------------------
 
 
-@pytest.mark.parametrize('fz_range', [(0.0, 5000.0), (-1000.0, 5000.0), (6000.0, 2000.0), (3000.0, 3000.0)])
+@pytest.mark.parametrize(
+    'fz_range', [(0.0, 5000.0), (-1000.0, 5000.0), (6000.0, 2000.0), (3000.0, 3000.0)]
+)
 def test_bad_load_range_is_refused(sedan_mf: MagicFormula, fz_range: tuple[float, float]) -> None:
     with pytest.raises(ValueError) as info:
         fit_simple_tire(sedan_mf, fz_range)
@@ -156,6 +165,6 @@ def test_positive_pky1_is_refused(sedan_fit: SimpleTire) -> None:
         fit_simple_tire(mf, SEDAN_RANGE)
     # K_y is proportional to PKY1, so the fit of the flipped file is the negated fit.
     assert str(info.value) == (
-        f"flipped.tir: cornering stiffness of fy_iso fitted as c0 = {-sedan_fit.c0:g} 1/rad, not > 0; "
-        "the file's PKY1 should be negative (TYDEX convention)"
+        f'flipped.tir: cornering stiffness of fy_iso fitted as c0 = {-sedan_fit.c0:g} 1/rad, '
+        "not > 0; the file's PKY1 should be negative (TYDEX convention)"
     )

@@ -48,7 +48,7 @@ def tir_text(
     scaling: dict[str, float] = SYMMETRIC_SCALING,
     model: str = "PROPERTY_FILE_FORMAT = 'PAC2002'\nTYRESIDE = 'LEFT'",
 ) -> str:
-    """A minimal PAC2002 file holding the given coefficients."""
+    """Return a minimal PAC2002 file holding the given coefficients."""
 
     def block(values: dict[str, float]) -> str:
         return '\n'.join(f'{key} = {value!r}' for key, value in values.items())
@@ -81,7 +81,11 @@ SCALED = {
 
 
 def sedan_scaled() -> TireProperties:
-    """The sedan tire with the scaling factors of SCALED, and PDX3 (absent in the file) for camber in Fx."""
+    """
+    Return the sedan tire with the scaling factors of SCALED.
+
+    PDX3 (absent in the file) is added for camber in Fx.
+    """
     text = SEDAN.read_text(encoding='ascii').replace(
         '[LONGITUDINAL_COEFFICIENTS]', '[LONGITUDINAL_COEFFICIENTS]\nPDX3 = 5.0'
     )
@@ -91,7 +95,11 @@ def sedan_scaled() -> TireProperties:
     return parse_tir_text(text, 'sedan_scaled')
 
 
-TIRES = {'sedan': lambda: read_tir(SEDAN), 'hmmwv': lambda: read_tir(HMMWV), 'sedan_scaled': sedan_scaled}
+TIRES = {
+    'sedan': lambda: read_tir(SEDAN),
+    'hmmwv': lambda: read_tir(HMMWV),
+    'sedan_scaled': sedan_scaled,
+}
 
 
 @pytest.fixture(scope='module')
@@ -107,9 +115,15 @@ def symmetric() -> MagicFormula:
 # --- the PAC2002 equations, evaluated by hand -------------------------------------
 
 
-@pytest.mark.parametrize(('tire', 'fz'), [('sedan', 5500.0), ('hmmwv', 25000.0), ('sedan_scaled', 2500.0)])
-@pytest.mark.parametrize(('alpha', 'gamma'), [(0.07, 0.03), (-0.07, 0.03), (0.2, -0.02), (-0.004, 0.0)])
-def test_fy_matches_hand_evaluated_pac2002(tire: str, fz: float, alpha: float, gamma: float) -> None:
+@pytest.mark.parametrize(
+    ('tire', 'fz'), [('sedan', 5500.0), ('hmmwv', 25000.0), ('sedan_scaled', 2500.0)]
+)
+@pytest.mark.parametrize(
+    ('alpha', 'gamma'), [(0.07, 0.03), (-0.07, 0.03), (0.2, -0.02), (-0.004, 0.0)]
+)
+def test_fy_matches_hand_evaluated_pac2002(
+    tire: str, fz: float, alpha: float, gamma: float
+) -> None:
     props = TIRES[tire]()
 
     def p(key: str) -> float:
@@ -127,22 +141,34 @@ def test_fy_matches_hand_evaluated_pac2002(tire: str, fz: float, alpha: float, g
     c = p('PCY1') * scale('LCY')
     mu = (p('PDY1') + p('PDY2') * dfz) * (1.0 - p('PDY3') * gamma_y**2) * scale('LMUY')
     d = mu * fz
-    e = (p('PEY1') + p('PEY2') * dfz) * (1.0 - (p('PEY3') + p('PEY4') * gamma_y) * math.copysign(1.0, alpha_y))
+    e = (p('PEY1') + p('PEY2') * dfz) * (
+        1.0 - (p('PEY3') + p('PEY4') * gamma_y) * math.copysign(1.0, alpha_y)
+    )
     e = min(e * scale('LEY'), 1.0)
     k = (
         p('PKY1') * fnomin * math.sin(2.0 * math.atan(fz / (p('PKY2') * fnomin * scale('LFZO'))))
         * (1.0 - p('PKY3') * abs(gamma_y)) * scale('LFZO') * scale('LKY')
     )  # fmt: skip
     b = k / (c * d)
-    sv = fz * ((p('PVY1') + p('PVY2') * dfz) * scale('LVY') + (p('PVY3') + p('PVY4') * dfz) * gamma_y) * scale('LMUY')
-    expected = d * math.sin(c * math.atan(b * alpha_y - e * (b * alpha_y - math.atan(b * alpha_y)))) + sv
+    sv = (
+        fz
+        * ((p('PVY1') + p('PVY2') * dfz) * scale('LVY') + (p('PVY3') + p('PVY4') * dfz) * gamma_y)
+        * scale('LMUY')
+    )
+    expected = (
+        d * math.sin(c * math.atan(b * alpha_y - e * (b * alpha_y - math.atan(b * alpha_y)))) + sv
+    )
 
     npt.assert_allclose(MagicFormula(props).fy(fz, alpha, gamma), expected, rtol=RTOL)
 
 
-@pytest.mark.parametrize(('tire', 'fz'), [('sedan', 3000.0), ('hmmwv', 15000.0), ('sedan_scaled', 7000.0)])
+@pytest.mark.parametrize(
+    ('tire', 'fz'), [('sedan', 3000.0), ('hmmwv', 15000.0), ('sedan_scaled', 7000.0)]
+)
 @pytest.mark.parametrize(('kappa', 'gamma'), [(0.08, 0.03), (-0.08, 0.03), (0.3, -0.05)])
-def test_fx_matches_hand_evaluated_pac2002(tire: str, fz: float, kappa: float, gamma: float) -> None:
+def test_fx_matches_hand_evaluated_pac2002(
+    tire: str, fz: float, kappa: float, gamma: float
+) -> None:
     props = TIRES[tire]()
 
     def p(key: str) -> float:
@@ -158,12 +184,16 @@ def test_fx_matches_hand_evaluated_pac2002(tire: str, fz: float, kappa: float, g
     kappa_x = kappa + sh
     c = p('PCX1') * scale('LCX')
     d = (p('PDX1') + p('PDX2') * dfz) * (1.0 - p('PDX3') * gamma_x**2) * scale('LMUX') * fz
-    e = (p('PEX1') + p('PEX2') * dfz + p('PEX3') * dfz**2) * (1.0 - p('PEX4') * math.copysign(1.0, kappa_x))
+    e = (p('PEX1') + p('PEX2') * dfz + p('PEX3') * dfz**2) * (
+        1.0 - p('PEX4') * math.copysign(1.0, kappa_x)
+    )
     e = min(e * scale('LEX'), 1.0)
     k = fz * (p('PKX1') + p('PKX2') * dfz) * math.exp(p('PKX3') * dfz) * scale('LKX')
     b = k / (c * d)
     sv = fz * (p('PVX1') + p('PVX2') * dfz) * scale('LVX') * scale('LMUX')
-    expected = d * math.sin(c * math.atan(b * kappa_x - e * (b * kappa_x - math.atan(b * kappa_x)))) + sv
+    expected = (
+        d * math.sin(c * math.atan(b * kappa_x - e * (b * kappa_x - math.atan(b * kappa_x)))) + sv
+    )
 
     npt.assert_allclose(MagicFormula(props).fx(fz, kappa, gamma), expected, rtol=RTOL)
 
@@ -184,24 +214,36 @@ def test_curvature_above_one_is_limited_to_one() -> None:
     k = -18.0 * fz0_scaled * math.sin(2.0 * math.atan(fz / (1.8 * fz0_scaled))) * 1.1
     b = k / (1.4 * d)
     # E = 1 turns B x - E (B x - atan(B x)) into atan(B x).
-    npt.assert_allclose(mf.fy(fz, alpha), d * math.sin(1.4 * math.atan(math.atan(b * alpha))), rtol=RTOL)
+    npt.assert_allclose(
+        mf.fy(fz, alpha), d * math.sin(1.4 * math.atan(math.atan(b * alpha))), rtol=RTOL
+    )
 
 
-@pytest.mark.parametrize(('slip_sign', 'factor'), [(1.0, 1.0 + 9.9935), (-1.0, 1.0 - 9.9935), (0.0, 1.0)])
-def test_lateral_curvature_branches(sedan: TireProperties, slip_sign: float, factor: float) -> None:
+@pytest.mark.parametrize(
+    ('slip_sign', 'factor'), [(1.0, 1.0 + 9.9935), (-1.0, 1.0 - 9.9935), (0.0, 1.0)]
+)
+def test_lateral_curvature_branches(
+    sedan: TireProperties, slip_sign: float, factor: float
+) -> None:
     fz = 5000.0
     fz0_scaled = 4850.0 * 0.81
     even = -0.0074722 - 0.0063208 * (fz - fz0_scaled) / fz0_scaled  # PEY1 + PEY2 dfz, LEY = 1
     # 1 - PEY3 sgn(alpha_y) with PEY3 = -9.9935; sgn = 0 gives the even part.
-    npt.assert_allclose(MagicFormula(sedan).lateral_curvature(fz, 0.0, slip_sign), even * factor, rtol=RTOL)
+    npt.assert_allclose(
+        MagicFormula(sedan).lateral_curvature(fz, 0.0, slip_sign), even * factor, rtol=RTOL
+    )
 
 
 # --- closed-form properties -----------------------------------------------------------
 
 
-@pytest.mark.parametrize(('path', 'loads'), [(SEDAN, (2000.0, 4850.0, 8000.0)), (HMMWV, (10000.0, 35000.0, 60000.0))])
+@pytest.mark.parametrize(
+    ('path', 'loads'), [(SEDAN, (2000.0, 4850.0, 8000.0)), (HMMWV, (10000.0, 35000.0, 60000.0))]
+)
 @pytest.mark.parametrize('gamma', [0.0, 0.03])
-def test_cornering_stiffness_is_slope_of_fy_at_zero_slip(path: Path, loads: tuple[float, ...], gamma: float) -> None:
+def test_cornering_stiffness_is_slope_of_fy_at_zero_slip(
+    path: Path, loads: tuple[float, ...], gamma: float
+) -> None:
     mf = MagicFormula(read_tir(path))
     fz = np.asarray(loads)
     step = 1e-6
@@ -212,7 +254,12 @@ def test_cornering_stiffness_is_slope_of_fy_at_zero_slip(path: Path, loads: tupl
 def test_cornering_stiffness_without_shift_is_bcd(symmetric: MagicFormula) -> None:
     fz = np.array([1500.0, 3600.0, 7000.0])
     fz0_scaled = SYMMETRIC_FNOMIN * SYMMETRIC_SCALING['LFZO']
-    expected = -18.0 * fz0_scaled * np.sin(2.0 * np.arctan(fz / (1.8 * fz0_scaled))) * SYMMETRIC_SCALING['LKY']
+    expected = (
+        -18.0
+        * fz0_scaled
+        * np.sin(2.0 * np.arctan(fz / (1.8 * fz0_scaled)))
+        * SYMMETRIC_SCALING['LKY']
+    )
     npt.assert_allclose(symmetric.cornering_stiffness(fz), expected, rtol=RTOL)
 
 
@@ -220,7 +267,10 @@ def test_cornering_stiffness_without_shift_is_bcd(symmetric: MagicFormula) -> No
 def test_peak_lateral_force_is_mu_times_load(symmetric: MagicFormula, fz: float) -> None:
     # PKY1 < 0: the peak of |Fy| for alpha > 0 is the minimum of Fy.
     result = minimize_scalar(
-        lambda a: float(symmetric.fy(fz, a)), bounds=(0.0, 1.0), method='bounded', options={'xatol': 1e-10}
+        lambda a: float(symmetric.fy(fz, a)),
+        bounds=(0.0, 1.0),
+        method='bounded',
+        options={'xatol': 1e-10},
     )
     fz0_scaled = SYMMETRIC_FNOMIN * SYMMETRIC_SCALING['LFZO']
     mu = (1.1 - 0.12 * (fz - fz0_scaled) / fz0_scaled) * SYMMETRIC_SCALING['LMUY']
@@ -232,13 +282,17 @@ def test_peak_lateral_force_is_mu_times_load(symmetric: MagicFormula, fz: float)
 def test_fy_is_odd_in_alpha_without_shifts(symmetric: MagicFormula, gamma: float) -> None:
     fz = np.array([[1500.0], [4000.0], [7000.0]])
     alpha = np.linspace(0.001, 0.6, 25)
-    npt.assert_allclose(symmetric.fy(fz, -alpha, gamma), -symmetric.fy(fz, alpha, gamma), rtol=RTOL, atol=1e-9)
+    npt.assert_allclose(
+        symmetric.fy(fz, -alpha, gamma), -symmetric.fy(fz, alpha, gamma), rtol=RTOL, atol=1e-9
+    )
 
 
 def test_fx_is_odd_in_kappa_without_shifts(symmetric: MagicFormula) -> None:
     fz = np.array([[1500.0], [4000.0], [7000.0]])
     kappa = np.linspace(0.001, 0.8, 25)
-    npt.assert_allclose(symmetric.fx(fz, -kappa, 0.02), -symmetric.fx(fz, kappa, 0.02), rtol=RTOL, atol=1e-9)
+    npt.assert_allclose(
+        symmetric.fx(fz, -kappa, 0.02), -symmetric.fx(fz, kappa, 0.02), rtol=RTOL, atol=1e-9
+    )
 
 
 def test_file_convention_positive_slip_gives_negative_fy(sedan: TireProperties) -> None:
@@ -303,20 +357,24 @@ def test_tire_on_the_other_side_is_mirrored(sedan: TireProperties) -> None:
 
 def test_mirrored_cornering_stiffness_is_taken_at_opposite_camber(sedan: TireProperties) -> None:
     left, right = MagicFormula(sedan), MagicFormula(sedan, side='RIGHT')
-    npt.assert_allclose(right.cornering_stiffness(4000.0, 0.03), left.cornering_stiffness(4000.0, -0.03), rtol=RTOL)
+    npt.assert_allclose(
+        right.cornering_stiffness(4000.0, 0.03), left.cornering_stiffness(4000.0, -0.03), rtol=RTOL
+    )
 
 
 def test_tire_on_the_measured_side_is_not_mirrored(sedan: TireProperties) -> None:
     alpha = np.linspace(-0.2, 0.2, 9)
     npt.assert_array_equal(
-        MagicFormula(sedan, side='LEFT').fy(4000.0, alpha, 0.03), MagicFormula(sedan).fy(4000.0, alpha, 0.03)
+        MagicFormula(sedan, side='LEFT').fy(4000.0, alpha, 0.03),
+        MagicFormula(sedan).fy(4000.0, alpha, 0.03),
     )
 
 
 def test_mirroring_leaves_fx_unchanged(sedan: TireProperties) -> None:
     kappa = np.linspace(-0.2, 0.2, 9)
     npt.assert_array_equal(
-        MagicFormula(sedan, side='RIGHT').fx(4000.0, kappa, 0.03), MagicFormula(sedan).fx(4000.0, kappa, 0.03)
+        MagicFormula(sedan, side='RIGHT').fx(4000.0, kappa, 0.03),
+        MagicFormula(sedan).fx(4000.0, kappa, 0.03),
     )
 
 
@@ -324,7 +382,10 @@ def test_mirroring_a_symmetric_tire_changes_nothing() -> None:
     props = parse_tir_text(tir_text(SYMMETRIC_LATERAL), 'symmetric')
     alpha = np.linspace(-0.4, 0.4, 17)
     npt.assert_allclose(
-        MagicFormula(props, side='RIGHT').fy(3000.0, alpha), MagicFormula(props).fy(3000.0, alpha), rtol=RTOL, atol=1e-9
+        MagicFormula(props, side='RIGHT').fy(3000.0, alpha),
+        MagicFormula(props).fy(3000.0, alpha),
+        rtol=RTOL,
+        atol=1e-9,
     )
 
 
@@ -335,7 +396,10 @@ def test_mf61_file_is_refused() -> None:
     props = parse_tir_text(tir_text(SYMMETRIC_LATERAL, model='FITTYP = 61'), 'mf61.tir')
     with pytest.raises(SolverError) as info:
         MagicFormula(props)
-    assert str(info.value) == 'mf61.tir: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is MF61'
+    assert (
+        str(info.value)
+        == 'mf61.tir: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is MF61'
+    )
 
 
 def test_unknown_side_is_refused(sedan: TireProperties) -> None:
@@ -345,10 +409,15 @@ def test_unknown_side_is_refused(sedan: TireProperties) -> None:
 
 
 def test_side_needs_tyreside() -> None:
-    props = parse_tir_text(tir_text(SYMMETRIC_LATERAL, model="PROPERTY_FILE_FORMAT = 'PAC2002'"), 'x.tir')
+    props = parse_tir_text(
+        tir_text(SYMMETRIC_LATERAL, model="PROPERTY_FILE_FORMAT = 'PAC2002'"), 'x.tir'
+    )
     with pytest.raises(DataError) as info:
         MagicFormula(props, side='LEFT')
-    assert (info.value.detail, info.value.key) == ("key 'TYRESIDE' missing in block [MODEL]", 'TYRESIDE')
+    assert (info.value.detail, info.value.key) == (
+        "key 'TYRESIDE' missing in block [MODEL]",
+        'TYRESIDE',
+    )
 
 
 def test_unknown_tyreside_is_refused() -> None:
@@ -387,7 +456,9 @@ def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
     gz = gamma * lam('LGAZ')
     sht = q('QHZ1') + q('QHZ2') * dfz + (q('QHZ3') + q('QHZ4') * dfz) * gz
     alpha_t = 0.0 + sht
-    bt = (q('QBZ1') + q('QBZ2') * dfz + q('QBZ3') * dfz**2) * (1 + q('QBZ4') * gz + q('QBZ5') * abs(gz))
+    bt = (q('QBZ1') + q('QBZ2') * dfz + q('QBZ3') * dfz**2) * (
+        1 + q('QBZ4') * gz + q('QBZ5') * abs(gz)
+    )
     bt *= lam('LKY') / lam('LMUY')
     ct = q('QCZ1')
     dt = fz * (q('QDZ1') + q('QDZ2') * dfz) * (1 + q('QDZ3') * gz + q('QDZ4') * gz**2)
@@ -400,7 +471,9 @@ def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
 
 
 @pytest.mark.parametrize('path', [SEDAN, HMMWV])
-@pytest.mark.parametrize('fz, gamma', [(2000.0, 0.0), (4850.0, 0.0), (7000.0, 0.03), (4000.0, -0.02)])
+@pytest.mark.parametrize(
+    'fz, gamma', [(2000.0, 0.0), (4850.0, 0.0), (7000.0, 0.03), (4000.0, -0.02)]
+)
 def test_pneumatic_trail_is_pac2002_by_hand(path: Path, fz: float, gamma: float) -> None:
     props = read_tir(path)
     expected = _trail_by_hand(props, fz, gamma)
@@ -416,5 +489,7 @@ def test_pneumatic_trail_of_the_sedan_tire_is_a_few_centimetres() -> None:
 def test_pneumatic_trail_mirrors_camber_and_is_zero_off_the_ground() -> None:
     props = read_tir(SEDAN)
     right = MagicFormula(props, side='RIGHT')
-    npt.assert_allclose(right.pneumatic_trail(4000.0, 0.02), _trail_by_hand(props, 4000.0, -0.02), rtol=RTOL)
+    npt.assert_allclose(
+        right.pneumatic_trail(4000.0, 0.02), _trail_by_hand(props, 4000.0, -0.02), rtol=RTOL
+    )
     npt.assert_array_equal(MagicFormula(props).pneumatic_trail([0.0, -10.0]), [0.0, 0.0])

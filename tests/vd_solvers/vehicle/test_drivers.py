@@ -48,8 +48,9 @@ def test_replay_shifts_the_recorded_signal():
 
 def test_path_follower_on_the_circle_steers_the_ackermann_angle():
     """
-    On the circle and tangent to it the preview point lies on it: no correction, the
-    steering-wheel angle is i_s L / R (after the lag has settled).
+    On the circle and tangent to it the preview point lies on it: no correction.
+
+    The steering-wheel angle is i_s L / R (after the lag has settled).
     """
     follower = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
                                   max_angle=10.0)

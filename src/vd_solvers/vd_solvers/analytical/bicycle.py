@@ -128,8 +128,9 @@ def axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
 
 def effective_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
     """
-    Front and rear effective axle cornering stiffness C_af, C_ar, N/rad
-    (:func:`~vd_solvers.analytical.budget.effective_axle_cornering_stiffness`).
+    Return the front and rear effective axle cornering stiffness C_af, C_ar, N/rad.
+
+    See :func:`~vd_solvers.analytical.budget.effective_axle_cornering_stiffness`.
     """
     return effective_axle_cornering_stiffness(p)
 
@@ -178,7 +179,9 @@ def characteristic_speed(p: VehicleParams) -> float:
     """
     k = understeer_gradient(p)
     if k <= 0.0:
-        raise ValueError(f'characteristic speed needs understeer (K > 0), got K = {k!r} rad/(m/s^2)')
+        raise ValueError(
+            f'characteristic speed needs understeer (K > 0), got K = {k!r} rad/(m/s^2)'
+        )
     return math.sqrt(p.wheelbase / k)
 
 
@@ -227,7 +230,9 @@ def sideslip_gain(p: VehicleParams, speed: ArrayLike) -> np.ndarray:
     """
     speed = _non_negative_speed(speed)
     _, c_rear = effective_cornering_stiffness(p)
-    numerator = p.cog_to_rear_axle - p.mass * p.cog_to_front_axle * speed**2 / (p.wheelbase * c_rear)
+    numerator = p.cog_to_rear_axle - p.mass * p.cog_to_front_axle * speed**2 / (
+        p.wheelbase * c_rear
+    )
     return numerator / _gain_denominator(p, speed)
 
 
@@ -314,7 +319,9 @@ def steer_step_response(
     ss = state_space(p, speed)
     time = np.linspace(0.0, duration, samples)
     _, y, x = signal.lsim((ss.a, ss.b, ss.c, ss.d), U=np.full(samples, float(steer)), T=time)
-    return StepResponse(time=time, yaw_rate=y[:, 0], lateral_acceleration=y[:, 1], lateral_velocity=x[:, 0])
+    return StepResponse(
+        time=time, yaw_rate=y[:, 0], lateral_acceleration=y[:, 1], lateral_velocity=x[:, 0]
+    )
 
 
 def _mode(p: VehicleParams, speed: float) -> tuple[float, float]:
@@ -329,7 +336,8 @@ def _mode(p: VehicleParams, speed: float) -> tuple[float, float]:
     det = float(np.linalg.det(a_matrix))
     if det <= 0.0:
         raise BeyondLimitError(
-            f'single track unstable at {speed!r} m/s: at or above the critical speed (det A = {det:.3g})'
+            f'single track unstable at {speed!r} m/s: at or above the critical speed '
+            f'(det A = {det:.3g})'
         )
     natural_frequency = math.sqrt(det)
     return natural_frequency, -float(np.trace(a_matrix)) / (2.0 * natural_frequency)

@@ -85,7 +85,7 @@ class UndersteerBudget:
 
 
 def _axle(p: VehicleParams, axle: str) -> tuple[float, float, AxleCompliance]:
-    """Static axle load N (N), bare axle cornering stiffness (N/rad), compliance."""
+    """Return the static axle load N (N), bare axle cornering stiffness (N/rad), compliance."""
     if axle == 'front':
         load, tire, comp = p.axle_load_front, p.tire_front, p.compliance_front
     else:
@@ -116,7 +116,7 @@ def _roll_gradient(p: VehicleParams) -> float:
 
 
 def understeer_budget(p: VehicleParams) -> UndersteerBudget:
-    """The budget of ``p`` (module doc); each term names its sources."""
+    """Return the budget of ``p`` (module doc); each term names its sources."""
     rho = _roll_gradient(p)
     load_f, c_f, comp_f = _axle(p, 'front')
     load_r, c_r, comp_r = _axle(p, 'rear')

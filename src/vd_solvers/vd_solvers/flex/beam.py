@@ -36,7 +36,9 @@ def local_axes(a: np.ndarray, b: np.ndarray, what: str) -> tuple[np.ndarray, flo
     d = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
     length = float(np.linalg.norm(d))
     if not length > MIN_LENGTH:
-        raise SolverError(f"{what}: the member's end points coincide (length {length * 1e3:.3g} mm)")
+        raise SolverError(
+            f"{what}: the member's end points coincide (length {length * 1e3:.3g} mm)"
+        )
     x = d / length
     up = np.array([0.0, 0.0, 1.0]) if abs(x[2]) < _VERTICAL_COS else np.array([1.0, 0.0, 0.0])
     z = up - (up @ x) * x
@@ -54,14 +56,22 @@ def local_stiffness(length: float, material: Material, section: Section) -> np.n
     k[3, 3] = k[9, 9] = gj
     k[3, 9] = -gj
     # bending in the x-y plane (u_y, theta_z): Iz, shear area y
-    phi = 0.0 if section.shear_area_y is None else 12.0 * e * section.iz / (g * section.shear_area_y * L**2)
+    phi = (
+        0.0
+        if section.shear_area_y is None
+        else 12.0 * e * section.iz / (g * section.shear_area_y * L**2)
+    )
     c = e * section.iz / (1.0 + phi)
     k1, k2, k3, k4 = 12.0 * c / L**3, 6.0 * c / L**2, (4.0 + phi) * c / L, (2.0 - phi) * c / L
     k[1, 1], k[1, 5], k[1, 7], k[1, 11] = k1, k2, -k1, k2
     k[5, 5], k[5, 7], k[5, 11] = k3, -k2, k4
     k[7, 7], k[7, 11], k[11, 11] = k1, -k2, k3
     # bending in the x-z plane (u_z, theta_y): Iy, shear area z
-    phi = 0.0 if section.shear_area_z is None else 12.0 * e * section.iy / (g * section.shear_area_z * L**2)
+    phi = (
+        0.0
+        if section.shear_area_z is None
+        else 12.0 * e * section.iy / (g * section.shear_area_z * L**2)
+    )
     c = e * section.iy / (1.0 + phi)
     k1, k2, k3, k4 = 12.0 * c / L**3, 6.0 * c / L**2, (4.0 + phi) * c / L, (2.0 - phi) * c / L
     k[2, 2], k[2, 4], k[2, 8], k[2, 10] = k1, -k2, -k1, -k2
@@ -78,7 +88,9 @@ def element_stiffness(a: np.ndarray, b: np.ndarray, material: Material, section:
     return t.T @ local_stiffness(length, material, section) @ t
 
 
-def element_mass(a: np.ndarray, b: np.ndarray, material: Material, section: Section) -> tuple[float, np.ndarray]:
+def element_mass(
+    a: np.ndarray, b: np.ndarray, material: Material, section: Section
+) -> tuple[float, np.ndarray]:
     """Mass (kg) and centre of mass (3,) of the element."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     return material.density * section.area * float(np.linalg.norm(b - a)), 0.5 * (a + b)

@@ -1,6 +1,7 @@
 """
-A flexible component as a frame of beam elements generated from hard points,
-statically condensed to its attachment nodes.
+A flexible component as a frame of beam elements generated from hard points.
+
+The frame is statically condensed to its attachment nodes.
 
 Geometry is never drawn by hand: a component names its attachment points
 (hard points, by name, with their current positions -- so a hard-point
@@ -223,7 +224,7 @@ def condense(k_full: np.ndarray, master_nodes: np.ndarray, name: str = 'componen
 
 
 def check_rigid_modes(stiffness: np.ndarray, name: str) -> None:
-    """A connected free-free component has exactly six zero-energy modes."""
+    """Check that a connected free-free component has exactly six zero-energy modes."""
     values = np.linalg.eigvalsh(stiffness)
     top = float(np.max(np.abs(values)))
     zero = int(np.sum(np.abs(values) <= RIGID_MODE_RATIO * top))
@@ -238,7 +239,7 @@ def check_rigid_modes(stiffness: np.ndarray, name: str) -> None:
 
 def clamped(stiffness: np.ndarray, reference: int = 0) -> np.ndarray:
     """
-    The free-free node stiffness with node ``reference`` clamped: (6n-6, 6n-6).
+    Return the free-free node stiffness with node ``reference`` clamped: (6n-6, 6n-6).
 
     This is the stiffness the K&C model uses on deformations measured in the
     reference node's frame (exact for a matrix whose null space is the rigid modes).

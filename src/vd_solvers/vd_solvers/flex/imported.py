@@ -1,6 +1,7 @@
 """
-Reduced stiffness matrices brought from an FE tool (thesis: "other solvers
-like Nastran"), and the mirror image of a node stiffness.
+Reduced stiffness matrices brought from an FE tool, and the mirror image of a node stiffness.
+
+The FE tools are the thesis' "other solvers like Nastran".
 
 Two formats, both describing one component's free-free stiffness on its
 attachment nodes (6 DOFs each: u_x, u_y, u_z, th_x, th_y, th_z, vehicle axes,
@@ -40,7 +41,7 @@ _NODE_MIRROR = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 
 def mirror_stiffness(stiffness: np.ndarray) -> np.ndarray:
-    """The node stiffness of the mirror-image (right-side) component."""
+    """Return the node stiffness of the mirror-image (right-side) component."""
     t = np.tile(_NODE_MIRROR, stiffness.shape[0] // 6)
     return stiffness * t[:, None] * t[None, :]
 
@@ -64,7 +65,7 @@ def _check_matrix(name: str, k: np.ndarray, what: str) -> np.ndarray:
 
 def from_plain(name: str, raw: object, *, what: str, factors: Mapping[str, float]) -> Condensed:
     """
-    A component from the plain format, already parsed to Python objects.
+    Build a component from the plain format, already parsed to Python objects.
 
     ``factors``: SI factors of the file's units for length, force, angle, mass.
     """
@@ -134,13 +135,15 @@ def _cards(text: str) -> list[list[str]]:
 
 def from_dmig(name: str, text: str, *, matrix: str, grids: Mapping[int, str], what: str,
               factors: Mapping[str, float]) -> Condensed:
-    """A component from a Nastran punch file's DMIG matrix ``matrix``."""
+    """Build a component from a Nastran punch file's DMIG matrix ``matrix``."""
     cards = _cards(text)
     header = [c for c in cards if c[0] == 'DMIG' and c[1].upper() == matrix.upper()
               and c[2] in ('0', '')]
     if not header:
         found = sorted({c[1] for c in cards if c[0] == 'DMIG'})
-        raise SolverError(f"{what}: no DMIG matrix '{matrix}' (found: {', '.join(found) or 'none'})")
+        raise SolverError(
+            f"{what}: no DMIG matrix '{matrix}' (found: {', '.join(found) or 'none'})"
+        )
     try:
         ifo = int(header[0][3])
         tin = int(header[0][4])
@@ -172,7 +175,7 @@ def from_dmig(name: str, text: str, *, matrix: str, grids: Mapping[int, str], wh
     for c in cards:
         if c[0] != 'DMIG' or c[1].upper() != matrix.upper() or c[2] in ('0', ''):
             continue
-        fields = [f for f in c[2:]]
+        fields = list(c[2:])
         col = dof(fields[0], fields[1])
         # GJ CJ, then (G, C, A[, B]) per entry; B is blank for real matrices
         cells = [f for f in fields[2:] if f != '']

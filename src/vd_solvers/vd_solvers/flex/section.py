@@ -35,7 +35,9 @@ class Material:
         for name in ('youngs_modulus', 'shear_modulus'):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0.0):
-                raise SolverError(f'material {name} must be a positive finite number, got {value!r}')
+                raise SolverError(
+                    f'material {name} must be a positive finite number, got {value!r}'
+                )
         if not (math.isfinite(self.density) and self.density >= 0.0):
             raise SolverError(f'material density must be >= 0, got {self.density!r}')
 
@@ -101,7 +103,8 @@ def tube(outer_diameter: float, wall: float, nu: float) -> Section:
 
 def rectangle(width: float, height: float, nu: float) -> Section:
     """
-    Solid rectangle, ``width`` along local y, ``height`` along local z;
+    Solid rectangle, ``width`` along local y, ``height`` along local z.
+
     Cowper kappa = 10(1+nu)/(12+11nu).
     """
     _positive('rectangle', width=width, height=height)
@@ -117,6 +120,7 @@ def i_beam(height: float, flange_width: float, flange_thickness: float,
            web_thickness: float) -> Section:
     """
     I section: web along local z (``height``), flanges along local y.
+
     Shear areas: the web (z) and 5/6 of the flanges (y).
     """
     _positive('i_beam', height=height, flange_width=flange_width,

@@ -19,6 +19,8 @@ from .model import SuspensionInput
 
 def bench_kc(inp_front: SuspensionInput, inp_rear: SuspensionInput) -> dict[str, float]:
     """
+    Return the seconds taken by the K&C benchmark steps.
+
     Seconds for: assembling the front axle, one 101-step parallel travel
     sweep per axle, and the full suite (all events, plus the bar-less roll
     run) per axle and for both.

@@ -63,8 +63,8 @@ def fit_simple_tire(mf: MagicFormula, fz_range: tuple[float, float], n: int = 20
     c0_c1 = -_slope_through(fz * dfz, -mf.cornering_stiffness(fz) - c0 * fz)
     if c0 <= 0.0:
         raise SolverError(
-            f"{mf.props.path}: cornering stiffness of fy_iso fitted as c0 = {c0:g} 1/rad, not > 0; "
-            "the file's PKY1 should be negative (TYDEX convention)"
+            f'{mf.props.path}: cornering stiffness of fy_iso fitted as c0 = {c0:g} 1/rad, '
+            "not > 0; the file's PKY1 should be negative (TYDEX convention)"
         )
 
     name = Path(mf.props.path).name

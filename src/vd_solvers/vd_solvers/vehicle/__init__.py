@@ -1,4 +1,6 @@
 """
-The full-vehicle rung: Pinocchio multibody car, suspension maps from K&C, Magic Formula
-tires, drivers, the constant radius turn and the step steer (ROS-free; see docs/models.md).
+The full-vehicle rung (ROS-free; see docs/models.md).
+
+Pinocchio multibody car, suspension maps from K&C, Magic Formula tires, drivers, the
+constant radius turn and the step steer.
 """
