@@ -26,7 +26,8 @@ from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
 from .errors import DataError, DataErrors
-from .master import _NAME, inside  # the one rule for configuration and variant names
+from .master import inside
+from .shape import PLAIN_NAME as _NAME  # the one rule for configuration and variant names
 from .study import Study, load_study
 from .yamlio import read_bytes
 

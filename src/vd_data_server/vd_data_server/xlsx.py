@@ -35,8 +35,8 @@ from openpyxl.utils import get_column_letter
 
 from . import schema
 from .errors import DataError, DataErrors
-from .master import _NAME  # the one rule for configuration and variant names
 from .masteredit import write_master
+from .shape import PLAIN_NAME as _NAME  # the one rule for configuration and variant names
 from .study import NOT_USED, Study
 from .workbench import study_state
 

@@ -32,7 +32,7 @@ from typing import Any
 
 from vd_data_server.errors import DataError
 from vd_data_server.units import UREG, parse_unit
-from vd_solvers.kc.from_config import _UNITS as KC_BASE_UNITS
+from vd_solvers.kc.channels import UNITS as KC_BASE_UNITS
 
 KINDS = ('kc', 'vehicle')
 SIDES = ('left', 'right')

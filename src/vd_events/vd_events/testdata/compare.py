@@ -37,13 +37,15 @@ from pathlib import Path
 
 import numpy as np
 
-from vd_solvers.kc.metrics import FORCE_WINDOW, MOMENT_WINDOW, TRAVEL_WINDOW, slope_at
+from vd_solvers.kc.metrics import FORCE_WINDOW, TRAVEL_WINDOW, slope_at
 from vd_solvers.results import EventOutcome
 
 from .columns import KC_SWEEP, InputError, unit_factor
 
 DEG = 180.0 / math.pi
 #: half-width of the gradient window per swept channel (SI)
+#: N*m of applied aligning torque: the half-width of that event's gradient window
+MOMENT_WINDOW = 25.0
 GRADIENT_WINDOWS = {'wheel_travel_left': TRAVEL_WINDOW, 'applied_force': FORCE_WINDOW,
                     'applied_moment': MOMENT_WINDOW, 'steering_wheel_angle': math.radians(10.0)}
 #: low-pass cut-offs of the vehicle signals before comparison, Hz (fmvss126)
@@ -183,7 +185,7 @@ def _uniform(t: np.ndarray) -> bool:
 
 
 def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> np.ndarray:
-    from ..fmvss126 import RESPONSE_CUTOFF, STEER_CUTOFF, ProcessingError, lowpass
+    from vd_solvers.fmvss126 import RESPONSE_CUTOFF, STEER_CUTOFF, ProcessingError, lowpass
 
     cutoff = STEER_CUTOFF if channel in STEERING_CHANNELS else RESPONSE_CUTOFF
     try:

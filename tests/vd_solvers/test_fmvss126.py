@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from vd_events import fmvss126 as f
+from vd_solvers import fmvss126 as f
 
 DEG = math.pi / 180.0
 FS = 500.0  # Hz
