@@ -2,7 +2,12 @@
 rosbag2 MCAP bags written and read with rosbags (pure Python).
 
 Messages are typed vd_interfaces messages with their definitions embedded, so
-Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. A bag
+Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. Chunks are
+zstd-compressed (MCAP storage compression, which rosbags, ``mcap`` and ``mcap_ros2``
+read), every topic records the QoS its publishers offered (``offered_qos_profiles``
+in ``metadata.yaml``, rosbag2 format 9, so ``ros2 bag play`` reproduces latching),
+``ros_distro`` is ``jazzy``, and a message's log time is its own stamp where it has one
+(:func:`log_time`). A bag
 is written under ``<name>.partial`` and renamed to ``<name>`` when closed: an
 interrupted run never leaves a bag that looks finished (and ``abort()`` removes
 the partial one). The writer holds an exclusive lock on ``<name>.partial/writer.lock``
@@ -20,7 +25,16 @@ from pathlib import Path
 import shutil
 from typing import Any
 
-from rosbags.rosbag2 import Reader, StoragePlugin, Writer
+from rosbags.interfaces import (
+    Qos,
+    QosDurability,
+    QosHistory,
+    QosLiveliness,
+    QosReliability,
+    QosTime,
+)
+from rosbags.rosbag2 import CompressionFormat, CompressionMode, Reader, StoragePlugin, Writer
+from rosbags.rosbag2.storage_mcap import McapWriter
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -28,6 +42,9 @@ PARTIAL_SUFFIX = '.partial'
 LOCK_NAME = 'writer.lock'
 BAG_VERSION = 9
 INTERFACES = 'vd_interfaces'
+#: the ROS distribution the bags are written for (metadata ``ros_distro``)
+ROS_DISTRO = 'jazzy'
+_ROSBAGS_DISTRO = 'ros_distro: rosbags'
 
 
 class BagError(Exception):
@@ -70,7 +87,7 @@ def _writable(folder: Path) -> bool:
 
 
 def _partial_is_live(partial: Path) -> bool:
-    """True while a writer holds the partial bag's lock (a live run writes it)."""
+    """Tell whether a writer holds the partial bag's lock (a live run writes it)."""
     try:
         fd = os.open(partial / LOCK_NAME, os.O_RDONLY)
     except FileNotFoundError:
@@ -84,6 +101,92 @@ def _partial_is_live(partial: Path) -> bool:
     finally:
         os.close(fd)
     return False
+
+
+class _JazzyMcapWriter(McapWriter):
+    """rosbags' MCAP storage, with the metadata record naming the Jazzy distribution."""
+
+    def close(self, version: int, metadata: str) -> None:
+        super().close(version, metadata.replace(_ROSBAGS_DISTRO, f'ros_distro: {ROS_DISTRO}'))
+
+
+class _Writer(Writer):
+    STORAGE_PLUGINS = {StoragePlugin.MCAP: _JazzyMcapWriter}
+
+    def close(self) -> None:
+        super().close()
+        text = self.metapath.read_text(encoding='utf-8')
+        self.metapath.write_text(
+            text.replace(_ROSBAGS_DISTRO, f'ros_distro: {ROS_DISTRO}'), encoding='utf-8')
+
+
+def qos_record(profile) -> Qos:
+    """Return the bag's record of an rclpy QoSProfile (the same enumerations, by value)."""
+
+    def duration(d) -> QosTime:
+        ns = d.nanoseconds
+        return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    return Qos(history=QosHistory(int(profile.history)), depth=int(profile.depth),
+               reliability=QosReliability(int(profile.reliability)),
+               durability=QosDurability(int(profile.durability)),
+               deadline=duration(profile.deadline), lifespan=duration(profile.lifespan),
+               liveliness=QosLiveliness(int(profile.liveliness)),
+               liveliness_lease_duration=duration(profile.liveliness_lease_duration),
+               avoid_ros_namespace_conventions=bool(profile.avoid_ros_namespace_conventions))
+
+
+def offered_qos(path: str | Path) -> dict[str, list]:
+    """
+    Return topic -> the rclpy QoSProfiles its publishers offered, from a bag's metadata.
+
+    What ``ros2 bag play`` publishes with.
+    """
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
+    import yaml
+
+    def duration(d) -> Duration:
+        return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
+
+    meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
+    out = {}
+    for entry in meta['rosbag2_bagfile_information']['topics_with_message_count']:
+        topic = entry['topic_metadata']
+        out[topic['name']] = [QoSProfile(
+            history=HistoryPolicy[q['history'].upper()], depth=int(q['depth']),
+            reliability=ReliabilityPolicy[q['reliability'].upper()],
+            durability=DurabilityPolicy[q['durability'].upper()],
+            deadline=duration(q['deadline']), lifespan=duration(q['lifespan']),
+            liveliness=LivelinessPolicy[q['liveliness'].upper()],
+            liveliness_lease_duration=duration(q['liveliness_lease_duration']),
+            avoid_ros_namespace_conventions=bool(q['avoid_ros_namespace_conventions']))
+            for q in topic['offered_qos_profiles']]
+    return out
+
+
+def log_time(msg: Any, fallback_ns: int) -> int:
+    """
+    Return the log time of ``msg`` in a bag.
+
+    Its ``header.stamp`` (or ``stamp``, or its first transform's stamp), else
+    ``fallback_ns`` (the reception time).
+    """
+    stamp = getattr(msg, 'stamp', None)
+    if stamp is None and hasattr(msg, 'header'):
+        stamp = msg.header.stamp
+    if stamp is None and getattr(msg, 'transforms', None):
+        stamp = msg.transforms[0].header.stamp
+    if stamp is None:
+        return fallback_ns
+    ns = int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+    return ns if ns > 0 else fallback_ns
 
 
 class BagWriter:
@@ -108,8 +211,9 @@ class BagWriter:
                 raise BagError(f'{self.partial}: another run is writing this bag') from None
             self._lock = os.open(self.partial / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
             fcntl.flock(self._lock, fcntl.LOCK_EX)
-            self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
-                                  storage_plugin=StoragePlugin.MCAP)
+            self._writer = _Writer(self.partial / self.path.name, version=BAG_VERSION,
+                                   storage_plugin=StoragePlugin.MCAP)
+            self._writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
             for key, value in (custom_data or {}).items():
                 self._writer.set_custom_data(key, value)
             self._writer.open()
@@ -124,13 +228,21 @@ class BagWriter:
     def set_custom_data(self, key: str, value: str) -> None:
         self._writer.set_custom_data(key, value)
 
-    def write(self, topic: str, msg: Any, timestamp_ns: int) -> None:
+    def write(self, topic: str, msg: Any, timestamp_ns: int, qos=()) -> None:
+        """
+        Write ``msg`` at log time ``timestamp_ns``.
+
+        ``qos`` (rclpy QoSProfiles) is what the topic's publishers offered, recorded
+        with the topic's first message.
+        """
         from rclpy.serialization import serialize_message
 
         msgtype = _type_name(msg)
         conn = self._connections.get(topic)
         if conn is None:
-            conn = self._writer.add_connection(topic, msgtype, typestore=typestore())
+            conn = self._writer.add_connection(
+                topic, msgtype, typestore=typestore(),
+                offered_qos_profiles=[qos_record(q) for q in qos])
             self._connections[topic] = conn
         self._writer.write(conn, int(timestamp_ns), serialize_message(msg))
         self.count += 1

@@ -64,8 +64,9 @@ def run_bench() -> dict[str, Any]:
 
 def _bench_flex(config) -> dict[str, float]:
     """
-    101-step parallel wheel travel, rigid and flexible (every component of the flex
-    groups), per axle; target: flexible within 3x rigid.
+    Time a 101-step parallel wheel travel, rigid and flexible, per axle.
+
+    Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
     from vd_solvers.kc.events import KCModel
     from vd_solvers.kc.from_config import suspension_input
@@ -81,8 +82,9 @@ def _bench_flex(config) -> dict[str, float]:
 
 def _bench_capability(master: Path) -> float:
     """
-    The whole capability study of both axles (22 runs, 101 steps, through the ROS
-    graph, with bags); target: under 20 s.
+    Time the whole capability study of both axles; target: under 20 s.
+
+    22 runs, 101 steps, through the ROS graph, with bags.
     """
     from vd_data_server.study import load_study
 
@@ -112,8 +114,9 @@ def _bench_embedded(master: Path) -> dict[str, float]:
 
 def _bench_data_change(master: Path) -> float:
     """
-    Seconds from editing a data file on disk to the new configuration arriving at a
-    subscriber (data server watching every 0.5 s, its default).
+    Time editing a data file on disk until the new configuration arrives at a subscriber.
+
+    The data server watches every 0.5 s, its default.
     """
     import shutil
 
@@ -164,13 +167,17 @@ def _bench_data_change(master: Path) -> float:
 
 
 def _bench_bag(n: int = 20000) -> dict[str, float]:
-    """Sample messages written to an MCAP bag per second (serialisation included)."""
-    from vd_interfaces.msg import Sample
+    """
+    Count AnalyticalState messages (17 channels) written to an MCAP bag per second.
+
+    Serialisation and chunk compression included.
+    """
+    from vd_interfaces.msg import AnalyticalState
 
     from .bag import BagWriter
 
-    msg = Sample(event='bench', configuration='baseline', model='kc', step=0,
-                 names=[f'c{i}' for i in range(16)], values=[float(i) for i in range(16)])
+    msg = AnalyticalState(event='bench', configuration='baseline', model='two_track', step=0,
+                          lateral_acceleration=1.0, speed=20.0, steer_angle=0.01)
     with tempfile.TemporaryDirectory() as tmp:
         writer = BagWriter(Path(tmp) / 'bag')
         t0 = time.perf_counter()
@@ -200,10 +207,12 @@ def print_bench(results: dict[str, Any]) -> None:
          'well under 1 s'),
         ('K&C six-event suite, both axles', f"{kc['suite_both_axles']:.2f} s", 'a few s'),
         ('flexible K&C 101-step parallel travel, front',
-         f"{results['flex']['front_flexible_s']:.3f} s ({results['flex']['front_ratio']:.2f}x rigid)",
+         f"{results['flex']['front_flexible_s']:.3f} s "
+         f"({results['flex']['front_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('flexible K&C 101-step parallel travel, rear',
-         f"{results['flex']['rear_flexible_s']:.3f} s ({results['flex']['rear_ratio']:.2f}x rigid)",
+         f"{results['flex']['rear_flexible_s']:.3f} s "
+         f"({results['flex']['rear_ratio']:.2f}x rigid)",
          'within 3x rigid'),
         ('capability study, both axles (22 runs via ROS, one bag)',
          f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
@@ -219,7 +228,7 @@ def print_bench(results: dict[str, Any]) -> None:
         ('  of which goal to result', f"{results['embedded_run']['goal_to_result_s']:.3f} s", ''),
         ('data file edited -> new configuration received',
          f"{results['data_change_to_republish_s']:.2f} s", 'about 1 s'),
-        ('bag write rate (Sample, 16 channels)',
+        ('bag write rate (AnalyticalState, 17 channels)',
          f"{results['bag_write']['messages_per_s']:.0f} msg/s", ''),
     ]
     vehicle = results['vehicle']
@@ -228,7 +237,8 @@ def print_bench(results: dict[str, Any]) -> None:
     rows += [
         ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
-         f"{vehicle['step_s'] * 1e3:g} ms)", f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         f"{vehicle['step_s'] * 1e3:g} ms)",
+         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
          ''),
         ('  per step', f"{ss['us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),

@@ -19,29 +19,6 @@ import time
 from vd_data_server.overview import console
 
 OUT = Path('out/demo')
-#: metric, format, scale of the one-line summaries
-HEADLINE = (
-    ('understeer_gradient_deg_per_g', 'K_us {:.3f} deg/g', 1.0),
-    ('characteristic_speed_kmh', 'v_char {:.0f} km/h', 1.0),
-    ('max_lateral_acceleration_g', 'a_y,max {:.3f} g', 1.0),
-    ('roll_gradient', 'roll {:.2f} deg/g', 1.0),
-    ('sideslip_gradient', 'sideslip {:.2f} deg/g', 1.0),
-    ('yaw_rate_response_time_90', 't90(r) {:.3f} s', 1.0),
-    ('yaw_rate_overshoot', 'overshoot(r) {:.1f} %', 1.0),
-    ('natural_frequency', 'f_n {:.2f} Hz', 1.0),
-    ('bump_steer', 'bump steer {:.1f} deg/m', 1.0),
-    ('camber_gain', 'camber gain {:.1f} deg/m', 1.0),
-    ('wheel_rate', 'wheel rate {:.1f} N/mm', 1e-3),
-    ('roll_centre_height_kinematic', 'RC {:.0f} mm', 1e3),
-    ('roll_stiffness', 'roll stiffness {:.0f} N*m/deg', 1.0),
-    ('lateral_compliance_steer', 'lat. compl. steer {:.3f} deg/kN', 1.0),
-    ('lateral_compliance_camber', 'camber {:.3f} deg/kN', 1.0),
-    ('anti_squat', 'anti-squat {:.0f} %', 1.0),
-    ('steering_ratio', 'steering ratio {:.1f}', 1.0),
-    ('ackermann', 'Ackermann {:.0f} %', 1.0),
-)
-
-
 def _plan_path() -> Path:
     from ament_index_python.packages import get_package_share_directory
 
@@ -54,6 +31,7 @@ def main() -> int:
     from vd_data_server.study import load_study
 
     from .capability import run_study
+    from .display import summary as run_summary
     from .report import build_report
     from .study_plan import load_plan, run_plan
 
@@ -78,12 +56,7 @@ def main() -> int:
     bags += sorted((OUT / 'capability').glob('capability_*'))
     summary['report'] = str(build_report(bags, OUT))
     for run in summary['runs']:
-        m = run['metrics']
-        parts = []
-        for key, fmt, scale in HEADLINE:
-            if key in m:
-                parts.append(fmt.format(m[key]['value'] * scale))
-        status = run['error'] or ', '.join(parts)
+        status = run['error'] or run_summary(run['metrics'])
         term.print(f"  {run['configuration']:<11} {run['event']:<22} "
                       f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
     term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")

@@ -9,6 +9,10 @@ the runner once it has confirmed every result it asked for) or ``stop()``.
 Any other end (Ctrl-C, SIGTERM, the parent run dying) removes the partial bag
 and says so: an interrupted recording never looks finished. The run's
 provenance goes into the bag's metadata.
+
+Each message is logged at its own stamp (``bag.log_time``: the simulation-time axis of
+the states), and each topic records the QoS its publishers offered, so ``ros2 bag play``
+of the bag reproduces the latched topics.
 """
 from __future__ import annotations
 
@@ -27,13 +31,14 @@ from std_srvs.srv import Trigger
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.node_main import die_with_parent
-from vd_events.bag import BagError, BagWriter
+from vd_events.bag import BagError, BagWriter, log_time
 from vd_interfaces.msg import (
+    AnalyticalState,
     Configuration,
     DataStatus,
     EventResult,
+    KcState,
     Provenance,
-    Sample,
     VehicleState,
 )
 from vd_solvers.solver_node import LATCHED, SAMPLES
@@ -56,9 +61,9 @@ TOPICS = {
     '/vd/data_status': (DataStatus, _LATCHED),
     '/vd/provenance': (Provenance, _STREAM),
     '/vd/steady_state/result': (EventResult, _STREAM),
-    '/vd/steady_state/state': (Sample, _STREAM),
+    '/vd/steady_state/state': (AnalyticalState, _STREAM),
     '/vd/kc/result': (EventResult, _STREAM),
-    '/vd/kc/state': (Sample, _STREAM),
+    '/vd/kc/state': (KcState, _STREAM),
     '/vd/vehicle/result': (EventResult, _STREAM),
     '/vd/vehicle/state': (VehicleState, _STREAM),
     ODOMETRY_TOPIC: (Odometry, _STREAM),
@@ -72,7 +77,7 @@ _LATCHED_ONE = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=1,
 
 
 def _stamp_ns(msg) -> int | None:
-    """The stamp of a result, sample or provenance message (None for data topics)."""
+    """Return the stamp of a result, state or provenance message (None for data topics)."""
     stamp = getattr(msg, 'stamp', None)
     if stamp is None and hasattr(msg, 'header'):
         stamp = msg.header.stamp
@@ -97,6 +102,7 @@ class Recorder(Node):
         self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
         self.start = self.get_clock().now().nanoseconds
         self._samples: dict[tuple[str, str, str], int] = {}
+        self._qos: dict[str, list] = {}  # topic -> the offered QoS recorded in the bag
         self._pending: list[tuple[tuple[str, str, str], int, int]] = []
         self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
         self.complete = 0  # results written together with all their step samples
@@ -144,7 +150,9 @@ class Recorder(Node):
             self.writer.set_custom_data('vd.modified', '; '.join(
                 f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
                 for g in msg.groups for k in g.modified_keys) or 'none')
-        self.writer.write(topic, msg, time.time_ns())
+        if topic not in self._qos:
+            self._qos[topic] = self._offered(topic)
+        self.writer.write(topic, msg, log_time(msg, time.time_ns()), self._qos[topic])
         self.counts[topic] += 1
         if topic.endswith('/state'):
             key = (msg.configuration, msg.event, msg.model)
@@ -157,10 +165,27 @@ class Recorder(Node):
                                   self._odometry_needed))
         self._publish_complete()
 
+    def _offered(self, topic: str) -> list:
+        """
+        Return the QoS profiles the publishers of ``topic`` offer (as discovered).
+
+        History and depth, which discovery does not carry, are those of this recorder's
+        subscription (the publishers' own profile).
+        """
+        own = TOPICS[topic][1]
+        out = []
+        for info in self.get_publishers_info_by_topic(topic):
+            q = info.qos_profile
+            if q.history == HistoryPolicy.UNKNOWN or q.depth == 0:
+                q.history, q.depth = own.history, own.depth
+            out.append(q)
+        return out or [own]
+
     def _publish_complete(self) -> None:
         """
-        Count the results whose every step sample (and, for the full vehicle, every
-        odometry message) is written too, and say so.
+        Count the results whose every step state is written too, and say so.
+
+        For the full vehicle, every odometry message too.
         """
         odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending

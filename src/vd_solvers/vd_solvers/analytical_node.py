@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
+from vd_interfaces.msg import AnalyticalState
 from vd_solvers.analytical.events import run_event
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SolverNode
@@ -22,6 +23,8 @@ FAMILY = 'steady_state'
 
 
 class AnalyticalSolver(SolverNode):
+    STATE_TYPE = AnalyticalState
+
     def __init__(self, **kwargs) -> None:
         super().__init__('analytical_solver', FAMILY, self._solve, **kwargs)
 

@@ -5,9 +5,11 @@ A solver node subscribes to the latched ``/vd/configuration`` and
 ``/vd/data_status`` topics, serves ``/vd/<family>/run_event``
 (vd_interfaces/RunEvent, with progress feedback, cancellable between stages),
 and publishes each result on ``/vd/<family>/result`` (EventResult), one
-``Sample`` per step on ``/vd/<family>/state`` and the run's provenance on
-``/vd/provenance``. A failure answers the goal with an error naming the
-configuration and event; the node keeps serving.
+typed state per step on ``/vd/<family>/state`` (``STATE_TYPE``: KcState,
+AnalyticalState, VehicleState) and the run's provenance on ``/vd/provenance``,
+stamped on the process's time axis (``conversions.TIME_AXIS``). A failure
+answers the goal with an error naming the configuration and event; the node
+keeps serving.
 """
 from __future__ import annotations
 
@@ -28,9 +30,9 @@ from vd_data_server.model import Configuration
 from vd_data_server.study import modified_keys
 from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
-from vd_interfaces.msg import DataStatus, EventResult, Provenance, Sample
+from vd_interfaces.msg import DataStatus, EventResult, Provenance
 from vd_solvers import __version__
-from vd_solvers.conversions import outcome_samples, outcome_to_msg
+from vd_solvers.conversions import end_stamp, outcome_states, outcome_to_msg, run_stamp
 from vd_solvers.errors import SolverError
 from vd_solvers.results import EventOutcome
 
@@ -61,8 +63,8 @@ SAMPLES = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10000,
 
 
 class SolverNode(Node):
-    #: message type of the per-step states on /vd/<family>/state
-    STATE_TYPE: type = Sample
+    #: message type of the per-step states on /vd/<family>/state (set by each solver)
+    STATE_TYPE: type
 
     def __init__(self, name: str, family: str, run: RunFn, **kwargs) -> None:
         super().__init__(name, **kwargs)
@@ -87,8 +89,10 @@ class SolverNode(Node):
 
     def _wait_for_configuration(self, name: str) -> Configuration | None:
         """
+        Wait a little for configuration ``name``.
+
         A solver started together with the data server may get a goal before the
-        latched configurations have arrived: wait a little for them.
+        latched configurations have arrived.
         """
         deadline = time.monotonic() + CONFIGURATION_WAIT
         while name not in self.configurations and time.monotonic() < deadline:
@@ -168,12 +172,13 @@ class SolverNode(Node):
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
                         changes: list, stamp=None) -> None:
         """
-        Publish provenance (with this goal's ``--set`` changes), samples and result.
+        Publish provenance (with this goal's ``--set`` changes), states and result.
 
-        Samples of a time-domain event (a ``time`` channel) are stamped ``stamp`` +
-        simulated time, the others ``stamp``.
+        Provenance is stamped ``stamp`` (default: :meth:`run_stamp`), the states ``stamp``
+        + simulated time (time-domain events) or + step * PSEUDO_STEP (quasi-static
+        ones), the result with the last state's stamp.
         """
-        stamp = stamp if stamp is not None else self.get_clock().now().to_msg()
+        stamp = stamp if stamp is not None else self.run_stamp(outcome)
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
                                 model=outcome.model, fidelity=outcome.fidelity,
@@ -185,16 +190,19 @@ class SolverNode(Node):
         self.provenance_pub.publish(provenance)
         for sample in self.state_messages(outcome, stamp):
             self.sample_pub.publish(sample)
-        self.result_pub.publish(outcome_to_msg(outcome, stamp))
+        self.result_pub.publish(outcome_to_msg(outcome, end_stamp(outcome, stamp)))
 
+    def run_stamp(self, outcome: EventOutcome):
+        """Claim a run's stamp: now, or after the previous run's time axis if that is later."""
+        return run_stamp(outcome, self.get_clock().now().nanoseconds)
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """The per-step messages of ``outcome`` (Sample: channel names and values)."""
-        return outcome_samples(outcome, stamp)
+        """Return the per-step typed states of ``outcome`` (conversions.outcome_states)."""
+        return outcome_states(outcome, stamp)
 
 
 def _warning_messages(caught) -> list[str]:
-    """The caught warnings' messages, each once, at most five."""
+    """Return the caught warnings' messages, each once, at most five."""
     return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
 
 

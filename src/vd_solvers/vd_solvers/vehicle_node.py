@@ -17,7 +17,7 @@ from tf2_msgs.msg import TFMessage
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
 from vd_interfaces.msg import VehicleState
-from vd_solvers.conversions import outcome_odometry, outcome_transforms, outcome_vehicle_states
+from vd_solvers.conversions import outcome_odometry, outcome_transforms
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SAMPLES, SolverNode
 from vd_solvers.vehicle.events import run_vehicle_event
@@ -40,17 +40,13 @@ class VehicleSolver(SolverNode):
         self.tf_pub = self.create_publisher(TFMessage, '/tf', SAMPLES)
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list) -> None:
-        stamp = self.get_clock().now().to_msg()
+        stamp = self.run_stamp(outcome)
         # odometry and TF first: a recorder stops once the result and its samples are in
         for msg in outcome_transforms(outcome, stamp):
             self.tf_pub.publish(msg)
         for msg in outcome_odometry(outcome, stamp):
             self.odom_pub.publish(msg)
         super().publish_outcome(outcome, config, changes, stamp=stamp)
-
-
-    def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        return outcome_vehicle_states(outcome, stamp)
 
 
 def main(args=None) -> None:
