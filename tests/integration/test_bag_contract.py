@@ -152,10 +152,13 @@ def test_bag_metadata_says_jazzy_compressed_chunks_and_the_offered_qos(kc_bag):
     assert set(topics) >= {'/vd/configuration', '/vd/data_status', '/vd/provenance',
                            '/vd/kc/state', '/vd/kc/result'}
     for name, topic in topics.items():
-        (qos,) = topic['offered_qos_profiles']
-        assert (qos['reliability'], qos['durability'], qos['history']) == (
-            'reliable', 'transient_local', 'keep_last'), name
-        assert qos['depth'] > 0, name
+        profiles = topic['offered_qos_profiles']  # one per publisher (three for provenance)
+        assert profiles, name
+        for qos in profiles:
+            assert (qos['reliability'], qos['durability'], qos['history']) == (
+                'reliable', 'transient_local', 'keep_last'), name
+            assert qos['depth'] > 0, name
+    assert len(topics['/vd/provenance']['offered_qos_profiles']) == 3  # every solver's
     (mcap_file,) = bag.glob('*.mcap')
     with mcap_file.open('rb') as stream:
         summary = make_reader(stream).get_summary()
@@ -180,7 +183,7 @@ def _replay(node, bag: Path, durability):
     from vd_events.bag import offered_qos
     from vd_interfaces.msg import Configuration
 
-    (recorded,) = offered_qos(bag)['/vd/configuration']
+    (recorded,) = offered_qos(bag)['/vd/configuration']  # the data server's
     qos = QoSProfile(history=recorded.history, depth=recorded.depth,
                      reliability=recorded.reliability,
                      durability=recorded.durability if durability is None else durability)
