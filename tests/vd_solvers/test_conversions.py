@@ -139,3 +139,8 @@ def test_time_axis_never_lets_two_runs_overlap():
     assert first == now
     assert second == first + 3 * 10**9 + int(RUN_GAP * 1e9)
     assert third == now + 10 * 10**9
+    # every earlier run ends at or before end(): a recorder starting after end() sees
+    # none of them (their stamps may lie ahead of the wall clock)
+    assert axis.end() == third
+    before = axis.end()
+    assert axis.claim(now, 0.5) > before

@@ -41,6 +41,7 @@ from vd_interfaces.msg import (
     Provenance,
     VehicleState,
 )
+from vd_solvers.conversions import TIME_AXIS
 from vd_solvers.solver_node import LATCHED, SAMPLES
 
 # the publishers' own profiles: latched data, results and samples kept for late joiners
@@ -100,7 +101,10 @@ class Recorder(Node):
         self.only = set(wanted)
         self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
         self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
-        self.start = self.get_clock().now().nanoseconds
+        # runs stamped before this recorder started are not its own: on the time axis of
+        # this process they end at or before TIME_AXIS.end(), which may lie ahead of the
+        # wall clock after time-domain runs (their history stays latched in the solvers)
+        self.start = max(self.get_clock().now().nanoseconds, TIME_AXIS.end() + 1)
         self._samples: dict[tuple[str, str, str], int] = {}
         self._qos: dict[str, list] = {}  # topic -> the offered QoS recorded in the bag
         self._pending: list[tuple[tuple[str, str, str], int, int]] = []

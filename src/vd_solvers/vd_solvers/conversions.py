@@ -181,6 +181,11 @@ class TimeAxis:
             self._end = start + int(round(span * 1e9))
             return start
 
+    def end(self) -> int:
+        """Return the end (ns) of the latest run on this axis (-1: none yet)."""
+        with self._lock:
+            return self._end
+
 
 #: the process's time axis (every solver node and the capability study share it)
 TIME_AXIS = TimeAxis()
