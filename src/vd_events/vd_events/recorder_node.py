@@ -82,6 +82,8 @@ def _stamp_ns(msg) -> int | None:
     stamp = getattr(msg, 'stamp', None)
     if stamp is None and hasattr(msg, 'header'):
         stamp = msg.header.stamp
+    if stamp is None and getattr(msg, 'transforms', None):  # TF
+        stamp = msg.transforms[0].header.stamp
     if stamp is None or isinstance(msg, (Configuration, DataStatus)):
         return None
     return stamp.sec * 1_000_000_000 + stamp.nanosec
