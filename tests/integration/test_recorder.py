@@ -22,7 +22,8 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]
     from ament_index_python.packages import get_package_prefix
     from rclpy.node import Node
 
-    from vd_interfaces.msg import Sample
+    from vd_interfaces.msg import KcState
+    from vd_solvers.conversions import time_msg
     from vd_solvers.solver_node import SAMPLES
 
     exe = os.path.join(get_package_prefix('vd_events'), 'lib', 'vd_events', 'recorder')
@@ -31,13 +32,12 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     node = Node('sample_publisher')
     try:
-        pub = node.create_publisher(Sample, '/vd/kc/state', SAMPLES)
+        pub = node.create_publisher(KcState, '/vd/kc/state', SAMPLES)
         assert spin_until([node], lambda: pub.get_subscription_count() >= 1, timeout=20.0)
-        stamp = node.get_clock().now().to_msg()
+        now = node.get_clock().now().nanoseconds
         for step in range(3):
-            msg = Sample(event='e', configuration='c', model='kc', step=step, names=['x'],
-                         values=[float(step)])
-            msg.header.stamp = stamp
+            msg = KcState(event='e', configuration='c', model='kc', step=step, track=float(step))
+            msg.header.stamp = time_msg(now + step * 1_000_000)
             pub.publish(msg)
         spin_until([node], lambda: False, timeout=1.0)
         stop(node, proc)

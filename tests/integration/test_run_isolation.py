@@ -1,6 +1,7 @@
 """
-Runs never share a ROS domain silently, every result is matched to its request, and
-long goals are not mistaken for lost ones (issue 10, causes 2 and 5).
+Runs never share a ROS domain silently, and every result is matched to its request.
+
+Long goals are not mistaken for lost ones either (issue 10, causes 2 and 5).
 """
 from __future__ import annotations
 
@@ -46,8 +47,9 @@ def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch,
 
 def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_master):
     """
-    What another study on the same domain would answer: the configuration of the same
-    name, computed from other data (its data hash differs).
+    Answer as another study on the same domain would.
+
+    The configuration of the same name, computed from other data (its data hash differs).
     """
     from vd_data_server.study import load_study
     from vd_events.runner import RunRequest, run_embedded, validate
@@ -85,8 +87,9 @@ def test_check_result_refuses_an_answer_to_another_request():
 
 def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sedan_master):
     """
-    The accept wait and the solver's execute callback no longer share one thread: a goal
-    that takes several accept timeouts is accepted once and finishes.
+    The accept wait and the solver's execute callback no longer share one thread.
+
+    A goal that takes several accept timeouts is accepted once and finishes.
     """
     from vd_data_server.study import load_study
     from vd_events import runner
@@ -116,8 +119,9 @@ def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sed
 
 def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master, sample_root):
     """
-    Two studies whose configurations share a name, run at the same moment: each gets
-    the wheel rate of its own data.
+    Two studies whose configurations share a name, run at the same moment.
+
+    Each gets the wheel rate of its own data.
     """
     import subprocess
     import sys
@@ -150,7 +154,7 @@ def test_a_full_disk_while_recording_is_an_error_and_leaves_no_bag(capsys, monke
 
     from vd_events import bag as bag_module
 
-    def full(self, topic, msg, timestamp_ns):
+    def full(self, topic, msg, timestamp_ns, qos=()):
         raise OSError(errno.ENOSPC, 'No space left on device')
 
     monkeypatch.setattr(bag_module.BagWriter, 'write', full)

@@ -1,8 +1,8 @@
 """
-The rigid-vs-flexible capability criterion.
+The rigid-vs-flexible capability criterion, and `vd capability` end to end.
 
-On constructed outcomes with known differences, and `vd capability` end to end
-through the ROS graph.
+The criterion on constructed outcomes with known differences; the study through the
+ROS graph, with its bag on one time axis.
 """
 from __future__ import annotations
 
@@ -116,9 +116,18 @@ def test_vd_capability_end_to_end(tmp_path):
     results = [m.msg for m in messages if m.topic == '/vd/kc/result']
     assert sorted((r.event, r.fidelity) for r in results) == sorted(
         (e, f) for e in events for f in ('rigid', 'flexible'))
-    samples = [m for m in messages if m.topic == '/vd/kc/state']
-    assert len(samples) == 10 * 7  # every step of every run
-    assert all(b.timestamp > a.timestamp for a, b in zip(messages, messages[1:]))
+    states = [m for m in messages if m.topic == '/vd/kc/state']
+    assert len(states) == 10 * 7  # every step of every run
+    # one time axis for the ten runs: each message logged at its stamp, stamps strictly
+    # increasing on every topic, the runs one after the other
+    for m in messages:
+        stamp = m.msg.header.stamp if hasattr(m.msg, 'header') else m.msg.stamp
+        assert m.timestamp == stamp.sec * 1_000_000_000 + stamp.nanosec, m.topic
+    for topic in ('/vd/kc/state', '/vd/kc/result', '/vd/capability/table'):
+        times = [m.timestamp for m in messages if m.topic == topic]
+        assert all(b > a for a, b in zip(times, times[1:])), topic
+    assert [(m.msg.event, m.msg.fidelity) for m in states[::7]] == [
+        (r.event, r.fidelity) for r in results]
 
 
 @pytest.mark.ros

@@ -2,7 +2,12 @@
 rosbag2 MCAP bags written and read with rosbags (pure Python).
 
 Messages are typed vd_interfaces messages with their definitions embedded, so
-Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. A bag
+Foxglove, PlotJuggler, the ``mcap`` library and ``ros2 bag`` read them. Chunks are
+zstd-compressed (MCAP storage compression, which rosbags, ``mcap`` and ``mcap_ros2``
+read), every topic records the QoS its publishers offered (``offered_qos_profiles``
+in ``metadata.yaml``, rosbag2 format 9, so ``ros2 bag play`` reproduces latching),
+``ros_distro`` is ``jazzy``, and a message's log time is its own stamp where it has one
+(:func:`log_time`). A bag
 is written under ``<name>.partial`` and renamed to ``<name>`` when closed: an
 interrupted run never leaves a bag that looks finished (and ``abort()`` removes
 the partial one). The writer holds an exclusive lock on ``<name>.partial/writer.lock``
@@ -18,17 +23,21 @@ from functools import lru_cache
 import os
 from pathlib import Path
 import shutil
-from typing import TYPE_CHECKING, Any
+from typing import Any, TYPE_CHECKING
 
 # rosbags is imported where a bag is written or read: a run without a bag (and the
 # command line's start) does not pay for it
 if TYPE_CHECKING:
+    from rosbags.interfaces import Qos
     from rosbags.typesys.store import Typestore
 
 PARTIAL_SUFFIX = '.partial'
 LOCK_NAME = 'writer.lock'
 BAG_VERSION = 9
 INTERFACES = 'vd_interfaces'
+#: the ROS distribution the bags are written for (metadata ``ros_distro``)
+ROS_DISTRO = 'jazzy'
+_ROSBAGS_DISTRO = 'ros_distro: rosbags'
 
 
 class BagError(Exception):
@@ -72,7 +81,7 @@ def _writable(folder: Path) -> bool:
 
 
 def _partial_is_live(partial: Path) -> bool:
-    """Return True while a writer holds the partial bag's lock (a live run writes it)."""
+    """Tell whether a writer holds the partial bag's lock (a live run writes it)."""
     try:
         fd = os.open(partial / LOCK_NAME, os.O_RDONLY)
     except FileNotFoundError:
@@ -88,14 +97,117 @@ def _partial_is_live(partial: Path) -> bool:
     return False
 
 
+@lru_cache(maxsize=1)
+def _writer_class() -> type:
+    """Return rosbags' Writer whose metadata names the Jazzy distribution."""
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.rosbag2.storage_mcap import McapWriter
+
+    class JazzyMcapWriter(McapWriter):
+        """rosbags' MCAP storage, with the metadata record naming the Jazzy distribution."""
+
+        def close(self, version: int, metadata: str) -> None:
+            super().close(version, metadata.replace(_ROSBAGS_DISTRO,
+                                                    f'ros_distro: {ROS_DISTRO}'))
+
+    class JazzyWriter(Writer):
+        STORAGE_PLUGINS = {StoragePlugin.MCAP: JazzyMcapWriter}
+
+        def close(self) -> None:
+            super().close()
+            text = self.metapath.read_text(encoding='utf-8')
+            self.metapath.write_text(
+                text.replace(_ROSBAGS_DISTRO, f'ros_distro: {ROS_DISTRO}'), encoding='utf-8')
+
+    return JazzyWriter
+
+
+def qos_record(profile) -> Qos:
+    """Return the bag's record of an rclpy QoSProfile (the same enumerations, by value)."""
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
+    def duration(d) -> QosTime:
+        ns = d.nanoseconds
+        return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    return Qos(history=QosHistory(int(profile.history)), depth=int(profile.depth),
+               reliability=QosReliability(int(profile.reliability)),
+               durability=QosDurability(int(profile.durability)),
+               deadline=duration(profile.deadline), lifespan=duration(profile.lifespan),
+               liveliness=QosLiveliness(int(profile.liveliness)),
+               liveliness_lease_duration=duration(profile.liveliness_lease_duration),
+               avoid_ros_namespace_conventions=bool(profile.avoid_ros_namespace_conventions))
+
+
+def offered_qos(path: str | Path) -> dict[str, list]:
+    """
+    Return topic -> the rclpy QoSProfiles its publishers offered, from a bag's metadata.
+
+    What ``ros2 bag play`` publishes with.
+    """
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
+    import yaml
+
+    def duration(d) -> Duration:
+        return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
+
+    meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
+    out = {}
+    for entry in meta['rosbag2_bagfile_information']['topics_with_message_count']:
+        topic = entry['topic_metadata']
+        out[topic['name']] = [QoSProfile(
+            history=HistoryPolicy[q['history'].upper()], depth=int(q['depth']),
+            reliability=ReliabilityPolicy[q['reliability'].upper()],
+            durability=DurabilityPolicy[q['durability'].upper()],
+            deadline=duration(q['deadline']), lifespan=duration(q['lifespan']),
+            liveliness=LivelinessPolicy[q['liveliness'].upper()],
+            liveliness_lease_duration=duration(q['liveliness_lease_duration']),
+            avoid_ros_namespace_conventions=bool(q['avoid_ros_namespace_conventions']))
+            for q in topic['offered_qos_profiles']]
+    return out
+
+
+def log_time(msg: Any, fallback_ns: int) -> int:
+    """
+    Return the log time of ``msg`` in a bag.
+
+    Its ``header.stamp`` (or ``stamp``, or its first transform's stamp), else
+    ``fallback_ns`` (the reception time).
+    """
+    stamp = getattr(msg, 'stamp', None)
+    if stamp is None and hasattr(msg, 'header'):
+        stamp = msg.header.stamp
+    if stamp is None and getattr(msg, 'transforms', None):
+        stamp = msg.transforms[0].header.stamp
+    if stamp is None:
+        return fallback_ns
+    ns = int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+    return ns if ns > 0 else fallback_ns
+
+
 class BagWriter:
     """Writes rclpy messages (serialised CDR) to an MCAP rosbag2 bag, atomically."""
 
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
-        # imported before anything is created on disk (the import takes a moment, in
-        # which a signal would otherwise leave a partial folder behind)
-        from rosbags.rosbag2 import StoragePlugin, Writer
+        # imported before the partial folder exists: a signal during the import
+        # leaves nothing behind
+        from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
 
+        writer_class = _writer_class()
         self.path = Path(path)
         check_bag_path(self.path)
         # rosbags names the storage file after the bag folder, so the bag is built
@@ -114,8 +226,9 @@ class BagWriter:
                 raise BagError(f'{self.partial}: another run is writing this bag') from None
             self._lock = os.open(self.partial / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
             fcntl.flock(self._lock, fcntl.LOCK_EX)
-            self._writer = Writer(self.partial / self.path.name, version=BAG_VERSION,
-                                  storage_plugin=StoragePlugin.MCAP)
+            self._writer = writer_class(self.partial / self.path.name, version=BAG_VERSION,
+                                        storage_plugin=StoragePlugin.MCAP)
+            self._writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
             for key, value in (custom_data or {}).items():
                 self._writer.set_custom_data(key, value)
             self._writer.open()
@@ -130,13 +243,21 @@ class BagWriter:
     def set_custom_data(self, key: str, value: str) -> None:
         self._writer.set_custom_data(key, value)
 
-    def write(self, topic: str, msg: Any, timestamp_ns: int) -> None:
+    def write(self, topic: str, msg: Any, timestamp_ns: int, qos=()) -> None:
+        """
+        Write ``msg`` at log time ``timestamp_ns``.
+
+        ``qos`` (rclpy QoSProfiles) is what the topic's publishers offered, recorded
+        with the topic's first message.
+        """
         from rclpy.serialization import serialize_message
 
         msgtype = _type_name(msg)
         conn = self._connections.get(topic)
         if conn is None:
-            conn = self._writer.add_connection(topic, msgtype, typestore=typestore())
+            conn = self._writer.add_connection(
+                topic, msgtype, typestore=typestore(),
+                offered_qos_profiles=[qos_record(q) for q in qos])
             self._connections[topic] = conn
         self._writer.write(conn, int(timestamp_ns), serialize_message(msg))
         self.count += 1
@@ -183,7 +304,7 @@ class BagMessage:
 
 
 def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMessage]:
-    """Every message (deserialised with rosbags) of a finished bag."""
+    """Yield every message (deserialised with rosbags) of a finished bag."""
     path = Path(path)
     if not (path / 'metadata.yaml').is_file():
         raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')

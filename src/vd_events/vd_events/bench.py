@@ -73,7 +73,11 @@ def run_bench() -> dict[str, Any]:
 
 def _bench_flex(config) -> dict[str, float]:
     """
+<<<<<<< HEAD
     Time the 101-step parallel wheel travel, rigid and flexible, per axle.
+=======
+    Time a 101-step parallel wheel travel, rigid and flexible, per axle.
+>>>>>>> contract
 
     Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
@@ -93,7 +97,11 @@ def _bench_capability(master: Path) -> float:
     """
     Time the whole capability study of both axles; target: under 20 s.
 
+<<<<<<< HEAD
     22 runs of 101 steps, through the ROS graph, with bags.
+=======
+    22 runs, 101 steps, through the ROS graph, with bags.
+>>>>>>> contract
     """
     from vd_data_server.study import load_study
 
@@ -158,7 +166,11 @@ def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
 
 def _bench_data_change(master: Path) -> float:
     """
+<<<<<<< HEAD
     Time from editing a data file on disk to the new configuration at a subscriber.
+=======
+    Time editing a data file on disk until the new configuration arrives at a subscriber.
+>>>>>>> contract
 
     The data server watches every 0.5 s, its default.
     """
@@ -213,13 +225,17 @@ def _bench_data_change(master: Path) -> float:
 
 
 def _bench_bag(n: int = 20000) -> dict[str, float]:
-    """Sample messages written to an MCAP bag per second (serialisation included)."""
-    from vd_interfaces.msg import Sample
+    """
+    Count AnalyticalState messages (17 channels) written to an MCAP bag per second.
+
+    Serialisation and chunk compression included.
+    """
+    from vd_interfaces.msg import AnalyticalState
 
     from .bag import BagWriter
 
-    msg = Sample(event='bench', configuration='baseline', model='kc', step=0,
-                 names=[f'c{i}' for i in range(16)], values=[float(i) for i in range(16)])
+    msg = AnalyticalState(event='bench', configuration='baseline', model='two_track', step=0,
+                          lateral_acceleration=1.0, speed=20.0, steer_angle=0.01)
     with tempfile.TemporaryDirectory() as tmp:
         writer = BagWriter(Path(tmp) / 'bag')
         t0 = time.perf_counter()
@@ -274,7 +290,7 @@ def print_bench(results: dict[str, Any]) -> None:
           for name in ('startup', *CLI_PHASES, 'other')),
         ('data file edited -> new configuration received',
          f"{results['data_change_to_republish_s']:.2f} s", 'about 1 s'),
-        ('bag write rate (Sample, 16 channels)',
+        ('bag write rate (AnalyticalState, 17 channels)',
          f"{results['bag_write']['messages_per_s']:.0f} msg/s", ''),
     ]
     vehicle = results['vehicle']

@@ -1,9 +1,9 @@
 """
 The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2).
 
-For every K&C event of an axle, run the rigid and the flexible model on the same configuration and
-say, per quantity, whether the rigid model is good enough ("Rigid") or the flexible
-one is needed ("Flexible").
+For every K&C event of an axle, run the rigid and the flexible model on the same
+configuration and say, per quantity, whether the rigid model is good enough ("Rigid")
+or the flexible one is needed ("Flexible").
 
 Criterion (documented in docs/capability.md; every tolerance configurable):
 
@@ -33,6 +33,8 @@ import numpy as np
 
 from vd_solvers.constants import DEG
 from vd_solvers.results import EventOutcome
+
+from .display import display
 
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
 QUANTITIES: Mapping[str, tuple[tuple[str, ...], str, float | None]] = {
@@ -134,10 +136,9 @@ def _stop_mask(*outcomes: EventOutcome) -> np.ndarray:
 def compare(rigid: EventOutcome, flexible: EventOutcome,
             tolerances: Mapping[str, float] | None = None) -> tuple[list[Cell], list[Cell]]:
     """
-    Compare the rigid and flexible runs of one event.
+    Return the cells (per-step quantities) and metric cells of one event.
 
-    Returns the cells (per-step quantities) and metric cells; see the module doc.
-    ``tolerances`` overrides the absolute tolerance per quantity (SI).
+    See the module doc. ``tolerances`` overrides the absolute tolerance per quantity (SI).
     """
     if rigid.n_steps != flexible.n_steps:
         raise ValueError(f'{rigid.event}: the rigid and flexible runs have different steps')
@@ -200,10 +201,6 @@ def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: 
                  tuple(cells), tuple(metrics), notes)
 
 
-#: display units of the differences
-DISPLAY = {'rad': ('deg', 1.0 / DEG), 'm': ('mm', 1e3), 'N': ('N', 1.0)}
-
-
 def format_table(table: Table) -> list[list[str]]:
     """Rows (event, then one 'verdict (worst difference unit)' per quantity)."""
     rows = []
@@ -211,8 +208,8 @@ def format_table(table: Table) -> list[list[str]]:
         row = [event]
         for quantity in QUANTITIES:
             cell = next(c for c in table.cells if c.event == event and c.quantity == quantity)
-            unit, scale = DISPLAY.get(cell.unit, (cell.unit, 1.0))
-            row.append(f'{cell.label} ({cell.max_difference * scale:.3g} {unit})')
+            value, unit = display(cell.max_difference, cell.unit, quantity)
+            row.append(f'{cell.label} ({value:.3g} {unit})')
         rows.append(row)
     return rows
 
@@ -258,24 +255,30 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
               parameters: Sequence[str] = (), tolerances: Mapping[str, float] | None = None,
               progress=None) -> list[Table]:
     """
-    Run every K&C event rigid and flexible on ``axles`` through the ROS graph.
+    Run every K&C event rigid and flexible on ``axles`` and record them; return the tables.
 
-    The graph is embedded; it records both runs of every event -- their EventResults and per-step
-    Samples as the solver answered the goals -- and each axle's table to one bag,
-    ``out/capability_<configuration>``; return the tables.
+    Through the ROS graph (embedded); both runs of every event -- their EventResults and
+    per-step KcStates as the solver answered the goals, on the process's time axis --
+    and each axle's table go to one bag, ``out/capability_<configuration>``.
 
     One bag for the study: a recorder per run would cost more than the runs themselves.
     """
     from pathlib import Path
     import time
 
-    from builtin_interfaces.msg import Time
-
     from vd_data_server.errors import DataError
     from vd_data_server.master import flex_components
-    from vd_solvers.conversions import outcome_samples, outcome_to_msg
+    from vd_solvers.conversions import (
+        TIME_AXIS,
+        end_stamp,
+        outcome_states,
+        outcome_to_msg,
+        run_stamp,
+        time_msg,
+    )
+    from vd_solvers.solver_node import RESULTS, SAMPLES
 
-    from .bag import BagWriter, check_bag_path
+    from .bag import BagWriter, check_bag_path, log_time
     from .runner import RunError, RunRequest, run_embedded, validate
 
     out = Path(out)
@@ -313,21 +316,16 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
                              'vd.fidelity': 'rigid and flexible',
                              'vd.kind': 'capability study', 'vd.axles': ' '.join(axles)})
     try:
-        clock = time.time_ns()
-
-        def stamp() -> Time:
-            nonlocal clock
-            clock += 1000  # strictly increasing log times, 1 us apart
-            return Time(sec=clock // 1_000_000_000, nanosec=clock % 1_000_000_000)
-
         for result in results:
             assert result.outcome is not None
-            for sample in outcome_samples(result.outcome):
-                sample.header.stamp = stamp()
-                writer.write('/vd/kc/state', sample, clock)
-            writer.write('/vd/kc/result', outcome_to_msg(result.outcome, stamp()), clock)
+            start = run_stamp(result.outcome, time.time_ns())
+            for state in outcome_states(result.outcome, start):
+                writer.write('/vd/kc/state', state, log_time(state, 0), [SAMPLES])
+            msg = outcome_to_msg(result.outcome, end_stamp(result.outcome, start))
+            writer.write('/vd/kc/result', msg, log_time(msg, 0), [RESULTS])
         for table in tables:
-            writer.write(TOPIC, to_msg(table, stamp()), clock)
+            msg = to_msg(table, time_msg(TIME_AXIS.claim(time.time_ns(), 0.0)))
+            writer.write(TOPIC, msg, log_time(msg, 0), [RESULTS])
         writer.close()
     except BaseException:
         writer.abort()

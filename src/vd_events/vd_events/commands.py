@@ -10,16 +10,10 @@ import sys
 from vd_data_server.errors import DataError
 
 from .bag import BagError
+from .display import HEADLINE_NAMES, display
 from .runner import RunError, RunOutcome, RunRequest
 
 HANDLERS: dict[str, Callable[[argparse.Namespace], int]] = {}
-
-#: metrics printed first, when a run has them
-HEADLINE = ('understeer_gradient_deg_per_g', 'characteristic_speed_kmh', 'critical_speed_kmh',
-            'max_lateral_acceleration_g', 'understeer_gradient_linear_deg_per_g',
-            'roll_gradient', 'natural_frequency', 'damping_ratio', 'max_lateral_acceleration',
-            'sideslip_gradient', 'yaw_rate_response_time_90', 'yaw_rate_overshoot',
-            'lateral_acceleration_response_time_90')
 
 
 def add_subcommands(sub: argparse._SubParsersAction) -> None:
@@ -246,11 +240,12 @@ def _print_outcome(result: RunOutcome) -> None:
     table.add_column('metric')
     table.add_column('value', justify='right')
     table.add_column('unit')
-    names = [m for m in HEADLINE if m in outcome.metrics]
+    names = [m for m in HEADLINE_NAMES if m in outcome.metrics]
     names += [m for m in outcome.metrics if m not in names]
     for name in names:
         metric = outcome.metrics[name]
-        table.add_row(name, f'{metric.value:.5g}', metric.unit)
+        value, unit = display(metric.value, metric.unit, name)
+        table.add_row(name, f'{value:.5g}', unit)
     term = console()
     term.print(table)
     notes = [*outcome.notes[:1], *(n for n in outcome.notes[1:] if n.startswith('inner '))]

@@ -20,6 +20,7 @@ import time
 from vd_data_server.overview import console
 
 OUT = Path('out/demo')
+<<<<<<< HEAD
 #: metric, format, scale of the one-line summaries
 HEADLINE = (
     ('understeer_gradient_deg_per_g', 'K_us {:.3f} deg/g', 1.0),
@@ -43,6 +44,8 @@ HEADLINE = (
 )
 
 
+=======
+>>>>>>> contract
 def _plan_path() -> Path:
     from ament_index_python.packages import get_package_share_directory
 
@@ -55,6 +58,7 @@ def main() -> int:
     from vd_data_server.study import load_study
 
     from .capability import run_study
+    from .display import summary as run_summary
     from .report import build_report
     from .study_plan import load_plan, run_plan
 
@@ -79,12 +83,7 @@ def main() -> int:
     bags += sorted((OUT / 'capability').glob('capability_*'))
     summary['report'] = str(build_report(bags, OUT))
     for run in summary['runs']:
-        m = run['metrics']
-        parts = []
-        for key, fmt, scale in HEADLINE:
-            if key in m:
-                parts.append(fmt.format(m[key]['value'] * scale))
-        status = run['error'] or ', '.join(parts)
+        status = run['error'] or run_summary(run['metrics'])
         term.print(f"  {run['configuration']:<11} {run['event']:<22} "
                       f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
     term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")

@@ -9,6 +9,10 @@ the runner once it has confirmed every result it asked for) or ``stop()``.
 Any other end (Ctrl-C, SIGTERM, the parent run dying) removes the partial bag
 and says so: an interrupted recording never looks finished. The run's
 provenance goes into the bag's metadata.
+
+Each message is logged at its own stamp (``bag.log_time``: the simulation-time axis of
+the states), and each topic records the QoS its publishers offered, so ``ros2 bag play``
+of the bag reproduces the latched topics.
 """
 from __future__ import annotations
 
@@ -19,6 +23,7 @@ import time
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
+from rclpy.qos import HistoryPolicy
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
@@ -26,15 +31,17 @@ from tf2_msgs.msg import TFMessage
 from vd_data_server import names
 from vd_data_server.node_main import run_node
 from vd_data_server.qos import CONFIGURATIONS, LATEST, STATES
-from vd_events.bag import BagError, BagWriter
+from vd_events.bag import BagError, BagWriter, log_time
 from vd_interfaces.msg import (
+    AnalyticalState,
     Configuration,
     DataStatus,
     EventResult,
+    KcState,
     Provenance,
-    Sample,
     VehicleState,
 )
+from vd_solvers.conversions import TIME_AXIS
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC
 
 #: where the recorder says how many event results it has written completely (latched),
@@ -46,7 +53,7 @@ FINISH_SERVICE = 'recorder/finish'
 FINISH_LINGER = 0.3
 
 #: each family's per-step message type
-STATE_TYPES = {'steady_state': Sample, 'kc': Sample, 'vehicle': VehicleState}
+STATE_TYPES = {'steady_state': AnalyticalState, 'kc': KcState, 'vehicle': VehicleState}
 
 #: topic (relative to the namespace, or absolute) -> (type, QoS) recorded by default;
 #: the subscriptions use the publishers' own profiles
@@ -63,10 +70,12 @@ TOPICS = {
 
 
 def _stamp_ns(msg) -> int | None:
-    """Return the stamp of a result, sample or provenance message (None for data topics)."""
+    """Return the stamp of a result, state or provenance message (None for data topics)."""
     stamp = getattr(msg, 'stamp', None)
     if stamp is None and hasattr(msg, 'header'):
         stamp = msg.header.stamp
+    if stamp is None and getattr(msg, 'transforms', None):  # TF
+        stamp = msg.transforms[0].header.stamp
     if stamp is None or isinstance(msg, (Configuration, DataStatus)):
         return None
     return stamp.sec * 1_000_000_000 + stamp.nanosec
@@ -88,8 +97,12 @@ class Recorder(Node):
         wanted = [c for c in self.get_parameter('configurations').value if c]
         self.only = set(wanted)
         self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
-        self.start = self.get_clock().now().nanoseconds
+        # runs stamped before this recorder started are not its own: on the time axis of
+        # this process they end at or before TIME_AXIS.end(), which may lie ahead of the
+        # wall clock after time-domain runs (their history stays latched in the solvers)
+        self.start = max(self.get_clock().now().nanoseconds, TIME_AXIS.end() + 1)
         self._samples: dict[tuple[str, str, str], int] = {}
+        self._qos: dict[str, list] = {}  # topic -> the offered QoS recorded in the bag
         self._pending: list[tuple[tuple[str, str, str], int, int]] = []
         self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
         self.complete = 0  # results written together with all their step samples
@@ -143,7 +156,10 @@ class Recorder(Node):
             self.writer.set_custom_data('vd.modified', '; '.join(
                 f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
                 for g in msg.groups for k in g.modified_keys) or 'none')
-        self.writer.write(self._bag_topics[topic], msg, time.time_ns())
+        if topic not in self._qos:
+            self._qos[topic] = self._offered(topic)
+        self.writer.write(self._bag_topics[topic], msg, log_time(msg, time.time_ns()),
+                          self._qos[topic])
         self.counts[topic] += 1
         if topic.endswith('/state'):
             key = (msg.configuration, msg.event, msg.model)
@@ -156,12 +172,27 @@ class Recorder(Node):
                                   self._odometry_needed))
         self._publish_complete()
 
+    def _offered(self, topic: str) -> list:
+        """
+        Return the QoS profiles the publishers of ``topic`` offer (as discovered).
+
+        History and depth, which discovery does not carry, are those of this recorder's
+        subscription (the publishers' own profile).
+        """
+        own = TOPICS[topic][1]
+        out = []
+        for info in self.get_publishers_info_by_topic(self._bag_topics[topic]):
+            q = info.qos_profile
+            if q.history == HistoryPolicy.UNKNOWN or q.depth == 0:
+                q.history, q.depth = own.history, own.depth
+            out.append(q)
+        return out or [own]
+
     def _publish_complete(self) -> None:
         """
-        Count the results written completely, and say so.
+        Count the results whose every step state is written too, and say so.
 
-        Complete: every step sample (and, for the full vehicle, every odometry and TF
-        message) is written too.
+        For the full vehicle, every odometry message too.
         """
         odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending

@@ -19,11 +19,14 @@ from typing import Any
 import numpy as np
 
 from vd_solvers.analytical.budget import TERMS as BUDGET_TERMS
+from vd_solvers.conversions import outcome_from_msg
+from vd_solvers.results import EventOutcome
 
 from .bag import BagError, read_bag
+from .display import HEADLINE_NAMES, display
 
 G = 9.80665
-DEG = 180.0 / math.pi
+DEG = 180.0 / math.pi  # plot axes (display)
 LINE_STYLES = ('-', '--', ':', '-.')
 
 
@@ -122,30 +125,24 @@ VEHICLE_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
         (_TIME, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', DEG)),
     ),
 }
-HEADLINE = ('understeer_gradient_deg_per_g', 'characteristic_speed_kmh',
-            'max_lateral_acceleration_g', 'understeer_gradient_linear_deg_per_g',
-            'roll_gradient', 'natural_frequency', 'damping_ratio', 'bump_steer', 'camber_gain',
-            'wheel_rate', 'roll_centre_height_kinematic', 'roll_stiffness', 'roll_steer',
-            'lateral_compliance_steer', 'lateral_compliance_camber', 'steering_ratio',
-            'sideslip_gradient', 'yaw_rate_response_time_90', 'yaw_rate_overshoot',
-            'lateral_acceleration_response_time_90', 'yaw_rate_gain')
-
-
-@dataclass
+@dataclass(frozen=True)
 class Run:
+    """One recorded result (read through ``conversions.outcome_from_msg``) and its bag."""
+
     bag: Path
-    event: str
-    configuration: str
-    model: str
-    axle: str
-    data_hash: str
-    metrics: dict[str, tuple[float, str]]
-    channels: dict[str, np.ndarray]
-    units: dict[str, str]
-    notes: list[str]
-    modified: list[str]
-    sources: dict[str, str] = field(default_factory=dict)
-    fidelity: str = 'rigid'
+    outcome: EventOutcome
+    modified: list[str] = field(default_factory=list)
+
+    def __getattr__(self, name: str):
+        return getattr(self.outcome, name)  # event, configuration, model, axle, notes, ...
+
+    @property
+    def channels(self) -> dict[str, np.ndarray]:
+        return {k: c.values for k, c in self.outcome.channels.items()}
+
+    @property
+    def units(self) -> dict[str, str]:
+        return {k: c.unit for k, c in self.outcome.channels.items()}
 
     @property
     def label(self) -> str:
@@ -154,11 +151,12 @@ class Run:
 
 
 def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
-    """Every EventResult in the bags, and the newest data status seen."""
+    """Every EventResult in the bags (as EventOutcomes), and the newest data status seen."""
     runs: list[Run] = []
     status = None
     for bag in bags:
         provenance: dict[str, list[str]] = {}
+        results = []
         for item in read_bag(bag):
             msg = item.msg
             # topics of any namespace (/vd/data_status, /car2/data_status)
@@ -169,15 +167,8 @@ def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
                     f'{g.group}.{k.key}: {k.data_value} → {k.master_value} {k.unit}'.strip()
                     for g in msg.groups for k in g.modified_keys]
             elif item.topic.endswith('/result'):
-                runs.append(Run(
-                    bag=bag, event=msg.event, configuration=msg.configuration, model=msg.model,
-                    axle=msg.axle, data_hash=msg.data_hash,
-                    metrics={m.name: (m.value, m.unit) for m in msg.metrics},
-                    channels={c.name: np.asarray(c.values, dtype=float) for c in msg.channels},
-                    units={c.name: c.unit for c in msg.channels}, notes=list(msg.notes),
-                    modified=provenance.get(msg.configuration, []),
-                    sources={m.name: m.source for m in msg.metrics},
-                    fidelity=msg.fidelity))
+                results.append(outcome_from_msg(msg))
+        runs += [Run(bag, o, provenance.get(o.configuration, [])) for o in results]
     return runs, status
 
 
@@ -259,13 +250,13 @@ def _fmt(value: float) -> str:
 
 
 def _section(event: str, axle: str, family: str, runs: list[Run], images: list[str]) -> str:
-    names = [m for m in HEADLINE if any(m in r.metrics for r in runs)]
+    names = [m for m in HEADLINE_NAMES if any(m in r.metrics for r in runs)]
     names += sorted({m for r in runs for m in r.metrics} - set(names))
     head = ''.join(f'<th>{html.escape(n)}<br><small>{html.escape(_unit(runs, n))}</small></th>'
                    for n in names)
     rows = ''.join(
         '<tr><td>' + html.escape(r.label) + '</td>' + ''.join(
-            f"<td>{_fmt(r.metrics[n][0]) if n in r.metrics else ''}</td>" for n in names)
+            f"<td>{_fmt(_shown(r, n)) if n in r.metrics else ''}</td>" for n in names)
         + '</tr>' for r in runs)
     imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
     notes = ''.join(f'<li>{html.escape(r.label)}: {html.escape(r.notes[0])}</li>'
@@ -277,27 +268,36 @@ def _section(event: str, axle: str, family: str, runs: list[Run], images: list[s
             f"{budgets}<ul class='notes'>{notes}</ul>")
 
 
+def _shown(run: Run, name: str) -> float:
+    """Return a metric of ``run`` in its display unit (``display.display``)."""
+    m = run.metrics[name]
+    return display(m.value, m.unit, name)[0]
+
+
 def _budget(run: Run) -> str:
-    """Return the understeer-gradient budget of one run (Gillespie ch. 6): term, deg/g, source."""
-    names = [f'understeer_budget_{t}_deg_per_g' for t in BUDGET_TERMS]
+    """Tabulate the understeer-gradient budget of a run (Gillespie ch. 6): term, value, source."""
+    names = [f'understeer_budget_{t}' for t in BUDGET_TERMS]
     if not all(n in run.metrics for n in names):
         return ''
+    unit = _unit([run], names[0])
     rows = ''.join(
-        f"<tr><td>{html.escape(t.replace('_', ' '))}</td><td>{run.metrics[n][0]:.3f}</td>"
-        f"<td><small>{html.escape(run.sources.get(n, ''))}</small></td></tr>"
+        f"<tr><td>{html.escape(t.replace('_', ' '))}</td><td>{_shown(run, n):.3f}</td>"
+        f"<td><small>{html.escape(run.metrics[n].source)}</small></td></tr>"
         for t, n in zip(BUDGET_TERMS, names))
-    total = run.metrics.get('understeer_budget_total_deg_per_g')
-    if total is not None:
-        rows += f'<tr><th>total</th><th>{total[0]:.3f}</th><td></td></tr>'
+    if 'understeer_budget_total' in run.metrics:
+        rows += (f"<tr><th>total</th><th>{_shown(run, 'understeer_budget_total'):.3f}</th>"
+                 '<td></td></tr>')
     return (f"<h3>Understeer budget — {html.escape(run.label)}</h3>"
-            f"<table class='budget'><tr><th>term</th><th>deg/g</th><th>source</th></tr>"
-            f"{rows}</table>")
+            f"<table class='budget'><tr><th>term</th><th>{html.escape(unit)}</th>"
+            f"<th>source</th></tr>{rows}</table>")
 
 
 def _unit(runs: list[Run], name: str) -> str:
+    """Return the display unit of metric ``name`` (from the first run that has it)."""
     for run in runs:
         if name in run.metrics:
-            return run.metrics[name][1]
+            m = run.metrics[name]
+            return display(m.value, m.unit, name)[1]
     return ''
 
 
@@ -377,8 +377,8 @@ def load_capability(bags: Sequence[Path]) -> list:
 
 
 def _capability_section(table) -> str:
-    """Return the table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
-    from .capability import DISPLAY, QUANTITIES, format_table
+    """Render the table coloured as the thesis' Tables 5.2.1/5.2.2, worst difference per cell."""
+    from .capability import QUANTITIES, format_table
 
     head = ''.join(f'<th>{html.escape(q)}</th>' for q in QUANTITIES)
     rows = []
@@ -396,9 +396,9 @@ def _capability_section(table) -> str:
             f'<td style="background:{"#f4c7c3" if c.verdict == "Flexible" else "#c9e7c0"}">'
             f'{c.verdict}</td></tr>')
     offsets = '; '.join(
-        f"{c.event} {c.quantity} {c.design_offset * DISPLAY.get(c.unit, ('', 1.0))[1]:.3g} "
-        f"{DISPLAY.get(c.unit, (c.unit, 1.0))[0]}" for c in table.cells
-        if c.quantity == 'wheel_load' and abs(c.design_offset) > 0.0)
+        '{} {} {:.3g} {}'.format(c.event, c.quantity,
+                                 *display(c.design_offset, c.unit, c.quantity))
+        for c in table.cells if c.quantity == 'wheel_load' and abs(c.design_offset) > 0.0)
     return (f"<h2>Analytical capability: {html.escape(table.configuration)}, "
             f"{html.escape(table.axle)} axle</h2>"
             f"<p>Rigid vs flexible K&amp;C (flexible: {html.escape(', '.join(table.components))}"

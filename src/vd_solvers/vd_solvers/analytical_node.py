@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
+from vd_interfaces.msg import AnalyticalState
 from vd_solvers.analytical.events import run_event
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SolverNode
@@ -24,6 +25,7 @@ FAMILY = 'steady_state'
 
 class AnalyticalSolver(SolverNode):
     """The analytical (bicycle, two-track) solver node."""
+    STATE_TYPE = AnalyticalState
 
     def __init__(self, **kwargs) -> None:
         super().__init__('analytical_solver', FAMILY, self._solve, **kwargs)

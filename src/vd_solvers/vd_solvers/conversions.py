@@ -1,15 +1,106 @@
-"""EventOutcome <-> vd_interfaces messages (EventResult, Sample)."""
+"""
+EventOutcome <-> vd_interfaces messages: the one conversion module of the results.
+
+* :func:`outcome_to_msg` / :func:`outcome_from_msg`: EventResult (metrics, channels, notes);
+  the report, ``vd run --json``, the capability study and the demo read results through
+  :func:`outcome_from_msg`, from rclpy messages or from bag messages (rosbags) alike.
+* :func:`outcome_states`: the per-step typed state of a result (``KcState``,
+  ``AnalyticalState``, ``VehicleState``), whose fields are the channels, and
+  :func:`states_channels`, its inverse.
+* The bag's time axis: :func:`step_offsets` (simulated time, or :data:`PSEUDO_STEP`
+  per step of a quasi-static sweep) and :class:`TimeAxis` (run stamps that never overlap).
+
+A field a model does not compute is NaN in the message; :func:`states_channels`
+leaves out the channels that are NaN at every step.
+"""
 from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+import math
+import threading
 
 import numpy as np
 
 from vd_data_server.names import BODY_FRAME, ODOM_FRAME
-from vd_interfaces.msg import Channel as ChannelMsg
-from vd_interfaces.msg import EventResult, NamedScalar, Sample
 from vd_solvers.results import Channel, EventOutcome, Metric
 
+#: pseudo-time per step of a quasi-static event (K&C sweeps, steady-state sweeps), s
+PSEUDO_STEP = 1e-3
+#: least gap between two runs on one time axis, s
+RUN_GAP = 1e-3
 
-def outcome_to_msg(outcome: EventOutcome, stamp=None) -> EventResult:
+_NS = 1_000_000_000
+SIDES = ('left', 'right')
+XYZ = ('x', 'y', 'z')
+
+# --- K&C ----------------------------------------------------------------------
+#: KcState field (axle-level) -> SI unit; channel name = field name
+KC_AXLE_FIELDS = {
+    'applied_force': 'N', 'applied_moment': 'N*m', 'track': 'm',
+    'steering_wheel_angle': 'rad', 'rack_travel': 'm', 'rack_force': 'N', 'arb_twist': 'rad',
+    'arb_torque': 'N*m', 'elastic_energy': 'J', 'constraint_residual': 'm',
+    'force_residual': 'N', 'iterations': '-',
+}
+#: KcWheel scalar field -> SI unit; channel ``<field>_<side>``
+KC_WHEEL_FIELDS = {
+    'wheel_travel': 'm', 'pad_travel': 'm', 'toe': 'rad', 'camber': 'rad',
+    'steer_angle': 'rad', 'caster': 'rad', 'kingpin_inclination': 'rad', 'scrub_radius': 'm',
+    'mechanical_trail': 'm', 'pad_force': 'N', 'spring_length': 'm', 'spring_force': 'N',
+    'damper_length': 'm', 'bump_stop_force': 'N', 'bump_stop_deflection': 'm',
+    'rebound_stop_force': 'N', 'rebound_stop_deflection': 'm', 'arb_arm_angle': 'rad',
+    'droplink_force': 'N',
+}
+#: KcWheel Point/Vector3 field -> SI unit; channel ``<field>_<x|y|z>_<side>``
+KC_WHEEL_VECTORS = {
+    'wheel_centre': 'm', 'contact_point': 'm', 'steering_axis_ground': 'm',
+    'contact_force': 'N', 'centre_force': 'N', 'contact_moment': 'N*m',
+}
+#: Bushing Vector3 field -> (channel prefix, component names, SI unit); channel
+#: ``<prefix>.<bushing>.<component>_<side>``
+KC_BUSHING_FIELDS = {
+    'force': ('bushing_force', XYZ, 'N'),
+    'torque': ('bushing_force', ('rx', 'ry', 'rz'), 'N*m'),
+    'deflection': ('bushing_deflection', XYZ, 'm'),
+    'rotation': ('bushing_deflection', ('rx', 'ry', 'rz'), 'rad'),
+}
+
+# --- analytical ---------------------------------------------------------------
+#: AnalyticalState field -> SI unit; channel name = field name
+ANALYTICAL_FIELDS = {
+    'time': 's', 'lateral_acceleration': 'm/s^2', 'speed': 'm/s', 'steer_angle': 'rad',
+    'yaw_rate': 'rad/s', 'sideslip': 'rad', 'lateral_velocity': 'm/s',
+    'slip_angle_front': 'rad', 'slip_angle_rear': 'rad', 'slip_angle_difference': 'rad',
+    'roll_angle': 'rad', 'lateral_force_front_axle': 'N', 'lateral_force_rear_axle': 'N',
+    'wheel_load_front_left': 'N', 'wheel_load_front_right': 'N', 'wheel_load_rear_left': 'N',
+    'wheel_load_rear_right': 'N',
+}
+
+# --- full vehicle -------------------------------------------------------------
+#: VehicleState field -> SI unit; channel name = field name
+VEHICLE_FIELDS = {
+    'time': 's', 'x': 'm', 'y': 'm', 'yaw': 'rad', 'roll': 'rad', 'pitch': 'rad',
+    'yaw_rate': 'rad/s', 'speed': 'm/s', 'sideslip': 'rad', 'lateral_acceleration': 'm/s^2',
+    'longitudinal_acceleration': 'm/s^2', 'steering_wheel_angle': 'rad', 'wheel_torque': 'N*m',
+}
+#: VehicleWheel field -> (channel prefix, SI unit); channel ``<prefix>_<wheel>``
+WHEEL_FIELDS = {
+    'load': ('wheel_load', 'N'), 'travel': ('wheel_travel', 'm'),
+    'steer': ('wheel_steer', 'rad'), 'steer_angle': ('steer_angle', 'rad'),
+    'slip_angle': ('slip_angle', 'rad'), 'slip_ratio': ('slip_ratio', '-'),
+    'inclination': ('inclination', 'rad'), 'force_x': ('tire_force_x', 'N'),
+    'force_y': ('tire_force_y', 'N'), 'aligning_moment': ('aligning_moment', 'N*m'),
+}
+VEHICLE_WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
+
+
+# --- EventResult ----------------------------------------------------------------
+
+
+def outcome_to_msg(outcome: EventOutcome, stamp=None):
+    """vd_interfaces/EventResult of ``outcome`` (stamped ``stamp`` if given)."""
+    from vd_interfaces.msg import Channel as ChannelMsg
+    from vd_interfaces.msg import EventResult, NamedScalar
+
     msg = EventResult(event=outcome.event, configuration=outcome.configuration,
                       model=outcome.model, fidelity=outcome.fidelity, axle=outcome.axle,
                       data_hash=outcome.data_hash, notes=list(outcome.notes))
@@ -22,7 +113,13 @@ def outcome_to_msg(outcome: EventOutcome, stamp=None) -> EventResult:
     return msg
 
 
-def outcome_from_msg(msg: EventResult) -> EventOutcome:
+def outcome_from_msg(msg) -> EventOutcome:
+    """
+    Return the EventOutcome of an EventResult.
+
+    ``msg`` is an rclpy message or one read from a bag (``vd_events.bag.read_bag``),
+    whose fields are the same.
+    """
     return EventOutcome(
         event=msg.event, configuration=msg.configuration, model=msg.model,
         fidelity=msg.fidelity, axle=msg.axle, data_hash=msg.data_hash,
@@ -32,73 +129,262 @@ def outcome_from_msg(msg: EventResult) -> EventOutcome:
         notes=tuple(msg.notes))
 
 
-def _offset(stamp, seconds: float):
-    """``stamp`` (builtin_interfaces/Time) plus ``seconds``."""
+# --- the time axis --------------------------------------------------------------
+
+
+def step_offsets(outcome: EventOutcome) -> np.ndarray:
+    """
+    Return the seconds from the run's stamp to each step.
+
+    The simulated time of a time-domain event (a ``time`` channel), ``step *
+    PSEUDO_STEP`` for a quasi-static one.
+    """
+    if 'time' in outcome.channels:
+        return np.asarray(outcome.channels['time'].values, dtype=float)
+    return np.arange(outcome.n_steps) * PSEUDO_STEP
+
+
+def stamp_ns(stamp) -> int:
+    """Nanoseconds of a builtin_interfaces/Time."""
+    return int(stamp.sec) * _NS + int(stamp.nanosec)
+
+
+def time_msg(ns: int):
+    """builtin_interfaces/Time of ``ns`` nanoseconds."""
     from builtin_interfaces.msg import Time
 
-    total = stamp.sec * 1_000_000_000 + stamp.nanosec + int(round(seconds * 1e9))
-    return Time(sec=total // 1_000_000_000, nanosec=total % 1_000_000_000)
+    return Time(sec=int(ns) // _NS, nanosec=int(ns) % _NS)
 
 
-def outcome_samples(outcome: EventOutcome, stamp=None) -> list[Sample]:
+def offset_stamp(stamp, seconds: float):
+    """``stamp`` (builtin_interfaces/Time) plus ``seconds``."""
+    return time_msg(stamp_ns(stamp) + int(round(seconds * 1e9)))
+
+
+class TimeAxis:
     """
-    One Sample per step (channel names in every message, for plotting tools).
+    Run stamps on one strictly increasing time axis (one per process).
 
-    With ``stamp``, headers are stamped: ``stamp`` + the step's ``time`` channel in a
-    time-domain event, ``stamp`` itself otherwise.
+    A run starts at the wall-clock time it is published, or :data:`RUN_GAP` after the
+    end of the previous run's axis if that is later (a 3 s step steer solved in 0.1 s
+    must not overlap the next run), so several runs recorded in one bag keep strictly
+    increasing stamps on every topic.
     """
-    names = [k for k, c in outcome.channels.items() if len(c.values) == outcome.n_steps]
-    columns = np.column_stack([outcome.channels[k].values for k in names]) if names else None
-    time = outcome.channels['time'].values if 'time' in outcome.channels else None
-    samples = []
-    for step in range(outcome.n_steps):
-        sample = Sample(event=outcome.event, configuration=outcome.configuration,
-                        model=outcome.model, step=step, names=names,
-                        values=[float(v) for v in columns[step]] if columns is not None else [])
-        sample.header.frame_id = BODY_FRAME
-        if stamp is not None:
-            sample.header.stamp = stamp if time is None else _offset(stamp, float(time[step]))
-        samples.append(sample)
-    return samples
+
+    def __init__(self) -> None:
+        self._end = -1
+        self._lock = threading.Lock()
+
+    def claim(self, now_ns: int, span: float) -> int:
+        """Return the start (ns) of a run spanning ``span`` seconds, requested at ``now_ns``."""
+        with self._lock:
+            start = max(int(now_ns), self._end + int(RUN_GAP * 1e9))
+            self._end = start + int(round(span * 1e9))
+            return start
+
+    def end(self) -> int:
+        """Return the end (ns) of the latest run on this axis (-1: none yet)."""
+        with self._lock:
+            return self._end
 
 
-#: VehicleState field -> channel; the wheels' fields take the channel + _<wheel> suffix
-VEHICLE_FIELDS = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
-                  'lateral_acceleration', 'longitudinal_acceleration', 'steering_wheel_angle',
-                  'wheel_torque')
-WHEEL_FIELDS = {'load': 'wheel_load', 'travel': 'wheel_travel', 'steer': 'wheel_steer',
-                'slip_angle': 'slip_angle', 'slip_ratio': 'slip_ratio',
-                'inclination': 'inclination', 'force_x': 'tire_force_x',
-                'force_y': 'tire_force_y', 'aligning_moment': 'aligning_moment'}
+#: the process's time axis (every solver node and the capability study share it)
+TIME_AXIS = TimeAxis()
 
 
-def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
+def run_stamp(outcome: EventOutcome, now_ns: int):
+    """Claim the stamp (builtin_interfaces/Time) of a run of ``outcome`` on TIME_AXIS."""
+    offsets = step_offsets(outcome)
+    span = float(offsets[-1]) if offsets.size else 0.0
+    return time_msg(TIME_AXIS.claim(now_ns, span))
+
+
+def end_stamp(outcome: EventOutcome, stamp):
+    """Return the stamp of a run's last step (where its EventResult goes on the axis)."""
+    offsets = step_offsets(outcome)
+    return offset_stamp(stamp, float(offsets[-1]) if offsets.size else 0.0)
+
+
+# --- per-step states --------------------------------------------------------------
+
+
+def outcome_states(outcome: EventOutcome, stamp) -> list:
     """
-    vd_interfaces/VehicleState per step of a full-vehicle outcome, stamped ``stamp`` +
-    simulated time, frame ``odom``.
-    """
-    from vd_interfaces.msg import VehicleState, VehicleWheel
+    Return the typed per-step states of ``outcome``.
 
-    ch = {k: c.values for k, c in outcome.channels.items()}
+    KcState (model ``kc``), VehicleState (``vehicle``), AnalyticalState (the others),
+    stamped ``stamp`` + :func:`step_offsets`.
+    """
+    if outcome.model == 'kc':
+        return outcome_kc_states(outcome, stamp)
+    if outcome.model == 'vehicle':
+        return outcome_vehicle_states(outcome, stamp)
+    return outcome_analytical_states(outcome, stamp)
+
+
+def _column(channels: Mapping[str, Channel], name: str, n: int) -> np.ndarray:
+    c = channels.get(name)
+    return np.full(n, np.nan) if c is None else np.asarray(c.values, dtype=float)
+
+
+def _header(msg, stamp, offset: float, frame: str) -> None:
+    msg.header.stamp = offset_stamp(stamp, float(offset))
+    msg.header.frame_id = frame
+
+
+def bushing_names(channels: Mapping[str, Channel]) -> list[str]:
+    """Return the bushings of a K&C outcome, in channel order."""
+    names = [k.split('.')[1] for k in channels if k.startswith('bushing_force.')]
+    return list(dict.fromkeys(names))
+
+
+def outcome_kc_states(outcome: EventOutcome, stamp) -> list:
+    """vd_interfaces/KcState per step of a K&C outcome (pseudo-time, frame ``base_link``)."""
+    from geometry_msgs.msg import Point, Vector3
+
+    from vd_interfaces.msg import Bushing, KcState, KcWheel
+
+    ch, n = outcome.channels, outcome.n_steps
+    axle = {f: _column(ch, f, n) for f in KC_AXLE_FIELDS}
+    side_cols = []
+    for side in SIDES:
+        scal = {f: _column(ch, f'{f}_{side}', n) for f in KC_WHEEL_FIELDS}
+        vec = {f: np.column_stack([_column(ch, f'{f}_{c}_{side}', n) for c in XYZ])
+               for f in KC_WHEEL_VECTORS}
+        bush = {b: {f: np.column_stack([_column(ch, f'{p}.{b}.{c}_{side}', n) for c in comps])
+                    for f, (p, comps, _) in KC_BUSHING_FIELDS.items()}
+                for b in bushing_names(ch)}
+        side_cols.append((scal, vec, bush))
     out = []
-    for i, t in enumerate(ch['time']):
-        msg = VehicleState(event=outcome.event, configuration=outcome.configuration,
-                           model=outcome.model, step=i)
-        msg.header.stamp = _offset(stamp, float(t))
-        msg.header.frame_id = ODOM_FRAME
-        for name in VEHICLE_FIELDS:
-            setattr(msg, name, float(ch[name][i]))
-        for wheel in ('front_left', 'front_right', 'rear_left', 'rear_right'):
-            setattr(msg, wheel, VehicleWheel(**{f: float(ch[f'{c}_{wheel}'][i])
-                                                for f, c in WHEEL_FIELDS.items()}))
+    for i, offset in enumerate(step_offsets(outcome)):
+        msg = KcState(event=outcome.event, configuration=outcome.configuration,
+                      model=outcome.model, fidelity=outcome.fidelity, axle=outcome.axle, step=i)
+        _header(msg, stamp, offset, BODY_FRAME)
+        for f, col in axle.items():
+            if f == 'iterations':
+                msg.iterations = int(col[i]) if math.isfinite(col[i]) else 0
+            else:
+                setattr(msg, f, float(col[i]))
+        for side, (scal, vec, bush) in zip(SIDES, side_cols):
+            wheel = KcWheel(**{f: float(col[i]) for f, col in scal.items()})
+            for f, col in vec.items():
+                kind = Point if f in ('wheel_centre', 'contact_point', 'steering_axis_ground') \
+                    else Vector3
+                setattr(wheel, f, kind(x=float(col[i, 0]), y=float(col[i, 1]),
+                                       z=float(col[i, 2])))
+            wheel.bushings = [
+                Bushing(name=b, **{f: Vector3(x=float(c[i, 0]), y=float(c[i, 1]),
+                                              z=float(c[i, 2])) for f, c in cols.items()})
+                for b, cols in bush.items()]
+            setattr(msg, side, wheel)
         out.append(msg)
     return out
 
 
+def outcome_analytical_states(outcome: EventOutcome, stamp) -> list:
+    """vd_interfaces/AnalyticalState per step of a bicycle or two-track outcome."""
+    from vd_interfaces.msg import AnalyticalState
+
+    ch, n = outcome.channels, outcome.n_steps
+    cols = {f: _column(ch, f, n) for f in ANALYTICAL_FIELDS}
+    out = []
+    for i, offset in enumerate(step_offsets(outcome)):
+        msg = AnalyticalState(event=outcome.event, configuration=outcome.configuration,
+                              model=outcome.model, step=i,
+                              **{f: float(c[i]) for f, c in cols.items()})
+        _header(msg, stamp, offset, BODY_FRAME)
+        out.append(msg)
+    return out
+
+
+def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
+    """
+    Return a vd_interfaces/VehicleState per step of a full-vehicle outcome.
+
+    Stamped ``stamp`` + simulated time, frame ``odom``.
+    """
+    from vd_interfaces.msg import VehicleState, VehicleWheel
+
+    ch, n = outcome.channels, outcome.n_steps
+    body = {f: _column(ch, f, n) for f in VEHICLE_FIELDS}
+    wheels = {w: {f: _column(ch, f'{p}_{w}', n) for f, (p, _) in WHEEL_FIELDS.items()}
+              for w in VEHICLE_WHEELS}
+    out = []
+    for i, offset in enumerate(step_offsets(outcome)):
+        msg = VehicleState(event=outcome.event, configuration=outcome.configuration,
+                           model=outcome.model, step=i,
+                           **{f: float(c[i]) for f, c in body.items()})
+        _header(msg, stamp, offset, ODOM_FRAME)
+        for w, cols in wheels.items():
+            setattr(msg, w, VehicleWheel(**{f: float(c[i]) for f, c in cols.items()}))
+        out.append(msg)
+    return out
+
+
+def _kept(columns: Mapping[str, tuple[str, Sequence[float]]]) -> dict[str, Channel]:
+    out = {}
+    for name, (unit, values) in columns.items():
+        a = np.asarray(values, dtype=float)
+        if a.size and not np.all(np.isnan(a)):
+            out[name] = Channel(unit, a)
+    return out
+
+
+def states_channels(states: Sequence) -> dict[str, Channel]:
+    """
+    Return the channels of a run from its state messages (rclpy or bag messages).
+
+    The inverse of :func:`outcome_states`, less the channels NaN at every step.
+    """
+    if not states:
+        return {}
+    first = states[0]
+    cols: dict[str, tuple[str, list[float]]] = {}
+
+    def add(name: str, unit: str, value: float) -> None:
+        cols.setdefault(name, (unit, []))[1].append(float(value))
+
+    if hasattr(first, 'left'):  # KcState
+        for s in states:
+            for f, unit in KC_AXLE_FIELDS.items():
+                add(f, unit, getattr(s, f))
+            for side in SIDES:
+                wheel = getattr(s, side)
+                for f, unit in KC_WHEEL_FIELDS.items():
+                    add(f'{f}_{side}', unit, getattr(wheel, f))
+                for f, unit in KC_WHEEL_VECTORS.items():
+                    v = getattr(wheel, f)
+                    for c in XYZ:
+                        add(f'{f}_{c}_{side}', unit, getattr(v, c))
+                for b in wheel.bushings:
+                    for f, (prefix, comps, unit) in KC_BUSHING_FIELDS.items():
+                        v = getattr(b, f)
+                        for c, axis in zip(comps, XYZ):
+                            add(f'{prefix}.{b.name}.{c}_{side}', unit, getattr(v, axis))
+    elif hasattr(first, 'front_left'):  # VehicleState
+        for s in states:
+            for f, unit in VEHICLE_FIELDS.items():
+                add(f, unit, getattr(s, f))
+            for w in VEHICLE_WHEELS:
+                wheel = getattr(s, w)
+                for f, (prefix, unit) in WHEEL_FIELDS.items():
+                    add(f'{prefix}_{w}', unit, getattr(wheel, f))
+    else:  # AnalyticalState
+        for s in states:
+            for f, unit in ANALYTICAL_FIELDS.items():
+                add(f, unit, getattr(s, f))
+    return _kept(cols)
+
+
+# --- odometry and TF of the full vehicle ---------------------------------------------
+
+
 def outcome_transforms(outcome: EventOutcome, stamp) -> list:
     """
-    tf2_msgs/TFMessage per step of a full-vehicle outcome: the transform ``odom`` ->
-    ``base_link`` (REP 105), the same pose as :func:`outcome_odometry`.
+    Return a tf2_msgs/TFMessage per step of a full-vehicle outcome.
+
+    The transform ``odom`` -> ``base_link`` (REP 105), the same pose as
+    :func:`outcome_odometry`.
     """
     from geometry_msgs.msg import TransformStamped
 
@@ -110,7 +396,9 @@ def outcome_transforms(outcome: EventOutcome, stamp) -> list:
         t.header = odom.header
         t.child_frame_id = odom.child_frame_id
         p = odom.pose.pose.position
-        t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = p.x, p.y, p.z
+        t.transform.translation.x = p.x
+        t.transform.translation.y = p.y
+        t.transform.translation.z = p.z
         t.transform.rotation = odom.pose.pose.orientation
         out.append(TFMessage(transforms=[t]))
     return out
@@ -118,19 +406,19 @@ def outcome_transforms(outcome: EventOutcome, stamp) -> list:
 
 def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     """
-    nav_msgs/Odometry per step of a full-vehicle outcome (channels x, y, yaw, roll,
-    pitch, speed, sideslip, yaw_rate): frame ``odom``, child ``base_link`` (REP 105),
-    stamped ``stamp`` + simulated time. Height is not a channel: z = 0.
-    """
-    import math
+    Return a nav_msgs/Odometry per step of a full-vehicle outcome.
 
+    From the channels x, y, yaw, roll, pitch, speed, sideslip, yaw_rate: frame ``odom``,
+    child ``base_link`` (REP 105), stamped ``stamp`` + simulated time. Height is not a
+    channel: z = 0.
+    """
     from nav_msgs.msg import Odometry
 
     ch = {k: c.values for k, c in outcome.channels.items()}
     out = []
     for i, t in enumerate(ch['time']):
         msg = Odometry()
-        msg.header.stamp = _offset(stamp, float(t))
+        msg.header.stamp = offset_stamp(stamp, float(t))
         msg.header.frame_id = ODOM_FRAME
         msg.child_frame_id = BODY_FRAME
         msg.pose.pose.position.x = float(ch['x'][i])

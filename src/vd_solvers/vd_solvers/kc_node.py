@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
+from vd_interfaces.msg import KcState
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
 from vd_solvers.results import EventOutcome
@@ -31,6 +32,7 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
 
 class KCSolver(SolverNode):
     """The K&C solver node."""
+    STATE_TYPE = KcState
 
     def __init__(self, **kwargs) -> None:
         super().__init__('kc_solver', FAMILY, _run, **kwargs)

@@ -200,8 +200,8 @@ class LockstepSession:
         for name in STATE_FIELDS:
             setattr(msg, name, float(s[name]))
         for w, wheel in enumerate(self._wheel_msgs):
-            for f, c in WHEEL_FIELDS.items():
-                setattr(wheel, f, float(wheels[c][w]))
+            for f, (c, _) in WHEEL_FIELDS.items():  # a field the step lacks stays NaN
+                setattr(wheel, f, float(wheels[c][w]) if c in wheels else math.nan)
         odom = odometry(s, stamp, self._odom_msg)
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)

@@ -17,7 +17,7 @@ import numpy as np
 @dataclass(frozen=True)
 class Metric:
     value: float
-    unit: str  # SI (or deg, deg/g, km/h where the metric is conventionally quoted so)
+    unit: str  # SI; display units are applied at the edges (vd_events/display.py)
     source: str = ''
 
 
@@ -44,7 +44,7 @@ class EventOutcome:
         return max((len(c.values) for c in self.channels.values()), default=0)
 
     def to_json(self, bag: str | None = None) -> dict[str, Any]:
-        """The ``vd run --json`` contract."""
+        """Return the ``vd run --json`` contract (SI values with their units)."""
         return {
             'event': self.event, 'configuration': self.configuration, 'model': self.model,
             'fidelity': self.fidelity, 'axle': self.axle, 'data_hash': self.data_hash,

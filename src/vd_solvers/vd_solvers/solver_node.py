@@ -5,8 +5,10 @@ Names are relative to the node's namespace (``/vd`` unless remapped with ``__ns:
 A solver node subscribes to the latched ``configuration`` and ``data_status``
 topics, serves ``<family>/run_event`` (vd_interfaces/RunEvent, with progress
 feedback, cancellable between stages; see ``families`` for other instances), and
-publishes each result on ``<family>/result`` (EventResult), one message per step on
-``<family>/state`` and the run's provenance on ``provenance``. A goal that cannot
+publishes each result on ``<family>/result`` (EventResult), one typed state per step
+on ``<family>/state`` (``STATE_TYPE``: KcState, AnalyticalState, VehicleState) and the
+run's provenance on ``provenance``, stamped on the process's time axis
+(``conversions.TIME_AXIS``). A goal that cannot
 run (unknown event or model, bad axle, fidelity, parameter or override, a
 configuration the data server does not publish) is rejected in the goal callback and
 the reason logged; a failure during the run answers the goal with an error naming
@@ -32,9 +34,9 @@ from vd_data_server.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
 from vd_data_server.study import modified_keys
 from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
-from vd_interfaces.msg import DataStatus, EventResult, Provenance, Sample
+from vd_interfaces.msg import DataStatus, EventResult, Provenance
 from vd_solvers import __version__
-from vd_solvers.conversions import outcome_samples, outcome_to_msg
+from vd_solvers.conversions import end_stamp, outcome_states, outcome_to_msg, run_stamp
 from vd_solvers.errors import SolverError
 from vd_solvers.families import FAMILIES, check_request
 from vd_solvers.results import EventOutcome
@@ -60,8 +62,8 @@ class Cancelled(Exception):
 class SolverNode(Node):
     """A solver: the family's RunEvent action over a run function of the ROS-free core."""
 
-    #: message type of the per-step states on /vd/<family>/state
-    STATE_TYPE: type = Sample
+    #: message type of the per-step states on <family>/state (set by each solver)
+    STATE_TYPE: type
 
     def __init__(self, name: str, family: str, run: RunFn, **kwargs) -> None:
         spec = FAMILIES[family]
@@ -192,12 +194,13 @@ class SolverNode(Node):
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
                         changes: list, stamp=None) -> None:
         """
-        Publish provenance (with this goal's ``--set`` changes), samples and result.
+        Publish provenance (with this goal's ``--set`` changes), states and result.
 
-        Samples of a time-domain event (a ``time`` channel) are stamped ``stamp`` +
-        simulated time, the others ``stamp``.
+        Provenance is stamped ``stamp`` (default: :meth:`run_stamp`), the states ``stamp``
+        + simulated time (time-domain events) or + step * PSEUDO_STEP (quasi-static
+        ones), the result with the last state's stamp.
         """
-        stamp = stamp if stamp is not None else self.get_clock().now().to_msg()
+        stamp = stamp if stamp is not None else self.run_stamp(outcome)
         provenance = Provenance(stamp=stamp, configuration=config.name,
                                 master_file=config.master_file, data_hash=config.data_hash,
                                 model=outcome.model, fidelity=outcome.fidelity,
@@ -209,12 +212,15 @@ class SolverNode(Node):
         self.provenance_pub.publish(provenance)
         for sample in self.state_messages(outcome, stamp):
             self.sample_pub.publish(sample)
-        self.result_pub.publish(outcome_to_msg(outcome, stamp))
+        self.result_pub.publish(outcome_to_msg(outcome, end_stamp(outcome, stamp)))
 
+    def run_stamp(self, outcome: EventOutcome):
+        """Claim a run's stamp: now, or after the previous run's time axis if that is later."""
+        return run_stamp(outcome, self.get_clock().now().nanoseconds)
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """Return the per-step messages of ``outcome`` (Sample: channel names, values)."""
-        return outcome_samples(outcome, stamp)
+        """Return the per-step typed states of ``outcome`` (conversions.outcome_states)."""
+        return outcome_states(outcome, stamp)
 
 
 def _warning_messages(caught) -> list[str]:

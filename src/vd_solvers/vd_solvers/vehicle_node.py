@@ -29,7 +29,7 @@ from vd_data_server.names import frame_prefix
 from vd_data_server.node_main import make_executor, run_node
 from vd_data_server.qos import STATES
 from vd_interfaces.msg import VehicleState
-from vd_solvers.conversions import outcome_odometry, outcome_transforms, outcome_vehicle_states
+from vd_solvers.conversions import outcome_odometry, outcome_transforms
 from vd_solvers.errors import SolverError
 from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
 from vd_solvers.results import EventOutcome
@@ -131,7 +131,7 @@ class VehicleSolver(SolverNode):
                                tf_pub=self.tf_pub)
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list) -> None:
-        stamp = self.get_clock().now().to_msg()
+        stamp = self.run_stamp(outcome)
         # odometry and TF first: a recorder stops once the result and its samples are in
         for msg in outcome_transforms(outcome, stamp):
             for t in msg.transforms:
@@ -150,7 +150,7 @@ class VehicleSolver(SolverNode):
         return msg
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        states = outcome_vehicle_states(outcome, stamp)
+        states = super().state_messages(outcome, stamp)
         if self.frame_prefix:
             for state in states:
                 state.header.frame_id = self.frame_prefix + state.header.frame_id

@@ -16,8 +16,10 @@ import pytest
 
 from conftest import SAMPLE_DATA
 from vd_data_server.study import load_study
+from vd_data_server.units import UREG
 from vd_solvers.analytical.budget import TERMS
 from vd_solvers.analytical.events import run_event
+from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.kc import cache
 from vd_solvers.kc.channels import wheel_angles
 from vd_solvers.kc.events import KCModel
@@ -48,34 +50,41 @@ def kc(config, axle: str, event: str) -> dict[str, float]:
 
 def test_sedan_understeers_like_a_saloon(sedan_bicycle) -> None:
     m = sedan_bicycle.metrics
-    assert 1.5 <= m['understeer_gradient_deg_per_g'].value <= 4.0
-    assert 60.0 <= m['characteristic_speed_kmh'].value <= 110.0
+    assert m['understeer_gradient'].unit == 'rad/(m/s^2)'
+    assert 1.5 <= math.degrees(m['understeer_gradient'].value) * G <= 4.0  # deg/g
+    assert m['characteristic_speed'].unit == 'm/s'
+    assert 60.0 <= m['characteristic_speed'].value * 3.6 <= 110.0  # km/h
 
 
 def test_sedan_budget_sums_to_its_understeer_gradient_and_names_its_sources(sedan_bicycle) -> None:
     m = sedan_bicycle.metrics
-    total = sum(m[f'understeer_budget_{t}_deg_per_g'].value for t in TERMS)
-    assert total == pytest.approx(m['understeer_gradient_deg_per_g'].value, abs=1e-9)
+    total = sum(m[f'understeer_budget_{t}'].value for t in TERMS)
+    assert total == pytest.approx(m['understeer_gradient'].value, abs=1e-12)
     data_hash = STUDIES['sedan'].configurations['baseline'].data_hash
     for term in ('roll_steer', 'lateral_compliance_steer', 'aligning_torque', 'camber'):
-        source = m[f'understeer_budget_{term}_deg_per_g'].source
+        source = m[f'understeer_budget_{term}'].source
         assert 'K&C front' in source and 'K&C rear' in source and data_hash in source
-    assert m['understeer_budget_tire_deg_per_g'].source.startswith(
-        'front: tires/Sedan_Pac02Tire.tir')
-    assert m['understeer_gradient_deg_per_g'].source.startswith('effective axle cornering')
+    assert m['understeer_budget_tire'].source.startswith('front: tires/Sedan_Pac02Tire.tir')
+    assert m['understeer_gradient'].source.startswith('effective axle cornering')
 
 
 def test_sedan_budget_terms_are_the_k_and_c_metrics_of_the_same_data(sedan_bicycle) -> None:
     # lateral compliance steer alone, from the K&C lateral-force run's own metric:
-    # -c_f N_f/2 + c_r N_r/2 (rad/N, N per g), in deg/g
+    # (-c_f N_f/2 + c_r N_r/2) / g, c in rad/N (converted from the metric's own unit)
     config = STUDIES['sedan'].configurations['baseline']
     fz_f, fz_r = static_wheel_loads(config)
     # the K&C run as `vd run lateral_force --axle ...` reports it
-    c_f = run_kc_event(config, 'lateral_force', 'front').metrics['lateral_compliance_steer'].value
-    c_r = run_kc_event(config, 'lateral_force', 'rear').metrics['lateral_compliance_steer'].value
-    expected = math.degrees(-c_f * fz_f + c_r * fz_r)
-    term = sedan_bicycle.metrics['understeer_budget_lateral_compliance_steer_deg_per_g'].value
-    assert term == pytest.approx(expected, rel=1e-12)
+    c_f, c_r = (
+        _rad_per_newton(run_kc_event(config, 'lateral_force', axle)
+                        .metrics['lateral_compliance_steer']) for axle in ('front', 'rear'))
+    expected = (-c_f * fz_f + c_r * fz_r) / G
+    term = sedan_bicycle.metrics['understeer_budget_lateral_compliance_steer']
+    assert term.unit == 'rad/(m/s^2)'
+    assert term.value == pytest.approx(expected, rel=1e-12)
+
+
+def _rad_per_newton(metric) -> float:
+    return float(UREG.Quantity(metric.value, metric.unit).to('rad/N').magnitude)
 
 
 def test_result_does_not_depend_on_what_ran_before() -> None:
@@ -111,7 +120,7 @@ def test_thesis_trend_a_on_the_sample_sedan() -> None:
         out = run_event(STUDIES['sedan'].configurations[name], 'handling_diagram', 'two_track',
                         ['steps=3'])
         assert out.metrics['limiting_axle_is_rear'].value == 0.0
-        assert out.metrics['understeer_gradient_linear_deg_per_g'].value > 0.0
+        assert out.metrics['understeer_gradient_linear'].value > 0.0
         limits[name] = out.metrics['max_lateral_acceleration'].value
     assert limits['stiff_rear'] > limits['baseline'] + 0.01
 
@@ -139,9 +148,8 @@ def test_hmmwv_front_bushings_pivot_freely() -> None:
     # Chrono's bushing leaves the arm's pivot rotation free: the bushings change
     # the roll stiffness of ideal joints by a few per cent, not by a factor
     study = STUDIES['hmmwv']
-    roll = 'opposite_wheel_travel'
-    ideal = kc(study.configurations['baseline'], 'front', roll)['roll_stiffness']
-    bushed = kc(study.configurations['bushings'], 'front', roll)['roll_stiffness']
+    ideal, bushed = (kc(study.configurations[name], 'front', 'opposite_wheel_travel')
+                     ['roll_stiffness'] for name in ('baseline', 'bushings'))
     assert math.isclose(bushed, ideal, rel_tol=0.05)
 
 
@@ -154,13 +162,13 @@ def test_without_a_k_and_c_model_the_result_says_bare_tire_and_design_target() -
     out = run_event(bare, 'steady_state_circular', 'bicycle', ['steps=3'])
     assert "bare tire and design targets: no K&C model ('rear_spring')" in out.notes
     m = out.metrics
-    assert m['understeer_gradient_deg_per_g'].source == 'bare tire: no K&C results'
-    assert m['understeer_budget_roll_steer_deg_per_g'].source == (
+    assert m['understeer_gradient'].source == 'bare tire: no K&C results'
+    assert m['understeer_budget_roll_steer'].source == (
         'front: bare tire: no K&C results; rear: bare tire: no K&C results')
     # the bare-tire gradient is the tire term alone
-    assert m['understeer_gradient_deg_per_g'].value == m['understeer_budget_total_deg_per_g'].value
-    assert m['understeer_budget_tire_deg_per_g'].value == pytest.approx(
-        m['understeer_gradient_deg_per_g'].value, rel=1e-12)
+    assert m['understeer_gradient'].value == m['understeer_budget_total'].value
+    assert m['understeer_budget_tire'].value == pytest.approx(
+        m['understeer_gradient'].value, rel=1e-12)
     two = run_event(bare, 'handling_diagram', 'two_track', ['steps=3'])
     assert two.metrics['roll_stiffness_front'].source == (
         'design target sedan/targets/X.yaml (variant X)')

@@ -25,7 +25,7 @@ def _outcome() -> EventOutcome:
     channels['pitch'] = Channel('rad', np.zeros(2))
     channels['sideslip'] = Channel('rad', np.array([0.0, 0.1]))
     for k, wheel in enumerate(WHEELS):
-        for j, channel in enumerate(WHEEL_FIELDS.values()):
+        for j, (channel, _) in enumerate(WHEEL_FIELDS.values()):
             channels[f'{channel}_{wheel}'] = Channel('', np.array([k, 10.0 * j + k]))
     return EventOutcome('step_steer', 'baseline', 'vehicle', 'rigid', '', 'abc', {}, channels)
 
@@ -36,7 +36,7 @@ def test_vehicle_states_carry_the_channels_as_named_fields_on_the_simulation_tim
     assert (states[1].header.stamp.sec, states[1].header.stamp.nanosec) == (101, 150_000_000)
     assert states[1].speed == pytest.approx(5.2)
     assert states[1].rear_left.load == 2.0  # wheel 2, field 0
-    assert states[1].front_right.aligning_moment == pytest.approx(81.0)  # wheel 1, field 8
+    assert states[1].front_right.aligning_moment == pytest.approx(91.0)  # wheel 1, field 9
     assert states[0].header.frame_id == 'odom' and states[0].configuration == 'baseline'
 
 

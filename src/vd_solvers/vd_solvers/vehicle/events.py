@@ -219,11 +219,9 @@ def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
         behaviour = f"radius held to the end ({v['max_duration']:g} s)"
     metrics = {
         'understeer_gradient': Metric(k_us, 'rad/(m/s^2)'),
-        'understeer_gradient_deg_per_g': Metric(k_us / DEG * G, 'deg/g'),
-        'roll_gradient': Metric(roll / DEG * G, 'deg/g'),
-        'sideslip_gradient': Metric(beta / DEG * G, 'deg/g'),
+        'roll_gradient': Metric(roll, 'rad/(m/s^2)'),
+        'sideslip_gradient': Metric(beta, 'rad/(m/s^2)'),
         'max_lateral_acceleration': Metric(a_max, 'm/s^2'),
-        'max_lateral_acceleration_g': Metric(a_max / G, 'g'),
         'limit_is_oversteer': Metric(1.0 if behaviour.startswith('oversteer') else 0.0, '-'),
         'radius': Metric(radius, 'm'),
         'steering_ratio': Metric(ratio, '-', maps.provenance['steering']),
