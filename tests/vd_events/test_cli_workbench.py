@@ -73,9 +73,9 @@ def test_update_marked_runs_the_events_and_shows_the_metrics(sedan_master: Path)
         run_ = state['runs']['stiff_rear']
         assert (run_['status'], run_['error']) == ('done', '')
         metrics = {(m['event'], m['label']): m for m in run_['metrics']}
-        kus = metrics[('steady_state_circular', 'understeer_gradient_deg_per_g')]
+        kus = metrics[('steady_state_circular', 'understeer_gradient')]  # shown in deg/g
         assert kus['unit'] == 'deg/g' and 0.5 < kus['value'] < 5.0
         assert kus['text'] == f"{kus['value']:.4g} deg/g"
-        assert ('handling_diagram', 'max_lateral_acceleration_g') in metrics
+        assert ('handling_diagram', 'max_lateral_acceleration') in metrics
     finally:
         server.stop()

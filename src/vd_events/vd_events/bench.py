@@ -73,11 +73,7 @@ def run_bench() -> dict[str, Any]:
 
 def _bench_flex(config) -> dict[str, float]:
     """
-<<<<<<< HEAD
     Time the 101-step parallel wheel travel, rigid and flexible, per axle.
-=======
-    Time a 101-step parallel wheel travel, rigid and flexible, per axle.
->>>>>>> contract
 
     Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
@@ -97,11 +93,7 @@ def _bench_capability(master: Path) -> float:
     """
     Time the whole capability study of both axles; target: under 20 s.
 
-<<<<<<< HEAD
     22 runs of 101 steps, through the ROS graph, with bags.
-=======
-    22 runs, 101 steps, through the ROS graph, with bags.
->>>>>>> contract
     """
     from vd_data_server.study import load_study
 
@@ -166,11 +158,7 @@ def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
 
 def _bench_data_change(master: Path) -> float:
     """
-<<<<<<< HEAD
     Time from editing a data file on disk to the new configuration at a subscriber.
-=======
-    Time editing a data file on disk until the new configuration arrives at a subscriber.
->>>>>>> contract
 
     The data server watches every 0.5 s, its default.
     """

@@ -11,7 +11,6 @@ Everything goes to ``out/demo/`` (replaced on each run).
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 import shutil
 import sys
@@ -20,32 +19,6 @@ import time
 from vd_data_server.overview import console
 
 OUT = Path('out/demo')
-<<<<<<< HEAD
-#: metric, format, scale of the one-line summaries
-HEADLINE = (
-    ('understeer_gradient_deg_per_g', 'K_us {:.3f} deg/g', 1.0),
-    ('characteristic_speed_kmh', 'v_char {:.0f} km/h', 1.0),
-    ('max_lateral_acceleration_g', 'a_y,max {:.3f} g', 1.0),
-    ('roll_gradient', 'roll {:.2f} deg/g', 1.0),
-    ('sideslip_gradient', 'sideslip {:.2f} deg/g', 1.0),
-    ('yaw_rate_response_time_90', 't90(r) {:.3f} s', 1.0),
-    ('yaw_rate_overshoot', 'overshoot(r) {:.1f} %', 1.0),
-    ('natural_frequency', 'f_n {:.2f} Hz', 1.0),
-    ('bump_steer', 'bump steer {:.1f} deg/m', 180.0 / math.pi),
-    ('camber_gain', 'camber gain {:.1f} deg/m', 180.0 / math.pi),
-    ('wheel_rate', 'wheel rate {:.1f} N/mm', 1e-3),
-    ('roll_centre_height_kinematic', 'RC {:.0f} mm', 1e3),
-    ('roll_stiffness', 'roll stiffness {:.0f} N*m/deg', math.pi / 180.0),
-    ('lateral_compliance_steer', 'lat. compl. steer {:.3f} deg/kN', 180e3 / math.pi),
-    ('lateral_compliance_camber', 'camber {:.3f} deg/kN', 180e3 / math.pi),
-    ('anti_squat', 'anti-squat {:.0f} %', 1.0),
-    ('steering_ratio', 'steering ratio {:.1f}', 1.0),
-    ('ackermann', 'Ackermann {:.0f} %', 1.0),
-)
-
-
-=======
->>>>>>> contract
 def _plan_path() -> Path:
     from ament_index_python.packages import get_package_share_directory
 

@@ -49,9 +49,11 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
     """(topic, message) of one outcome, in publishing order (provenance first)."""
     from vd_solvers.conversions import (
         VEHICLE_FIELDS,
+        VEHICLE_WHEELS,
         WHEEL_FIELDS,
+        outcome_analytical_states,
+        outcome_kc_states,
         outcome_odometry,
-        outcome_samples,
         outcome_to_msg,
         outcome_transforms,
         outcome_vehicle_states,
@@ -61,8 +63,7 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
     stamp = _time(stamp_ns)
     out: list[tuple[str, object]] = []
     if family == 'vehicle':
-        wheels = [f'{c}_{w}' for c in WHEEL_FIELDS.values()
-                  for w in ('front_left', 'front_right', 'rear_left', 'rear_right')]
+        wheels = [f'{prefix}_{w}' for prefix, _ in WHEEL_FIELDS.values() for w in VEHICLE_WHEELS]
         # a log has no wheel loads or torque: NaN in the typed state says "not measured"
         states = outcome_vehicle_states(_padded(outcome, [*VEHICLE_FIELDS, *wheels],
                                                 float('nan')), stamp)
@@ -73,7 +74,8 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
             out += [('/tf', m) for m in outcome_transforms(posed, stamp)]
             out += [('/vd/vehicle/odom', m) for m in outcome_odometry(posed, stamp)]
     else:
-        out += [(f'/vd/{family}/state', m) for m in outcome_samples(outcome, stamp)]
+        states = outcome_kc_states if family == 'kc' else outcome_analytical_states
+        out += [(f'/vd/{family}/state', m) for m in states(outcome, stamp)]
     out.append((f'/vd/{family}/result', outcome_to_msg(outcome, stamp)))
     return out
 
@@ -81,9 +83,10 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
 def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
                    custom_data: Mapping[str, str], master_file: str = '') -> Path:
     """Write every (outcome, start stamp ns) to the new bag ``bag``; return its path."""
+    from vd_data_server.qos import RESULTS, STATES
     from vd_interfaces.msg import Provenance
 
-    from .bag import BagWriter
+    from .bag import BagWriter, log_time
 
     messages = []
     for outcome, stamp_ns in items:
@@ -96,11 +99,9 @@ def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
     writer = BagWriter(bag, custom_data)
     try:
         for topic, msg in messages:
-            stamp = getattr(msg, 'stamp', None)
-            if stamp is None:
-                header = msg.header if hasattr(msg, 'header') else msg.transforms[0].header
-                stamp = header.stamp
-            writer.write(topic, msg, _ns(stamp))
+            # the QoS the solvers offer, so a replay latches like the live graph
+            qos = RESULTS if topic.endswith(('/result', '/provenance')) else STATES
+            writer.write(topic, msg, log_time(msg, 0), [qos])
         return writer.close()
     except BaseException:
         writer.abort()

@@ -65,7 +65,7 @@ def marked_runner(master: Path) -> Callable[[Sequence[str]], Mapping[str, Any]]:
     def run(names: Sequence[str]) -> Mapping[str, Any]:
         from vd_data_server.study import load_study
 
-        from .commands import HEADLINE
+        from .display import HEADLINE_NAMES, display
         from .runner import RunError, RunRequest, run_embedded, validate
 
         study = load_study(master)
@@ -86,18 +86,19 @@ def marked_runner(master: Path) -> Callable[[Sequence[str]], Mapping[str, Any]]:
                 entry['error'] = result.error or 'no result'
                 continue
             metrics = result.outcome.metrics
-            for key in [m for m in HEADLINE if m in metrics][:HEADLINE_COUNT]:
+            for key in [m for m in HEADLINE_NAMES if m in metrics][:HEADLINE_COUNT]:
                 metric = metrics[key]
+                value, unit = display(metric.value, metric.unit, key)  # SI -> display
                 entry['metrics'].append({'event': result.request.event,
                                          'model': result.request.model, 'label': key,
-                                         'value': metric.value, 'unit': metric.unit,
-                                         'text': _text(metric.value, metric.unit)})
+                                         'value': value, 'unit': unit,
+                                         'text': _text(value, unit)})
         return results
     return run
 
 
 def _text(value: float, unit: str) -> str:
-    """Format a metric for the page from its unit string."""
+    """Format a metric for the page in its display unit."""
     return f'{value:.4g} {unit}' if unit not in ('', '-') else f'{value:.4g}'
 
 
