@@ -39,7 +39,8 @@ KC_AXLE_FIELDS = {
     'applied_force': 'N', 'applied_moment': 'N*m', 'track': 'm',
     'steering_wheel_angle': 'rad', 'rack_travel': 'm', 'rack_force': 'N', 'arb_twist': 'rad',
     'arb_torque': 'N*m', 'elastic_energy': 'J', 'constraint_residual': 'm',
-    'force_residual': 'N', 'iterations': '-',
+    'force_residual': 'N', 'iterations': '-', 'roll_centre_height': 'm',
+    'roll_centre_lateral': 'm',
 }
 #: KcWheel scalar field -> SI unit; channel ``<field>_<side>``
 KC_WHEEL_FIELDS = {
@@ -48,13 +49,17 @@ KC_WHEEL_FIELDS = {
     'mechanical_trail': 'm', 'pad_force': 'N', 'spring_length': 'm', 'spring_force': 'N',
     'damper_length': 'm', 'bump_stop_force': 'N', 'bump_stop_deflection': 'm',
     'rebound_stop_force': 'N', 'rebound_stop_deflection': 'm', 'arb_arm_angle': 'rad',
-    'droplink_force': 'N',
+    'droplink_force': 'N', 'fvsa_length': 'm', 'svsa_length': 'm', 'svsa_angle': 'rad',
 }
 #: KcWheel Point/Vector3 field -> SI unit; channel ``<field>_<x|y|z>_<side>``
 KC_WHEEL_VECTORS = {
     'wheel_centre': 'm', 'contact_point': 'm', 'steering_axis_ground': 'm',
+    'front_view_instant_centre': 'm', 'side_view_instant_centre': 'm',
     'contact_force': 'N', 'centre_force': 'N', 'contact_moment': 'N*m',
 }
+#: the KC_WHEEL_VECTORS that are points (geometry_msgs/Point; the others are Vector3)
+KC_WHEEL_POINTS = ('wheel_centre', 'contact_point', 'steering_axis_ground',
+                   'front_view_instant_centre', 'side_view_instant_centre')
 #: Bushing Vector3 field -> (channel prefix, component names, SI unit); channel
 #: ``<prefix>.<bushing>.<component>_<side>``
 KC_BUSHING_FIELDS = {
@@ -268,8 +273,7 @@ def outcome_kc_states(outcome: EventOutcome, stamp) -> list:
         for side, (scal, vec, bush) in zip(SIDES, side_cols):
             wheel = KcWheel(**{f: float(col[i]) for f, col in scal.items()})
             for f, col in vec.items():
-                kind = Point if f in ('wheel_centre', 'contact_point', 'steering_axis_ground') \
-                    else Vector3
+                kind = Point if f in KC_WHEEL_POINTS else Vector3
                 setattr(wheel, f, kind(x=float(col[i, 0]), y=float(col[i, 1]),
                                        z=float(col[i, 2])))
             wheel.bushings = [
