@@ -23,7 +23,7 @@ from functools import lru_cache
 import os
 from pathlib import Path
 import shutil
-from typing import Any, TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 # rosbags is imported where a bag is written or read: a run without a bag (and the
 # command line's start) does not pay for it

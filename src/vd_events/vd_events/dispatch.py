@@ -31,7 +31,6 @@ from vd_solvers.results import EventOutcome
 
 from . import graph
 from .graph import instance_names
-
 from .runner import (
     DISCOVERY_GRACE,
     RunError,

@@ -64,7 +64,7 @@ def graph(master: Path | str | None = None, *, watch_period: float | None = None
     ``kc_solver_2``, ... (each serves its own action, ``families.Family.action``).
     """
     chosen = list(FAMILIES) if families is None else sorted(set(families))
-    counts = {f: 1 for f in chosen}
+    counts = dict.fromkeys(chosen, 1)
     counts.update(instances or {})
     return [data_server(master, watch_period=watch_period, allow_edits=allow_edits),
             *(solver(f, name) for f, n in counts.items() for name in instance_names(f, n))]

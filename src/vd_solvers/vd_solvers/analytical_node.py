@@ -25,6 +25,7 @@ FAMILY = 'steady_state'
 
 class AnalyticalSolver(SolverNode):
     """The analytical (bicycle, two-track) solver node."""
+
     STATE_TYPE = AnalyticalState
 
     def __init__(self, **kwargs) -> None:

@@ -32,6 +32,7 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
 
 class KCSolver(SolverNode):
     """The K&C solver node."""
+
     STATE_TYPE = KcState
 
     def __init__(self, **kwargs) -> None:
