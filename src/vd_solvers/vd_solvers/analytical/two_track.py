@@ -84,7 +84,8 @@ LimitCause = Literal['saturation', 'rollover']
 WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
 
 SLIP_TOLERANCE = 1e-13  # rad, root-finder tolerance; keeps force residuals ~1e-8 N
-PEAK_TOLERANCE = 1e-10  # rad, axle force peak search; the peak is flat, force error ~1e-15 relative
+# rad, axle force peak search; the peak is flat, force error ~1e-15 relative
+PEAK_TOLERANCE = 1e-10
 LIMIT_TOLERANCE = 1e-4  # m/s^2, width of the final bisection bracket on the maximum a_y
 LIMIT_MAX_DOUBLINGS = 8  # growth steps from 1 g for an infeasible upper bracket (256 g)
 LINEAR_FIT_LIMIT = 1.0  # m/s^2, upper end of the linear-range fit of the understeer gradient
@@ -229,8 +230,9 @@ def roll_geometry(p: VehicleParams) -> RollGeometry:
 
 def roll_angle(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
     """
-    Body roll angle, rad, any shape of a_y (m/s^2) (eq. 3; beyond an inner
-    wheel's lift the lifted axle resists no further roll, module doc).
+    Return the body roll angle, rad, for any shape of a_y (m/s^2) (eq. 3).
+
+    Beyond an inner wheel's lift the lifted axle resists no further roll (module doc).
     """
     return _roll_state(p, lateral_acceleration)[0]
 
@@ -252,13 +254,15 @@ def wheel_loads(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray
     transfer = load_transfer(p, lateral_acceleration)
     front, rear = transfer[..., 0], transfer[..., 1]
     half_front, half_rear = p.axle_load_front / 2.0, p.axle_load_rear / 2.0
-    return np.stack([half_front - front, half_front + front, half_rear - rear, half_rear + rear], axis=-1)
+    return np.stack([half_front - front, half_front + front, half_rear - rear, half_rear + rear],
+                    axis=-1)
 
 
 def wheel_lift_onset(p: VehicleParams) -> tuple[Axle, float] | None:
     """
-    The axle whose inner wheel lifts first and the a_y (m/s^2, > 0) where it
-    does, from the linear load transfer of eq. 4; None if neither ever lifts.
+    Return the axle whose inner wheel lifts first and the a_y (m/s^2, > 0) where it does.
+
+    Both follow from the linear load transfer of eq. 4; the result is None if neither ever lifts.
     """
     geometry = roll_geometry(p)
     per_g: list[tuple[float, float, Axle]] = [
@@ -271,18 +275,18 @@ def wheel_lift_onset(p: VehicleParams) -> tuple[Axle, float] | None:
     return axle, a_y
 
 
-def _linear_transfer(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: ArrayLike) -> np.ndarray:
+def _linear_transfer(p: VehicleParams, geometry: RollGeometry, axle: Axle,
+                     a_y: ArrayLike) -> np.ndarray:
     """Load transfer of ``axle`` by eq. 4 with both wheels on the ground, N."""
     a_y = np.asarray(a_y, dtype=float)
     phi = geometry.roll_gradient * a_y
-    return (_geometric_moment(p, geometry, axle, a_y) + _roll_stiffness(p, axle) * phi) / _track(p, axle)
+    return ((_geometric_moment(p, geometry, axle, a_y) + _roll_stiffness(p, axle) * phi)
+            / _track(p, axle))
 
 
-def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle, a_y: np.ndarray) -> np.ndarray:
-    """
-    The part of the axle's load-transfer moment through its roll centre and
-    unsprung mass, N*m.
-    """
+def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle,
+                      a_y: np.ndarray) -> np.ndarray:
+    """Return the roll-centre and unsprung-mass part of the axle's load-transfer moment, N*m."""
     if axle == 'front':
         return (geometry.sprung_mass_front * a_y * p.roll_centre_height_front
                 + p.unsprung_mass_front * a_y * p.unsprung_cog_height_front)
@@ -326,7 +330,8 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
         k_other = _roll_stiffness(p, other)
         with np.errstate(divide='ignore', invalid='ignore'):
             phi_lift = np.where(k_other > net,
-                                (geometry.sprung_mass * geometry.roll_arm * a - moment) / (k_other - net),
+                                (geometry.sprung_mass * geometry.roll_arm * a - moment)
+                                / (k_other - net),
                                 np.nan)
         other_transfer = ((_geometric_moment(p, geometry, other, a) + k_other * phi_lift)
                           / _track(p, other))
@@ -396,7 +401,8 @@ def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
         from scipy import optimize
 
         found = optimize.minimize_scalar(
-            lambda alpha: -force(alpha), bounds=(low, high), method='bounded', options={'xatol': PEAK_TOLERANCE}
+            lambda alpha: -force(alpha), bounds=(low, high), method='bounded',
+            options={'xatol': PEAK_TOLERANCE}
         )
         candidates.append(float(found.x))
     alpha_peak = max(candidates, key=force)
@@ -415,7 +421,8 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
     a_y = float(lateral_acceleration)
     radius = _check_radius(radius)
     if not math.isfinite(a_y) or a_y * radius < 0.0:
-        raise ValueError(f'lateral_acceleration {a_y!r} must be finite and share the sign of radius {radius!r}')
+        raise ValueError(f'lateral_acceleration {a_y!r} must be finite and share the sign of '
+                         f'radius {radius!r}')
     loads = _checked_wheel_loads(p, a_y)
     front, rear = _axle_states(p, a_y, loads)
     tires = (p.tire_front, p.tire_front, p.tire_rear, p.tire_rear)
@@ -432,7 +439,8 @@ def steady_state(p: VehicleParams, lateral_acceleration: float, radius: float) -
         slip_angle_rear=rear.slip,
         roll_angle=float(roll_angle(p, a_y)),
         wheel_loads=loads,
-        friction=np.array([float(t.friction(fz)) if o else 0.0 for t, fz, o in zip(tires, safe, on)]),
+        friction=np.array([float(t.friction(fz)) if o else 0.0
+                           for t, fz, o in zip(tires, safe, on)]),
         cornering_stiffness=np.array([float(t.cornering_stiffness(fz)) if o else 0.0
                                       for t, fz, o in zip(tires, safe, on)]),
         lateral_force=np.array([float(t.lateral_force(fz, al)) + f_c if o else 0.0
@@ -477,12 +485,14 @@ def max_lateral_acceleration(p: VehicleParams, radius: float) -> CorneringLimit:
     )
 
 
-def handling_diagram(p: VehicleParams, radius: float, n: int = HANDLING_DIAGRAM_POINTS) -> HandlingDiagram:
+def handling_diagram(p: VehicleParams, radius: float,
+                     n: int = HANDLING_DIAGRAM_POINTS) -> HandlingDiagram:
     """Steady states at ``n`` equally spaced a_y from 0 to the limit on ``radius`` (m)."""
     if n < 2:
         raise ValueError(f'n must be at least 2, got {n!r}')
     limit = max_lateral_acceleration(p, radius)
-    points = [steady_state(p, a_y, limit.radius) for a_y in np.linspace(0.0, limit.lateral_acceleration, n)]
+    points = [steady_state(p, a_y, limit.radius)
+              for a_y in np.linspace(0.0, limit.lateral_acceleration, n)]
 
     def stack(name: str) -> np.ndarray:
         return np.array([getattr(point, name) for point in points])
@@ -516,7 +526,8 @@ def understeer_gradient_linear(p: VehicleParams, fit_limit: float = LINEAR_FIT_L
     if not fit_limit > 0.0:
         raise ValueError(f'fit_limit must be positive, got {fit_limit!r}')
     a_y = fit_limit * np.arange(1, LINEAR_FIT_SAMPLES + 1) / LINEAR_FIT_SAMPLES
-    difference = np.array([np.subtract(*_slip_angles(p, a, _checked_wheel_loads(p, a))) for a in a_y])
+    difference = np.array([np.subtract(*_slip_angles(p, a, _checked_wheel_loads(p, a)))
+                           for a in a_y])
     basis = np.stack([a_y, a_y**3, a_y**5], axis=1)
     coefficients, *_ = np.linalg.lstsq(basis, difference, rcond=None)
     return float(coefficients[0])
@@ -536,8 +547,8 @@ def _checked_wheel_loads(p: VehicleParams, a_y: float) -> np.ndarray:
         lift = wheel_lift_onset(p)
         axle = lift[0] if lift is not None else 'front'
         raise BeyondLimitError(
-            f'the vehicle rolls over at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): after the inner '
-            f'{axle} wheel, the other inner wheel lifts too')
+            f'the vehicle rolls over at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): '
+            f'after the inner {axle} wheel, the other inner wheel lifts too')
     return loads
 
 
@@ -599,7 +610,8 @@ def _axle_slip(
     if magnitude > force_peak:
         raise BeyondLimitError(
             f'{axle} axle saturates at a_y = {a_y:.6g} m/s^2 ({a_y / p.g:.4g} g): '
-            f'needs {magnitude:.1f} N, peak {force_peak:.1f} N at {math.degrees(alpha_peak):.2f} deg'
+            f'needs {magnitude:.1f} N, peak {force_peak:.1f} N at '
+            f'{math.degrees(alpha_peak):.2f} deg'
         )
 
     def residual(alpha: float) -> float:
@@ -611,10 +623,12 @@ def _axle_slip(
     return math.copysign(alpha, required)
 
 
-def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray, a_y: float) -> None:
+def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.ndarray,
+                      a_y: float) -> None:
     """
-    SolverError when eqs. 6-7 leave their physical range at these loads
-    (a lifted wheel, load 0, carries nothing and is not checked).
+    Raise SolverError when eqs. 6-7 leave their physical range at these loads.
+
+    A lifted wheel, load 0, carries nothing and is not checked.
     """
     on = loads[loads > 0.0]
     if np.any(tire.friction(on) <= 0.0) or np.any(tire.cornering_stiffness(on) <= 0.0):
@@ -626,7 +640,7 @@ def _check_tire_range(p: VehicleParams, axle: Axle, tire: SimpleTire, loads: np.
 
 def _violation(p: VehicleParams, a_y: float) -> tuple[Axle, LimitCause] | None:
     """
-    The constraint a_y (>= 0, m/s^2) breaks first, or None if solvable.
+    Return the constraint that a_y (>= 0, m/s^2) breaks first, or None if solvable.
 
     Rollover (both inner wheels off the ground) is checked first because the
     axle forces are undefined after it; between two saturated axles the one

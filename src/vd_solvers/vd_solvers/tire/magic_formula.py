@@ -34,7 +34,8 @@ MF-Tyre 5.2 equation manual (eq. numbers of Pacejka's 4.E list):
     B_t  = (QBZ1 + QBZ2 dfz + QBZ3 dfz^2)(1 + QBZ4 gamma_z + QBZ5 |gamma_z|) LKY / LMUY
     C_t  = QCZ1
     D_t  = Fz (QDZ1 + QDZ2 dfz)(1 + QDZ3 gamma_z + QDZ4 gamma_z^2)(R0 / Fz0') LTR
-    E_t  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2)(1 + (QEZ4 + QEZ5 gamma_z)(2/pi) atan(B_t C_t alpha_t)) <= 1
+    E_t  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2)(1 + (QEZ4 + QEZ5 gamma_z)(2/pi) atan(B_t C_t alpha_t))
+           <= 1
     t    = D_t cos(C_t atan(B_t alpha_t - E_t (B_t alpha_t - atan(B_t alpha_t)))) cos(alpha)
     alpha_r = alpha + SH_y + SV_y / K_y,   B_r = QBZ9 LKY / LMUY + QBZ10 B_y C_y
     D_r  = Fz R0 ((QDZ6 + QDZ7 dfz) LRES + (QDZ8 + QDZ9 dfz) gamma_z) LMUY
@@ -44,17 +45,22 @@ MF-Tyre 5.2 equation manual (eq. numbers of Pacejka's 4.E list):
     G_xa = cos(C_xa atan(B_xa a_s - E_xa (B_xa a_s - atan B_xa a_s))) / (same at a_s = SH_xa),
            a_s = alpha + RHX1, B_xa = RBX1 cos(atan(RBX2 kappa)) LXAL, C_xa = RCX1,
            E_xa = REX1 + REX2 dfz <= 1;                         F_x = G_xa F_x0
-    G_yk = the same with k_s = kappa + RHY1 + RHY2 dfz, B_yk = RBY1 cos(atan(RBY2 (alpha - RBY3))) LYKA,
+    G_yk = the same with k_s = kappa + RHY1 + RHY2 dfz,
+           B_yk = RBY1 cos(atan(RBY2 (alpha - RBY3))) LYKA,
            C_yk = RCY1, E_yk = REY1 + REY2 dfz <= 1
-    SV_yk = mu_y Fz (RVY1 + RVY2 dfz + RVY3 gamma) cos(atan(RVY4 alpha)) sin(RVY5 atan(RVY6 kappa)) LVYKA
+    SV_yk = mu_y Fz (RVY1 + RVY2 dfz + RVY3 gamma) cos(atan(RVY4 alpha))
+            sin(RVY5 atan(RVY6 kappa)) LVYKA
                                                                 F_y = G_yk F_y0 + SV_yk
-    aligning moment, combined (4.E71-4.E78): alpha_t,eq = atan(sqrt(tan^2 alpha_t + (K_x/K_y)^2 kappa^2)) sgn alpha_t,
+    aligning moment, combined (4.E71-4.E78):
+    alpha_t,eq = atan(sqrt(tan^2 alpha_t + (K_x/K_y)^2 kappa^2)) sgn alpha_t,
     the same for alpha_r, s = R0 (SSZ1 + SSZ2 F_y / Fz0' + (SSZ3 + SSZ4 dfz) gamma_z) LS,
     M_z = -t (F_y - SV_yk) + M_zr + s F_x
 
     overturning   M_x = Fz R0 (QSX1 LVMX - QSX2 gamma + QSX3 F_y / Fz0') LMX
-    rolling res.  M_y = -sgn(V_x) Fz R0 (QSY1 + QSY2 F_x / Fz0' + QSY3 |V_x / LONGVL| + QSY4 (V_x / LONGVL)^4) LMY
-    radii         R_l = R0 - Fz / C_z;  R_e = R0 - (FNOMIN / C_z)(DREFF atan(BREFF Fz / FNOMIN) + FREFF Fz / FNOMIN)
+    rolling res.  M_y = -sgn(V_x) Fz R0 (QSY1 + QSY2 F_x / Fz0' + QSY3 |V_x / LONGVL|
+                                         + QSY4 (V_x / LONGVL)^4) LMY
+    radii         R_l = R0 - Fz / C_z;
+                  R_e = R0 - (FNOMIN / C_z)(DREFF atan(BREFF Fz / FNOMIN) + FREFF Fz / FNOMIN)
                   (R_e = R_l when BREFF, DREFF, FREFF are all absent)
     relaxation    sigma_kappa = Fz (PTX1 + PTX2 dfz) exp(-PTX3 dfz)(R0 / Fz0') LSGKP
                   sigma_alpha = PTY1 sin(2 atan(Fz / (PTY2 Fz0'))) (1 - PKY3 |gamma|) R0 LFZO LSGAL
@@ -165,7 +171,11 @@ class TireForces(NamedTuple):
 
 @dataclass(frozen=True)
 class _Trail:
-    """Pneumatic-trail factors (QBZ, QCZ, QDZ, QEZ, QHZ): t = D cos(C atan(B a - E (B a - atan B a))) cos(alpha)."""
+    """
+    Pneumatic-trail factors (QBZ, QCZ, QDZ, QEZ, QHZ).
+
+    t = D cos(C atan(B a - E (B a - atan B a))) cos(alpha).
+    """
 
     b: np.ndarray
     c: float
@@ -237,14 +247,17 @@ class MagicFormula:
         props = self.props
         if props.file_format not in _SUPPORTED_FORMATS:
             raise SolverError(
-                f'{props.path}: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is {props.file_format}'
+                f'{props.path}: MagicFormula evaluates PAC2002 / MF 5.2 files, '
+                f'this one is {props.file_format}'
             )
         coefficients = {
-            name: props.number(block, name, 0.0) for block, names in _COEFFICIENTS.items() for name in names
+            name: props.number(block, name, 0.0)
+            for block, names in _COEFFICIENTS.items() for name in names
         }
         coefficients.update({name: props.number(block, name, 0.0)
                              for block, names in _MORE_COEFFICIENTS for name in names})
-        coefficients.update({name: props.number('SCALING_COEFFICIENTS', name, 1.0) for name in _SCALING_FACTORS})
+        coefficients.update({name: props.number('SCALING_COEFFICIENTS', name, 1.0)
+                             for name in _SCALING_FACTORS})
         coefficients['R0'] = props.unloaded_radius
         coefficients['FNOMIN'] = props.fnomin
         coefficients['CZ'] = props.number('VERTICAL', 'VERTICAL_STIFFNESS', 0.0)
@@ -259,8 +272,10 @@ class MagicFormula:
 
     def _check_finite(self) -> None:
         """
-        Forces and stiffness must be finite over the working range: coefficients that
-        are finite one by one can still overflow together (PKX3 = 3000 in exp(PKX3 dfz)).
+        Check that the forces and stiffness are finite over the working range.
+
+        Coefficients that are finite one by one can still overflow together (PKX3 = 3000
+        in exp(PKX3 dfz)).
         """
         fz = self.nominal_load * np.array(_CHECK_LOADS)
         slip = np.array(_CHECK_SLIPS)[:, None]
@@ -275,7 +290,7 @@ class MagicFormula:
                 )
 
     def _mirrored(self) -> bool:
-        """True if the tire is mounted on the side opposite to TYRESIDE."""
+        """Return True if the tire is mounted on the side opposite to TYRESIDE."""
         if self.side is None:
             return False
         wanted = self.side.upper()
@@ -336,7 +351,11 @@ class MagicFormula:
         return np.where(loaded, slope, 0.0)
 
     def peak_lateral_friction(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
-        """mu_y = D_y / Fz, -: the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1) per load."""
+        """
+        Return mu_y = D_y / Fz, -, per load.
+
+        mu_y is the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1).
+        """
         return self._peak_friction(*_arrays(fz, gamma))
 
     def _peak_friction(self, fz_: np.ndarray, gamma_: np.ndarray) -> np.ndarray:
@@ -345,7 +364,8 @@ class MagicFormula:
         gamma_y = gamma_ * c['LGAY']
         return (c['PDY1'] + c['PDY2'] * dfz) * (1.0 - c['PDY3'] * gamma_y**2) * c['LMUY']
 
-    def lateral_curvature(self, fz: ArrayLike, gamma: ArrayLike = 0.0, slip_sign: ArrayLike = 0.0) -> np.ndarray:
+    def lateral_curvature(self, fz: ArrayLike, gamma: ArrayLike = 0.0,
+                          slip_sign: ArrayLike = 0.0) -> np.ndarray:
         """
         Curvature factor E_y, -, for sgn(alpha_y) = ``slip_sign`` (file convention).
 
@@ -357,8 +377,9 @@ class MagicFormula:
         e_even, e_odd = self._lateral_curvature_terms(fz_, s * gamma_)
         return _curvature(e_even, e_odd, s * sign_)
 
-    def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0,
-                     vx: ArrayLike = 0.0, mirror: ArrayLike | None = None) -> TireForces:
+    def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike,
+                     gamma: ArrayLike = 0.0, vx: ArrayLike = 0.0,
+                     mirror: ArrayLike | None = None) -> TireForces:
         """
         Combined-slip forces and moments (module doc), file (TYDEX) convention.
 
@@ -387,7 +408,8 @@ class MagicFormula:
         g_yk = _weight(b_yk, c['RCY1'], np.minimum(c['REY1'] + c['REY2'] * dfz, _MAX_CURVATURE),
                        kappa_, c['RHY1'] + c['RHY2'] * dfz)
         mu_y = lat.d / fz_e
-        sv_yk = (mu_y * fz_e * (c['RVY1'] + c['RVY2'] * dfz + c['RVY3'] * g) * np.cos(np.arctan(c['RVY4'] * a))
+        sv_yk = (mu_y * fz_e * (c['RVY1'] + c['RVY2'] * dfz + c['RVY3'] * g)
+                 * np.cos(np.arctan(c['RVY4'] * a))
                  * np.sin(c['RVY5'] * np.arctan(c['RVY6'] * kappa_)) * c['LVYKA'])  # fmt: skip
         fx = g_xa * fx0
         fy = g_yk * fy0 + sv_yk
@@ -401,14 +423,18 @@ class MagicFormula:
         t = trail.trail(_equivalent(alpha_t, ratio * kappa_), a)
         gamma_z = g * c['LGAZ']
         b_r = c['QBZ9'] * c['LKY'] / c['LMUY'] + c['QBZ10'] * lat.b * lat.c
-        d_r = (fz_e * c['R0'] * ((c['QDZ6'] + c['QDZ7'] * dfz) * c['LRES'] + (c['QDZ8'] + c['QDZ9'] * dfz) * gamma_z)
+        d_r = (fz_e * c['R0'] * ((c['QDZ6'] + c['QDZ7'] * dfz) * c['LRES']
+                                 + (c['QDZ8'] + c['QDZ9'] * dfz) * gamma_z)
                * c['LMUY'])  # fmt: skip
         m_zr = d_r * np.cos(np.arctan(b_r * _equivalent(alpha_r, ratio * kappa_))) * np.cos(a)
-        arm = c['R0'] * (c['SSZ1'] + c['SSZ2'] * fy / fz0 + (c['SSZ3'] + c['SSZ4'] * dfz) * gamma_z) * c['LS']
+        arm = c['R0'] * (c['SSZ1'] + c['SSZ2'] * fy / fz0
+                         + (c['SSZ3'] + c['SSZ4'] * dfz) * gamma_z) * c['LS']
         mz = -t * (fy - sv_yk) + m_zr + arm * fx
-        mx = fz_e * c['R0'] * (c['QSX1'] * c['LVMX'] - c['QSX2'] * g + c['QSX3'] * fy / fz0) * c['LMX']
+        mx = (fz_e * c['R0'] * (c['QSX1'] * c['LVMX'] - c['QSX2'] * g + c['QSX3'] * fy / fz0)
+              * c['LMX'])
         v_rel = vx_ / c['LONGVL'] if c['LONGVL'] > 0.0 else np.zeros_like(vx_)
-        my = -np.sign(vx_) * fz_e * c['R0'] * (c['QSY1'] + c['QSY2'] * fx / fz0 + c['QSY3'] * np.abs(v_rel)
+        my = -np.sign(vx_) * fz_e * c['R0'] * (c['QSY1'] + c['QSY2'] * fx / fz0
+                                               + c['QSY3'] * np.abs(v_rel)
                                                + c['QSY4'] * v_rel**4) * c['LMY']  # fmt: skip
         return TireForces(*(np.where(loaded, f, 0.0) for f in (fx, s * fy, s * mx, my, s * mz)))
 
@@ -419,13 +445,18 @@ class MagicFormula:
         curve = self._longitudinal(fz_e, np.zeros_like(fz_e))
         return np.where(loaded, curve.b * curve.c * curve.d, 0.0)
 
-    def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
+    def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike,
+                             gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure side-slip aligning moment M_z0 = -t F_y0 + M_zr, N*m (file convention)."""
         zero = np.zeros_like(np.asarray(fz, dtype=float))
         return self.steady_state(fz, zero, alpha, gamma).mz
 
     def radii(self, fz: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        """(loaded radius R_l, effective rolling radius R_e), m, at load ``fz`` N (module doc)."""
+        """
+        Return (loaded radius R_l, effective rolling radius R_e), m, at load ``fz`` N.
+
+        See the module doc.
+        """
         c = self._c
         if c['CZ'] <= 0.0:
             raise DataError("key 'VERTICAL_STIFFNESS' in block [VERTICAL] must be > 0 for the "
@@ -439,16 +470,22 @@ class MagicFormula:
                                                       + c['FREFF'] * rho)
         return loaded, effective
 
-    def relaxation_lengths(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """(sigma_kappa, sigma_alpha), m: first-order transient slip lengths (module doc); 0 off the ground."""
+    def relaxation_lengths(self, fz: ArrayLike,
+                           gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """
+        Return (sigma_kappa, sigma_alpha), m: first-order transient slip lengths (module doc).
+
+        Both are 0 off the ground.
+        """
         fz_, gamma_ = _arrays(fz, gamma)
         c = self._c
         fz0 = c['FZ0_PRIME']
         loaded, fz_e = self._loaded(fz_)
         dfz = (fz_e - fz0) / fz0
-        sigma_k = fz_e * (c['PTX1'] + c['PTX2'] * dfz) * np.exp(-c['PTX3'] * dfz) * c['R0'] / fz0 * c['LSGKP']
-        sigma_a = (c['PTY1'] * np.sin(2.0 * np.arctan(fz_e / (c['PTY2'] * fz0))) if c['PTY2'] != 0.0
-                   else np.zeros_like(fz_e))
+        sigma_k = (fz_e * (c['PTX1'] + c['PTX2'] * dfz) * np.exp(-c['PTX3'] * dfz) * c['R0'] / fz0
+                   * c['LSGKP'])
+        sigma_a = (c['PTY1'] * np.sin(2.0 * np.arctan(fz_e / (c['PTY2'] * fz0)))
+                   if c['PTY2'] != 0.0 else np.zeros_like(fz_e))
         sigma_a = sigma_a * (1.0 - c['PKY3'] * np.abs(gamma_)) * c['R0'] * c['LFZO'] * c['LSGAL']
         return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
 
@@ -474,10 +511,13 @@ class MagicFormula:
         dfz = (fz - fz0) / fz0
         gamma_z = gamma * c['LGAZ']
         return _Trail(
-            b=((c['QBZ1'] + c['QBZ2'] * dfz + c['QBZ3'] * dfz**2) * (1.0 + c['QBZ4'] * gamma_z + c['QBZ5'] * np.abs(gamma_z))
+            b=((c['QBZ1'] + c['QBZ2'] * dfz + c['QBZ3'] * dfz**2)
+               * (1.0 + c['QBZ4'] * gamma_z + c['QBZ5'] * np.abs(gamma_z))
                * c['LKY'] / c['LMUY']),
             c=c['QCZ1'],
-            d=fz * (c['QDZ1'] + c['QDZ2'] * dfz) * (1.0 + c['QDZ3'] * gamma_z + c['QDZ4'] * gamma_z**2) * c['R0'] / fz0 * c['LTR'],
+            d=(fz * (c['QDZ1'] + c['QDZ2'] * dfz)
+               * (1.0 + c['QDZ3'] * gamma_z + c['QDZ4'] * gamma_z**2)
+               * c['R0'] / fz0 * c['LTR']),
             e_even=c['QEZ1'] + c['QEZ2'] * dfz + c['QEZ3'] * dfz**2,
             e_odd=c['QEZ4'] + c['QEZ5'] * gamma_z,
             sh=c['QHZ1'] + c['QHZ2'] * dfz + (c['QHZ3'] + c['QHZ4'] * dfz) * gamma_z,
@@ -508,10 +548,12 @@ class MagicFormula:
             e_even=e_even,
             e_odd=e_odd,
             sh=(c['PHY1'] + c['PHY2'] * dfz) * c['LHY'] + c['PHY3'] * gamma_y,
-            sv=fz * ((c['PVY1'] + c['PVY2'] * dfz) * c['LVY'] + (c['PVY3'] + c['PVY4'] * dfz) * gamma_y) * c['LMUY'],
+            sv=(fz * ((c['PVY1'] + c['PVY2'] * dfz) * c['LVY']
+                      + (c['PVY3'] + c['PVY4'] * dfz) * gamma_y) * c['LMUY']),
         )
 
-    def _lateral_curvature_terms(self, fz: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _lateral_curvature_terms(self, fz: np.ndarray,
+                                 gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """E_y = min(e_even (1 - e_odd sgn(alpha_y)), 1): returns (e_even, e_odd)."""
         c = self._c
         dfz = (fz - c['FZ0_PRIME']) / c['FZ0_PRIME']
@@ -547,7 +589,8 @@ class MagicFormula:
             Bt  = (QBZ1 + QBZ2 dfz + QBZ3 dfz^2) (1 + QBZ4 gamma_z + QBZ5 |gamma_z|) LKY / LMUY
             Ct  = QCZ1
             Dt  = Fz (QDZ1 + QDZ2 dfz) (1 + QDZ3 gamma_z + QDZ4 gamma_z^2) (R0 / Fz0') LTR
-            Et  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2) (1 + (QEZ4 + QEZ5 gamma_z) (2/pi) arctan(Bt Ct at)) <= 1
+            Et  = (QEZ1 + QEZ2 dfz + QEZ3 dfz^2)
+                  (1 + (QEZ4 + QEZ5 gamma_z) (2/pi) arctan(Bt Ct at)) <= 1
 
         Positive t: the lateral force acts behind the contact centre, so the
         aligning torque -t Fy turns the wheel towards its direction of travel.
@@ -561,8 +604,13 @@ class MagicFormula:
         return np.where(loaded, trail, 0.0)
 
 
-def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray, sh: np.ndarray) -> np.ndarray:
-    """Combined-slip weighting G = cos(C atan(B x - E (B x - atan B x))) at x = slip + SH, over the same at x = SH."""
+def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray,
+            sh: np.ndarray) -> np.ndarray:
+    """
+    Return the combined-slip weighting G at ``slip``.
+
+    G = cos(C atan(B x - E (B x - atan B x))) at x = slip + SH, over the same at x = SH.
+    """
 
     def shape(x: np.ndarray) -> np.ndarray:
         bx = b * x
@@ -572,8 +620,13 @@ def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray, sh: np.nda
 
 
 def _equivalent(alpha: np.ndarray, kappa_term: np.ndarray) -> np.ndarray:
-    """Equivalent slip angle atan(sqrt(tan^2 alpha + (K_x/K_y kappa)^2)) sgn(alpha) (Pacejka 4.E78)."""
-    return np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term**2)) * np.where(alpha < 0.0, -1.0, 1.0)
+    """
+    Return the equivalent slip angle atan(sqrt(tan^2 alpha + (K_x/K_y kappa)^2)) sgn(alpha).
+
+    Pacejka 4.E78.
+    """
+    return (np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term**2))
+            * np.where(alpha < 0.0, -1.0, 1.0))
 
 
 def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -583,8 +636,10 @@ def _curvature(e_even: np.ndarray, e_odd: np.ndarray, x: np.ndarray) -> np.ndarr
 
 def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
     """
-    Float arrays broadcast to one shape (returned as they are when they already are:
-    the full vehicle calls this every step with four-wheel arrays).
+    Return float arrays broadcast to one shape.
+
+    They are returned as they are when they already are (the full vehicle calls this
+    every step with four-wheel arrays).
     """
     first = values[0]
     if isinstance(first, np.ndarray):

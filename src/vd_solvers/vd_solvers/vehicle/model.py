@@ -4,7 +4,8 @@ Full-vehicle multibody model: Pinocchio chassis, K&C suspension maps, Magic Form
 Topology (Pinocchio, built once per configuration)::
 
     universe -- free flyer -- body (sprung mass, CoG and inertia of the mass group)
-                  +-- prismatic z (body axis) -- carrier FL (unsprung mass) -- revolute y -- wheel FL (spin inertia)
+                  +-- prismatic z (body axis) -- carrier FL (unsprung mass)
+                      -- revolute y -- wheel FL (spin inertia)
                   +-- ... FR, RL, RR
 
 The body frame is the data frame of the configuration (ISO 8855 / REP 103: x forward,
@@ -35,8 +36,8 @@ Integrator: semi-implicit (symplectic) Euler on Pinocchio's ABA accelerations,
 ``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), with the
 transient slips advanced analytically (exact first-order decay over the step) and the
 stiff wheel-spin / longitudinal-slip coupling linearly implicit (see
-:meth:`VehicleModel.forces`): that is what makes the step independent of speed. A non-finite state is a SolverError naming
-configuration, event and time.
+:meth:`VehicleModel.forces`): that is what makes the step independent of speed. A
+non-finite state is a SolverError naming configuration, event and time.
 
 Not modelled (documented in docs/models.md): steering-system inertia and compliance
 beyond the K&C compliance steer, wheel-centre fore-aft and lateral motion with travel
@@ -74,8 +75,10 @@ FRONT = np.array([True, True, False, False])
 
 class SlipUpdate(NamedTuple):
     """
-    How the transient slips move over a step (arrays (4,)): alpha' explicitly, kappa'
-    with the wheel spin at the end of the step (see :meth:`VehicleModel.forces`).
+    How the transient slips move over a step (arrays (4,)).
+
+    alpha' moves explicitly, kappa' with the wheel spin at the end of the step (see
+    :meth:`VehicleModel.forces`).
     """
 
     alpha: np.ndarray  # alpha' at the end of the step
@@ -136,13 +139,17 @@ class VehicleModel:
         self.mirror = np.array([self._mirror(t, s) for t, s in
                                 zip((self.tires[0], self.tires[0], self.tires[1], self.tires[1]),
                                     SIDE)])
-        self.r0 = np.array([self.tires[0].unloaded_radius] * 2 + [self.tires[1].unloaded_radius] * 2)
-        self.cz = np.array([self.tires[0].vertical_stiffness] * 2 + [self.tires[1].vertical_stiffness] * 2)
-        self.cd = np.array([self.tires[0].vertical_damping] * 2 + [self.tires[1].vertical_damping] * 2)
+        self.r0 = np.array([self.tires[0].unloaded_radius] * 2
+                           + [self.tires[1].unloaded_radius] * 2)
+        self.cz = np.array([self.tires[0].vertical_stiffness] * 2
+                           + [self.tires[1].vertical_stiffness] * 2)
+        self.cd = np.array([self.tires[0].vertical_damping] * 2
+                           + [self.tires[1].vertical_damping] * 2)
         vxlow = [t.props.number('MODEL', 'VXLOW', 0.0) for t in self.tires]
         self.vx_floor = max(VX_FLOOR, *vxlow)
         self.wheel_centres = wheel_centres(config)  # (4, 3) body frame, design
-        m_u = np.array([mass.scalar('unsprung_mass_front')] * 2 + [mass.scalar('unsprung_mass_rear')] * 2)
+        m_u = np.array([mass.scalar('unsprung_mass_front')] * 2
+                       + [mass.scalar('unsprung_mass_rear')] * 2)
         self.unsprung = m_u
         self.spin_inertia = SPIN_INERTIA_FACTOR * m_u * self.r0**2
         self.sprung_mass = mass.scalar('sprung_mass')
@@ -186,8 +193,10 @@ class VehicleModel:
 
     def initial_state(self, speed: float, yaw_rate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """
-        (q, v) with the static loads on the tires, at ``speed`` (m/s, body x) and
-        ``yaw_rate`` (rad/s; zero: straight ahead).
+        Return the initial state (q, v) with the static loads on the tires.
+
+        The vehicle moves at ``speed`` (m/s, body x) and ``yaw_rate`` (rad/s; zero:
+        straight ahead).
         """
         q = pin.neutral(self.model)
         fz_static = self.static_loads()
@@ -210,12 +219,16 @@ class VehicleModel:
         return q, v
 
     def static_loads(self) -> np.ndarray:
-        """Static wheel loads FL FR RL RR, N (``static_wheel_loads`` of the configuration)."""
+        """
+        Return the static wheel loads FL FR RL RR, N.
+
+        They are the ``static_wheel_loads`` of the configuration.
+        """
         front, rear = static_wheel_loads(self.config)
         return np.array([front, front, rear, rear])
 
     def tire_radii(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(loaded, effective rolling) radii of the four tires at loads ``fz``, m."""
+        """Return the (loaded, effective rolling) radii of the four tires at loads ``fz``, m."""
         if self._one_tire:
             return self.tires[0].radii(fz)
         lf, ef = self.tires[0].radii(fz[:2])
@@ -260,7 +273,8 @@ class VehicleModel:
             fy_b = fx_b = np.zeros(4)
         side = np.where(fx_b < 0.0, 0, 1)
         cols = np.arange(4)
-        toe = table[1] + maps.compliance_steer_y * fy_b + maps.compliance_steer_x[side, cols] * fx_b
+        toe = (table[1] + maps.compliance_steer_y * fy_b
+               + maps.compliance_steer_x[side, cols] * fx_b)
         camber = table[2] + maps.compliance_camber_y * fy_b
         steer = steer - SIDE * toe
         gamma = -SIDE * camber + roll
@@ -377,7 +391,11 @@ class VehicleModel:
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """A x b row by row for (3,) or (n, 3) operands (np.cross costs more on small arrays)."""
+    """
+    Compute a x b row by row for (3,) or (n, 3) operands.
+
+    np.cross costs more on small arrays.
+    """
     a = np.broadcast_to(a, b.shape)
     return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
                      a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
