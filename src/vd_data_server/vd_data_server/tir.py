@@ -171,7 +171,9 @@ _FORMAT_NAMES: Final[Mapping[str, str]] = MappingProxyType(
 # PROPERTY_FILE_FORMAT values that leave the version to FITTYP.
 _GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({'MF-TYRE', 'MF_TYRE'})
 # FITTYP (MF-Tyre "Magic Formula version number"): 6 and 21 are MF 5.2.
-_FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType({6: 'MF52', 21: 'MF52', 61: 'MF61', 62: 'MF62'})
+_FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType(
+    {6: 'MF52', 21: 'MF52', 61: 'MF61', 62: 'MF62'}
+)
 
 # Blocks in which every value must be a number.
 _NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset({'DIMENSION', 'VERTICAL'})
@@ -221,7 +223,9 @@ class TireProperties:
     sections: Mapping[str, Mapping[str, float | str]]
     tables: Mapping[str, TireTable] = field(default_factory=lambda: MappingProxyType({}))
 
-    def get(self, section: str, key: str, default: float | str | _Required = _REQUIRED) -> float | str:
+    def get(
+        self, section: str, key: str, default: float | str | _Required = _REQUIRED
+    ) -> float | str:
         """
         Value of ``key`` in block ``section`` (names case-insensitive).
 
@@ -235,7 +239,9 @@ class TireProperties:
             return default
         if key_name not in block:
             if isinstance(default, _Required):
-                raise DataError(_missing_key_message(key_name, block_name), file=self.path, key=key_name)
+                raise DataError(
+                    _missing_key_message(key_name, block_name), file=self.path, key=key_name
+                )
             return default
         return block[key_name]
 
@@ -305,9 +311,13 @@ def read_tir(path: str | Path) -> TireProperties:
         with file.open('rb') as stream:
             data = stream.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
-        raise DataError(f'cannot read tire property file: {exc.strerror or exc}', file=str(file)) from exc
+        raise DataError(
+            f'cannot read tire property file: {exc.strerror or exc}', file=str(file)
+        ) from exc
     if len(data) > MAX_FILE_BYTES:
-        raise DataError(f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file', file=str(file))
+        raise DataError(
+            f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file', file=str(file)
+        )
     try:
         text = data.decode('utf-8-sig')
     except UnicodeDecodeError:
@@ -329,9 +339,14 @@ def parse_tir_text(text: str, source: str) -> TireProperties:
     return TireProperties(
         path=source,
         file_format=file_format,
-        sections=MappingProxyType({block: MappingProxyType(values) for block, values in sections.items()}),
+        sections=MappingProxyType(
+            {block: MappingProxyType(values) for block, values in sections.items()}
+        ),
         tables=MappingProxyType(
-            {block: TireTable(table.columns, tuple(table.rows)) for block, table in raw.tables.items()}
+            {
+                block: TireTable(table.columns, tuple(table.rows))
+                for block, table in raw.tables.items()
+            }
         ),
     )
 
@@ -348,7 +363,9 @@ def _read_lines(text: str, source: str) -> _RawFile:
         code, quote_closed = _strip_comment(line)
         code = code.strip()
         if not quote_closed:
-            errors.append(DataError(f'line {number}: unterminated quoted string in {code!r}', file=source))
+            errors.append(
+                DataError(f'line {number}: unterminated quoted string in {code!r}', file=source)
+            )
             continue
         if not code:
             continue
@@ -356,7 +373,10 @@ def _read_lines(text: str, source: str) -> _RawFile:
             block = match[1].upper()
             if block in raw.blocks:
                 errors.append(
-                    DataError(f'line {number}: block [{block}] repeats line {block_lines[block]}', file=source)
+                    DataError(
+                        f'line {number}: block [{block}] repeats line {block_lines[block]}',
+                        file=source,
+                    )
                 )
                 entries = {}
             else:
@@ -364,7 +384,9 @@ def _read_lines(text: str, source: str) -> _RawFile:
                 block_lines[block] = number
             continue
         if block is None:
-            errors.append(DataError(f'line {number}: {code!r} comes before the first [BLOCK]', file=source))
+            errors.append(
+                DataError(f'line {number}: {code!r} comes before the first [BLOCK]', file=source)
+            )
         elif '=' in code:
             error = _read_key_line(code, number, block, entries, source)
             if error is not None:
@@ -391,14 +413,18 @@ def _strip_comment(line: str) -> tuple[str, bool]:
     return line, quote is None
 
 
-def _read_key_line(code: str, number: int, block: str, entries: dict[str, _Entry], source: str) -> DataError | None:
+def _read_key_line(
+    code: str, number: int, block: str, entries: dict[str, _Entry], source: str
+) -> DataError | None:
     """Store one ``KEY = value`` line in ``entries``; return the problem if any."""
     key_text, _, value_text = code.partition('=')
     key, value_text = key_text.strip().upper(), value_text.strip()
     if not _KEY_RE.fullmatch(key):
         return DataError(f'line {number}: {key_text.strip()!r} is not a key name', file=source)
     if not value_text:
-        return DataError(f'line {number}: key {key!r} in block [{block}] has no value', file=source, key=key)
+        return DataError(
+            f'line {number}: key {key!r} in block [{block}] has no value', file=source, key=key
+        )
     if key in entries:
         return DataError(
             f'line {number}: key {key!r} repeats line {entries[key].line} in block [{block}]',
@@ -410,7 +436,7 @@ def _read_key_line(code: str, number: int, block: str, entries: dict[str, _Entry
 
 
 def _parse_value(text: str) -> float | str:
-    """Number, quoted string (quotes removed) or bare word."""
+    """Return the value of ``text``: a number, a quoted string (quotes removed) or a bare word."""
     if len(text) >= 2 and text[0] in _QUOTE_CHARS and text[-1] == text[0]:
         return text[1:-1].strip()
     if _NUMBER_RE.fullmatch(text):
@@ -418,7 +444,9 @@ def _parse_value(text: str) -> float | str:
     return text
 
 
-def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawTable], source: str) -> DataError | None:
+def _read_table_line(
+    code: str, number: int, block: str, tables: dict[str, _RawTable], source: str
+) -> DataError | None:
     """Store a ``{column header}`` or a row of numbers of a table block."""
     table = tables.setdefault(block, _RawTable())
     if match := _TABLE_HEADER_RE.fullmatch(code):
@@ -431,10 +459,13 @@ def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawT
             'expected KEY = value, a {column header} or a row of numbers',
             file=source,
         )
-    width = len(table.columns) if table.columns else len(table.rows[0]) if table.rows else len(cells)
+    width = (
+        len(table.columns) if table.columns else len(table.rows[0]) if table.rows else len(cells)
+    )
     if len(cells) != width:
         return DataError(
-            f'line {number}: table row in block [{block}] has {len(cells)} values, expected {width}',
+            f'line {number}: table row in block [{block}] has {len(cells)} values, '
+            f'expected {width}',
             file=source,
         )
     table.rows.append(tuple(float(cell) for cell in cells))
@@ -443,7 +474,11 @@ def _read_table_line(code: str, number: int, block: str, tables: dict[str, _RawT
 
 def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) -> list[DataError]:
     """Missing blocks or keys and non-numbers where numbers are needed."""
-    errors = [DataError(f'missing block [{name}]', file=source) for name in REQUIRED_BLOCKS if name not in blocks]
+    errors = [
+        DataError(f'missing block [{name}]', file=source)
+        for name in REQUIRED_BLOCKS
+        if name not in blocks
+    ]
     for block, keys in REQUIRED_KEYS.items():
         if block in blocks:
             errors.extend(
@@ -458,7 +493,8 @@ def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) ->
             if needs_number and isinstance(entry.value, str):
                 errors.append(
                     DataError(
-                        f'line {entry.line}: key {key!r} in block [{block}] is not a number: {entry.text}',
+                        f'line {entry.line}: key {key!r} in block [{block}] '
+                        f'is not a number: {entry.text}',
                         file=source,
                         key=key,
                     )
@@ -480,16 +516,20 @@ def _file_format(model: Mapping[str, _Entry], source: str) -> str:
         if name not in _GENERIC_FORMAT_NAMES:
             known = ', '.join(repr(n) for n in sorted({*_FORMAT_NAMES, *_GENERIC_FORMAT_NAMES}))
             raise DataError(
-                f'line {declared.line}: unknown PROPERTY_FILE_FORMAT {declared.value!r} (known: {known})',
+                f'line {declared.line}: unknown PROPERTY_FILE_FORMAT {declared.value!r} '
+                f'(known: {known})',
                 file=source,
                 key='PROPERTY_FILE_FORMAT',
             )
     fittyp = model.get('FITTYP')
     if fittyp is None:
         if declared is None:
-            raise DataError('block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP', file=source)
+            raise DataError(
+                'block [MODEL] gives neither PROPERTY_FILE_FORMAT nor FITTYP', file=source
+            )
         raise DataError(
-            f'line {declared.line}: PROPERTY_FILE_FORMAT {declared.value!r} needs FITTYP in block [MODEL]',
+            f'line {declared.line}: PROPERTY_FILE_FORMAT {declared.value!r} '
+            'needs FITTYP in block [MODEL]',
             file=source,
             key='FITTYP',
         )
@@ -497,7 +537,11 @@ def _file_format(model: Mapping[str, _Entry], source: str) -> str:
     if isinstance(value, float) and value.is_integer() and int(value) in _FITTYP_FORMATS:
         return _FITTYP_FORMATS[int(value)]
     known = ', '.join(str(n) for n in _FITTYP_FORMATS)
-    raise DataError(f'line {fittyp.line}: unknown FITTYP {fittyp.text} (known: {known})', file=source, key='FITTYP')
+    raise DataError(
+        f'line {fittyp.line}: unknown FITTYP {fittyp.text} (known: {known})',
+        file=source,
+        key='FITTYP',
+    )
 
 
 def _unit_factors(units: Mapping[str, _Entry], source: str) -> dict[str, float]:
@@ -513,7 +557,8 @@ def _unit_factors(units: Mapping[str, _Entry], source: str) -> dict[str, float]:
         if factor is None:
             errors.append(
                 DataError(
-                    f'line {entry.line}: {entry.text} is not a known unit of {_QUANTITY_WORDS[quantity]}',
+                    f'line {entry.line}: {entry.text} is not a known unit of '
+                    f'{_QUANTITY_WORDS[quantity]}',
                     file=source,
                     key=quantity,
                 )
@@ -573,11 +618,16 @@ NONZERO_KEYS: Final[tuple[tuple[str, str], ...]] = (
 )
 
 
-def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
-                 where: Mapping[tuple[str, str], tuple[str, str]] | None = None) -> list[DataError]:
+def check_values(
+    sections: Mapping[str, Mapping[str, float | str]],
+    source: str,
+    where: Mapping[tuple[str, str], tuple[str, str]] | None = None,
+) -> list[DataError]:
     """
-    Values no tire can have: non-finite numbers (``1e999``), a non-positive nominal
-    load, free radius or LFZO, and a zero divisor of the Magic Formula.
+    Return the problems of values no tire can have.
+
+    These are non-finite numbers (``1e999``), a non-positive nominal load, free
+    radius or LFZO, and a zero divisor of the Magic Formula.
 
     ``where`` gives the ``line N: `` prefix and the text as written of a (block, key)
     read from a file; the same check runs on the values of a tire group after
@@ -607,7 +657,9 @@ def check_values(sections: Mapping[str, Mapping[str, float | str]], source: str,
 
 
 def _check_physical(
-    blocks: Mapping[str, Mapping[str, _Entry]], sections: Mapping[str, Mapping[str, float | str]], source: str
+    blocks: Mapping[str, Mapping[str, _Entry]],
+    sections: Mapping[str, Mapping[str, float | str]],
+    source: str,
 ) -> list[DataError]:
     where = {(block, key): (f'line {entry.line}: ', entry.text)
              for block, entries in blocks.items() for key, entry in entries.items()}

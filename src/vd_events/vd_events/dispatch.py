@@ -185,7 +185,8 @@ class Dispatcher:
                         pending.remove(job)
                         done(job.request, None, f'{job.request.label}: no {family} solver '
                              f'instance in the ROS graph (start one: vd launch --solvers '
-                             f'{family}=1, or {SOLVER_FAMILIES[family].executable} on another host)', '')
+                             f'{family}=1, or {SOLVER_FAMILIES[family].executable} '
+                             'on another host)', '')
                     continue
                 for inst in sorted(idle, key=lambda i: i.runs):
                     job = next((j for j in pending if j.request.family == family), None)

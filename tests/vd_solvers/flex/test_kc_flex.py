@@ -1,7 +1,9 @@
 """
-Flexible components inside the K&C model: objectivity of the co-rotational
-embedding, the rigid limit, softening, the beam anti-roll bar against G J / L,
-imported stiffness equal to the generated one, and the thesis' trends (5.1).
+Tests of the flexible components inside the K&C model.
+
+Covered: objectivity of the co-rotational embedding, the rigid limit, softening,
+the beam anti-roll bar against G J / L, imported stiffness equal to the generated
+one, and the thesis' trends (5.1).
 """
 from __future__ import annotations
 
@@ -45,8 +47,10 @@ def _inputs(studies, fidelity):
 
 def test_rigid_rotation_of_a_component_stores_no_energy(studies):
     """
-    Objectivity: rotate every node of the flexible lower arm rigidly by 30 deg,
-    deformed or not; the component's strain energy and internal force are unchanged.
+    Check objectivity: a rigid rotation of a component stores no energy.
+
+    Rotate every node of the flexible lower arm rigidly by 30 deg, deformed or not;
+    the component's strain energy and internal force are unchanged.
     """
     inp = suspension_input(studies['sedan'].configurations['baseline'], 'front', 'flexible')
     system = assemble(inp)
@@ -60,7 +64,9 @@ def test_rigid_rotation_of_a_component_stores_no_energy(studies):
     rng = np.random.default_rng(7)
     deformed = state.copy()
     deformed.p[nodes] += rng.normal(scale=2e-4, size=(3, 3))
-    deformed.R[nodes] = rotation_vectors_to_matrices(rng.normal(scale=2e-3, size=(3, 3))) @ deformed.R[nodes]
+    deformed.R[nodes] = (
+        rotation_vectors_to_matrices(rng.normal(scale=2e-3, size=(3, 3))) @ deformed.R[nodes]
+    )
     q = rotation_vectors_to_matrices(np.array([[np.radians(30.0) / np.sqrt(3.0)] * 3]))[0]
     centre = state.p[nodes[0]]
     for base in (state, deformed):
@@ -88,8 +94,9 @@ RIGID_LIMIT_SCALE = 1e5
 
 def _stiffened(inp, factor=RIGID_LIMIT_SCALE):
     """
-    Every flexible component except the bar made far stiffer and massless,
-    the rigid model's part masses removed (so both carry the same weights).
+    Return ``inp`` with every flexible component except the bar far stiffer and massless.
+
+    The rigid model's part masses are removed as well (so both carry the same weights).
     """
     flex = {}
     for name, spec in inp.flexible.items():
@@ -103,8 +110,10 @@ def _stiffened(inp, factor=RIGID_LIMIT_SCALE):
 
 def test_rigid_limit_equals_the_rigid_model(studies):
     """
-    E and G x 1e5: the flexible K&C equals the rigid K&C within 1e-4 deg and 1e-3 mm
-    on every event, every configuration of both sample vehicles.
+    Check that with E and G x 1e5 the flexible K&C equals the rigid K&C.
+
+    They agree within 1e-4 deg and 1e-3 mm on every event, every configuration of
+    both sample vehicles.
     """
     checked = 0
     for label, inp in _inputs(studies, 'flexible'):
@@ -114,7 +123,8 @@ def test_rigid_limit_equals_the_rigid_model(studies):
         for event in EVENTS:
             a, b = m_rigid.run(event, steps=STEPS), m_flex.run(event, steps=STEPS)
             for ch in ('toe', 'camber'):
-                assert np.degrees(np.abs(a.channels[ch] - b.channels[ch]).max()) < 1e-4, (label, event, ch)
+                assert np.degrees(np.abs(a.channels[ch] - b.channels[ch]).max()) < 1e-4, (
+                    label, event, ch)
             for ch in ('wheel_centre', 'contact_point'):
                 assert np.abs(a.channels[ch] - b.channels[ch]).max() < 1e-6, (label, event, ch)
             checked += 1
@@ -129,6 +139,8 @@ def _metrics(inp, label):
 
 def test_flexibility_can_only_soften(studies):
     """
+    Check that the flexible components can only lower the work-conjugate stiffnesses.
+
     Compliance added in series can only increase the flexibility of a loaded point in
     the direction of its load (Rayleigh): the work-conjugate stiffnesses -- lateral at the
     contact point, traction at the wheel centre, roll -- cannot rise. (Braking acts on the
@@ -144,6 +156,8 @@ def test_flexibility_can_only_soften(studies):
 
 def test_straight_beam_bar_matches_torsion_spring(studies):
     """
+    Check that a straight beam anti-roll bar matches the torsion-spring model.
+
     A straight bar with stiff arms running along x: its roll stiffness equals the
     torsion-spring model's with k = G J / L (L the distance between the mounts), within 1 %.
     """
@@ -163,14 +177,15 @@ def test_straight_beam_bar_matches_torsion_spring(studies):
 
     def roll(i):
         r = KCModel(i).run('opposite_wheel_travel', steps=11, amplitude=0.02)
-        return derived_metrics({'opposite_wheel_travel': r}, i.tire_vertical_stiffness)['roll_stiffness'][0]
+        return derived_metrics({'opposite_wheel_travel': r},
+                               i.tire_vertical_stiffness)['roll_stiffness'][0]
 
     k0 = roll(bare)
     assert roll(flex) - k0 == pytest.approx(roll(rigid) - k0, rel=0.01)
 
 
 def _plain(comp, length=1e-3):
-    """The condensed component written in the plain format in mm and N."""
+    """Return the condensed component written in the plain format in mm and N."""
     from vd_solvers.flex.imported import dof_scales
 
     k = comp.stiffness / dof_scales(len(comp.nodes), length, 1.0, 1.0)
@@ -191,6 +206,8 @@ def _dmig(comp, grids):
 
 def test_imported_stiffness_equals_the_generated_frame(studies):
     """
+    Check that imported stiffness gives the same results as the generated beam frame.
+
     The lower arm's condensed stiffness written as a plain file and as a Nastran DMIG
     punch, read back and used in the K&C model: the same results as the beam frame.
     """
@@ -237,13 +254,16 @@ def test_unknown_component_for_the_template_is_refused(studies):
     with pytest.raises(SolverError) as err:
         KCModel(replace(inp, flexible={'crossmember': inp.flexible['lca']}), 'cfg')
     assert str(err.value) == ("cfg: unknown flexible component 'crossmember' (components of "
-                              "template 'macpherson': upright, lca, strut, tierod, anti_roll_bar, subframe)")
+                              "template 'macpherson': upright, lca, strut, tierod, "
+                              'anti_roll_bar, subframe)')
 
 
 def test_thesis_trends(studies):
     """
-    Thesis 5.1: the force events differ between rigid and flexible; the steering
-    event (kinematics) nearly agrees.
+    Check the trends of thesis 5.1 between the rigid and the flexible model.
+
+    The force events differ between rigid and flexible; the steering event
+    (kinematics) nearly agrees.
     """
     config = studies['sedan'].configurations['baseline']
     inp = suspension_input(config, 'front', 'flexible')
@@ -265,12 +285,14 @@ def test_thesis_trends(studies):
 
 def test_tangent_is_consistent_with_the_internal_forces(studies):
     """
-    The assembled tangent of the flexible model against central finite differences
-    of the force residual at an equilibrium (opposite pad travel: the bar, springs and
-    every component loaded). At equilibrium the symmetric exponential-map chart is
-    exact; away from it the tangent lacks the (vanishing) skew term of the residual
-    moment, by design. Pad loads only: a force at the contact point has a documented
-    approximate tangent (the contact point rolls along the tread; system.System._applied).
+    Check the assembled tangent of the flexible model against finite differences.
+
+    The tangent is compared with central finite differences of the force residual at
+    an equilibrium (opposite pad travel: the bar, springs and every component loaded).
+    At equilibrium the symmetric exponential-map chart is exact; away from it the
+    tangent lacks the (vanishing) skew term of the residual moment, by design. Pad
+    loads only: a force at the contact point has a documented approximate tangent (the
+    contact point rolls along the tread; system.System._applied).
     """
     from vd_solvers.kc.solver import solve_static
 
@@ -296,6 +318,8 @@ def test_tangent_is_consistent_with_the_internal_forces(studies):
 
 def test_flexible_subframe_carries_the_arm_pivots(studies):
     """
+    Check that a flexible subframe carries the lower-arm pivots.
+
     The subframe alone: the lower-arm joints sit on its nodes, so it adds lateral
     compliance at the contact patch; made 1e5 times stiffer it is the body again.
     """
