@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Shared fixtures: sample data copies and a private ROS graph for node tests."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The type check of the ROS-free cores (mypy.ini): part of the test suite, zero errors."""
 from __future__ import annotations
 

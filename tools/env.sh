@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 # Run a command inside the workspace environment (venv + ROS wheels + colcon install),
 # without anyone having to source anything by hand: tools/env.sh CMD [ARGS...]
 set -eo pipefail

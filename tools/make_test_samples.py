@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Make the sample measured files of src/vd_events/samples (made for the tests, not measured).
 

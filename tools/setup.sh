@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 # Idempotent workspace setup: .venv with the pinned packages (ROS 2 Jazzy wheels,
 # colcon, numpy/scipy/pinocchio/rosbags/...), the fix-ups the PyPI ROS wheels
 # need, and a colcon build of src/. Each step runs only when its inputs changed.
@@ -63,6 +65,8 @@ src_hash=$( (find src -type f \( -name '*.msg' -o -name '*.srv' -o -name '*.acti
     find src/vd_data_server/data -type f | sort; cat colcon.meta) | sha256sum | cut -c1-16)
 if [ "$(cat "$ROOT/install/.vd-build" 2>/dev/null)" != "$src_hash" ]; then
     say "colcon build"
+    # a symlink install keeps links to files a change removed (a deleted message): drop them
+    [ -d "$ROOT/install" ] && find "$ROOT/install" -xtype l -delete
     export AMENT_PREFIX_PATH=$VENV
     export PATH=$VENV/bin:$PATH
     export VIRTUAL_ENV=$VENV

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Fuzzed service requests and action goals to live nodes: every request gets an answer.
 

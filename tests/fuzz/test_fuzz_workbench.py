@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Fuzzed workbench edits: a message or a clean error, never a traceback or a hang.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Signals at chosen points of embedded and distributed runs (issue 10, causes 1 and 6).
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Two graphs side by side in one ROS domain, under ``/car1`` and ``/car2``.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The rig_bridge process: a rig's live sensor_msgs/JointState into a vd bag.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The product driven as a ROS user drives it: the real ``ros2`` command line and ``ros2 launch``.
 

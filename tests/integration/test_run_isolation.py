@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Runs never share a ROS domain silently, and every result is matched to its request.
 

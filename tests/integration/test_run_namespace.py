@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """``vd run --namespace``: the run's graph lives in the namespace, its bag says so."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """End-to-end runs through the ROS graph: embedded and distributed, bags, report."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd study`` with measurements: the plan's runs and an imported rig measurement.
 

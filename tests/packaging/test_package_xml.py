@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Every package declares what its Python modules import (package.xml), and nothing else.
 

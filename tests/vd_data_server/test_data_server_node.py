@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The data_server node in a private ROS domain: latched topics, services, file watching."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Loading one data file: validation with exact messages, sample files, properties."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """docs/data-format.md documents every key of the schema: the doc cannot fall behind."""
 from __future__ import annotations
 

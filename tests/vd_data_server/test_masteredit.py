@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Edits of master files (the workbench, vd import xlsx): validated, atomic, comments kept.
 

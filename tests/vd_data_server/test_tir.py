@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Tests of the .tir reader against the Chrono sample files and malformed copies.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The workbench server (vd gui) over HTTP: state, edits, live push and its security defaults.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """An edit made in the workbench reaches a running data server node (it watches the files)."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Excel interop: vd export xlsx writes the overview and group tabs; vd import xlsx reads them back.
 

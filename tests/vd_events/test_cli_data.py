@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """`vd data status|show|check`: exit codes, 'file: key: message' errors, --json contracts."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """`vd gui`, `vd export xlsx`, `vd import xlsx` and "Update marked": exit codes and messages."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Solver instance names: what the dispatcher counts as one instance of a family."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The display-unit table: SI values shown in the customary units, from any unit string."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Study plans: the plan file is checked against its spec (``study_plan.PLAN``).
 

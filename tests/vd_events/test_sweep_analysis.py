@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Sensitivity, main effects and Pareto fronts against closed-form answers."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Sweeps and optimisation with an in-process evaluator (the solvers' own K&C core).
 

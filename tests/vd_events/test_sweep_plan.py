@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Sweep plans: parsing, designs, and every class of bad plan refused before a run."""
 from __future__ import annotations
 

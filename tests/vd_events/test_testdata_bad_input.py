@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd import`` on bad input: one message naming file, line and column, exit 2, no bag.
 

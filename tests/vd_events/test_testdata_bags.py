@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Imported measurements in bags, simulation vs test, replay and the study report.
 

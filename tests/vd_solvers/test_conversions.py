@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 EventOutcome -> typed per-step states -> channels, lossless, and the bag's time axis.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Sine-with-dwell processing and grading (FMVSS 126) on synthetic signals.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """A solver node answers a failing goal with an error and keeps serving."""
 from __future__ import annotations
 

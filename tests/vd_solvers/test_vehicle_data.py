@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Whole-vehicle quantities shared by the rungs: mass properties, wheel centres, loads."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``ros2 launch vd_data_server data_server.launch.py``: the data server alone.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Conversions between the ROS-free data model and vd_interfaces messages.
 

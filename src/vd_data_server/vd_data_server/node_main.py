@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The standard ``main()`` of a vd node (ros2/examples style), shared by the packages."""
 from __future__ import annotations
 

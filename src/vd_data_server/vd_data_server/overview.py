@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Human-readable views of a study: the thesis' overview tab as a coloured table."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Where the bundled sample data lives (installed share/ or the source tree)."""
 from __future__ import annotations
 

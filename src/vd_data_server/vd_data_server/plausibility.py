@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Plausibility bounds of vehicle data (docs/data-format.md, "Plausibility bounds").
 

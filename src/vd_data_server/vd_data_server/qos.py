@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The QoS profiles of the vd graph: one definition that every node imports.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Check the shape of a YAML tree against a spec of :mod:`.schema`.
 

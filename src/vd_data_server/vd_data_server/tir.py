@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Reader for TeimOrbit tire property files (.tir): PAC2002, MF-Tyre 5.2, 6.1, 6.2.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The master-file workbench: the thesis' overview and group tabs as a local web page.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Excel interop: the overview and group tabs as a workbook, and a workbook back to a master file.
 

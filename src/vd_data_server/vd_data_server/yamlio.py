@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Safe YAML loading that remembers line numbers, for precise error messages.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``ros2 launch vd_events lockstep.launch.py``: the lock-step vehicle and the example controller.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``ros2 launch vd_events vd.launch.py``: the graph ``vd launch`` starts.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 rosbag2 MCAP bags written and read with rosbags (pure Python).
 
@@ -54,6 +56,8 @@ def typestore() -> Typestore:
     msg_dir = Path(get_package_share_directory(INTERFACES)) / 'msg'
     types: dict[str, Any] = {}
     for path in sorted(msg_dir.glob('*.msg')):
+        if not path.is_file():  # a dangling link a removed message left in an install
+            continue
         types.update(get_types_from_msg(path.read_text(), f'{INTERFACES}/msg/{path.stem}'))
     store.register(types)
     return store

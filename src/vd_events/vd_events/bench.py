@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd bench`` / ``make bench``: the figures vd promises, measured on this machine.
 

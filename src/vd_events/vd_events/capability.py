@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The analytical-capability study (thesis ch. 5, Tables 5.2.1/5.2.2).
 

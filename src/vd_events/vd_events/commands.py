@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """vd subcommands beyond ``vd data``: run, study, report, launch, bench."""
 from __future__ import annotations
 

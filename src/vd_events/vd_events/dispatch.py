@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Many runs over many solver instances: discovery, one goal in flight each, retries.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Display units at the edges: the one table the CLI text, the demo and the report use.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Private ROS domains for runs: claimed with an exclusive lock, never shared silently.
 

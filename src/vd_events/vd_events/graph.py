@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The one definition of the vd graph: which nodes ``vd launch`` and the launch files start.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd launch [--distributed] [--namespace NS] [--solvers kc=2,...]``: start the graph.
 

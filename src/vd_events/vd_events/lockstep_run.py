@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd launch --lockstep``: the lock-step vehicle and the example controller, closed loop.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd optimize``: change factors within their bounds until responses meet their targets.
 

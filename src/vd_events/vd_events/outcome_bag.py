@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 EventOutcomes into a bag without a ROS graph, with the messages a solver publishes.
 

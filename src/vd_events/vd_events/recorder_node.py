@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``ros2 run vd_events recorder``: records vd topics to an MCAP bag.
 

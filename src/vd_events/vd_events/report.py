@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd report BAG...``: an HTML report with PNG plots from recorded bags.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Runs events through the ROS graph: embedded (one process) or distributed.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Study plans: events x configurations x models, run as one batch into bags and a report.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The sine-with-dwell section of ``vd report``: the thesis' Figs. 4.4.4-4.4.6 and the verdicts.
 

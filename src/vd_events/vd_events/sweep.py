@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd sweep``: the runs of a design, each computed once, into a table and report pages.
 

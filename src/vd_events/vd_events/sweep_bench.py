@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd bench``'s sweep figures: a 40-run K&C sweep on one and two solver processes.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """``vd sweep`` and ``vd optimize``: the command-line side (docs/sweeps.md)."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Sweep and optimisation plans: factors, a design, the runs of each point, responses.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The files of a sweep: table (CSV, Parquet), sensitivity, main effects, Pareto front, HTML.
 

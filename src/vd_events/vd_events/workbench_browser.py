@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Headless Chromium (Debian's chromium and chromium-driver) driven by Selenium.
 

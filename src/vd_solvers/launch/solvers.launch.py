@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``ros2 launch vd_solvers solvers.launch.py``: the solver nodes (no data server).
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Event parameters ``NAME=VALUE`` with units, validated against an event's spec."""
 from __future__ import annotations
 

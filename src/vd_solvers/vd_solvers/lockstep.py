@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Lock-step co-simulation of the full vehicle on the ROS graph.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Wall-clock timing for the benchmark suite (``vd bench``), never for pass/fail tests."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Linear single track: closed forms, thesis eqs. 1-2 and the transient model."""
 from __future__ import annotations
 

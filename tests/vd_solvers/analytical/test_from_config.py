@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Analytical parameters derived from a configuration: sources and frames."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Two-track steady state: eqs. 3-9, equilibrium, limits and the thesis' 4.1 trends."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """K&C results on demand, cached by data hash (vd_solvers.kc.cache)."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Force elements, bushings and force events: rates, energy, reversibility."""
 from __future__ import annotations
 

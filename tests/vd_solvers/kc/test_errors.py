@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Bad inputs and impossible events fail loudly with SolverError."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The K&C input built from a resolved configuration, and K&C events on the sample vehicles."""
 from __future__ import annotations
 

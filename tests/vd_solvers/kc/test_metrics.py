@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Derived metrics: definitions cross-checked, the Chrono samples sane."""
 from __future__ import annotations
 

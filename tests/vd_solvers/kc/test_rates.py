@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Exact rates at design, instant centres, swing arms and the roll centre.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Full-vehicle outcome -> VehicleState and nav_msgs/Odometry messages (bare messages)."""
 from __future__ import annotations
 

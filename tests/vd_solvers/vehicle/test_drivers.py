@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """Driver models and the torque split (vd_solvers.vehicle.drivers)."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Full-vehicle events: the thesis' trends (4.4.1), ladder consistency, bad input.
 

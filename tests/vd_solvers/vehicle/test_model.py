@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The full-vehicle multibody model: maps from K&C, kinematics, conservation, statics, errors."""
 from __future__ import annotations
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """``vd import`` and ``vd compare`` (ARCHITECTURE §5): measured data and simulation vs test."""
 from __future__ import annotations
 

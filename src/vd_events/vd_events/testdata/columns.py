@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Column maps: which column of a measured file is which vd channel, in which unit and sign.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Simulation vs test: per-channel errors, gradient errors, tolerance bands and verdicts.
 

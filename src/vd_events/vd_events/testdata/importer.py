@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd import FILE... [--map MAP.yaml] --bag DIR``: measured data into a vd bag.
 

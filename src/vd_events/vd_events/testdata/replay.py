@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 ``vd replay TEST_BAG``: a vehicle log's inputs through the models, compared with the log.
 

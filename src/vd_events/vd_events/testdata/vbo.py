@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Racelogic VBOX ``.vbo`` logs, read as the loggers write them.
 

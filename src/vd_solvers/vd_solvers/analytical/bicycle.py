@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Linear single-track (bicycle) model, thesis 3.1.1 eqs. 1-2.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 What the analytical rung takes from the K&C rung of the same configuration.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Vehicle parameter set of the bicycle and two-track models (thesis 3.1).
 

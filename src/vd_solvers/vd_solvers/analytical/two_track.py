@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Steady-state two-track model with body roll, thesis 3.1.2 eqs. 3-9.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Reduced stiffness matrices brought from an FE tool, and the mirror image of a node stiffness.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The template walk: a :class:`~.model.SuspensionInput` into a :class:`~.system.System`.
 

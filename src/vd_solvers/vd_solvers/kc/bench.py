@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Wall-clock timings of the K&C solver (not run by the unit tests).
 

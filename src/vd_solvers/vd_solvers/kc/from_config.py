@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Build a K&C suspension input from a resolved configuration, and run its events.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Derived K&C metrics: pure functions of event channels, registered by name.
 

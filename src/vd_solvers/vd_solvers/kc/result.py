@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """The result of one K&C event: per-step channels and their exact rates at design."""
 from __future__ import annotations
 

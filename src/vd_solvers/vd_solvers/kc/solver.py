@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Static equilibrium of the axle on the K&C rig: Newton on the KKT system.
 

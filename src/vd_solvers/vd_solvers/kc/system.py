@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The numerical model of one axle on the K&C rig: state, equations, tangent.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Fit the thesis' simple tire (eqs. 6-9) to a PAC2002 Magic Formula.
 

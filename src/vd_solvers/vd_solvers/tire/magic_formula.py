@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 PAC2002 (MF-Tyre 5.2) Magic Formula: pure and combined slip, moments, radii, relaxation.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the CommonRoad peer.
 

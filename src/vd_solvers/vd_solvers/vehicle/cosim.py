@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Lock-step co-simulation core: the full vehicle advanced one fixed step per command.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Full-vehicle events: constant radius turn (ISO 4138), step steer (ISO 7401), sine with dwell.
 

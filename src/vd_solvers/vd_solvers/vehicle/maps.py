@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Suspension maps of the full vehicle, taken from the K&C results of the same configuration.
 

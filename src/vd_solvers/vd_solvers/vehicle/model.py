@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Full-vehicle multibody model: Pinocchio chassis, K&C suspension maps, Magic Formula tires.
 

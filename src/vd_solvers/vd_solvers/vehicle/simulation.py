@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 Time integration of the full vehicle with its drivers, and the recorded trace.
 

@@ -1,3 +1,5 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
 """
 The FMVSS 126 / UN R140 / GTR 8 sine-with-dwell procedure on the full vehicle.
 
