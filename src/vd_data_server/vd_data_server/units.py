@@ -26,7 +26,7 @@ from .errors import DataError
 
 #: the one unit registry of vd; its parsed definitions are cached on disk (pint's own
 #: cache, in the user's cache folder), which makes building it ~7x faster after the first
-UREG = pint.UnitRegistry(cache_folder=':auto:')
+UREG: pint.UnitRegistry = pint.UnitRegistry(cache_folder=':auto:')
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
 _NUMBER_UNIT = re.compile(r'^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$')
 

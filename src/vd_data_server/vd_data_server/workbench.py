@@ -24,7 +24,7 @@ import json
 from pathlib import Path
 import threading
 import time
-from typing import Any
+from typing import Any, cast
 from urllib.parse import parse_qs, urlsplit
 
 from .errors import DataError
@@ -103,7 +103,7 @@ def study_state(study: Study) -> dict[str, Any]:
                          'files': {n: g.file for n, g in users.items()}, 'rows': rows}
         if 'hardpoints' in {g.kind for g in users.values()}:
             hardpoints[group] = {
-                n: {k.split('.', 1)[1]: [1e3 * c for c in v.si]  # type: ignore[union-attr]
+                n: {k.split('.', 1)[1]: [1e3 * c for c in cast(tuple[float, ...], v.si)]
                     for k, v in g.values.items() if v.type == 'point'}
                 for n, g in users.items()}
     configs = []
@@ -113,13 +113,13 @@ def study_state(study: Study) -> dict[str, Any]:
         overrides = []
         for key, raw in spec.overrides.items():
             group, _, rest = str(key).partition('.')
-            value = config.groups.get(group)
+            grp = config.groups.get(group)
             unit = ''
-            if value is not None:
-                base = rest[:-2] if rest not in value.values and rest[-2:] in (
+            if grp is not None:
+                base = rest[:-2] if rest not in grp.values and rest[-2:] in (
                     '.x', '.y', '.z') else rest
-                if base in value.values:
-                    unit = value.values[base].display_unit or value.values[base].unit
+                if base in grp.values:
+                    unit = grp.values[base].display_unit or grp.values[base].unit
             overrides.append({'key': str(key), 'value': str(raw), 'unit': unit})
         configs.append({'name': name, 'description': spec.description,
                         'flexible': config.flexible,

@@ -27,6 +27,7 @@ import os
 import subprocess
 import tempfile
 import time
+from typing import IO, Any
 
 from vd_solvers.families import FAMILIES as SOLVER_FAMILIES
 from vd_solvers.results import EventOutcome
@@ -82,9 +83,9 @@ def parse_instance(action: str, nodes: set[str]) -> tuple[str, str] | None:
 class _Job:
     request: RunRequest
     attempts: int = 0
-    send: object = None
-    handle: object = None
-    result: object = None
+    send: Any = None  # rclpy futures and goal handles
+    handle: Any = None
+    result: Any = None
     last_news: float = 0.0
 
 
@@ -93,7 +94,7 @@ class Instance:
     action: str
     node: str
     family: str
-    client: object
+    client: Any  # rclpy.action.ActionClient
     ready_since: float | None = None
     job: _Job | None = None
     dead: str = ''  # why it gets no more goals
@@ -109,8 +110,8 @@ class Dispatcher:
     started it): faster than waiting for the node to leave the graph.
     """
 
-    node: object
-    executor: object
+    node: Any  # rclpy.node.Node
+    executor: Any  # rclpy.executors.Executor
     alive: Callable[[str], bool] | None = None
     silence: float = SILENCE
     instances: dict[str, Instance] = field(default_factory=dict)
@@ -183,24 +184,25 @@ class Dispatcher:
                 if self.live(family):
                     waiting_since[family] = now
                 elif now - waiting_since[family] > DISCOVERY_TIMEOUT:
-                    for job in [j for j in pending if j.request.family == family]:
-                        pending.remove(job)
-                        done(job.request, None, f'{job.request.label}: no {family} solver '
+                    for lost in [j for j in pending if j.request.family == family]:
+                        pending.remove(lost)
+                        done(lost.request, None, f'{lost.request.label}: no {family} solver '
                              f'instance in the ROS graph (start one: vd launch --solvers '
                              f'{family}=1, or {SOLVER_FAMILIES[family].executable} '
                              'on another host)', '')
                     continue
                 for inst in sorted(idle, key=lambda i: i.runs):
-                    job = next((j for j in pending if j.request.family == family), None)
-                    if job is None:
+                    queued = next((j for j in pending if j.request.family == family), None)
+                    if queued is None:
                         break
-                    pending.remove(job)
-                    self._send(inst, job, goal_of)
+                    pending.remove(queued)
+                    self._send(inst, queued, goal_of)
                     active.append(inst)
             self.executor.spin_once(timeout_sec=0.01)
             now = time.monotonic()
             for inst in list(active):
                 job = inst.job
+                assert job is not None  # an active instance runs a job (_send)
                 if job.handle is None and job.send.done():
                     job.handle = job.send.result()
                     if not job.handle.accepted:
@@ -274,9 +276,11 @@ class SolverGraph:
                  log: Callable[[str], None] | None = None) -> None:
         self.master, self.counts, self.attach, self.log = master, dict(counts), attach, log
         self.procs: dict[str, subprocess.Popen] = {}
-        self.claim = None
-        self.context = self.executor = self.node = None
-        self._logs = None
+        self.claim: Any = None
+        self.context: Any = None
+        self.executor: Any = None
+        self.node: Any = None
+        self._logs: IO[str] | None = None
 
     def __enter__(self) -> Dispatcher:
         import rclpy

@@ -15,7 +15,7 @@ from __future__ import annotations
 from functools import lru_cache
 import math
 import re
-from typing import NamedTuple
+from typing import NamedTuple, cast
 
 import pint
 
@@ -97,7 +97,8 @@ def _unit(text: str) -> pint.Unit | None:
 
 
 def _radians(unit: pint.Unit) -> float:
-    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get('radian', 0)
+    return cast(float, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+        'radian', 0))
 
 
 @lru_cache(maxsize=256)
@@ -112,6 +113,7 @@ def display_unit(unit: str, name: str = '') -> str:
         return unit
     for si, shown in DISPLAY_UNITS.items():  # another unit of a quantity in the table
         dst = _unit(si)
+        assert dst is not None  # every unit of the table is a pint unit
         if src.dimensionality == dst.dimensionality and _radians(src) == _radians(dst):
             return shown
     return unit

@@ -225,7 +225,9 @@ class _Budget(Exception):
 
 def _margin(plan: SweepPlan, ev: Evaluation, k: int) -> float:
     r, v = plan.responses[k], ev.responses[k]
-    scale = abs(r.minimum if r.minimum is not None else r.maximum) or 1.0
+    bound = r.minimum if r.minimum is not None else r.maximum
+    assert bound is not None  # constraints are built only of responses with a bound
+    scale = abs(bound) or 1.0
     low = (v - r.minimum) / scale if r.minimum is not None else math.inf
     high = (r.maximum - v) / scale if r.maximum is not None else math.inf
     return min(low, high)

@@ -106,12 +106,13 @@ def _timed(master: Path, requests, warm, n: int, local=None,
         t0 = time.perf_counter()
         dispatcher.run(requests, done)
         elapsed = time.perf_counter() - t0
-        for r in requests[:PAIRS] if local is not None and pairs is not None else ():
-            t0 = time.perf_counter()
-            local(r)
-            t1 = time.perf_counter()
-            dispatcher.run([r], done)
-            pairs.append((t1 - t0, time.perf_counter() - t1))
+        if local is not None and pairs is not None:
+            for r in requests[:PAIRS]:
+                t0 = time.perf_counter()
+                local(r)
+                t1 = time.perf_counter()
+                dispatcher.run([r], done)
+                pairs.append((t1 - t0, time.perf_counter() - t1))
     if failures:
         raise RuntimeError(failures[0])
     return elapsed

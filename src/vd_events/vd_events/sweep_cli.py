@@ -47,7 +47,7 @@ def _solvers(text: str):
 @contextmanager
 def _graph(plan, args):
     """Yield an evaluator over the solver instances of the sweep's graph."""
-    from .dispatch import SolverGraph
+    from .dispatch import Dispatcher, SolverGraph
 
     solvers = _solvers(args.solvers)
     families = sorted({MODEL_FAMILY[r.model] for r in plan.runs})
@@ -61,7 +61,7 @@ def _graph(plan, args):
 
     # started at the first runs to compute (a sweep whose runs are all known starts nothing)
     graph = SolverGraph(plan.master, counts, attach=args.attach, log=log)
-    dispatchers = []
+    dispatchers: list[Dispatcher] = []
 
     def evaluator(requests, done):
         if not dispatchers:

@@ -41,7 +41,7 @@ import itertools
 import math
 from pathlib import Path
 import re
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -180,7 +180,8 @@ def _unit(text: str):
 
 
 def _radians(unit) -> int:
-    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get('radian', 0)
+    return cast(int, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+        'radian', 0))
 
 
 def _quantity(text: Any, unit: str, *, file: str, key: str) -> float:
@@ -249,10 +250,10 @@ def load_plan(path: Path, study=None, *, optimize: bool = False) -> SweepPlan:
     runs = _runs(raw.get('runs'), file)
     responses = _responses(raw.get('responses'), runs, file)
     pareto = _pareto(raw.get('pareto'), responses, file)
-    optimize = _optimize(raw.get('optimize'), path, file)
+    optimize_spec = _optimize(raw.get('optimize'), path, file)
     plan = SweepPlan(path=path, name=name, master=master, configuration=base_name,
                      design=design, samples=samples, seed=seed, factors=factors, runs=runs,
-                     responses=responses, pareto=pareto, optimize=optimize,
+                     responses=responses, pareto=pareto, optimize=optimize_spec,
                      description=str(raw.get('description', '')))
     n = len(points(plan)) if design == 'full_factorial' else samples
     if design and n > MAX_POINTS:
@@ -297,7 +298,7 @@ def base_value(config: Configuration, key: str, *, file: str, where: str) -> tup
     if coord is not None:
         if value.type != 'point':
             raise DataError(f"'{inner}' is a {value.type}, not a point", file=file, key=where)
-        return float(value.si[coord]), 'length'  # type: ignore[index]
+        return float(cast(tuple[float, ...], value.si)[coord]), 'length'
     if value.type != 'scalar':
         raise DataError(f"'{inner}' is a {value.type}: a factor must be a number (a scalar or "
                         "one coordinate '.x', '.y', '.z' of a point)", file=file, key=where)
@@ -382,10 +383,11 @@ def _levels(spec: Mapping, name: str, key: str, unit: str, base: float, design: 
                         key=f'{where}.start')
     levels = 0
     if design == 'full_factorial':
-        levels = spec.get('levels')
-        if isinstance(levels, bool) or not isinstance(levels, int):
+        raw_levels = spec.get('levels')
+        if isinstance(raw_levels, bool) or not isinstance(raw_levels, int):
             raise DataError('a full factorial design needs the number of levels of a range '
                             '(an integer, at least 2)', file=file, key=f'{where}.levels')
+        levels = raw_levels
         if levels < 2:
             raise DataError(f'{levels} levels: at least 2', file=file, key=f'{where}.levels')
         if levels > MAX_LEVELS:

@@ -302,7 +302,10 @@ def grade_procedure(runs: Sequence[SwdGrade], a_reference: float) -> ProcedureGr
     passed = valid and all(c.passed for c in criteria)
     failed = [c for c in criteria if not c.passed]
     if failed:
-        first = min(failed, key=lambda c: c.deciding_run)
+        def run_of(c: CriterionVerdict) -> int:
+            assert c.deciding_run is not None  # a failed criterion failed on a run
+            return c.deciding_run
+        first = min(failed, key=run_of)
     else:
         def margin(c: CriterionVerdict) -> float:
             if c.deciding_run is None:

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import math
 from pathlib import Path
 import re
-from typing import Any
+from typing import Any, cast
 
 from vd_data_server.errors import DataError
 from vd_data_server.units import UREG, parse_unit
@@ -167,7 +167,8 @@ def unit_factor(unit: str, target: str) -> tuple[float, float]:
 
 
 def _radian_power(unit) -> int:
-    return dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get('radian', 0)
+    return cast(int, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+        'radian', 0))
 
 
 def load_map(path: str | Path) -> ColumnMap:

@@ -257,16 +257,17 @@ def read_vbo(path: Path, cmap: ColumnMap | None) -> Measured:
     for key, (channel, sign) in DEFAULT_CHANNELS.items():
         if key in index and channel not in wanted:
             wanted[channel] = (index[key], vbo.names[index[key]], None, sign)
-    for name, spec in (cmap.columns.items() if cmap is not None else ()):
-        key = normalise(name)
-        col = index.get(key, short.get(key))
-        if col is None:
-            raise InputError(path, f"channel '{name}' of the column map {cmap.path} is not "
-                             f"in the file ([header]: {', '.join(vbo.names)})")
-        if spec.channel in ('time', 'x', 'y', 'yaw'):
-            raise InputError(cmap.path, f"columns.{name}: '{spec.channel}' comes from the "
-                             "log's time, latitude/longitude and heading; it cannot be mapped")
-        wanted[spec.channel] = (col, vbo.names[col], spec.unit, spec.sign)
+    if cmap is not None:
+        for name, spec in cmap.columns.items():
+            key = normalise(name)
+            col = index.get(key, short.get(key))
+            if col is None:
+                raise InputError(path, f"channel '{name}' of the column map {cmap.path} is not "
+                                 f"in the file ([header]: {', '.join(vbo.names)})")
+            if spec.channel in ('time', 'x', 'y', 'yaw'):
+                raise InputError(cmap.path, f"columns.{name}: '{spec.channel}' comes from the "
+                                 "log's time, latitude/longitude and heading; it cannot be mapped")
+            wanted[spec.channel] = (col, vbo.names[col], spec.unit, spec.sign)
     for channel, (col, name, mapped, sign) in wanted.items():
         target = si_unit('vehicle', channel) or ''
         in_file = vbo.units.get(normalise(name))

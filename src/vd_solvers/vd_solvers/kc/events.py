@@ -316,7 +316,10 @@ class KCModel:
         for sign in (1.0, -1.0):
             ahead = load(sign * step)
             rate = sensitivity(system, state, design, ahead, sign * step, ev)
-            rates.append((rate, lambda t, a=ahead, h=sign * step: design.blend(a, t / h)))
+
+            def toward(t: float, a: LoadCase = ahead, h: float = sign * step) -> LoadCase:
+                return design.blend(a, t / h)
+            rates.append((rate, toward))
         up = rates[0][0]
         at = channels(system, self.template, Solution((state,), (ev,), (conv,)), [design], ratio,
                       [up] if travel else None)

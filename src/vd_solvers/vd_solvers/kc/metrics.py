@@ -252,7 +252,7 @@ def _roll_camber(c: Context) -> float:
 # --- lateral force, aligning torque ---------------------------------------------
 
 
-def _per_newton(result: EventResult, channel: str, force: tuple[int, ...],
+def _per_newton(result: EventResult, channel: str, force: tuple[str, int],
                 down: bool = False) -> np.ndarray:
     """Return both wheels' d channel / d applied force at design."""
     applied = rate(result, force[0], down)[(0, *force[1:])]

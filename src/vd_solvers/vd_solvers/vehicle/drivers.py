@@ -48,7 +48,8 @@ class OpenLoopSteering:
     """
 
     def __init__(self, signal: Callable[[float], float] | None = None,
-                 times: Sequence[float] = (), angles: Sequence[float] = ()) -> None:
+                 times: Sequence[float] | np.ndarray = (),
+                 angles: Sequence[float] | np.ndarray = ()) -> None:
         if signal is None:
             t = np.asarray(times, dtype=float)
             a = np.asarray(angles, dtype=float)
@@ -75,8 +76,8 @@ class ReplaySteering(OpenLoopSteering):
     The signal is e.g. a bag's ``time`` and ``steering_wheel_angle`` channels.
     """
 
-    def __init__(self, times: Sequence[float], angles: Sequence[float],
-                 offset: float = 0.0) -> None:
+    def __init__(self, times: Sequence[float] | np.ndarray,
+                 angles: Sequence[float] | np.ndarray, offset: float = 0.0) -> None:
         super().__init__(times=[float(t) + offset for t in times], angles=angles)
 
 
