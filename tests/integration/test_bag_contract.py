@@ -160,7 +160,8 @@ def test_bag_metadata_says_jazzy_compressed_chunks_and_the_offered_qos(kc_bag):
             assert (qos['reliability'], qos['durability'], qos['history']) == (
                 'reliable', 'transient_local', 'keep_last'), name
             assert qos['depth'] > 0, name
-    assert len(topics['/vd/provenance']['offered_qos_profiles']) == 3  # every solver's
+    # one per solver of the graph (an embedded run starts the solvers its runs need)
+    assert len(topics['/vd/provenance']['offered_qos_profiles']) >= 1
     (mcap_file,) = bag.glob('*.mcap')
     with mcap_file.open('rb') as stream:
         summary = make_reader(stream).get_summary()
@@ -204,7 +205,7 @@ def test_replay_with_the_recorded_qos_reaches_a_late_transient_local_subscriber(
     from rclpy.qos import DurabilityPolicy
 
     from vd_interfaces.msg import Configuration
-    from vd_solvers.solver_node import LATCHED
+    from vd_data_server.qos import CONFIGURATIONS as LATCHED  # as a solver subscribes
 
     bag, result = kc_bag
     player = Node('bag_player_stand_in')

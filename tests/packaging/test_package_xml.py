@@ -30,7 +30,15 @@ ROSDEP_KEYS = {
     'rosbags': 'python3-rosbags-pip',
     'pinocchio': 'pinocchio',
     'vehiclemodels': 'python3-commonroad-vehicle-models-pip',
+    'ruamel': 'python3-ruamel.yaml',
+    'openpyxl': 'python3-openpyxl',
+    'plotly': 'python3-plotly',
+    'pyarrow': 'python3-pyarrow',
+    'PIL': 'python3-pil',
+    'selenium': 'python3-selenium',
 }
+#: imported for type checking only (typeshed's stub-only module)
+TYPE_ONLY = {'_typeshed'}
 #: used without an import: ``ros2 launch`` runs the package's launch files
 RUNTIME_ONLY = {'ros2launch'}
 #: imported only by setup.py (the build tool)
@@ -49,7 +57,8 @@ def imports(package: str) -> set[str]:
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 names.add(node.module.split('.')[0])
     return {n for n in names
-            if n not in sys.stdlib_module_names and n != package and n not in BUILD_ONLY}
+            if n not in sys.stdlib_module_names and n != package
+            and n not in BUILD_ONLY | TYPE_ONLY}
 
 
 def declared(package: str, tags=('depend', 'exec_depend')) -> set[str]:

@@ -160,9 +160,9 @@ class Dispatcher:
 
         from vd_solvers.conversions import outcome_from_msg
 
-        from .runner import _Client
+        from .runner import EventClient
 
-        goal_of = _Client.goal
+        goal_of = EventClient.goal
         pending = [_Job(r) for r in requests]
         active: list[Instance] = []
         waiting_since = {f: time.monotonic() for f in {r.family for r in requests}}
@@ -242,7 +242,7 @@ class Dispatcher:
         def on_feedback(_msg, job=job) -> None:
             job.last_news = time.monotonic()
 
-        job.send = inst.client.send_goal_async(goal_of(None, job.request),
+        job.send = inst.client.send_goal_async(goal_of(job.request),
                                                feedback_callback=on_feedback)
         inst.job = job
 

@@ -178,7 +178,9 @@ class EventClient:
         self.clients = {name: ActionClient(node, RunEvent, family.action())
                         for name, family in FAMILIES.items()}
 
-    def goal(self, request: RunRequest):
+    @staticmethod
+    def goal(request: RunRequest):
+        """Return the RunEvent goal of ``request``."""
         from vd_interfaces.action import RunEvent
 
         return RunEvent.Goal(event=request.event, configuration=request.configuration,

@@ -109,13 +109,13 @@ def _kc_table(runs) -> str:
     names = [m for m in KC_TABLE if any(m in r.metrics for r in kc)]
     if not kc or not names:
         return ''
-    units = {m: next(r.metrics[m][1] for r in kc if m in r.metrics) for m in names}
+    units = {m: next(r.metrics[m].unit for r in kc if m in r.metrics) for m in names}
     head = ''.join(f'<th>{html.escape(m)}<br><small>{html.escape(units[m])}</small></th>'
                    for m in names)
     rows = ''.join(
         f'<tr><td>{html.escape(r.configuration)}</td><td>{html.escape(r.axle)}</td>'
         f'<td>{html.escape(r.event)}</td><td>{html.escape(r.fidelity)}</td>' + ''.join(
-            f"<td>{_fmt(r.metrics[m][0]) if m in r.metrics else ''}</td>" for m in names)
+            f"<td>{_fmt(r.metrics[m].value) if m in r.metrics else ''}</td>" for m in names)
         + '</tr>' for r in sorted(kc, key=lambda r: (r.axle, r.event, r.configuration)))
     return ('<h2>K&amp;C metrics</h2><div class="scroll"><table><tr><th>configuration</th>'
             f'<th>axle</th><th>event</th><th>fidelity</th>{head}</tr>{rows}</table></div>')
@@ -128,7 +128,8 @@ def _fmt(value: float) -> str:
 def _pass_fail(runs) -> str:
     rows = []
     for r in runs:
-        for name, (value, _unit) in r.metrics.items():
+        for name, metric in r.metrics.items():
+            value = metric.value
             if 'passed' in name:
                 verdict = 'PASS' if value >= 0.5 else 'FAIL'
                 colour = '#c9e7c0' if verdict == 'PASS' else '#f4c7c3'

@@ -31,7 +31,7 @@ def _picked(run) -> list[int]:
     """Run indices plotted: left first, nearest 5A and the largest amplitude."""
     ch = run.channels
     amp, direction = ch.get('run_amplitude'), ch.get('run_direction')
-    a_ref = run.metrics.get('a_reference', (float('nan'), ''))[0]
+    a_ref = run.metrics['a_reference'].value if 'a_reference' in run.metrics else math.nan
     if amp is None or direction is None or not math.isfinite(a_ref):
         return []
     left = [k for k in range(len(amp)) if direction[k] > 0] or list(range(len(amp)))
@@ -81,7 +81,7 @@ def _flag(value: float) -> str:
 def _verdicts(runs: Sequence) -> str:
     rows = []
     for r in runs:
-        m = {k: v[0] for k, v in r.metrics.items()}
+        m = {k: v.value for k, v in r.metrics.items()}
         if 'passed' not in m:
             continue
         rows.append(
