@@ -204,8 +204,8 @@ def test_replay_with_the_recorded_qos_reaches_a_late_transient_local_subscriber(
     from rclpy.node import Node
     from rclpy.qos import DurabilityPolicy
 
-    from vd_interfaces.msg import Configuration
     from vd_data_server.qos import CONFIGURATIONS as LATCHED  # as a solver subscribes
+    from vd_interfaces.msg import Configuration
 
     bag, result = kc_bag
     player = Node('bag_player_stand_in')

@@ -62,7 +62,7 @@ def test_unknown_keys_are_refused_with_their_lines(tmp_path: Path) -> None:
     plan = tmp_path / 'plan.yaml'
     plan.write_text(text)
     assert refused(tmp_path, text) == [
-        f"owner: unknown key (expected one of: name, master, runs) "
+        f"owner: unknown key (expected one of: name, master, runs, measurements) "
         f"(line {line_no(plan, 'owner:')})",
         'runs[1].repeat: unknown key (expected one of: event, models, configurations, '
         f"parameters, overrides, axle, fidelity) (line {line_no(plan, '    repeat:')})"]

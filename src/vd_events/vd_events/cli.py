@@ -140,12 +140,14 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     argv = list(sys.argv[1:] if argv is None else argv)
     handlers: dict[str, Callable[[argparse.Namespace], int]] = {'data': cmd_data}
-    handlers.update(commands.HANDLERS)
-    if argv[:2] == ['import', 'xlsx']:  # beside `vd import FILE... --bag` (test data)
+    xlsx = argv[:2] == ['import', 'xlsx']  # beside `vd import FILE... --bag` (test data)
+    if xlsx:
         args = workbench_cmd.import_xlsx_parser().parse_args(argv[2:])
-        handlers['import'] = workbench_cmd.cmd_import
     else:
         args = build_parser().parse_args(argv)
+    handlers.update(commands.HANDLERS)  # filled in while the parser is built
+    if xlsx:
+        handlers['import'] = workbench_cmd.cmd_import
     want_json = bool(getattr(args, 'json', False))
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
