@@ -87,7 +87,7 @@ def test_two_solver_processes_and_one_killed_mid_sweep(tmp_path, sedan_master):
     # the run the killed instance was solving was finished by the other one
     records = load_records(out).values()
     retried = [r for r in records if r.data_hash == _hash(study, killed[0])]
-    assert [r.instance for r in retried] == ['/kc_solver']
+    assert [r.instance for r in retried] == ['/vd/kc_solver']
     assert {r.instance for r in records} <= {'/vd/kc_solver', '/vd/kc_solver_2'}
 
 
@@ -110,8 +110,10 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
     old = os.environ.get('ROS_DOMAIN_ID')
     os.environ['ROS_DOMAIN_ID'] = domain
     try:
-        code = cli.main(['sweep', str(plan), '--attach', '--out', str(out), '--json'])
+        # both instances up first: the sweep then keeps both busy (a late one would join
+        # only once it appears)
         names = _action_names(int(domain))
+        code = cli.main(['sweep', str(plan), '--attach', '--out', str(out), '--json'])
     finally:
         if old is None:
             os.environ.pop('ROS_DOMAIN_ID', None)
