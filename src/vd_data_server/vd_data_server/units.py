@@ -17,16 +17,35 @@ from __future__ import annotations
 from collections.abc import Mapping
 from functools import lru_cache
 import math
+from pathlib import Path
 import re
+import sys
 from typing import cast
 
 import pint
 
 from .errors import DataError
 
-#: the one unit registry of vd; its parsed definitions are cached on disk (pint's own
-#: cache, in the user's cache folder), which makes building it ~7x faster after the first
-UREG: pint.UnitRegistry = pint.UnitRegistry(cache_folder=':auto:')
+
+def _registry() -> pint.UnitRegistry:
+    """
+    Build the unit registry, its parsed definitions cached on disk (~7x faster after the first).
+
+    The cache lives in this Python environment (``<prefix>/var/cache/vd-pint``), not in
+    the user's cache folder: pint's cache records the paths of the definition files, so a
+    cache shared between environments breaks when the one that wrote it is removed.
+    Without a writable folder the registry is built without a cache.
+    """
+    folder = Path(sys.prefix) / 'var' / 'cache' / 'vd-pint'
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        return pint.UnitRegistry(cache_folder=folder)
+    except OSError:
+        return pint.UnitRegistry()
+
+
+#: the one unit registry of vd
+UREG: pint.UnitRegistry = _registry()
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
 _NUMBER_UNIT = re.compile(r'^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$')
 
