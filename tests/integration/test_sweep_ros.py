@@ -84,10 +84,12 @@ def test_two_solver_processes_and_one_killed_mid_sweep(tmp_path, sedan_master):
     assert result.computed == 6
     expected = [_direct(study, r) for r in (11, 11.5, 12, 12.5, 13, 13.5)]
     assert_allclose(result.responses[:, 0], expected, rtol=1e-9)
-    # the run the killed instance was solving was finished by the other one
+    # the run the killed instance was solving is recorded once: finished by the other
+    # instance, or by the killed one when its result was on the wire as the kill came
+    # (the log above says the instance was lost either way)
     records = load_records(out).values()
     retried = [r for r in records if r.data_hash == _hash(study, killed[0])]
-    assert [r.instance for r in retried] == ['/vd/kc_solver']
+    assert len(retried) == 1
     assert {r.instance for r in records} <= {'/vd/kc_solver', '/vd/kc_solver_2'}
 
 
