@@ -112,10 +112,11 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
     old = os.environ.get('ROS_DOMAIN_ID')
     os.environ['ROS_DOMAIN_ID'] = domain
     try:
-        # both instances up first: the sweep then keeps both busy (a late one would join
-        # only once it appears)
         names = _action_names(int(domain))
-        code = cli.main(['sweep', str(plan), '--attach', '--out', str(out), '--json'])
+        # --solvers kc=2 with --attach: the runs wait until the sweep has found both
+        # instances, so both get goals (a late instance would join only once it appears)
+        code = cli.main(['sweep', str(plan), '--attach', '--solvers', 'kc=2', '--out',
+                         str(out), '--json'])
     finally:
         if old is None:
             os.environ.pop('ROS_DOMAIN_ID', None)

@@ -107,7 +107,7 @@ def test_invalid_goals_are_rejected_with_the_reason_logged(ros_domain, sedan_mas
             node.destroy_node()
 
 
-def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master):
+def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master, tmp_path):
     """
     Run the real kc_solver process (multi-threaded, as ros2 run starts it).
 
@@ -130,30 +130,42 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master)
     server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
                                              Parameter('watch_period', value=0.0)])
     exe = os.path.join(get_package_prefix('vd_solvers'), 'lib', 'vd_solvers', 'kc_solver')
+    log = tmp_path / 'kc_solver.log'
     solver = subprocess.Popen([exe], env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)),
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                              stdout=log.open('w'), stderr=subprocess.STDOUT)
     client_node = Node('cancel_client')
     nodes = [server, client_node]
     try:
         client = ActionClient(client_node, RunEvent, '/vd/kc/run_event')
         assert spin_until(nodes, client.server_is_ready, timeout=30)
         spin_until(nodes, lambda: False, timeout=1.0)  # discovery of the response readers
-        seen: list[float] = []
-        send = client.send_goal_async(
+
+        def accepted(goal):
+            """Send ``goal``; return its answered request and the feedback of that goal."""
+            # as vd_events.runner.send_goal does: Fast DDS drops a goal response sent
+            # before the server has discovered the client's reader, so ask again (a
+            # list per request: an unanswered goal may still run and report)
+            for _ in range(3):
+                seen: list[float] = []
+                send = client.send_goal_async(
+                    goal, feedback_callback=lambda fb, seen=seen: seen.append(
+                        fb.feedback.progress))
+                if spin_until(nodes, send.done, timeout=10):
+                    return send, seen
+            raise AssertionError(f'no goal response; solver log:\n{log.read_text()}')
+
+        send, seen = accepted(
             RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
-                          axle='front', parameters=['steps=401']),
-            feedback_callback=lambda fb: seen.append(fb.feedback.progress))
-        assert spin_until(nodes, send.done, timeout=30)
+                          axle='front', parameters=['steps=401']))
         done = send.result().get_result_async()
         assert spin_until(nodes, done.done, timeout=60)
         assert done.result().result.success
         # feedback is a topic, the result a service: the last feedback may come after it
         assert spin_until(nodes, lambda: seen and seen[-1] == 1.0, timeout=5)
         assert seen == sorted(seen) and len(seen) >= 3
-        send = client.send_goal_async(
+        send, _ = accepted(
             RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
                           axle='front', parameters=['steps=2001']))
-        assert spin_until(nodes, send.done, timeout=30)
         handle = send.result()
         spin_until(nodes, lambda: False, timeout=0.3)
         cancel = handle.cancel_goal_async()

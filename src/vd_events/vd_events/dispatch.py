@@ -35,7 +35,9 @@ from vd_solvers.results import EventOutcome
 from . import graph
 from .graph import instance_names
 from .runner import (
+    ACCEPT_TIMEOUT,
     DISCOVERY_GRACE,
+    GOAL_ATTEMPTS,
     RunError,
     RunRequest,
     _ros_args,
@@ -54,6 +56,9 @@ ATTEMPTS = 3
 DISCOVERY_TIMEOUT = 90.0
 #: s between two looks at the graph
 DISCOVERY_PERIOD = 0.5
+#: s a family's first goals wait, once one of its instances is ready, for the others the
+#: sweep expects (``Dispatcher.expect``) before the runs start on the ones found
+EXPECT_WAIT = 30.0
 
 Done = Callable[[RunRequest, EventOutcome | None, str | None, str], None]
 
@@ -82,7 +87,8 @@ def parse_instance(action: str, nodes: set[str]) -> tuple[str, str] | None:
 @dataclass
 class _Job:
     request: RunRequest
-    attempts: int = 0
+    attempts: int = 0  # instances it was sent to
+    resends: int = 0  # goal requests sent again to the current one (no answer)
     send: Any = None  # rclpy futures and goal handles
     handle: Any = None
     result: Any = None
@@ -107,7 +113,10 @@ class Dispatcher:
     Spread runs over the instances found in the graph of ``node`` (spun by ``executor``).
 
     ``alive(node_name)`` may say an instance's process has ended (this process
-    started it): faster than waiting for the node to leave the graph.
+    started it): faster than waiting for the node to leave the graph. ``expect`` (family
+    -> count) holds a family's first goals until that many of its instances are ready, at
+    most EXPECT_WAIT s after the first one is (a late instance joins once it is
+    discovered; waiting for all makes the first goals spread over all of them).
     """
 
     node: Any  # rclpy.node.Node
@@ -116,6 +125,8 @@ class Dispatcher:
     silence: float = SILENCE
     instances: dict[str, Instance] = field(default_factory=dict)
     log: Callable[[str], None] | None = None
+    expect: Mapping[str, int] = field(default_factory=dict)
+    expect_wait: float = EXPECT_WAIT
 
     def discover(self) -> None:
         from rclpy.action import ActionClient
@@ -166,6 +177,7 @@ class Dispatcher:
         pending = [_Job(r) for r in requests]
         active: list[Instance] = []
         waiting_since = {f: time.monotonic() for f in {r.family for r in requests}}
+        started: set[str] = set()  # families whose goals go out (expected instances found)
         last_look = 0.0
         while pending or active:
             now = time.monotonic()
@@ -181,6 +193,10 @@ class Dispatcher:
             for family in families:
                 idle = [i for i in self.live(family) if i.job is None and i.ready_since
                         is not None and now - i.ready_since >= DISCOVERY_GRACE]
+                if family not in started and not self._complete(family, idle, now):
+                    idle = []
+                else:
+                    started.add(family)
                 if self.live(family):
                     waiting_since[family] = now
                 elif now - waiting_since[family] > DISCOVERY_TIMEOUT:
@@ -203,6 +219,19 @@ class Dispatcher:
             for inst in list(active):
                 job = inst.job
                 assert job is not None  # an active instance runs a job (_send)
+                if job.handle is None and not job.send.done():
+                    if now - job.last_news > ACCEPT_TIMEOUT:
+                        # Fast DDS drops a goal response sent before the server has
+                        # discovered this client's response reader: ask again
+                        if job.resends + 1 < GOAL_ATTEMPTS:
+                            job.resends += 1
+                            self._send(inst, job, goal_of, again=True)
+                        else:
+                            active.remove(inst)
+                            inst.job = None
+                            self._kill(inst, f'no answer to {GOAL_ATTEMPTS} goal requests')
+                            self._retry(job, pending, done, inst.dead)
+                    continue
                 if job.handle is None and job.send.done():
                     job.handle = job.send.result()
                     if not job.handle.accepted:
@@ -234,8 +263,27 @@ class Dispatcher:
                     self._kill(inst, f'no feedback or result for {self.silence:.0f} s')
                     self._retry(job, pending, done, inst.dead)
 
-    def _send(self, inst: Instance, job: _Job, goal_of) -> None:
-        job.attempts += 1
+    def _complete(self, family: str, ready: list[Instance], now: float) -> bool:
+        """Say whether a family's goals may start on the ``ready`` instances (``expect``)."""
+        want = self.expect.get(family, 1)
+        if not ready:
+            return False
+        if len(ready) >= want:
+            return True
+        first = min(i.ready_since for i in ready if i.ready_since is not None)
+        if now - first < self.expect_wait:
+            return False
+        if self.log is not None:
+            self.log(f'{len(ready)} of the {want} expected {family} solver instances found '
+                     f'after {self.expect_wait:.0f} s; the runs start on those (a later one '
+                     'joins once it is discovered)')
+        return True
+
+    def _send(self, inst: Instance, job: _Job, goal_of, again: bool = False) -> None:
+        """Send ``job`` to ``inst``; ``again``: the same instance, its answer never came."""
+        if not again:
+            job.attempts += 1
+            job.resends = 0
         job.handle = job.result = None
         job.last_news = time.monotonic()
 
@@ -307,7 +355,8 @@ class SolverGraph:
             raise
         alive = None if self.attach else (
             lambda name: name in self.procs and self.procs[name].poll() is None)
-        return Dispatcher(self.node, self.executor, alive=alive, log=self.log)
+        return Dispatcher(self.node, self.executor, alive=alive, log=self.log,
+                          expect=self.counts)
 
     def _start_processes(self, domain: int) -> None:
         env = dict(os.environ, ROS_DOMAIN_ID=str(domain), VD_PARENT_PID=str(os.getpid()),

@@ -20,8 +20,9 @@ def add_subcommands(sub: argparse._SubParsersAction,
                                         'configuration')):
         cmd = sub.add_parser(name, help=helptext)
         cmd.add_argument('plan', help='sweep plan YAML (docs/sweeps.md)')
-        cmd.add_argument('--solvers', default='2', help='solver processes to start: N of each '
-                         'family the runs need, or FAMILY=N,... (e.g. kc=2); default 2')
+        cmd.add_argument('--solvers', help='solver processes to start: N of each family the '
+                         'runs need, or FAMILY=N,... (e.g. kc=2); default 2. With --attach: '
+                         'the instances to wait for before the runs start (default 1)')
         cmd.add_argument('--attach', action='store_true', help='use the solver instances '
                          'already running on ROS_DOMAIN_ID (vd launch --solvers, other hosts) '
                          'instead of starting any')
@@ -31,9 +32,11 @@ def add_subcommands(sub: argparse._SubParsersAction,
     handlers['optimize'] = cmd_optimize
 
 
-def _solvers(text: str):
+def _solvers(text: str | None, attach: bool = False):
     from .dispatch import parse_solvers
 
+    if text is None:
+        return 1 if attach else 2
     text = text.strip()
     if text.isdigit():
         if int(text) < 1:
@@ -49,7 +52,7 @@ def _graph(plan, args):
     """Yield an evaluator over the solver instances of the sweep's graph."""
     from .dispatch import Dispatcher, SolverGraph
 
-    solvers = _solvers(args.solvers)
+    solvers = _solvers(args.solvers, args.attach)
     families = sorted({MODEL_FAMILY[r.model] for r in plan.runs})
     counts = (dict.fromkeys(families, solvers) if isinstance(solvers, int)
               else {f: solvers.get(f, 1) for f in families})
@@ -104,7 +107,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     plan = load_plan(path)
     study = load_study(plan.master)
     out = Path(args.out) if args.out else Path('out') / plan.name
-    _solvers(args.solvers)
+    _solvers(args.solvers, args.attach)
     from .sweep import requests_for
     from .sweep_plan import points
 
@@ -141,7 +144,7 @@ def cmd_optimize(args: argparse.Namespace) -> int:
 
     plan = load_plan(Path(args.plan), optimize=True)
     study = load_study(plan.master)
-    _solvers(args.solvers)
+    _solvers(args.solvers, args.attach)
     out = Path(args.out) if args.out else Path('out') / plan.name
     check_plan(plan, study, out)
 
