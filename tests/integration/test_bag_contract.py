@@ -123,6 +123,18 @@ def test_kc_bag_has_every_channel_as_a_named_field_on_a_pseudo_time_axis(kc_bag)
     # XY plots: the swept quantity is a field
     assert [s.left.wheel_travel for s in states] == pytest.approx(
         result['channels']['wheel_travel_left']['values'])
+    # the wheels move on /tf: base_link -> front_left_wheel, front_right_wheel at each
+    # state's stamp, at the wheel centre (RViz / Foxglove 3D panels)
+    tfs = [msg for _, msg in messages['/tf']]
+    assert len(tfs) == len(states)
+    assert [t for t, _ in messages['/tf']] == [_stamp(tf.transforms[0]) for tf in tfs]
+    for tf, state in zip(tfs, states):
+        assert [(t.header.frame_id, t.child_frame_id) for t in tf.transforms] == [
+            ('base_link', 'front_left_wheel'), ('base_link', 'front_right_wheel')]
+        for t, wheel in zip(tf.transforms, (state.left, state.right)):
+            assert _stamp(t) == _stamp(state)
+            tr, centre = t.transform.translation, wheel.wheel_centre
+            assert (tr.x, tr.y, tr.z) == (centre.x, centre.y, centre.z)
 
 
 def test_step_steer_bag_is_on_the_simulated_time_axis(capsys, tmp_path, sedan_master):
@@ -152,7 +164,7 @@ def test_bag_metadata_says_jazzy_compressed_chunks_and_the_offered_qos(kc_bag):
     topics = {t['topic_metadata']['name']: t['topic_metadata']
               for t in meta['topics_with_message_count']}
     assert set(topics) >= {'/vd/configuration', '/vd/data_status', '/vd/provenance',
-                           '/vd/kc/state', '/vd/kc/result'}
+                           '/vd/kc/state', '/vd/kc/result', '/tf'}
     for name, topic in topics.items():
         profiles = topic['offered_qos_profiles']  # one per publisher (three for provenance)
         assert profiles, name

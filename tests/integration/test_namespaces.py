@@ -49,6 +49,17 @@ def test_two_studies_run_side_by_side_in_two_namespaces(ros_domain, sample_root,
     graphs = {ns: _graph(ns, master) for ns, master in masters.items()}
     executor = MultiThreadedExecutor(num_threads=4)
     nodes = [n for nodes, _ in graphs.values() for n in nodes]
+    # the one global TF tree: each graph's wheel frames under its own prefix
+    from rclpy.node import Node
+
+    from tf2_msgs.msg import TFMessage
+    from vd_data_server.qos import STATES
+
+    frames: set[tuple[str, str]] = set()
+    tf_node = Node('tf_listener')
+    tf_node.create_subscription(TFMessage, '/tf', lambda m: frames.update(
+        (t.header.frame_id, t.child_frame_id) for t in m.transforms), STATES)
+    nodes.append(tf_node)
     for node in nodes:
         executor.add_node(node)
     try:
@@ -68,6 +79,9 @@ def test_two_studies_run_side_by_side_in_two_namespaces(ros_domain, sample_root,
             rates[ns] = next(m.value for m in result.metrics if m.name == 'wheel_rate')
             hashes[ns] = result.data_hash
         assert hashes['/car1'] != hashes['/car2']
+        assert _spin(executor, lambda: len(frames) == 4)
+        assert frames == {(f'{car}/base_link', f'{car}/front_{side}_wheel')
+                          for car in ('car1', 'car2') for side in ('left', 'right')}
         # the second study's stiffer spring shows in its own graph's result only
         assert rates['/car2'] > rates['/car1']
     finally:

@@ -239,3 +239,33 @@ def test_package_launch_files_with_namespace_and_parameters(env, graph):
     for out, proc in zip(outs, (xml, py, solvers)):
         assert 'Traceback' not in out, out
         assert proc.returncode == 0, out
+
+
+def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
+    """lockstep.launch.py: the lock-step vehicle and the path follower, to the end."""
+    launch = start(env, 'launch', 'vd_events', 'lockstep.launch.py', 'namespace:=/ls',
+                   'duration:=2.0', 'speed:=10.0', 'radius:=30.0')
+    try:
+        wanted = {'/ls/vehicle_solver', '/ls/path_follower'}
+        assert wanted <= wait_for_nodes(env, wanted)
+        # --no-daemon: the daemon's graph may not have the nodes just listed yet
+        assert ros2(env, 'param', 'get', '--no-daemon', '--spin-time', '2',
+                    '/ls/path_follower', 'radius').stdout.strip() == 'Double value is: 30.0'
+        assert ros2(env, 'param', 'get', '--no-daemon', '--spin-time', '2',
+                    '/ls/vehicle_solver', 'frame_prefix').stdout.strip() == \
+            'String value is: ls/'
+        # 2 s of 5 ms steps, each one answered by the controller over ROS
+        deadline, status = time.monotonic() + 120, ''
+        while time.monotonic() < deadline and not status.startswith('data: finished'):
+            status = ros2(env, 'topic', 'echo', '--once', '--qos-durability',
+                          'transient_local', '--qos-reliability', 'reliable',
+                          '/ls/vehicle/lockstep_status', timeout=60).stdout.strip()
+            time.sleep(0.5)
+        assert status.startswith('data: finished at t = 2.000000 s (400 steps)'), status
+        odom = ros2(env, 'topic', 'echo', '--once', '--qos-durability', 'transient_local',
+                    '--qos-reliability', 'reliable', '/ls/vehicle/odom', timeout=60).stdout
+        assert 'frame_id: ls/odom' in odom and 'child_frame_id: ls/base_link' in odom
+    finally:
+        out = stop(launch, twice=True)
+    assert 'Traceback' not in out, out
+    assert launch.returncode == 0, out

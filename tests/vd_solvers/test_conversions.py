@@ -146,3 +146,87 @@ def test_time_axis_never_lets_two_runs_overlap():
     assert axis.end() == third
     before = axis.end()
     assert axis.claim(now, 0.5) > before
+
+
+def _rotation(q) -> np.ndarray:
+    """Return the rotation matrix of a geometry_msgs quaternion (independent of conversions)."""
+    w, x, y, z = q.w, q.x, q.y, q.z
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+@pytest.mark.parametrize('event', ['steering', 'lateral_force', 'opposite_wheel_travel'])
+def test_kc_wheel_frames_put_the_contact_point_straight_below_the_wheel_centre(sedan, event):
+    """
+    Check the wheels' TF frames against the solver's own contact points.
+
+    The contact point lies one loaded radius from the wheel centre along the road
+    normal projected into the wheel plane (kc/channels.py); the wheel frame's x axis
+    (heading) is level, so in the wheel frame the contact point is (0, 0, -r): a wrong
+    toe or camber sign or a swapped side moves it off the z axis.
+    """
+    from vd_solvers.conversions import outcome_kc_transforms, step_offsets
+
+    outcome = _kc(sedan, event)
+    ch = outcome.channels
+    tfs = outcome_kc_transforms(outcome, START)
+    assert len(tfs) == outcome.n_steps
+    states = outcome_states(outcome, START)
+    toe_moved = 0.0
+    for i, (msg, state) in enumerate(zip(tfs, states)):
+        assert [t.child_frame_id for t in msg.transforms] == ['front_left_wheel',
+                                                               'front_right_wheel']
+        for t, side in zip(msg.transforms, ('left', 'right')):
+            assert t.header.frame_id == 'base_link'
+            assert t.header.stamp == state.header.stamp  # the same time axis as the states
+            r = _rotation(t.transform.rotation)
+            np.testing.assert_allclose(r.T @ r, np.eye(3), atol=1e-12)
+            centre = np.array([ch[f'wheel_centre_{c}_{side}'].values[i] for c in 'xyz'])
+            tr = t.transform.translation
+            np.testing.assert_array_equal([tr.x, tr.y, tr.z], centre)
+            contact = np.array([ch[f'contact_point_{c}_{side}'].values[i] for c in 'xyz'])
+            local = r.T @ (contact - centre)
+            np.testing.assert_allclose(local[:2], 0.0, atol=1e-9, err_msg=f'{side} {i}')
+            assert 0.25 < -local[2] < 0.40  # the sedan's loaded radius, m
+            toe_moved = max(toe_moved, abs(ch[f'toe_{side}'].values[i]))
+    assert toe_moved > 1e-4  # the events do turn the wheels
+    np.testing.assert_allclose(np.diff(step_offsets(outcome)), PSEUDO_STEP)
+
+
+def test_kc_wheel_frames_mirror_in_parallel_travel_and_carry_the_prefix(sedan):
+    from vd_solvers.conversions import outcome_kc_transforms
+
+    outcome = _kc(sedan, 'parallel_wheel_travel', 'rear')
+    for msg in outcome_kc_transforms(outcome, START, prefix='car2/'):
+        left, right = msg.transforms
+        assert (left.header.frame_id, left.child_frame_id) == ('car2/base_link',
+                                                               'car2/rear_left_wheel')
+        assert right.child_frame_id == 'car2/rear_right_wheel'
+        a, b = left.transform, right.transform
+        np.testing.assert_allclose([a.translation.x, a.translation.y, a.translation.z],
+                                   [b.translation.x, -b.translation.y, b.translation.z],
+                                   atol=1e-9)
+        # mirrored in the x-z plane: yaw and roll change sign
+        np.testing.assert_allclose([a.rotation.w, a.rotation.x, a.rotation.y, a.rotation.z],
+                                   [b.rotation.w, -b.rotation.x, b.rotation.y, -b.rotation.z],
+                                   atol=1e-9)
+
+
+def test_kc_outcome_without_wheel_centres_has_no_frames(sedan):
+    """A measured rig file without wheel centres: no TF (and the recorder expects none)."""
+    import dataclasses
+
+    from vd_solvers.conversions import has_wheel_frames, outcome_kc_transforms
+
+    outcome = _kc(sedan, 'parallel_wheel_travel')
+    assert has_wheel_frames({k: c.values for k, c in outcome.channels.items()})
+    partial = dataclasses.replace(outcome, channels={
+        k: c for k, c in outcome.channels.items() if k != 'wheel_centre_z_right'})
+    assert outcome_kc_transforms(partial, START) == []
+    gap = dict(outcome.channels)
+    values = gap['wheel_centre_x_left'].values.copy()
+    values[2] = np.nan
+    gap['wheel_centre_x_left'] = Channel('m', values)
+    assert not has_wheel_frames({k: c.values for k, c in gap.items()})
+    assert outcome_kc_transforms(dataclasses.replace(outcome, channels=gap), START) == []

@@ -5,8 +5,10 @@
 
 Starts ``vehicle_solver`` in ``lockstep`` mode (the sample study's first configuration,
 5 ms steps) and ``path_follower`` (pure pursuit on the 40 m constant radius circle at
-12 m/s), both with ``use_sim_time``. Arguments: ``configuration``, ``mode`` (lockstep |
-free), ``duration`` (simulated s), ``radius``, ``speed``, ``real_time_factor`` (free mode).
+12 m/s), the controller with ``use_sim_time``. Arguments: ``namespace`` (default ``/vd``; outside
+it the frames carry the namespace: ``car2/odom``), ``master`` (default: the bundled
+study), ``configuration``, ``mode`` (lockstep | free), ``duration`` (simulated s),
+``radius``, ``speed``, ``real_time_factor`` (free mode).
 ``vd launch --lockstep`` starts the same pair where the launch tools are not installed.
 """
 from launch.actions import DeclareLaunchArgument
@@ -15,25 +17,31 @@ from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
 
 from launch import LaunchDescription
+from vd_data_server.names import DEFAULT_NAMESPACE
 
 
 def generate_launch_description() -> LaunchDescription:
     """Declare the arguments and the two nodes."""
-    args = {'configuration': '', 'mode': 'lockstep', 'duration': '30.0', 'radius': '40.0',
-            'speed': '12.0', 'real_time_factor': '1.0'}
+    args = {'namespace': DEFAULT_NAMESPACE, 'master': '', 'configuration': '',
+            'mode': 'lockstep', 'duration': '30.0', 'radius': '40.0', 'speed': '12.0',
+            'real_time_factor': '1.0'}
     declared = [DeclareLaunchArgument(k, default_value=v) for k, v in args.items()]
 
     def value(name, kind=float):
         return ParameterValue(LaunchConfiguration(name), value_type=kind)
 
+    namespace = LaunchConfiguration('namespace')
     solver = Node(package='vd_solvers', executable='vehicle_solver', output='screen',
+                  namespace=namespace,
                   parameters=[{'mode': value('mode', str),
+                               'master': value('master', str),
                                'configuration': value('configuration', str),
                                'duration': value('duration'),
                                'initial_speed': value('speed'),
                                'real_time_factor': value('real_time_factor'),
                                'use_sim_time': False}])
     follower = Node(package='vd_events', executable='path_follower', output='screen',
+                    namespace=namespace,
                     parameters=[{'radius': value('radius'), 'speed': value('speed'),
                                  'use_sim_time': True}])
     return LaunchDescription([*declared, solver, follower])

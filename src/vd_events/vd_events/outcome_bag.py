@@ -7,7 +7,8 @@ The messages come from ``vd_solvers.conversions`` (the one place they are built)
 bag from :class:`vd_events.bag.BagWriter` (atomic: written as ``DIR.partial``, renamed
 when complete), so a bag of imported measurements reads like one of ``vd run --bag``:
 per family the topics ``/vd/<family>/result`` and ``/vd/<family>/state`` (full vehicle:
-``VehicleState``, plus ``/vd/vehicle/odom`` and ``/tf`` when the pose is known), and
+``VehicleState``, plus ``/vd/vehicle/odom`` and ``/tf`` when the pose is known; K&C: ``/tf``
+of the wheels when the wheel centres are known), and
 ``/vd/provenance``. Log time = header stamp.
 """
 from __future__ import annotations
@@ -55,6 +56,7 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
         WHEEL_FIELDS,
         outcome_analytical_states,
         outcome_kc_states,
+        outcome_kc_transforms,
         outcome_odometry,
         outcome_to_msg,
         outcome_transforms,
@@ -77,6 +79,8 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
             out += [('/vd/vehicle/odom', m) for m in outcome_odometry(posed, stamp)]
     else:
         states = outcome_kc_states if family == 'kc' else outcome_analytical_states
+        if family == 'kc':  # the wheels' frames when the rig file has the wheel centres
+            out += [('/tf', m) for m in outcome_kc_transforms(outcome, stamp)]
         out += [(f'/vd/{family}/state', m) for m in states(outcome, stamp)]
     out.append((f'/vd/{family}/result', outcome_to_msg(outcome, stamp)))
     return out

@@ -4,9 +4,10 @@
 ``ros2 run vd_events path_follower``: an example external controller for the lock-step vehicle.
 
 An ordinary rclpy node that knows nothing of the vehicle model: it subscribes to
-``nav_msgs/Odometry`` (``/vd/vehicle/odom``) and, with ``use_sim_time``, to ``/clock``,
+``nav_msgs/Odometry`` (``vehicle/odom``) and, with ``use_sim_time``, to ``/clock``,
 and answers every odometry message with a ``vd_interfaces/VehicleCommand`` on
-``/vd/vehicle/command`` stamped with the odometry's stamp (the step it applies to).
+``vehicle/command`` stamped with the odometry's stamp (the step it applies to); names
+relative to its namespace (``/vd`` by default), as the vehicle solver's.
 
 Path: the constant radius turn's left circle of ``radius`` through the origin, heading +x
 (centre (0, radius)). Steering: pure pursuit on the odometry pose -- the point of the
@@ -25,7 +26,10 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
+from vd_data_server import names
 from vd_interfaces.msg import VehicleCommand
+from vd_solvers.families import ODOMETRY_TOPIC
+from vd_solvers.lockstep import COMMAND_TOPIC
 
 QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=10,
                  reliability=ReliabilityPolicy.RELIABLE)
@@ -47,13 +51,15 @@ class PathFollower(Node):
     """Pure pursuit on a circle and PI speed control (module doc)."""
 
     def __init__(self, **kwargs) -> None:
+        kwargs.setdefault('namespace', names.DEFAULT_NAMESPACE)
         super().__init__('path_follower', **kwargs)
         self.p = {}
         for name, (default, doc) in PARAMS.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=doc))
             self.p[name] = float(self.get_parameter(name).value)
-        self.pub = self.create_publisher(VehicleCommand, '/vd/vehicle/command', QOS)
-        self.create_subscription(Odometry, '/vd/vehicle/odom', self._on_odometry, QOS)
+        self.frame = names.frame_prefix(self.get_namespace()) + names.BODY_FRAME
+        self.pub = self.create_publisher(VehicleCommand, COMMAND_TOPIC, QOS)
+        self.create_subscription(Odometry, ODOMETRY_TOPIC, self._on_odometry, QOS)
         self._integral = 0.0
         self._last_ns: int | None = None
         self._turned = 0.0
@@ -95,7 +101,7 @@ class PathFollower(Node):
         torque = p['speed_gain'] * error + p['speed_integral'] * self._integral
         cmd = VehicleCommand()
         cmd.header.stamp = odom.header.stamp
-        cmd.header.frame_id = 'base_link'
+        cmd.header.frame_id = self.frame
         cmd.steering_mode = VehicleCommand.STEERING_ANGLE
         cmd.steering_wheel_angle = swa
         cmd.drive_torque = max(torque, 0.0)
@@ -105,22 +111,17 @@ class PathFollower(Node):
 
 
 def main(args=None) -> None:
-    """Spin the controller on the events executor until Ctrl-C or SIGTERM."""
-    import rclpy
-    from rclpy.executors import ExternalShutdownException
+    """
+    Spin the controller on the events executor until Ctrl-C or SIGTERM.
+
+    Through ``run_node``'s ``spin_once`` loop: the EventsExecutor's own ``spin()``
+    polls without blocking in this rclpy and keeps a core busy while waiting.
+    """
     from rclpy.experimental import EventsExecutor
 
-    rclpy.init(args=args)
-    node = PathFollower()
-    executor = EventsExecutor()
-    executor.add_node(node)
-    try:
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+    from vd_data_server.node_main import run_node
+
+    run_node(PathFollower, args=args, executor=lambda node: EventsExecutor())
 
 
 if __name__ == '__main__':

@@ -43,7 +43,7 @@ from vd_interfaces.msg import (
     Provenance,
     VehicleState,
 )
-from vd_solvers.conversions import TIME_AXIS
+from vd_solvers.conversions import TIME_AXIS, has_wheel_frames
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC
 
 #: where the recorder says how many event results it has written completely (latched),
@@ -105,8 +105,9 @@ class Recorder(Node):
         self.start = max(self.get_clock().now().nanoseconds, TIME_AXIS.end() + 1)
         self._samples: dict[tuple[str, str, str], int] = {}
         self._qos: dict[str, list] = {}  # topic -> the offered QoS recorded in the bag
-        self._pending: list[tuple[tuple[str, str, str], int, int]] = []
+        self._pending: list[tuple[tuple[str, str, str], int, int, int]] = []
         self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
+        self._tf_needed = 0  # TF messages the results so far bring (vehicle and K&C)
         self.complete = 0  # results written together with all their step samples
         self.error: str | None = None  # a write failed (full disk...): the bag is dropped
         self.finished = False
@@ -170,8 +171,12 @@ class Recorder(Node):
             steps = max((len(c.values) for c in msg.channels), default=0)
             if msg.model == 'vehicle':
                 self._odometry_needed += steps
+                self._tf_needed += steps
+            elif msg.model == 'kc' and has_wheel_frames({c.name: c.values
+                                                         for c in msg.channels}):
+                self._tf_needed += steps  # the wheels' frames, one TF message per step
             self._pending.append(((msg.configuration, msg.event, msg.model), steps,
-                                  self._odometry_needed))
+                                  self._odometry_needed, self._tf_needed))
         self._publish_complete()
 
     def _offered(self, topic: str) -> list:
@@ -194,11 +199,11 @@ class Recorder(Node):
         """
         Count the results whose every step state is written too, and say so.
 
-        For the full vehicle, every odometry message too.
+        For the full vehicle, every odometry and TF message too; for K&C, every TF message.
         """
-        odometry = min(self.counts[ODOMETRY_TOPIC], self.counts[TF_TOPIC])
         done = [p for p in self._pending
-                if self._samples.get(p[0], 0) >= p[1] and odometry >= p[2]]
+                if self._samples.get(p[0], 0) >= p[1] and self.counts[ODOMETRY_TOPIC] >= p[2]
+                and self.counts[TF_TOPIC] >= p[3]]
         if done:
             self._pending = [p for p in self._pending if p not in done]
             self.complete += len(done)

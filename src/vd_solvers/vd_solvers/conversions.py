@@ -410,6 +410,75 @@ def outcome_transforms(outcome: EventOutcome, stamp) -> list:
     return out
 
 
+def set_quaternion(q, roll: float, pitch: float, yaw: float):
+    """Fill the quaternion ``q`` (geometry_msgs) with z-y-x (yaw, pitch, roll) Euler angles."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    q.w = cr * cp * cy + sr * sp * sy
+    q.x = sr * cp * cy - cr * sp * sy
+    q.y = cr * sp * cy + sr * cp * sy
+    q.z = cr * cp * sy - sr * sp * cy
+    return q
+
+
+def kc_wheel_frame(axle: str, side: str) -> str:
+    """Return the TF frame of one K&C wheel: ``front_left_wheel`` ... ``rear_right_wheel``."""
+    return f'{axle}_{side}_wheel'
+
+
+#: the channels a K&C outcome needs for its wheel frames on /tf
+KC_FRAME_CHANNELS = tuple(f'wheel_centre_{c}_{side}' for side in SIDES for c in XYZ)
+
+
+def has_wheel_frames(channels: Mapping[str, Sequence[float]]) -> bool:
+    """Say whether a K&C outcome's channels (name -> values) give its wheels' TF frames."""
+    return all(k in channels and np.isfinite(np.asarray(channels[k], dtype=float)).all()
+               for k in KC_FRAME_CHANNELS)
+
+
+def outcome_kc_transforms(outcome: EventOutcome, stamp, prefix: str = '') -> list:
+    """
+    Return a tf2_msgs/TFMessage per step of a K&C outcome: where its two wheels are.
+
+    The transforms ``base_link`` -> ``<axle>_left_wheel`` and ``<axle>_right_wheel``
+    (frames with ``prefix``), stamped like the KcStates: origin at the wheel centre, x
+    along the wheel heading, y along the spin axis pointing left, z up in the wheel plane;
+    the rotation is yaw = steer angle (= -s toe) then roll = -s camber about the new x
+    (s = +1 left, -1 right; toe positive in, camber positive top outward, ISO 8855). The
+    body is fixed on the rig, so base_link is the frame of the K&C points (docs/kc.md).
+    Empty when the outcome has no wheel centres (a measured rig file without them).
+    """
+    from geometry_msgs.msg import TransformStamped
+
+    from tf2_msgs.msg import TFMessage
+
+    ch, n = outcome.channels, outcome.n_steps
+    if not has_wheel_frames({k: c.values for k, c in ch.items()}):
+        return []
+    sides = []
+    for side, sign in zip(SIDES, (1.0, -1.0)):
+        centre = np.column_stack([_column(ch, f'wheel_centre_{c}_{side}', n) for c in XYZ])
+        toe, camber = _column(ch, f'toe_{side}', n), _column(ch, f'camber_{side}', n)
+        # a rig file may lack the angles: the wheel keeps the body's orientation
+        yaw = np.nan_to_num(-sign * toe)
+        roll = np.nan_to_num(-sign * camber)
+        sides.append((prefix + kc_wheel_frame(outcome.axle, side), centre, roll, yaw))
+    out = []
+    for i, offset in enumerate(step_offsets(outcome)):
+        transforms = []
+        for frame, centre, roll, yaw in sides:
+            t = TransformStamped()
+            _header(t, stamp, offset, prefix + BODY_FRAME)
+            t.child_frame_id = frame
+            t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = (
+                float(v) for v in centre[i])
+            set_quaternion(t.transform.rotation, float(roll[i]), 0.0, float(yaw[i]))
+            transforms.append(t)
+        out.append(TFMessage(transforms=transforms))
+    return out
+
+
 def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     """
     Return a nav_msgs/Odometry per step of a full-vehicle outcome.
@@ -429,15 +498,8 @@ def outcome_odometry(outcome: EventOutcome, stamp) -> list:
         msg.child_frame_id = BODY_FRAME
         msg.pose.pose.position.x = float(ch['x'][i])
         msg.pose.pose.position.y = float(ch['y'][i])
-        roll, pitch, yaw = float(ch['roll'][i]), float(ch['pitch'][i]), float(ch['yaw'][i])
-        cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-        cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-        cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-        q = msg.pose.pose.orientation  # z-y-x (yaw, pitch, roll) Euler angles
-        q.w = cr * cp * cy + sr * sp * sy
-        q.x = sr * cp * cy - cr * sp * sy
-        q.y = cr * sp * cy + sr * cp * sy
-        q.z = cr * cp * sy - sr * sp * cy
+        set_quaternion(msg.pose.pose.orientation, float(ch['roll'][i]),
+                       float(ch['pitch'][i]), float(ch['yaw'][i]))
         beta = float(ch['sideslip'][i])
         speed = float(ch['speed'][i])
         # twist in the child frame (base_link); the yaw-plane velocity of the CoG

@@ -7,14 +7,20 @@ Goal fidelity 'rigid' or 'flexible'; empty: the configuration's ``flexible`` swi
 
 Action ``kc/run_event`` (vd_interfaces/RunEvent, goal.axle front|rear); results on
 ``kc/result`` and per step on ``kc/state``, relative to the node's namespace (``/vd`` by
-default; see solver_node).
+default; see solver_node); per step the two wheels' frames on the global ``/tf``
+(``base_link`` -> ``front_left_wheel`` ..., stamped like the states, with the
+parameter ``frame_prefix`` outside ``/vd``), so RViz and Foxglove show the wheels move.
 """
 from __future__ import annotations
 
+from tf2_msgs.msg import TFMessage
 from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
+from vd_data_server.qos import STATES
 from vd_interfaces.msg import KcState
+from vd_solvers.conversions import outcome_kc_transforms
 from vd_solvers.errors import SolverError
+from vd_solvers.families import TF_TOPIC
 from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
 from vd_solvers.results import EventOutcome
 from vd_solvers.solver_node import SolverNode
@@ -39,6 +45,16 @@ class KCSolver(SolverNode):
 
     def __init__(self, **kwargs) -> None:
         super().__init__('kc_solver', FAMILY, _run, **kwargs)
+        # the wheels move on the rig: base_link -> <axle>_<side>_wheel per step
+        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+
+    def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list,
+                        stamp=None) -> None:
+        stamp = stamp if stamp is not None else self.run_stamp(outcome)
+        # TF first: a recorder stops once the result and its samples are in
+        for msg in outcome_kc_transforms(outcome, stamp, self.frame_prefix):
+            self.tf_pub.publish(msg)
+        super().publish_outcome(outcome, config, changes, stamp=stamp)
 
 
 def main(args=None) -> None:

@@ -39,9 +39,10 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
 
 from tf2_msgs.msg import TFMessage
+from vd_data_server.names import BODY_FRAME, ODOM_FRAME
 from vd_data_server.qos import CLOCK, COMMANDS, STATUS
 from vd_interfaces.msg import VehicleCommand, VehicleState, VehicleWheel
-from vd_solvers.conversions import WHEEL_FIELDS
+from vd_solvers.conversions import WHEEL_FIELDS, set_quaternion
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_command
 from vd_solvers.vehicle.maps import WHEELS
@@ -78,7 +79,8 @@ class LockstepSession:
 
     def __init__(self, node: Node, stepper: Stepper, *, mode: str, duration: float,
                  command_timeout: float, start_timeout: float, real_time_factor: float,
-                 configuration: str, state_pub, odom_pub, tf_pub) -> None:
+                 configuration: str, state_pub, odom_pub, tf_pub,
+                 frame_prefix: str = '') -> None:
         self.node = node
         self.stepper = stepper
         self.mode = mode
@@ -87,6 +89,7 @@ class LockstepSession:
         self.command_timeout = command_timeout
         self.start_timeout = start_timeout
         self.configuration = configuration
+        self.frame_prefix = frame_prefix  # outside /vd: car2/odom -> car2/base_link
         self.state_pub, self.odom_pub, self.tf_pub = state_pub, odom_pub, tf_pub
         self.clock_pub = node.create_publisher(Clock, '/clock', CLOCK)
         self.status_pub = node.create_publisher(String, STATUS_TOPIC, STATUS)
@@ -98,7 +101,7 @@ class LockstepSession:
         self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command, COMMANDS)
         self._state_msg = VehicleState(event='lockstep', configuration=configuration,
                                        model='vehicle')
-        self._state_msg.header.frame_id = 'odom'
+        self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
         self._wheel_msgs = [VehicleWheel() for _ in WHEELS]
         for wheel, m in zip(WHEELS, self._wheel_msgs):
             setattr(self._state_msg, wheel, m)
@@ -204,7 +207,7 @@ class LockstepSession:
         for w, wheel in enumerate(self._wheel_msgs):
             for f, (c, _) in WHEEL_FIELDS.items():  # a field the step lacks stays NaN
                 setattr(wheel, f, float(wheels[c][w]) if c in wheels else math.nan)
-        odom = odometry(s, stamp, self._odom_msg)
+        odom = odometry(s, stamp, self._odom_msg, self.frame_prefix)
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)
         self._tf_msg = transform(odom, self._tf_msg)
@@ -226,23 +229,20 @@ class LockstepSession:
         self._publish_status(self.status)
 
 
-def odometry(state, stamp, msg: Odometry | None = None) -> Odometry:
-    """Return the nav_msgs/Odometry of a Stepper state (filled into ``msg`` if given)."""
+def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '') -> Odometry:
+    """
+    Return the nav_msgs/Odometry of a Stepper state (filled into ``msg`` if given).
+
+    Frames ``odom`` -> ``base_link`` (REP 105), with ``prefix`` outside ``/vd``.
+    """
     msg = msg if msg is not None else Odometry()
     msg.header.stamp = stamp
-    msg.header.frame_id = 'odom'
-    msg.child_frame_id = 'base_link'
+    msg.header.frame_id = prefix + ODOM_FRAME
+    msg.child_frame_id = prefix + BODY_FRAME
     msg.pose.pose.position.x = float(state['x'])
     msg.pose.pose.position.y = float(state['y'])
-    roll, pitch, yaw = (float(state[k]) for k in ('roll', 'pitch', 'yaw'))
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    q = msg.pose.pose.orientation
-    q.w = cr * cp * cy + sr * sp * sy
-    q.x = sr * cp * cy - cr * sp * sy
-    q.y = cr * sp * cy + sr * cp * sy
-    q.z = cr * cp * sy - sr * sp * cy
+    set_quaternion(msg.pose.pose.orientation,
+                   *(float(state[k]) for k in ('roll', 'pitch', 'yaw')))
     # twist in the child frame (REP 105): the CoG's horizontal velocity in yaw axes
     beta = float(state['sideslip'])
     msg.twist.twist.linear.x = float(state['speed']) * math.cos(beta)

@@ -23,6 +23,7 @@ import dataclasses
 import time
 import warnings
 
+from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
@@ -74,6 +75,10 @@ class SolverNode(Node):
         super().__init__(kwargs.pop('node_name', name), **kwargs)
         self.family = family
         self._run = run
+        self.frame_prefix = self.declare_parameter(
+            'frame_prefix', names.frame_prefix(self.get_namespace()), ParameterDescriptor(
+                description='prefix of the frames it publishes (odom, base_link, the wheels: '
+                'several vehicles on one TF tree)', read_only=True)).value
         self.configurations: dict[str, Configuration] = {}
         self.status: DataStatus | None = None
         group = ReentrantCallbackGroup()
@@ -222,7 +227,11 @@ class SolverNode(Node):
 
     def state_messages(self, outcome: EventOutcome, stamp) -> list:
         """Return the per-step typed states of ``outcome`` (conversions.outcome_states)."""
-        return outcome_states(outcome, stamp)
+        states = outcome_states(outcome, stamp)
+        if self.frame_prefix:
+            for state in states:
+                state.header.frame_id = self.frame_prefix + state.header.frame_id
+        return states
 
 
 def _warning_messages(caught) -> list[str]:

@@ -27,7 +27,6 @@ from rcl_interfaces.msg import ParameterDescriptor
 from tf2_msgs.msg import TFMessage
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
-from vd_data_server.names import frame_prefix
 from vd_data_server.node_main import make_executor, run_node
 from vd_data_server.qos import STATES
 from vd_interfaces.msg import VehicleState
@@ -68,10 +67,6 @@ class VehicleSolver(SolverNode):
 
     def __init__(self, **kwargs) -> None:
         super().__init__('vehicle_solver', FAMILY, _run, **kwargs)
-        self.frame_prefix = self.declare_parameter(
-            'frame_prefix', frame_prefix(self.get_namespace()), ParameterDescriptor(
-                description='prefix of the frames odom and base_link (several vehicles '
-                'on one TF tree)', read_only=True)).value
         self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
         # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
         self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
@@ -130,7 +125,7 @@ class VehicleSolver(SolverNode):
                                start_timeout=p['start_timeout'],
                                real_time_factor=p['real_time_factor'], configuration=name,
                                state_pub=self.sample_pub, odom_pub=self.odom_pub,
-                               tf_pub=self.tf_pub)
+                               tf_pub=self.tf_pub, frame_prefix=self.frame_prefix)
 
     def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list) -> None:
         stamp = self.run_stamp(outcome)
@@ -151,12 +146,6 @@ class VehicleSolver(SolverNode):
             msg.child_frame_id = self.frame_prefix + msg.child_frame_id
         return msg
 
-    def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        states = super().state_messages(outcome, stamp)
-        if self.frame_prefix:
-            for state in states:
-                state.header.frame_id = self.frame_prefix + state.header.frame_id
-        return states
 
 
 def main(args=None) -> None:
