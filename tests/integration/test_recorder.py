@@ -20,11 +20,18 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
 def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]:
-    """Start a recorder, publish three samples to it, then ``stop(node, proc)``."""
+    """
+    Start a recorder, publish one result of three steps to it, then ``stop(node, proc)``.
+
+    As a run's owner does (vd_events.runner), the stop comes once the recorder's latched
+    ``recorder/recorded`` count says the result and its three states are written.
+    """
     from ament_index_python.packages import get_package_prefix
     from rclpy.node import Node
+    from std_msgs.msg import UInt32
 
-    from vd_interfaces.msg import KcState
+    from vd_data_server.qos import LATEST, RESULTS
+    from vd_interfaces.msg import Channel, EventResult, KcState
     from vd_solvers.conversions import time_msg
     from vd_solvers.solver_node import SAMPLES
 
@@ -35,13 +42,21 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str]
     node = Node('sample_publisher')
     try:
         pub = node.create_publisher(KcState, '/vd/kc/state', SAMPLES)
-        assert spin_until([node], lambda: pub.get_subscription_count() >= 1, timeout=20.0)
+        result_pub = node.create_publisher(EventResult, '/vd/kc/result', RESULTS)
+        recorded: list[int] = []
+        node.create_subscription(UInt32, '/vd/recorder/recorded',
+                                 lambda m: recorded.append(m.data), LATEST)
+        assert spin_until([node], lambda: pub.get_subscription_count() >= 1
+                          and result_pub.get_subscription_count() >= 1, timeout=20.0)
         now = node.get_clock().now().nanoseconds
         for step in range(3):
             msg = KcState(event='e', configuration='c', model='kc', step=step, track=float(step))
             msg.header.stamp = time_msg(now + step * 1_000_000)
             pub.publish(msg)
-        spin_until([node], lambda: False, timeout=1.0)
+        result_pub.publish(EventResult(
+            stamp=time_msg(now + 2_000_000), event='e', configuration='c', model='kc',
+            channels=[Channel(name='track', unit='m', values=[0.0, 1.0, 2.0])]))
+        assert spin_until([node], lambda: recorded and recorded[-1] == 1, timeout=30.0)
         stop(node, proc)
         out, _ = proc.communicate(timeout=20)
     finally:
@@ -71,8 +86,9 @@ def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
     assert proc.returncode == 0, out
     assert (bag / 'metadata.yaml').is_file()
     assert not (tmp_path / 'bag.partial').exists()
-    steps = [m.msg.step for m in read_bag(bag) if m.topic == '/vd/kc/state']
-    assert steps == [0, 1, 2]
+    messages = list(read_bag(bag))
+    assert [m.msg.step for m in messages if m.topic == '/vd/kc/state'] == [0, 1, 2]
+    assert [m.msg.event for m in messages if m.topic == '/vd/kc/result'] == ['e']
 
 
 @pytest.mark.parametrize('sig', [signal.SIGTERM, signal.SIGINT])
