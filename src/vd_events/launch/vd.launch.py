@@ -5,15 +5,16 @@
 
 The data server and one solver per family, from ``vd_events.graph.graph()`` (the one
 definition of the graph, shared with ``vd launch`` and ``vd run --distributed``).
-Arguments: ``namespace`` (default ``/vd``), ``master_file`` (default: the bundled sedan
-study), ``allow_edits`` (default ``false``), ``watch_period`` (s, default ``0.5``).
+Arguments (the data server's, ``vd_data_server/launch_arguments.py``): ``namespace``
+(default ``/vd``), ``master_file`` (default: the bundled sedan study), ``allow_edits``
+(default ``false``), ``watch_period`` (s, default ``0.5``).
 """
-from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.actions import OpaqueFunction
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
 from launch import LaunchDescription
-from vd_data_server.names import DEFAULT_NAMESPACE
+from vd_data_server.launch_arguments import data_server_settings, declare
 from vd_events.graph import graph
 
 
@@ -22,8 +23,7 @@ def _nodes(context):
     def arg(name: str) -> str:
         return LaunchConfiguration(name).perform(context)
 
-    specs = graph(arg('master_file') or None, watch_period=float(arg('watch_period')),
-                  allow_edits=arg('allow_edits').lower() == 'true')
+    specs = graph(**data_server_settings(arg))
     return [Node(package=spec.package, executable=spec.executable, namespace=arg('namespace'),
                  parameters=[dict(spec.parameters)] if spec.parameters else [],
                  output='screen') for spec in specs]
@@ -31,14 +31,4 @@ def _nodes(context):
 
 def generate_launch_description() -> LaunchDescription:
     """Describe the vd graph launch."""
-    return LaunchDescription([
-        DeclareLaunchArgument('namespace', default_value=DEFAULT_NAMESPACE,
-                              description='namespace of the nodes and their names'),
-        DeclareLaunchArgument('master_file', default_value='',
-                              description='master file (default: the bundled sedan study)'),
-        DeclareLaunchArgument('allow_edits', default_value='false',
-                              description='accept set_override requests'),
-        DeclareLaunchArgument('watch_period', default_value='0.5',
-                              description='seconds between checks of the data files (0: off)'),
-        OpaqueFunction(function=_nodes),
-    ])
+    return LaunchDescription([*declare(), OpaqueFunction(function=_nodes)])
