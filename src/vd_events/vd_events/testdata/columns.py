@@ -87,6 +87,19 @@ class InputError(DataError):
         super().__init__(message, file=str(file), key=', '.join(where) or None)
 
 
+def finite_number(file: str | Path, text: str, *, line: int, column: int, name: str) -> float:
+    """Return the measured value ``text`` as a finite float, or raise InputError naming it."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(file, f'not a number: {text!r}', line=line, column=column,
+                         name=name) from None
+    if not math.isfinite(value):
+        raise InputError(file, f'not a finite number: {text!r}', line=line, column=column,
+                         name=name)
+    return value
+
+
 @dataclass(frozen=True)
 class ColumnSpec:
     """One mapped column: vd channel, the file's unit and the sign to ISO 8855."""

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .columns import ColumnMap, InputError, si_unit, unit_factor
+from .columns import ColumnMap, InputError, finite_number, si_unit, unit_factor
 
 
 @dataclass(frozen=True)
@@ -109,19 +109,8 @@ def read_table(path: Path, cmap: ColumnMap) -> Measured:
         if len(fields) != len(header):
             raise InputError(path, f'{len(fields)} fields, the header has {len(header)} '
                              '(truncated or malformed row)', line=n)
-        row = []
-        for col, _channel in wanted:
-            text = fields[col]
-            try:
-                value = float(text)
-            except ValueError:
-                raise InputError(path, f'not a number: {text!r}', line=n, column=col + 1,
-                                 name=header[col]) from None
-            if not np.isfinite(value):
-                raise InputError(path, f'not a finite number: {text!r}', line=n,
-                                 column=col + 1, name=header[col])
-            row.append(value)
-        rows.append(row)
+        rows.append([finite_number(path, fields[col], line=n, column=col + 1, name=header[col])
+                     for col, _channel in wanted])
         numbers.append(n)
     if len(rows) < 2:
         raise InputError(path, f'{len(rows)} data row(s): a measurement needs at least two '

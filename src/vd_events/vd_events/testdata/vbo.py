@@ -46,7 +46,7 @@ import re
 
 import numpy as np
 
-from .columns import ColumnMap, InputError, normalise, si_unit, unit_factor
+from .columns import ColumnMap, InputError, finite_number, normalise, si_unit, unit_factor
 from .table import Measured, check_increasing, read_text
 
 #: WGS84 semi-major axis, m, and first eccentricity squared
@@ -150,18 +150,8 @@ def parse_vbo(path: Path) -> VboFile:
         if len(fields) != len(columns):
             raise InputError(path, f'{len(fields)} values, [column names] has '
                              f'{len(columns)} (truncated or malformed row)', line=n)
-        row = []
-        for c, field in enumerate(fields):
-            try:
-                value = float(field)
-            except ValueError:
-                raise InputError(path, f'not a number: {field!r}', line=n, column=c + 1,
-                                 name=names[c]) from None
-            if not math.isfinite(value):
-                raise InputError(path, f'not a finite number: {field!r}', line=n,
-                                 column=c + 1, name=names[c])
-            row.append(value)
-        rows.append(row)
+        rows.append([finite_number(path, field, line=n, column=c + 1, name=names[c])
+                     for c, field in enumerate(fields)])
         numbers.append(n)
     if len(rows) < 2:
         raise InputError(path, f'{len(rows)} data row(s) (truncated file?)',
