@@ -58,7 +58,14 @@ def env():
 
 
 def ros2(env, *args: str, timeout: float = 60.0, check: bool = True):
-    """Run ``ros2 ARGS``; return the completed process (stdout and stderr joined)."""
+    """
+    Run ``ros2 ARGS``; return the completed process (stdout and stderr joined).
+
+    ``ros2 param`` looks the node up in the graph itself (``--no-daemon``): the daemon's
+    graph can lag behind a node that ``ros2 node list --no-daemon`` already shows.
+    """
+    if args[0] == 'param' and '--no-daemon' not in args:
+        args = (*args[:2], '--no-daemon', '--spin-time', '2', *args[2:])
     done = subprocess.run(['ros2', *args], env=env, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True, timeout=timeout)
     if check:
@@ -248,12 +255,10 @@ def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
     try:
         wanted = {'/ls/vehicle_solver', '/ls/path_follower'}
         assert wanted <= wait_for_nodes(env, wanted)
-        # --no-daemon: the daemon's graph may not have the nodes just listed yet
-        assert ros2(env, 'param', 'get', '--no-daemon', '--spin-time', '2',
-                    '/ls/path_follower', 'radius').stdout.strip() == 'Double value is: 30.0'
-        assert ros2(env, 'param', 'get', '--no-daemon', '--spin-time', '2',
-                    '/ls/vehicle_solver', 'frame_prefix').stdout.strip() == \
-            'String value is: ls/'
+        assert ros2(env, 'param', 'get', '/ls/path_follower', 'radius').stdout.strip() == \
+            'Double value is: 30.0'
+        assert ros2(env, 'param', 'get', '/ls/vehicle_solver', 'frame_prefix').stdout.strip() \
+            == 'String value is: ls/'
         # 2 s of 5 ms steps, each one answered by the controller over ROS
         deadline, status = time.monotonic() + 120, ''
         while time.monotonic() < deadline and not status.startswith('data: finished'):

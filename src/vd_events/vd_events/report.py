@@ -152,6 +152,21 @@ class Run:
         return f'{self.configuration} ({self.model}{flex})'
 
 
+
+def save_figure(fig, ax, path: Path, xlabel: str, ylabel: str, title: str,
+                legend: str = 'small') -> None:
+    """Label, grid and title ``ax`` the report's way; write ``fig`` to ``path``, close it."""
+    import matplotlib.pyplot as plt
+
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=legend)
+    ax.set_title(title, fontsize='medium')
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
 def load_runs(bags: Sequence[Path]) -> tuple[list[Run], object | None]:
     """Every EventResult in the bags (as EventOutcomes), and the newest data status seen."""
     runs: list[Run] = []
@@ -214,16 +229,9 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
                 ax.plot(x * xa.scale, y * ya.scale, label=run.label,
                         linestyle=LINE_STYLES[k % len(LINE_STYLES)],
                         marker='.' if len(x) < 30 else None)
-            ax.set_xlabel(xa.label)
-            ax.set_ylabel(ya.label)
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize='small')
-            ax.set_title(f"{event}{' ' + axle if axle else ''}: {ya.channel} vs {xa.channel}",
-                         fontsize='medium')
             name = f"{event}{'_' + axle if axle else ''}_{family}_{i}.png"
-            fig.tight_layout()
-            fig.savefig(out / name)
-            plt.close(fig)
+            save_figure(fig, ax, out / name, xa.label, ya.label,
+                        f"{event}{' ' + axle if axle else ''}: {ya.channel} vs {xa.channel}")
             images.append(name)
         sections.append(_section(event, axle, family, members, images))
     html_path = out / 'report.html'

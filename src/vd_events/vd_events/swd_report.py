@@ -44,6 +44,8 @@ def sine_with_dwell_section(runs: Sequence, out: Path, family: str) -> str:
     """Write the figures into ``out``; return the HTML section."""
     import matplotlib.pyplot as plt
 
+    from .report import save_figure
+
     usable = [r for r in runs if 'series_time' in r.channels]
     images = []
     for channel, label, scale, fig_no in FIGURES:
@@ -55,16 +57,9 @@ def sine_with_dwell_section(runs: Sequence, out: Path, family: str) -> str:
                 ax.plot(ch['series_time'], ch[f'{channel}_{k + 1:02d}'] * scale,
                         color=COLOURS[c % len(COLOURS)], linestyle=STYLES[s % len(STYLES)],
                         label=f'{run.label}, {amp:.0f} deg')
-        ax.set_xlabel('time [s]')
-        ax.set_ylabel(label)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize='x-small')
-        ax.set_title(f'sine with dwell (Fig. {fig_no}): {label.split(" [")[0]}',
-                     fontsize='medium')
         name = f'sine_with_dwell_{family}_{channel}.png'
-        fig.tight_layout()
-        fig.savefig(out / name)
-        plt.close(fig)
+        save_figure(fig, ax, out / name, 'time [s]', label,
+                    f'sine with dwell (Fig. {fig_no}): {label.split(" [")[0]}', legend='x-small')
         images.append(name)
     imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
     return (f"<h2>sine_with_dwell ({html.escape(family)}) — FMVSS 126 / UN R140 / GTR 8</h2>"
