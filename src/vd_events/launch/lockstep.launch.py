@@ -8,7 +8,8 @@ Starts ``vehicle_solver`` in ``lockstep`` mode (the sample study's first configu
 12 m/s), the controller with ``use_sim_time``. Arguments: ``namespace`` (default ``/vd``; outside
 it the frames carry the namespace: ``car2/odom``), ``master`` (default: the bundled
 study), ``configuration``, ``mode`` (lockstep | free), ``duration`` (simulated s),
-``radius``, ``speed``, ``real_time_factor`` (free mode).
+``radius``, ``speed``, ``real_time_factor`` (free mode), ``command_timeout`` (wall s the
+vehicle waits for a step's command, default 2; more on a loaded machine).
 ``vd launch --lockstep`` starts the same pair where the launch tools are not installed.
 """
 from launch.actions import DeclareLaunchArgument
@@ -24,7 +25,7 @@ def generate_launch_description() -> LaunchDescription:
     """Declare the arguments and the two nodes."""
     args = {'namespace': DEFAULT_NAMESPACE, 'master': '', 'configuration': '',
             'mode': 'lockstep', 'duration': '30.0', 'radius': '40.0', 'speed': '12.0',
-            'real_time_factor': '1.0'}
+            'real_time_factor': '1.0', 'command_timeout': '2.0'}
     declared = [DeclareLaunchArgument(k, default_value=v) for k, v in args.items()]
 
     def value(name, kind=float):
@@ -39,6 +40,7 @@ def generate_launch_description() -> LaunchDescription:
                                'duration': value('duration'),
                                'initial_speed': value('speed'),
                                'real_time_factor': value('real_time_factor'),
+                               'command_timeout': value('command_timeout'),
                                'use_sim_time': False}])
     follower = Node(package='vd_events', executable='path_follower', output='screen',
                     namespace=namespace,
