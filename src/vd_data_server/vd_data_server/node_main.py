@@ -93,7 +93,7 @@ def run_node(factory: Callable[[], Node], body: Callable | None = None, args=Non
 
     ``rclpy.init``, build the node, ``body`` (default: spin until shutdown), and on every
     end (Ctrl-C, SIGTERM, an exception of ``body``) a clean teardown. A Ctrl-C or SIGTERM
-    returns None. Exceptions of ``factory`` and ``body`` other than these propagate
+    returns None, also when it shut the context down in the middle of a spin. Exceptions of ``factory`` and ``body`` other than these propagate
     after the teardown. ``executor(node)``, if given, makes the executor (default:
     :func:`make_executor` with ``threads``).
     """
@@ -107,6 +107,12 @@ def run_node(factory: Callable[[], Node], body: Callable | None = None, args=Non
         return (body or spin_guarded)(spinner, node)
     except (KeyboardInterrupt, ExternalShutdownException):
         return None
+    except Exception:
+        # a SIGTERM shuts the context down under a spin that is building its wait set
+        # ("the given context is not valid"): that is the signal's clean end, not an error
+        if not rclpy.ok():
+            return None
+        raise
     finally:
         quiet_teardown([node] if node is not None else [])
 

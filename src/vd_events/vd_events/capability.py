@@ -255,12 +255,15 @@ TOPIC = '/vd/capability/table'
 
 def run_study(master, study, configuration: str, axles: Sequence[str], out,
               parameters: Sequence[str] = (), tolerances: Mapping[str, float] | None = None,
-              progress=None) -> list[Table]:
+              progress=None, on_done=None) -> list[Table]:
     """
     Run every K&C event rigid and flexible on ``axles`` and record them; return the tables.
 
+    ``on_done(RunOutcome)`` hears each run as it completes.
+
     Through the ROS graph (embedded); both runs of every event -- their EventResults and
-    per-step KcStates as the solver answered the goals, on the process's time axis --
+    per-step KcStates and wheel frames as the solver answered the goals, on the process's
+    time axis --
     and each axle's table go to one bag, ``out/capability_<configuration>``.
 
     One bag for the study: a recorder per run would cost more than the runs themselves.
@@ -270,17 +273,11 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
 
     from vd_data_server.errors import DataError
     from vd_data_server.master import flex_components
-    from vd_solvers.conversions import (
-        TIME_AXIS,
-        end_stamp,
-        outcome_states,
-        outcome_to_msg,
-        run_stamp,
-        time_msg,
-    )
-    from vd_solvers.solver_node import RESULTS, SAMPLES
+    from vd_data_server.qos import RESULTS, STATES
+    from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
 
     from .bag import BagWriter, check_bag_path, log_time
+    from .outcome_bag import outcome_messages
     from .runner import RunError, RunRequest, run_embedded, validate
 
     out = Path(out)
@@ -302,7 +299,7 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
     bag = out / f'capability_{configuration}'
     requests = [validate(study, request) for request in requests]
     check_bag_path(bag)
-    results = run_embedded(Path(master), requests, progress)
+    results = run_embedded(Path(master), requests, progress, on_done=on_done)
     errors = [r.error for r in results if r.error]
     if errors:
         raise RunError('; '.join(errors))
@@ -320,11 +317,10 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
     try:
         for result in results:
             assert result.outcome is not None
-            start = run_stamp(result.outcome, time.time_ns())
-            for state in outcome_states(result.outcome, start):
-                writer.write('/vd/kc/state', state, log_time(state, 0), [SAMPLES])
-            msg = outcome_to_msg(result.outcome, end_stamp(result.outcome, start))
-            writer.write('/vd/kc/result', msg, log_time(msg, 0), [RESULTS])
+            start = stamp_ns(run_stamp(result.outcome, time.time_ns()))
+            for topic, msg in outcome_messages(result.outcome, start):
+                writer.write(topic, msg, log_time(msg, 0),
+                             [RESULTS if topic.endswith('/result') else STATES])
         for table in tables:
             msg = to_msg(table, time_msg(TIME_AXIS.claim(time.time_ns(), 0.0)))
             writer.write(TOPIC, msg, log_time(msg, 0), [RESULTS])

@@ -35,7 +35,7 @@ def main() -> int:
     from .capability import run_study
     from .display import summary as run_summary
     from .report import build_report
-    from .study_plan import load_plan, run_plan
+    from .study_plan import expand, load_plan, run_plan
 
     term = console()
     t0 = time.perf_counter()
@@ -46,21 +46,38 @@ def main() -> int:
         shutil.rmtree(OUT)
     term.rule('vd demo: K&C, bicycle and two-track models through the ROS graph')
     plan = load_plan(_plan_path())
-    summary = run_plan(plan, OUT / 'bags', OUT)
+    total = len(expand(plan, load_study(master).configuration_names, OUT / 'bags'))
+    count = [0]
+
+    def done(run) -> None:
+        """One line per run as it completes: a log or CI sees the progress too."""
+        count[0] += 1
+        r = run.request
+        status = run.error or run_summary(run.outcome.metrics)
+        term.print(f"  [{count[0]:>2}/{total}] "
+                   f"{r.configuration:<11} {r.event:<22} "
+                   f"{r.model + (' ' + r.axle if r.axle else ''):<10} {status}", soft_wrap=True)
+
+    summary = run_plan(plan, OUT / 'bags', OUT, on_done=done)
     term.rule('vd demo: rigid vs flexible K&C, the analytical capability of the models')
     study = load_study(master)
-    tables = run_study(master, study, 'baseline', ['front', 'rear'], OUT / 'capability')
+    count[0] = 0
+
+    def ran(run) -> None:
+        count[0] += 1
+        r = run.request
+        term.print(f"  [{count[0]:>2}] {r.configuration:<11} {r.event:<22} kc {r.axle:<5} "
+                   f"{r.fidelity:<8} {run.error or 'done'}", soft_wrap=True)
+
+    tables = run_study(master, study, 'baseline', ['front', 'rear'], OUT / 'capability',
+                       on_done=ran)
     for table in tables:
         needs = sorted({c.event for c in table.cells if c.verdict == 'Flexible'})
         term.print(f"  baseline    {table.axle:<5} flexible ({', '.join(table.components)}) "
-                   f"needed for: {', '.join(needs) or 'none'}")
+                   f"needed for: {', '.join(needs) or 'none'}", soft_wrap=True)
     bags = [Path(r['bag']) for r in summary['runs'] if r['bag']]
     bags += sorted((OUT / 'capability').glob('capability_*'))
     summary['report'] = str(build_report(bags, OUT))
-    for run in summary['runs']:
-        status = run['error'] or run_summary(run['metrics'])
-        term.print(f"  {run['configuration']:<11} {run['event']:<22} "
-                      f"{run['model'] + (' ' + run['axle'] if run['axle'] else ''):<10} {status}")
     term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
     term.print(f"report: {summary['report']}")
     term.print(f'done in {time.perf_counter() - t0:.1f} s')

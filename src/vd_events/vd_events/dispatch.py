@@ -13,11 +13,14 @@ instance of that family. No configuration file lists them; instances that appear
 a sweep join it.
 
 The dispatcher keeps every instance busy with one goal at a time. A goal whose
-instance died — its process ended (when this process started it), its node left the
-graph, or it sent neither feedback nor result for :data:`SILENCE` seconds — is sent
-again to another instance, up to :data:`ATTEMPTS` times; the dead instance gets no
-more goals. A goal the solver answers with an error is a failed run (the data is
-wrong, another instance would say the same), not retried.
+instance died — its process ended (when this process started it) or its node left the
+graph — is sent again to another instance, up to :data:`ATTEMPTS` times; the dead
+instance gets no more goals. Nothing else counts as death, so a busy machine makes a
+sweep slower, never lost: a goal request not answered is sent again to the same
+instance at growing intervals (Fast DDS drops a response sent before discovery is
+complete), and a goal silent (neither feedback nor result) for :data:`SILENCE` s has
+its result asked for again. A goal the solver answers with an error is a failed run
+(the data is wrong, another instance would say the same), not retried.
 """
 from __future__ import annotations
 
@@ -37,7 +40,6 @@ from .graph import instance_names
 from .runner import (
     ACCEPT_TIMEOUT,
     DISCOVERY_GRACE,
-    GOAL_ATTEMPTS,
     RunError,
     RunRequest,
     _ros_args,
@@ -47,7 +49,7 @@ from .runner import (
 )
 
 ACTION_TYPE = 'vd_interfaces/action/RunEvent'
-#: s without feedback or result before a goal's instance counts as dead
+#: s without feedback or result before a goal's result is asked for again
 SILENCE = 30.0
 #: times a goal is sent before its run counts as failed (instances died under it)
 ATTEMPTS = 3
@@ -89,6 +91,7 @@ class _Job:
     request: RunRequest
     attempts: int = 0  # instances it was sent to
     resends: int = 0  # goal requests sent again to the current one (no answer)
+    results: list = field(default_factory=list)  # result requests (asked again if silent)
     send: Any = None  # rclpy futures and goal handles
     handle: Any = None
     result: Any = None
@@ -112,8 +115,9 @@ class Dispatcher:
     """
     Spread runs over the instances found in the graph of ``node`` (spun by ``executor``).
 
-    ``alive(node_name)`` may say an instance's process has ended (this process
-    started it): faster than waiting for the node to leave the graph. ``expect`` (family
+    ``alive(node_name)`` says whether an instance's process runs (True/False: this
+    process started it, and its exit is the one sign of its death; None: not a child,
+    so the node leaving the graph is). ``expect`` (family
     -> count) holds a family's first goals until that many of its instances are ready, at
     most EXPECT_WAIT s after the first one is (a late instance joins once it is
     discovered; waiting for all makes the first goals spread over all of them).
@@ -121,7 +125,7 @@ class Dispatcher:
 
     node: Any  # rclpy.node.Node
     executor: Any  # rclpy.executors.Executor
-    alive: Callable[[str], bool] | None = None
+    alive: Callable[[str], bool | None] | None = None
     silence: float = SILENCE
     instances: dict[str, Instance] = field(default_factory=dict)
     log: Callable[[str], None] | None = None
@@ -136,6 +140,9 @@ class Dispatcher:
 
         nodes = {(ns.rstrip('/') + '/' + name) for name, ns in
                  self.node.get_node_names_and_namespaces()}
+        # a loaded machine's graph query can come back empty or partial: a look that
+        # misses this very node says nothing about the others
+        trusted = self.node.get_fully_qualified_name() in nodes
         for action, types in get_action_names_and_types(self.node):
             if ACTION_TYPE not in types or action in self.instances:
                 continue
@@ -148,11 +155,15 @@ class Dispatcher:
         for inst in self.instances.values():
             if inst.dead:
                 continue
-            if inst.node not in nodes:
-                self._kill(inst, 'its node left the ROS graph')
-            elif self.alive is not None and not self.alive(inst.node.rsplit('/', 1)[-1]):
+            running = (self.alive(inst.node.rsplit('/', 1)[-1]) if self.alive is not None
+                       else None)
+            if running is False:
                 self._kill(inst, 'its process ended')
-            elif inst.ready_since is None and inst.client.server_is_ready():
+                continue
+            if running is None and trusted and inst.node not in nodes:
+                self._kill(inst, 'its node left the ROS graph')
+                continue
+            if inst.ready_since is None and inst.client.server_is_ready():
                 inst.ready_since = now
 
     def _kill(self, inst: Instance, why: str) -> None:
@@ -220,17 +231,11 @@ class Dispatcher:
                 job = inst.job
                 assert job is not None  # an active instance runs a job (_send)
                 if job.handle is None and not job.send.done():
-                    if now - job.last_news > ACCEPT_TIMEOUT:
+                    if now - job.last_news > ACCEPT_TIMEOUT * 2 ** job.resends:
                         # Fast DDS drops a goal response sent before the server has
-                        # discovered this client's response reader: ask again
-                        if job.resends + 1 < GOAL_ATTEMPTS:
-                            job.resends += 1
-                            self._send(inst, job, goal_of, again=True)
-                        else:
-                            active.remove(inst)
-                            inst.job = None
-                            self._kill(inst, f'no answer to {GOAL_ATTEMPTS} goal requests')
-                            self._retry(job, pending, done, inst.dead)
+                        # discovered this client's response reader: ask again, later
+                        job.resends += 1
+                        self._send(inst, job, goal_of, again=True)
                     continue
                 if job.handle is None and job.send.done():
                     job.handle = job.send.result()
@@ -241,8 +246,11 @@ class Dispatcher:
                         self._retry(job, pending, done, 'goal rejected')
                         continue
                     job.result = job.handle.get_result_async()
+                    job.results = [job.result]
                     job.last_news = now
-                if job.result is not None and job.result.done():
+                answered = next((f for f in job.results if f.done()), None)
+                if answered is not None:
+                    job.result = answered
                     active.remove(inst)
                     inst.job = None
                     inst.runs += 1
@@ -257,11 +265,10 @@ class Dispatcher:
                     else:
                         done(job.request, None, res.message or f'{job.request.label}: goal '
                              f'ended with status {answer.status}', inst.node)
-                elif now - job.last_news > self.silence:
-                    active.remove(inst)
-                    inst.job = None
-                    self._kill(inst, f'no feedback or result for {self.silence:.0f} s')
-                    self._retry(job, pending, done, inst.dead)
+                elif job.result is not None and now - job.last_news > self.silence:
+                    # silent: the result may have been sent and lost; the instance lives
+                    job.results.append(job.handle.get_result_async())
+                    job.last_news = now
 
     def _complete(self, family: str, ready: list[Instance], now: float) -> bool:
         """Say whether a family's goals may start on the ``ready`` instances (``expect``)."""
@@ -285,6 +292,7 @@ class Dispatcher:
             job.attempts += 1
             job.resends = 0
         job.handle = job.result = None
+        job.results = []
         job.last_news = time.monotonic()
 
         def on_feedback(_msg, job=job) -> None:
@@ -354,7 +362,7 @@ class SolverGraph:
             self.__exit__(None, None, None)
             raise
         alive = None if self.attach else (
-            lambda name: name in self.procs and self.procs[name].poll() is None)
+            lambda name: self.procs[name].poll() is None if name in self.procs else None)
         return Dispatcher(self.node, self.executor, alive=alive, log=self.log,
                           expect=self.counts)
 

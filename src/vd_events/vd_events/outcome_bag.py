@@ -14,19 +14,10 @@ of the wheels when the wheel centres are known), and
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-import dataclasses
 from pathlib import Path
 
-import numpy as np
-
 from vd_solvers import __version__
-from vd_solvers.results import Channel, EventOutcome
-
-#: model -> topic family (the solver that would have produced it)
-FAMILIES = {'vehicle': 'vehicle', 'test': 'vehicle', 'kc': 'kc', 'rig': 'kc',
-            'bicycle': 'steady_state', 'two_track': 'steady_state'}
-POSE = ('x', 'y', 'yaw')
-
+from vd_solvers.results import EventOutcome
 
 def _time(ns: int):
     from builtin_interfaces.msg import Time
@@ -34,56 +25,18 @@ def _time(ns: int):
     return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
 
 
-def _ns(stamp) -> int:
-    return stamp.sec * 1_000_000_000 + stamp.nanosec
-
-
-def _padded(outcome: EventOutcome, names: Sequence[str], fill: float) -> EventOutcome:
-    """``outcome`` with every channel of ``names`` (``fill`` where it has none)."""
-    n = outcome.n_steps
-    channels = dict(outcome.channels)
-    for name in names:
-        if name not in channels:
-            channels[name] = Channel('', np.full(n, fill))
-    return dataclasses.replace(outcome, channels=channels)
-
-
 def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, object]]:
-    """(topic, message) of one outcome, in publishing order (provenance first)."""
-    from vd_solvers.conversions import (
-        VEHICLE_FIELDS,
-        VEHICLE_WHEELS,
-        WHEEL_FIELDS,
-        outcome_analytical_states,
-        outcome_kc_states,
-        outcome_kc_transforms,
-        outcome_odometry,
-        outcome_to_msg,
-        outcome_transforms,
-        outcome_vehicle_states,
-    )
+    """
+    (topic, message) of one outcome, as its solver publishes them in ``/vd``.
 
-    family = FAMILIES.get(outcome.model, outcome.model)
-    stamp = _time(stamp_ns)
-    out: list[tuple[str, object]] = []
-    if family == 'vehicle':
-        wheels = [f'{prefix}_{w}' for prefix, _ in WHEEL_FIELDS.values() for w in VEHICLE_WHEELS]
-        # a log has no wheel loads or torque: NaN in the typed state says "not measured"
-        states = outcome_vehicle_states(_padded(outcome, [*VEHICLE_FIELDS, *wheels],
-                                                float('nan')), stamp)
-        out += [('/vd/vehicle/state', m) for m in states]
-        if all(k in outcome.channels for k in POSE):
-            # unmeasured roll, pitch, sideslip: 0 in the pose (docs/testdata.md)
-            posed = _padded(outcome, ('roll', 'pitch', 'sideslip', 'speed', 'yaw_rate'), 0.0)
-            out += [('/tf', m) for m in outcome_transforms(posed, stamp)]
-            out += [('/vd/vehicle/odom', m) for m in outcome_odometry(posed, stamp)]
-    else:
-        states = outcome_kc_states if family == 'kc' else outcome_analytical_states
-        if family == 'kc':  # the wheels' frames when the rig file has the wheel centres
-            out += [('/tf', m) for m in outcome_kc_transforms(outcome, stamp)]
-        out += [(f'/vd/{family}/state', m) for m in states(outcome, stamp)]
-    out.append((f'/vd/{family}/result', outcome_to_msg(outcome, stamp)))
-    return out
+    The messages of :func:`vd_solvers.conversions.outcome_messages` (a log's unmeasured
+    channels are NaN in the typed states and 0 in the pose, docs/testdata.md).
+    """
+    from vd_data_server.names import DEFAULT_NAMESPACE
+    from vd_solvers.conversions import outcome_messages as messages
+
+    return [(topic if topic.startswith('/') else f'{DEFAULT_NAMESPACE}/{topic}', msg)
+            for topic, msg in messages(outcome, _time(stamp_ns))]
 
 
 def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
@@ -114,4 +67,4 @@ def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
         raise
 
 
-__all__ = ['write_outcomes', 'outcome_messages', 'FAMILIES']
+__all__ = ['write_outcomes', 'outcome_messages']

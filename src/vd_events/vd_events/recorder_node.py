@@ -15,6 +15,13 @@ provenance goes into the bag's metadata.
 Each message is logged at its own stamp (``bag.log_time``: the simulation-time axis of
 the states), and each topic records the QoS its publishers offered, so ``ros2 bag play``
 of the bag reproduces the latched topics.
+
+A run's per-step messages (typed states, odometry, TF) are written from its EventResult
+(``vd_solvers.conversions.outcome_messages``, the one definition the solver publishes
+them by): one message over DDS per run, written in one go, so the recorder keeps up
+however long the run and however slowly its executor takes messages (rclpy takes one
+per subscription and wait). A result is complete once its configuration and
+provenance are written too; ``recorder/recorded`` (latched) says how many are.
 """
 from __future__ import annotations
 
@@ -22,28 +29,18 @@ import sys
 import threading
 import time
 
-from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
-from tf2_msgs.msg import TFMessage
 from vd_data_server import names
 from vd_data_server.node_main import run_node
-from vd_data_server.qos import CONFIGURATIONS, LATEST, STATES
+from vd_data_server.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
 from vd_events.bag import BagError, BagWriter, log_time
-from vd_interfaces.msg import (
-    AnalyticalState,
-    Configuration,
-    DataStatus,
-    EventResult,
-    KcState,
-    Provenance,
-    VehicleState,
-)
-from vd_solvers.conversions import TIME_AXIS, has_wheel_frames
+from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance
+from vd_solvers.conversions import TIME_AXIS, outcome_from_msg, outcome_messages, start_stamp
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC
 
 #: where the recorder says how many event results it has written completely (latched),
@@ -54,32 +51,26 @@ FINISH_SERVICE = 'recorder/finish'
 #: seconds the recorder process stays up after finish, for its response to be delivered
 FINISH_LINGER = 0.3
 
-#: each family's per-step message type
-STATE_TYPES = {'steady_state': AnalyticalState, 'kc': KcState, 'vehicle': VehicleState}
-
-#: topic (relative to the namespace, or absolute) -> (type, QoS) recorded by default;
-#: the subscriptions use the publishers' own profiles
+#: topic (relative to the namespace) -> (type, QoS) the recorder subscribes to; the
+#: subscriptions use the publishers' own profiles
 TOPICS = {
     names.CONFIGURATION: (Configuration, CONFIGURATIONS),
     names.DATA_STATUS: (DataStatus, LATEST),
-    names.PROVENANCE: (Provenance, STATES),
-    **{topic: spec for family in FAMILIES.values() for topic, spec in (
-        (family.result_topic, (EventResult, STATES)),
-        (family.state_topic, (STATE_TYPES[family.name], STATES)))},
-    ODOMETRY_TOPIC: (Odometry, STATES),
-    TF_TOPIC: (TFMessage, STATES),
+    names.PROVENANCE: (Provenance, RESULTS),
+    **{family.result_topic: (EventResult, RESULTS) for family in FAMILIES.values()},
 }
+#: the result topics: each result brings its run's per-step messages
+FAMILY_RESULTS = frozenset(family.result_topic for family in FAMILIES.values())
+#: the topics written from each result, with the profile their publishers use
+DERIVED = {**{family.state_topic: STATES for family in FAMILIES.values()},
+           ODOMETRY_TOPIC: STATES, TF_TOPIC: STATES}
 
 
 def _stamp_ns(msg) -> int | None:
-    """Return the stamp of a result, state or provenance message (None for data topics)."""
-    stamp = getattr(msg, 'stamp', None)
-    if stamp is None and hasattr(msg, 'header'):
-        stamp = msg.header.stamp
-    if stamp is None and getattr(msg, 'transforms', None):  # TF
-        stamp = msg.transforms[0].header.stamp
-    if stamp is None or isinstance(msg, (Configuration, DataStatus)):
+    """Return the stamp of a result or provenance message (None for data topics)."""
+    if isinstance(msg, (Configuration, DataStatus)):
         return None
+    stamp = msg.stamp
     return stamp.sec * 1_000_000_000 + stamp.nanosec
 
 
@@ -98,22 +89,26 @@ class Recorder(Node):
             raise ValueError("parameter 'bag' is required (the bag directory to create)")
         wanted = [c for c in self.get_parameter('configurations').value if c]
         self.only = set(wanted)
-        self.counts: dict[str, int] = dict.fromkeys(TOPICS, 0)
+        self.counts: dict[str, int] = dict.fromkeys([*TOPICS, *DERIVED], 0)
+        self.frame_prefix = self.declare_parameter(
+            'frame_prefix', names.frame_prefix(self.get_namespace()), ParameterDescriptor(
+                description="the solvers' frame prefix (the frames of the TF written from "
+                'each result)', read_only=True)).value
         # runs stamped before this recorder started are not its own: on the time axis of
         # this process they end at or before TIME_AXIS.end(), which may lie ahead of the
-        # wall clock after time-domain runs (their history stays latched in the solvers)
+        # wall clock after time-domain runs; a result kept latched by a solver of another
+        # process was sent before this recorder existed (its source timestamp says so)
         self.start = max(self.get_clock().now().nanoseconds, TIME_AXIS.end() + 1)
-        self._samples: dict[tuple[str, str, str], int] = {}
+        self.created = time.time_ns()
         self._qos: dict[str, list] = {}  # topic -> the offered QoS recorded in the bag
-        self._pending: list[tuple[tuple[str, str, str], int, int, int]] = []
-        self._odometry_needed = 0  # odometry messages the full-vehicle results so far bring
-        self._tf_needed = 0  # TF messages the results so far bring (vehicle and K&C)
-        self.complete = 0  # results written together with all their step samples
+        self._provenance: set[tuple[str, str, str]] = set()
+        self._pending: list[tuple[str, str, str]] = []  # results waiting for provenance
+        self.complete = 0  # results written with their states, provenance and configuration
         self.error: str | None = None  # a write failed (full disk...): the bag is dropped
         self.finished = False
         self.interrupted = False  # destroyed before the recording was complete
         # the bag holds the resolved names (/vd/kc/result, /car2/kc/result, /tf)
-        self._bag_topics = {t: self.resolve_topic_name(t) for t in TOPICS}
+        self._bag_topics = {t: self.resolve_topic_name(t) for t in [*TOPICS, *DERIVED]}
         # in-process runs spin this node on a multi-threaded executor while the runner
         # stops it from its own thread: writes and close never overlap
         self._lock = threading.Lock()
@@ -131,7 +126,11 @@ class Recorder(Node):
         self.get_logger().info(f'recording to {path}')
 
     def _callback(self, topic: str):
-        def record(msg) -> None:
+        run_topic = topic not in (names.CONFIGURATION, names.DATA_STATUS)
+
+        def record(msg, info) -> None:
+            if run_topic and info['source_timestamp'] < self.created:
+                return  # a run a solver kept latched from before this recording
             with self._lock:
                 if self.writer.closed:
                     return
@@ -159,34 +158,32 @@ class Recorder(Node):
             self.writer.set_custom_data('vd.modified', '; '.join(
                 f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
                 for g in msg.groups for k in g.modified_keys) or 'none')
+            self._provenance.add((msg.configuration, msg.event, msg.model))
+        if topic in FAMILY_RESULTS:
+            outcome = outcome_from_msg(msg)
+            for derived, m in outcome_messages(outcome, start_stamp(outcome, msg.stamp),
+                                               self.frame_prefix):
+                self._write(derived, m)
+            self._pending.append((msg.configuration, msg.event, msg.model))
+        else:
+            self._write(topic, msg)
+        self._publish_complete()
+
+    def _write(self, topic: str, msg) -> None:
         if topic not in self._qos:
             self._qos[topic] = self._offered(topic)
         self.writer.write(self._bag_topics[topic], msg, log_time(msg, time.time_ns()),
                           self._qos[topic])
         self.counts[topic] += 1
-        if topic.endswith('/state'):
-            key = (msg.configuration, msg.event, msg.model)
-            self._samples[key] = self._samples.get(key, 0) + 1
-        elif topic.endswith('/result'):
-            steps = max((len(c.values) for c in msg.channels), default=0)
-            if msg.model == 'vehicle':
-                self._odometry_needed += steps
-                self._tf_needed += steps
-            elif msg.model == 'kc' and has_wheel_frames({c.name: c.values
-                                                         for c in msg.channels}):
-                self._tf_needed += steps  # the wheels' frames, one TF message per step
-            self._pending.append(((msg.configuration, msg.event, msg.model), steps,
-                                  self._odometry_needed, self._tf_needed))
-        self._publish_complete()
 
     def _offered(self, topic: str) -> list:
         """
         Return the QoS profiles the publishers of ``topic`` offer (as discovered).
 
-        History and depth, which discovery does not carry, are those of this recorder's
-        subscription (the publishers' own profile).
+        History and depth, which discovery does not carry, are those of the publishers'
+        own profile (vd_data_server.qos).
         """
-        own = TOPICS[topic][1]
+        own = TOPICS[topic][1] if topic in TOPICS else DERIVED[topic]
         out = []
         for info in self.get_publishers_info_by_topic(self._bag_topics[topic]):
             q = info.qos_profile
@@ -196,14 +193,10 @@ class Recorder(Node):
         return out or [own]
 
     def _publish_complete(self) -> None:
-        """
-        Count the results whose every step state is written too, and say so.
-
-        For the full vehicle, every odometry and TF message too; for K&C, every TF message.
-        """
-        done = [p for p in self._pending
-                if self._samples.get(p[0], 0) >= p[1] and self.counts[ODOMETRY_TOPIC] >= p[2]
-                and self.counts[TF_TOPIC] >= p[3]]
+        """Count the results whose provenance and configuration are written too; say so."""
+        if self.only and self.counts[names.CONFIGURATION] == 0:
+            return
+        done = [p for p in self._pending if p in self._provenance]
         if done:
             self._pending = [p for p in self._pending if p not in done]
             self.complete += len(done)

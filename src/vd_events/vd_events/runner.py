@@ -25,6 +25,7 @@ from pathlib import Path
 import shutil
 import signal
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -51,13 +52,17 @@ from .domain import DomainError, claim_domain
 ALL_EVENTS = ('steady_state_circular', 'handling_diagram', 'parallel_wheel_travel',
               'opposite_wheel_travel', 'lateral_force', 'longitudinal_force', 'steering',
               'aligning_torque', 'constant_radius_turn', 'sine_with_dwell', 'step_steer')
-GOAL_TIMEOUT = 60.0  # s: a solver silent (no result, no feedback) this long has died or hung
-SERVER_TIMEOUT = 20.0  # s: for the action server (a process) to appear
-ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again
-GOAL_ATTEMPTS = 3
+#: s of silence (no result, no feedback) after which the result is asked for again: a
+#: response Fast DDS dropped is not a dead solver (a dead one is told by its process exit)
+GOAL_TIMEOUT = 60.0
+SERVER_TIMEOUT = 20.0  # s: for the in-process action server and recorder to match
+ACCEPT_TIMEOUT = 10.0  # s: for a goal to be accepted before it is sent again (doubling)
 DISCOVERY_GRACE = 0.5  # s
-RECORD_TIMEOUT = 10.0  # s: for the recorder to confirm it wrote the result
+#: s: after the bag is final, for the recorder process to exit before it is stopped
+RECORDER_EXIT_WAIT = 10.0
 CANCEL_WAIT = 2.0  # s: for an interrupted goal to be cancelled before the nodes stop
+#: s: how often a long wait says what it waits for (on a terminal and in a log alike)
+NOTICE_PERIOD = 30.0
 #: s: longest wait of one spin while nothing happens (events end it at once); each spin
 #: rebuilds the wait set, which costs the solver's worker thread the GIL
 SPIN_PERIOD = 0.1
@@ -198,13 +203,49 @@ def _spin_until(executor, predicate: Callable[[], bool], timeout: float) -> bool
     return predicate()
 
 
+#: says whether the peers a wait depends on still live: None, or why they do not
+Alive = Callable[[], 'str | None']
+
+
+def _always() -> str | None:
+    return None
+
+
+def _wait_for(executor, done: Callable[[], bool], alive: Alive, what: str,
+              notice: Callable[[str], None] | None = None) -> None:
+    """
+    Spin until ``done()``: no deadline, a busy machine only makes it slower.
+
+    A dead peer ends the wait at once with RunError (``alive()`` says why); every
+    NOTICE_PERIOD s ``notice`` (if given) hears what is still awaited.
+    """
+    since = last = time.monotonic()
+    while not done():
+        dead = alive()
+        if dead is not None:
+            raise RunError(f'{what}: {dead}')
+        executor.spin_once(timeout_sec=SPIN_PERIOD)
+        now = time.monotonic()
+        if notice is not None and now - last >= NOTICE_PERIOD:
+            last = now
+            notice(f'still waiting ({now - since:.0f} s): {what}')
+
+
 def send_goal(executor, client: EventClient, request: RunRequest,
-              progress: Callable[[float, str], None]):
-    """Send one goal and wait for its result; returns (success, message, EventResult)."""
+              progress: Callable[[float, str], None], alive: Alive = _always,
+              notice: Callable[[str], None] | None = None):
+    """
+    Send one goal and wait for its result; returns (success, message, EventResult).
+
+    Nothing here waits on a clock for work that may take longer: the server's
+    appearance, the acceptance (a request Fast DDS dropped is sent again, at growing
+    intervals) and the result (asked for again after GOAL_TIMEOUT s of silence) are
+    awaited while ``alive()`` says the solver lives.
+    """
     action = client.clients[request.family]
-    if not _spin_until(executor, action.server_is_ready, SERVER_TIMEOUT):
-        name = client.node.resolve_topic_name(FAMILIES[request.family].action())
-        raise RunError(f'{request.label}: no solver answers on {name}')
+    name = client.node.resolve_topic_name(FAMILIES[request.family].action())
+    _wait_for(executor, action.server_is_ready, alive,
+              f'{request.label}: no solver answers on {name}', notice)
     if request.family not in client.warm:
         # Fast DDS drops a service response sent before the server has discovered the
         # client's response reader ("failed to send response"): give discovery a moment.
@@ -216,35 +257,53 @@ def send_goal(executor, client: EventClient, request: RunRequest,
         last_news[0] = time.monotonic()
         progress(fb.feedback.progress, fb.feedback.stage)
 
-    for _attempt in range(GOAL_ATTEMPTS):
+    interval = ACCEPT_TIMEOUT
+    while True:
         send = action.send_goal_async(client.goal(request), feedback_callback=on_feedback)
-        if _spin_until(executor, send.done, ACCEPT_TIMEOUT):
+        if _spin_until(executor, lambda: send.done() or alive() is not None, interval):
             break
-    else:
-        raise RunError(f'{request.label}: the solver did not accept the goal in time')
+        interval *= 2  # not accepted yet: sent again, waiting longer each time
+    _wait_for(executor, send.done, alive, f'{request.label}: the goal was not accepted')
     handle = send.result()
     if not handle.accepted:
         raise RunError(f'{request.label}: goal rejected (the solver logs why)')
-    result_future = handle.get_result_async()
+    futures = [handle.get_result_async()]
     client.running.append(handle)
     last_news[0] = time.monotonic()
-    # a long goal is fine as long as it reports progress; silence for GOAL_TIMEOUT is not
-    while not _spin_until(executor, result_future.done, GOAL_TIMEOUT / 10):
+
+    def answered() -> bool:
+        if any(f.done() for f in futures):
+            return True
         if time.monotonic() - last_news[0] > GOAL_TIMEOUT:
-            raise RunError(f'{request.label}: no result and no progress for '
-                           f'{GOAL_TIMEOUT:.0f} s (solver died?)')
+            # silent this long: ask again (the server keeps the result for a while)
+            futures.append(handle.get_result_async())
+            last_news[0] = time.monotonic()
+        return False
+
+    def solver_alive() -> str | None:
+        return alive() or (None if action.server_is_ready()
+                           else f'the solver left the graph ({name})')
+
+    _wait_for(executor, answered, solver_alive, f'{request.label}: no result', notice)
     client.running.remove(handle)
-    result = result_future.result().result
+    result = next(f for f in futures if f.done()).result().result
     return result.success, result.message, result.result
 
 
+def _notice(text: str) -> None:
+    """Say on stderr what a long wait is waiting for (stdout stays the result's)."""
+    print(text, file=sys.stderr, flush=True)
+
+
 def _run_goal(executor, client: EventClient, request: RunRequest,
-              progress: Callable[[RunRequest, float, str], None] | None) -> EventOutcome:
+              progress: Callable[[RunRequest, float, str], None] | None,
+              alive: Alive = _always) -> EventOutcome:
     """One goal to its solver; the result as an EventOutcome, or RunError."""
     from vd_solvers.conversions import outcome_from_msg
 
     ok, message, result = send_goal(executor, client, request,
-                                     lambda p, s: progress(request, p, s) if progress else None)
+                                     lambda p, s: progress(request, p, s) if progress else None,
+                                     alive, _notice)
     if not ok:
         raise RunError(message)
     check_result(request, result)
@@ -272,7 +331,8 @@ def check_result(request: RunRequest, result) -> None:
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  namespace: str = names.DEFAULT_NAMESPACE, timings: dict | None = None,
-                 study: Study | None = None) -> list[RunOutcome]:
+                 study: Study | None = None,
+                 on_done: Callable[[RunOutcome], None] | None = None) -> list[RunOutcome]:
     """
     All nodes in this process, in ``namespace``; a recorder node per run with a bag.
 
@@ -281,7 +341,8 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     Only the solvers the requests need are started. A multi-threaded executor: a
     solver's execute callback (a goal may take minutes) runs in a worker thread while
     this thread keeps spinning the accept and result futures, the feedback and the
-    recorder. ``timings`` (if given) receives the seconds of each phase.
+    recorder. ``timings`` (if given) receives the seconds of each phase; ``on_done``
+    (if given) hears each run's outcome as soon as it is complete.
     """
     clock = _Phases(timings)
     import rclpy
@@ -320,8 +381,9 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     outcomes: list[RunOutcome] = []
     clock.lap('graph_start')
     try:
-        _spin_until(executor, lambda: all(len(n.configurations) > 0 and n.status is not None
-                                          for n in solvers), SERVER_TIMEOUT)
+        _wait_for(executor, lambda: all(len(n.configurations) > 0 and n.status is not None
+                                        for n in solvers), _always,
+                  'the solvers have not received the configurations', _notice)
         clock.lap('discovery')
         for request in requests:
             recorder = None
@@ -340,10 +402,12 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 clock.lap('solve')
                 bag = None
                 if recorder is not None:
-                    if not _spin_until(executor, lambda: recorder.complete >= 1 or
-                                       recorder.error is not None, RECORD_TIMEOUT):
-                        raise RunError(f'{request.label}: the recorder did not record the '
-                                       'result')
+                    # one message (the result) brings the whole run: in this process
+                    # it arrives, however busy the machine
+                    _wait_for(executor, lambda: recorder.complete >= 1 or
+                              recorder.error is not None, _always,
+                              f'{request.label}: the recorder has not written the result',
+                              _notice)
                     try:
                         bag = recorder.stop()
                     except BagError as err:
@@ -361,6 +425,8 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                     recorder.abort()  # removes the partial bag unless stop() finished it
                     executor.remove_node(recorder)
                     recorder.destroy_node()
+            if on_done is not None:
+                on_done(outcomes[-1])
     finally:
         clock.lap('record')
         for node in nodes:
@@ -407,9 +473,12 @@ def _cancel_running(executor, client: EventClient) -> None:
 
 def run_distributed(master: Path, requests: Sequence[RunRequest],
                     progress: Callable[[RunRequest, float, str], None] | None = None,
-                    namespace: str = names.DEFAULT_NAMESPACE) -> list[RunOutcome]:
+                    namespace: str = names.DEFAULT_NAMESPACE,
+                    on_done: Callable[[RunOutcome], None] | None = None) -> list[RunOutcome]:
     """
     One process per node (as ``ros2 run`` starts them), DDS on loopback, in ``namespace``.
+
+    ``on_done`` (if given) hears each run's outcome as soon as it is complete.
 
     The nodes are this process's children in their own session (a Ctrl-C at the
     terminal reaches only this process, which stops them in order) and end with
@@ -466,6 +535,15 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
             recorded[0] = msg.data
 
         node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, LATEST)
+
+        def alive() -> str | None:
+            """A node process that has exited is the one signal of a dead graph."""
+            for proc in [*procs, *([recorder] if recorder is not None else [])]:
+                if proc.poll() is not None:
+                    return (f"the node process '{Path(proc.args[0]).name}' exited with "
+                            f'code {proc.returncode}')
+            return None
+
         for request in requests:
             recorded[0] = 0
             family = FAMILIES[request.family]
@@ -477,15 +555,15 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
             try:
                 if recorder is not None:
                     # the recorder's subscriptions must be matched before the results flow
-                    topics = (family.result_topic, family.state_topic)
-                    if not _spin_until(executor, lambda: all(node.count_subscribers(t) >= 1
-                                                             for t in topics), SERVER_TIMEOUT):
-                        raise RunError(f'{request.label}: the recorder did not start')
-                outcome = _run_goal(executor, client, request, progress)
+                    _wait_for(executor, lambda: node.count_subscribers(
+                        family.result_topic) >= 1, alive,
+                        f'{request.label}: the recorder has not started', _notice)
+                outcome = _run_goal(executor, client, request, progress, alive)
                 bag = None
                 if recorder is not None:
-                    if not _spin_until(executor, lambda: recorded[0] >= 1, RECORD_TIMEOUT):
-                        raise RunError(f'{request.label}: the recorder did not record the result')
+                    _wait_for(executor, lambda: recorded[0] >= 1, alive,
+                              f'{request.label}: the recorder has not written the result',
+                              _notice)
                     bag = _finish_recording(executor, finish, recorder, request)
                     recorder = None
                     topics = {m.topic for m in read_bag(bag)}
@@ -500,6 +578,8 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
                                            f'{err}' + (f'\nnode output:\n{tail}' if tail else '')))
                 _drop_recording(recorder, request)
                 recorder = None
+            if on_done is not None:
+                on_done(outcomes[-1])
         request = None
     except KeyboardInterrupt:
         if client is not None:
@@ -521,24 +601,33 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
 
 
 def _finish_recording(executor, finish, recorder: subprocess.Popen, request: RunRequest) -> Path:
-    """Have the recorder close the bag under its final name (the result is confirmed)."""
+    """
+    Have the recorder close the bag under its final name (the result is confirmed).
+
+    Waits on the events themselves: the service, then its answer or the recorder's exit
+    (an answer Fast DDS dropped still leaves the final bag behind).
+    """
     assert request.bag is not None
-    if not _spin_until(executor, finish.service_is_ready, SERVER_TIMEOUT):
-        raise RunError(f'{request.label}: the recorder does not answer')
     from std_srvs.srv import Trigger
 
+    def recorder_alive() -> str | None:
+        return (None if recorder.poll() is None
+                else f'the recorder exited with code {recorder.returncode}')
+
+    _wait_for(executor, finish.service_is_ready, recorder_alive,
+              f'{request.label}: the recorder does not answer', _notice)
     future = finish.call_async(Trigger.Request())
-    if not _spin_until(executor, lambda: future.done() or recorder.poll() is not None,
-                       RECORD_TIMEOUT):
-        raise RunError(f'{request.label}: the recorder did not finish the bag')
+    _wait_for(executor, lambda: future.done() or recorder.poll() is not None, _always,
+              f'{request.label}: the recorder has not finished the bag', _notice)
     if future.done() and not future.result().success:
         raise RunError(f'{request.label}: {future.result().message}')
     try:
-        recorder.wait(timeout=RECORD_TIMEOUT)
+        recorder.wait(timeout=RECORDER_EXIT_WAIT)
     except subprocess.TimeoutExpired:
-        raise RunError(f'{request.label}: the recorder did not stop') from None
-    if recorder.returncode != 0 or not (request.bag / 'metadata.yaml').is_file():
-        raise RunError(f'{request.label}: the recorder did not finish the bag')
+        stop_processes([recorder])  # it lingers after finishing: the bag is closed
+    if not (request.bag / 'metadata.yaml').is_file():
+        raise RunError(f'{request.label}: the recorder did not finish the bag (exit code '
+                       f'{recorder.returncode})')
     return request.bag
 
 

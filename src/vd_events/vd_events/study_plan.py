@@ -125,8 +125,13 @@ def _get(run: Mapping[str, Any], key: str, default: Any) -> Any:
 
 
 def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
-             progress: Callable | None = None, namespace: str | None = None) -> dict[str, Any]:
-    """Validate every run, then run them all, then build the report."""
+             progress: Callable | None = None, namespace: str | None = None,
+             on_done: Callable | None = None) -> dict[str, Any]:
+    """
+    Validate every run, then run them all, then build the report.
+
+    ``on_done(RunOutcome)`` hears each run as soon as it is complete.
+    """
     from .report import build_report
     from .study_report import build_study_report
 
@@ -144,7 +149,7 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
         seen.add(request.bag)
     requests = checked
     runner = run_distributed if distributed else run_embedded
-    results = runner(plan.master, requests, progress,
+    results = runner(plan.master, requests, progress, on_done=on_done,
                      **({'namespace': namespace} if namespace else {}))
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]

@@ -24,6 +24,7 @@ import threading
 import numpy as np
 
 from vd_data_server.names import BODY_FRAME, ODOM_FRAME
+from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC, message_family
 from vd_solvers.results import Channel, EventOutcome, Metric
 
 #: pseudo-time per step of a quasi-static event (K&C sweeps, steady-state sweeps), s
@@ -215,18 +216,62 @@ def end_stamp(outcome: EventOutcome, stamp):
 # --- per-step states --------------------------------------------------------------
 
 
+def start_stamp(outcome: EventOutcome, end):
+    """Return a run's stamp from the stamp of its last step (the inverse of end_stamp)."""
+    offsets = step_offsets(outcome)
+    return time_msg(stamp_ns(end) - (int(round(float(offsets[-1]) * 1e9)) if offsets.size
+                                     else 0))
+
+
 def outcome_states(outcome: EventOutcome, stamp) -> list:
     """
     Return the typed per-step states of ``outcome``.
 
-    KcState (model ``kc``), VehicleState (``vehicle``), AnalyticalState (the others),
-    stamped ``stamp`` + :func:`step_offsets`.
+    KcState (family ``kc``: the K&C model, rig measurements), VehicleState (``vehicle``:
+    the full vehicle, vehicle-test logs), AnalyticalState (the others), stamped ``stamp`` +
+    :func:`step_offsets`.
     """
-    if outcome.model == 'kc':
+    family = message_family(outcome.model)
+    if family == 'kc':
         return outcome_kc_states(outcome, stamp)
-    if outcome.model == 'vehicle':
+    if family == 'vehicle':
         return outcome_vehicle_states(outcome, stamp)
     return outcome_analytical_states(outcome, stamp)
+
+
+#: the full vehicle's pose channels: a vehicle outcome with them has odometry and TF
+POSE_CHANNELS = ('x', 'y', 'yaw')
+
+
+def outcome_messages(outcome: EventOutcome, stamp, frame_prefix: str = '') -> list:
+    """
+    Return (topic, message) of everything one run publishes but its provenance.
+
+    In publishing order: the TF of the run (the full vehicle's pose, the K&C wheels) and the
+    vehicle's odometry, one per step; the typed states, one per step; the EventResult,
+    stamped at the last step. Topics are relative to the namespace (``/tf`` absolute); every
+    frame carries ``frame_prefix`` (several vehicles on one TF tree). The one definition of
+    a run's messages: the solver nodes publish them, the recorder writes them to the bag
+    from the EventResult alone, and ``vd import`` writes them for measured data.
+    """
+    family = FAMILIES[message_family(outcome.model)]
+    out: list = []
+    if family.name == 'vehicle' and all(
+            k in outcome.channels and np.isfinite(outcome.channels[k].values).all()
+            for k in POSE_CHANNELS):
+        odometry = outcome_odometry(outcome, stamp)
+        for msg in odometry:
+            msg.header.frame_id = frame_prefix + msg.header.frame_id
+            msg.child_frame_id = frame_prefix + msg.child_frame_id
+        out += [(TF_TOPIC, m) for m in _odometry_transforms(odometry)]
+        out += [(ODOMETRY_TOPIC, m) for m in odometry]
+    elif family.name == 'kc':
+        out += [(TF_TOPIC, m) for m in outcome_kc_transforms(outcome, stamp, frame_prefix)]
+    for state in outcome_states(outcome, stamp):
+        state.header.frame_id = frame_prefix + state.header.frame_id
+        out.append((family.state_topic, state))
+    out.append((family.result_topic, outcome_to_msg(outcome, end_stamp(outcome, stamp))))
+    return out
 
 
 def _column(channels: Mapping[str, Channel], name: str, n: int) -> np.ndarray:
@@ -392,12 +437,17 @@ def outcome_transforms(outcome: EventOutcome, stamp) -> list:
     The transform ``odom`` -> ``base_link`` (REP 105), the same pose as
     :func:`outcome_odometry`.
     """
+    return _odometry_transforms(outcome_odometry(outcome, stamp))
+
+
+def _odometry_transforms(odometry: Sequence) -> list:
+    """Return the TFMessage of each Odometry message: its frame -> its child frame."""
     from geometry_msgs.msg import TransformStamped
 
     from tf2_msgs.msg import TFMessage
 
     out = []
-    for odom in outcome_odometry(outcome, stamp):
+    for odom in odometry:
         t = TransformStamped()
         t.header = odom.header
         t.child_frame_id = odom.child_frame_id
@@ -485,11 +535,15 @@ def outcome_odometry(outcome: EventOutcome, stamp) -> list:
 
     From the channels x, y, yaw, roll, pitch, speed, sideslip, yaw_rate: frame ``odom``,
     child ``base_link`` (REP 105), stamped ``stamp`` + simulated time. Height is not a
-    channel: z = 0.
+    channel: z = 0. A channel not measured (absent or NaN: roll, pitch, sideslip of a
+    vehicle-test log without them) is 0 in the pose and the twist.
     """
     from nav_msgs.msg import Odometry
 
-    ch = {k: c.values for k, c in outcome.channels.items()}
+    n = outcome.n_steps
+    ch = {k: np.nan_to_num(_column(outcome.channels, k, n)) for k in
+          ('x', 'y', 'yaw', 'roll', 'pitch', 'speed', 'sideslip', 'yaw_rate')}
+    ch['time'] = _column(outcome.channels, 'time', n)
     out = []
     for i, t in enumerate(ch['time']):
         msg = Odometry()

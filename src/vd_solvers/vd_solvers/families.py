@@ -55,6 +55,8 @@ FAMILIES: Mapping[str, Family] = {
 #: model -> the family that serves it
 MODEL_FAMILY: Mapping[str, str] = {m: f.name for f in FAMILIES.values() for m in f.models}
 MODELS = tuple(MODEL_FAMILY)
+#: models of measured data (vd import) -> the family whose messages carry them
+MEASURED_MODEL_FAMILY: Mapping[str, str] = {'test': 'vehicle', 'rig': 'kc'}
 FIDELITIES = ('rigid', 'flexible')
 #: the full vehicle's pose, one message per recorded step (nav_msgs/Odometry)
 ODOMETRY_TOPIC = 'vehicle/odom'
@@ -66,6 +68,11 @@ FLEXIBLE_MODELS = ('kc', 'vehicle')
 #: how the checks name a request's fields: over ROS (goal fields) and on the command line
 GOAL_FIELDS = {'axle': 'axle', 'fidelity': 'fidelity'}
 CLI_FIELDS = {'axle': '--axle', 'fidelity': 'fidelity'}
+
+
+def message_family(model: str) -> str:
+    """Return the family whose topics and state type carry results of ``model``."""
+    return MODEL_FAMILY.get(model) or MEASURED_MODEL_FAMILY.get(model, 'steady_state')
 
 
 def events_for(model: str) -> tuple[str, ...]:

@@ -18,7 +18,6 @@ from vd_data_server.model import Configuration
 from vd_data_server.node_main import spin_node
 from vd_data_server.qos import STATES
 from vd_interfaces.msg import KcState
-from vd_solvers.conversions import outcome_kc_transforms
 from vd_solvers.errors import SolverError
 from vd_solvers.families import TF_TOPIC
 from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
@@ -46,15 +45,7 @@ class KCSolver(SolverNode):
     def __init__(self, **kwargs) -> None:
         super().__init__('kc_solver', FAMILY, _run, **kwargs)
         # the wheels move on the rig: base_link -> <axle>_<side>_wheel per step
-        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
-
-    def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list,
-                        stamp=None) -> None:
-        stamp = stamp if stamp is not None else self.run_stamp(outcome)
-        # TF first: a recorder stops once the result and its samples are in
-        for msg in outcome_kc_transforms(outcome, stamp, self.frame_prefix):
-            self.tf_pub.publish(msg)
-        super().publish_outcome(outcome, config, changes, stamp=stamp)
+        self.publishers_by_topic[TF_TOPIC] = self.create_publisher(TFMessage, TF_TOPIC, STATES)
 
 
 def main(args=None) -> None:

@@ -39,7 +39,7 @@ from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
 from vd_interfaces.msg import DataStatus, EventResult, Provenance
 from vd_solvers import __version__
-from vd_solvers.conversions import end_stamp, outcome_states, outcome_to_msg, run_stamp
+from vd_solvers.conversions import outcome_messages, outcome_to_msg, run_stamp
 from vd_solvers.errors import SolverError
 from vd_solvers.families import FAMILIES, check_request
 from vd_solvers.results import EventOutcome
@@ -89,6 +89,10 @@ class SolverNode(Node):
         self.result_pub = self.create_publisher(EventResult, spec.result_topic, RESULTS)
         self.sample_pub = self.create_publisher(self.STATE_TYPE, spec.state_topic, STATES)
         self.provenance_pub = self.create_publisher(Provenance, names.PROVENANCE, RESULTS)
+        #: topic -> publisher of a run's messages (conversions.outcome_messages); the K&C
+        #: and vehicle solvers add TF and odometry
+        self.publishers_by_topic = {spec.result_topic: self.result_pub,
+                                    spec.state_topic: self.sample_pub}
         self.action = ActionServer(self, RunEvent, spec.action(self.get_name()), self._execute,
                                    goal_callback=self._check_goal,
                                    cancel_callback=lambda _: CancelResponse.ACCEPT,
@@ -201,11 +205,12 @@ class SolverNode(Node):
     def publish_outcome(self, outcome: EventOutcome, config: Configuration,
                         changes: list, stamp=None) -> None:
         """
-        Publish provenance (with this goal's ``--set`` changes), states and result.
+        Publish provenance (with this goal's ``--set`` changes), then the run's messages.
 
-        Provenance is stamped ``stamp`` (default: :meth:`run_stamp`), the states ``stamp``
-        + simulated time (time-domain events) or + step * PSEUDO_STEP (quasi-static
-        ones), the result with the last state's stamp.
+        Provenance is stamped ``stamp`` (default: :meth:`run_stamp`); the run's TF,
+        odometry and states (conversions.outcome_messages) ``stamp`` + simulated time
+        (time-domain events) or + step * PSEUDO_STEP (quasi-static ones), the result with
+        the last state's stamp.
         """
         stamp = stamp if stamp is not None else self.run_stamp(outcome)
         provenance = Provenance(stamp=stamp, configuration=config.name,
@@ -217,21 +222,12 @@ class SolverNode(Node):
             provenance.groups = [changed.get(s.group, s) for s in self.status.status
                                  if s.configuration == config.name]
         self.provenance_pub.publish(provenance)
-        for sample in self.state_messages(outcome, stamp):
-            self.sample_pub.publish(sample)
-        self.result_pub.publish(outcome_to_msg(outcome, end_stamp(outcome, stamp)))
+        for topic, msg in outcome_messages(outcome, stamp, self.frame_prefix):
+            self.publishers_by_topic[topic].publish(msg)
 
     def run_stamp(self, outcome: EventOutcome):
         """Claim a run's stamp: now, or after the previous run's time axis if that is later."""
         return run_stamp(outcome, self.get_clock().now().nanoseconds)
-
-    def state_messages(self, outcome: EventOutcome, stamp) -> list:
-        """Return the per-step typed states of ``outcome`` (conversions.outcome_states)."""
-        states = outcome_states(outcome, stamp)
-        if self.frame_prefix:
-            for state in states:
-                state.header.frame_id = self.frame_prefix + state.header.frame_id
-        return states
 
 
 def _warning_messages(caught) -> list[str]:

@@ -30,7 +30,6 @@ from vd_data_server.model import Configuration
 from vd_data_server.node_main import make_executor, run_node
 from vd_data_server.qos import STATES
 from vd_interfaces.msg import VehicleState
-from vd_solvers.conversions import outcome_odometry, outcome_transforms
 from vd_solvers.errors import SolverError
 from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
 from vd_solvers.results import EventOutcome
@@ -70,6 +69,7 @@ class VehicleSolver(SolverNode):
         self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
         # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
         self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+        self.publishers_by_topic.update({ODOMETRY_TOPIC: self.odom_pub, TF_TOPIC: self.tf_pub})
         self.declare_parameter('mode', 'events', ParameterDescriptor(
             description='events | lockstep | free', read_only=True))
         self.mode = self.get_parameter('mode').value
@@ -126,26 +126,6 @@ class VehicleSolver(SolverNode):
                                real_time_factor=p['real_time_factor'], configuration=name,
                                state_pub=self.sample_pub, odom_pub=self.odom_pub,
                                tf_pub=self.tf_pub, frame_prefix=self.frame_prefix)
-
-    def publish_outcome(self, outcome: EventOutcome, config: Configuration, changes: list) -> None:
-        stamp = self.run_stamp(outcome)
-        # odometry and TF first: a recorder stops once the result and its samples are in
-        for msg in outcome_transforms(outcome, stamp):
-            for t in msg.transforms:
-                self._prefix(t)
-            self.tf_pub.publish(msg)
-        for msg in outcome_odometry(outcome, stamp):
-            self.odom_pub.publish(self._prefix(msg))
-        super().publish_outcome(outcome, config, changes, stamp=stamp)
-
-
-    def _prefix(self, msg):
-        """Give ``msg``'s frames this graph's prefix (none in the default namespace)."""
-        if self.frame_prefix:
-            msg.header.frame_id = self.frame_prefix + msg.header.frame_id
-            msg.child_frame_id = self.frame_prefix + msg.child_frame_id
-        return msg
-
 
 
 def main(args=None) -> None:
