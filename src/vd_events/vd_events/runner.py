@@ -284,7 +284,12 @@ def send_goal(executor, client: EventClient, request: RunRequest,
         return alive() or (None if action.server_is_ready()
                            else f'the solver left the graph ({name})')
 
-    _wait_for(executor, answered, solver_alive, f'{request.label}: no result', notice)
+    def silent_notice(text: str) -> None:  # a goal that reports progress needs no notice
+        if notice is not None and time.monotonic() - last_news[0] >= NOTICE_PERIOD:
+            notice(text)
+
+    _wait_for(executor, answered, solver_alive,
+              f'{request.label}: no result and no progress', silent_notice)
     client.running.remove(handle)
     result = next(f for f in futures if f.done()).result().result
     return result.success, result.message, result.result
