@@ -87,8 +87,8 @@ class _Client:
         self.times: list[float] = []
 
     def send_goal_async(self, goal, feedback_callback=None):
-        from types import SimpleNamespace
         import time
+        from types import SimpleNamespace
 
         from action_msgs.msg import GoalStatus
 

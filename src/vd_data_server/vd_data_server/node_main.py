@@ -93,9 +93,10 @@ def run_node(factory: Callable[[], Node], body: Callable | None = None, args=Non
 
     ``rclpy.init``, build the node, ``body`` (default: spin until shutdown), and on every
     end (Ctrl-C, SIGTERM, an exception of ``body``) a clean teardown. A Ctrl-C or SIGTERM
-    returns None, also when it shut the context down in the middle of a spin. Exceptions of ``factory`` and ``body`` other than these propagate
-    after the teardown. ``executor(node)``, if given, makes the executor (default:
-    :func:`make_executor` with ``threads``).
+    returns None, also when it shut the context down in the middle of a spin. Exceptions
+    of ``factory`` and ``body`` other than these propagate after the teardown.
+    ``executor(node)``, if given, makes the executor (default: :func:`make_executor` with
+    ``threads``).
     """
     die_with_parent()
     rclpy.init(args=args)

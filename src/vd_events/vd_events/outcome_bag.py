@@ -19,6 +19,7 @@ from pathlib import Path
 from vd_solvers import __version__
 from vd_solvers.results import EventOutcome
 
+
 def _time(ns: int):
     from builtin_interfaces.msg import Time
 

@@ -542,7 +542,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
         node.create_subscription(UInt32, RECORDED_TOPIC, on_recorded, LATEST)
 
         def alive() -> str | None:
-            """A node process that has exited is the one signal of a dead graph."""
+            """Say why the graph is dead: a node process that exited is the one signal."""
             for proc in [*procs, *([recorder] if recorder is not None else [])]:
                 if proc.poll() is not None:
                     return (f"the node process '{Path(proc.args[0]).name}' exited with "
