@@ -9,7 +9,7 @@ setup:
 	@bash tools/setup.sh
 
 demo: setup
-	@$(ENV) python -m vd_events.demo
+	@$(ENV) python -m vd_events.cli.demo
 
 test: setup
 	@$(ENV) python -m pytest -q
@@ -20,7 +20,7 @@ fuzz: setup
 	@HYPOTHESIS_PROFILE=fuzz $(ENV) python -m pytest -q tests/fuzz tests/integration/test_faults.py
 
 bench: setup
-	@$(ENV) python -m vd_events.cli bench
+	@$(ENV) python -m vd_events.cli.main bench
 
 clean:
 	rm -rf build install log out

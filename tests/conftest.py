@@ -32,7 +32,7 @@ def ros_domain() -> Iterator[int]:
     """Rclpy initialised once, in a private domain on loopback."""
     import rclpy
 
-    from vd_events.domain import claim_domain
+    from vd_events.orchestration.domain import claim_domain
 
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     # claimed like a run's domain, so the runs of this session (and of other sessions

@@ -22,7 +22,7 @@ setup(
     name=package_name,
     version='0.1.0',
     packages=find_packages(exclude=['test']),
-    package_data={package_name: ['web/*']},  # the workbench page (vd gui)
+    package_data={package_name: ['workbench/web/*']},  # the workbench page (vd gui)
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
@@ -37,7 +37,7 @@ setup(
     license='Apache-2.0',
     entry_points={
         'console_scripts': [
-            'data_server = vd_data_server.data_server_node:main',
+            'data_server = vd_data_server.nodes.data_server:main',
         ],
     },
 )

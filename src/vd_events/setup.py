@@ -26,11 +26,11 @@ setup(
     license='Apache-2.0',
     entry_points={
         'console_scripts': [
-            'event_runner = vd_events.event_runner_node:main',
-            'recorder = vd_events.recorder_node:main',
-            'rig_bridge = vd_events.rig_bridge_node:main',
-            'path_follower = vd_events.path_follower_node:main',
-            'vd = vd_events.cli:main',
+            'event_runner = vd_events.nodes.event_runner:main',
+            'recorder = vd_events.nodes.recorder:main',
+            'rig_bridge = vd_events.nodes.rig_bridge:main',
+            'path_follower = vd_events.nodes.path_follower:main',
+            'vd = vd_events.cli.main:main',
         ],
     },
 )

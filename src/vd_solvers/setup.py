@@ -23,9 +23,9 @@ setup(
     license='Apache-2.0',
     entry_points={
         'console_scripts': [
-            'analytical_solver = vd_solvers.analytical_node:main',
-            'kc_solver = vd_solvers.kc_node:main',
-            'vehicle_solver = vd_solvers.vehicle_node:main',
+            'analytical_solver = vd_solvers.nodes.analytical:main',
+            'kc_solver = vd_solvers.nodes.kc:main',
+            'vehicle_solver = vd_solvers.nodes.vehicle:main',
         ],
     },
 )

@@ -172,8 +172,8 @@ def test_cli_arguments(argv, root, monkeypatch, capsys):
     runner is replaced: starting ROS graphs is not what is fuzzed here, the arguments'
     way to it is.
     """
-    from vd_events import runner
-    from vd_events.cli import main
+    from vd_events.cli.main import main
+    from vd_events.orchestration import runner
 
     def no_graph(master, requests, progress=None):
         raise runner.RunError('validated; no graph in the fuzz test')
@@ -203,9 +203,9 @@ def test_mutated_study_plans(data, root):
     This is what `vd study` does before it starts anything.
     """
     from vd_data_server.study import load_study
-    from vd_events.bag import BagError
-    from vd_events.runner import RunError, validate
-    from vd_events.study_plan import expand, load_plan
+    from vd_events.bags.bag import BagError
+    from vd_events.orchestration.runner import RunError, validate
+    from vd_events.studies.plan import expand, load_plan
 
     tree = yaml.safe_load(PLAN.read_text())
     tree.pop('master', None)

@@ -31,8 +31,8 @@ def graph(ros_domain, tmp_path_factory):
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
-    from vd_solvers.analytical_node import AnalyticalSolver
+    from vd_data_server.nodes.data_server import DataServer
+    from vd_solvers.nodes.analytical import AnalyticalSolver
 
     root = tmp_path_factory.mktemp('fuzz_ros') / 'data'
     shutil.copytree(SAMPLE, root)

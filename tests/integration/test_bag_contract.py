@@ -28,7 +28,7 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
 def _vd(capsys, *argv: str) -> tuple[int, str, str]:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -91,7 +91,7 @@ def _metadata(bag: Path) -> dict:
 @pytest.fixture(scope='module')
 def kc_bag(tmp_path_factory):
     from vd_data_server.paths import default_master
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     bag = tmp_path_factory.mktemp('kc') / 'pwt'
     out = io.StringIO()
@@ -195,7 +195,7 @@ def _replay(node, bag: Path, durability):
     from rclpy.serialization import deserialize_message
     from rosbags.rosbag2 import Reader
 
-    from vd_events.bag import offered_qos
+    from vd_events.bags.bag import offered_qos
     from vd_interfaces.msg import Configuration
 
     (recorded,) = offered_qos(bag)['/vd/configuration']  # the data server's
@@ -216,7 +216,7 @@ def test_replay_with_the_recorded_qos_reaches_a_late_transient_local_subscriber(
     from rclpy.node import Node
     from rclpy.qos import DurabilityPolicy
 
-    from vd_data_server.qos import CONFIGURATIONS as LATCHED  # as a solver subscribes
+    from vd_data_server.ros.qos import CONFIGURATIONS as LATCHED  # as a solver subscribes
     from vd_interfaces.msg import Configuration
 
     bag, result = kc_bag

@@ -3,7 +3,7 @@
 """
 The README's main command, end to end: ``make demo`` runs its plan and says so line by line.
 
-``python -m vd_events.demo`` (what ``make demo`` runs after setup) in a fresh folder, with
+``python -m vd_events.cli.demo`` (what ``make demo`` runs after setup) in a fresh folder, with
 stdout a pipe as in a log or CI: it must finish with exit 0, print each run's line as the
 run completes, leave a bag per run and the report, and print every line the README
 quotes from it (the sample car's numbers in the README come from this run).
@@ -37,7 +37,7 @@ def _readme_demo_lines() -> list[str]:
 def demo(tmp_path_factory) -> tuple[subprocess.CompletedProcess, Path]:
     cwd = tmp_path_factory.mktemp('demo')
     # no timeout: a loaded machine makes the demo slower, never failed
-    done = subprocess.run([sys.executable, '-m', 'vd_events.demo'], cwd=cwd, text=True,
+    done = subprocess.run([sys.executable, '-m', 'vd_events.cli.demo'], cwd=cwd, text=True,
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           env=dict(os.environ, COLUMNS='80'))
     return done, cwd

@@ -29,7 +29,7 @@ STARTUP = 30.0  # s: for the run to reach its recorder
 
 
 def _vd(*argv: str, **kwargs) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, '-m', 'vd_events.cli', *argv],
+    return subprocess.Popen([sys.executable, '-m', 'vd_events.cli.main', *argv],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, **kwargs)
 
@@ -106,7 +106,7 @@ def test_signal_during_a_run(tmp_path, sedan_master, mode, sig):
         # nothing could clean up after kill -9 of the one process: the partial bag stays,
         # and the rerun replaces it (its writer's lock died with the process)
         rerun = tmp_path / 'rerun'
-        done = subprocess.run([sys.executable, '-m', 'vd_events.cli', *argv[:-3], '--bag',
+        done = subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *argv[:-3], '--bag',
                                str(bag if not finished else rerun), '--json'],
                               capture_output=True, text=True, timeout=120)
         assert done.returncode == 0, done.stderr

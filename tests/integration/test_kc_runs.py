@@ -19,7 +19,7 @@ EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
 
 
 def _vd(capsys, *argv):
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -75,7 +75,7 @@ def test_kc_run_json_contract_and_distributed(capsys, tmp_path, sedan_master):
     assert rc == 0, out + err
     distributed = json.loads(out)
     assert distributed['metrics'] == embedded['metrics']
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     topics = [m.topic for m in read_bag(bag)]
     assert topics.count('/vd/kc/result') == 1
@@ -120,7 +120,7 @@ def test_flexible_kc_runs_embedded_and_distributed(capsys, tmp_path, sedan_maste
     `vd run lateral_force --model kc --fidelity flexible`: the same
     numbers embedded and distributed, softer than rigid, labelled flexible, in a bag.
     """
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     runs = {}
     for mode in ('embedded', 'distributed'):

@@ -40,7 +40,7 @@ runs:
     configurations: [sport]
     parameters: [steps=11]
 """)
-    launcher = subprocess.Popen([sys.executable, '-m', 'vd_events.cli', 'launch',
+    launcher = subprocess.Popen([sys.executable, '-m', 'vd_events.cli.main', 'launch',
                                  '--distributed', '--master', str(sedan_master)], env=env,
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:

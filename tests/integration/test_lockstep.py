@@ -24,8 +24,8 @@ DURATION, STEPS = 17.0, 2125  # a lap, the entry and a margin; 17 s / 8 ms
 
 def test_the_example_controller_drives_a_full_constant_radius_turn(ros_domain, tmp_path,
                                                                    sedan_master):
-    from vd_events.bag import read_bag
-    from vd_events.lockstep_run import run_lockstep
+    from vd_events.bags.bag import read_bag
+    from vd_events.orchestration.lockstep import run_lockstep
 
     bag = tmp_path / 'lockstep'
     out = run_lockstep(master=sedan_master, duration=DURATION, step=STEP, radius=RADIUS,
@@ -70,10 +70,10 @@ class _Harness:
         from rclpy.parameter import Parameter
         from std_msgs.msg import String
 
-        from vd_data_server.qos import COMMANDS, STATUS
+        from vd_data_server.ros.qos import COMMANDS, STATUS
         from vd_interfaces.msg import VehicleCommand
-        from vd_solvers.lockstep import STATUS_TOPIC
-        from vd_solvers.vehicle_node import VehicleSolver
+        from vd_solvers.nodes.lockstep import STATUS_TOPIC
+        from vd_solvers.nodes.vehicle import VehicleSolver
 
         values = {'mode': 'lockstep', 'master': str(master), 'step': 0.005,
                   'initial_speed': 10.0, **params}
@@ -196,7 +196,7 @@ def test_unusable_lockstep_parameters_are_refused_with_their_name(ros_domain, se
 def test_vd_launch_lockstep_refuses_bad_arguments_and_writes_nothing(capsys, tmp_path,
                                                                      sedan_master, argv,
                                                                      message):
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     bag = tmp_path / 'b'
     rc = main(['launch', '--lockstep', '--master', str(sedan_master), '--bag', str(bag), *argv])

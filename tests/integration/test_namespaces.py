@@ -23,10 +23,10 @@ def _graph(namespace: str, master):
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
-    from vd_events.runner import EventClient
-    from vd_solvers.analytical_node import AnalyticalSolver
-    from vd_solvers.kc_node import KCSolver
+    from vd_data_server.nodes.data_server import DataServer
+    from vd_events.orchestration.runner import EventClient
+    from vd_solvers.nodes.analytical import AnalyticalSolver
+    from vd_solvers.nodes.kc import KCSolver
 
     server = DataServer(namespace=namespace, parameter_overrides=[
         Parameter('master_file', value=str(master)), Parameter('watch_period', value=0.0)])
@@ -39,7 +39,7 @@ def test_two_studies_run_side_by_side_in_two_namespaces(ros_domain, sample_root,
     from rclpy.executors import MultiThreadedExecutor
 
     from vd_data_server.study import load_study
-    from vd_events.runner import RunRequest, send_goal, validate
+    from vd_events.orchestration.runner import RunRequest, send_goal, validate
 
     second = tmp_path / 'data2'
     shutil.copytree(sample_root, second)
@@ -53,7 +53,7 @@ def test_two_studies_run_side_by_side_in_two_namespaces(ros_domain, sample_root,
     from rclpy.node import Node
 
     from tf2_msgs.msg import TFMessage
-    from vd_data_server.qos import STATES
+    from vd_data_server.ros.qos import STATES
 
     frames: set[tuple[str, str]] = set()
     tf_node = Node('tf_listener')

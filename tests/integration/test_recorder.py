@@ -24,15 +24,15 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str,
     Start a recorder, publish one run of three steps to it, then ``stop(node, proc)``.
 
     A run reaches the recorder as its provenance and its EventResult; the recorder writes
-    the per-step states from the result. As a run's owner does (vd_events.runner), the
-    stop comes once the recorder's latched ``recorder/recorded`` count says the run is
-    written.
+    the per-step states from the result. As a run's owner does
+    (vd_events.orchestration.runner), the stop comes once the recorder's latched
+    ``recorder/recorded`` count says the run is written.
     """
     from ament_index_python.packages import get_package_prefix
     from rclpy.node import Node
     from std_msgs.msg import UInt32
 
-    from vd_data_server.qos import LATEST, RESULTS
+    from vd_data_server.ros.qos import LATEST, RESULTS
     from vd_interfaces.msg import Channel, EventResult, Provenance
     from vd_solvers.conversions import time_msg
 
@@ -69,7 +69,7 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str,
 def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
     from std_srvs.srv import Trigger
 
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     bag = tmp_path / 'bag'
     answers = []

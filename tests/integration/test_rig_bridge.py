@@ -41,8 +41,8 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path):
     from sensor_msgs.msg import JointState
     from std_srvs.srv import Trigger
 
-    from vd_events.testdata.compare import load_outcomes
-    from vd_solvers.solver_node import SAMPLES
+    from vd_events.measured.compare import load_outcomes
+    from vd_solvers.nodes.solver import SAMPLES
 
     cmap = tmp_path / 'rig.yaml'
     cmap.write_text(RIG_MAP)

@@ -46,7 +46,7 @@ if _missing_tools():
 @pytest.fixture(scope='module')
 def env():
     """Yield the environment of a private domain for this module's graphs."""
-    from vd_events.domain import claim_domain
+    from vd_events.orchestration.domain import claim_domain
 
     claim = claim_domain()
     environment = dict(os.environ, ROS_DOMAIN_ID=str(claim.domain),
@@ -192,7 +192,7 @@ def test_action_goal_with_feedback_and_an_invalid_goal_rejected(env, graph):
 
 def test_ros2_run_of_every_executable(env, tmp_path, graph):
     """``ros2 run`` the graph's executables in ``/run``, drive a plan and record a bag."""
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     master = graph['master']
     procs = [start(env, 'run', 'vd_data_server', 'data_server', '--ros-args', '-r',

@@ -19,7 +19,7 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
 def _vd(capsys, *argv: str) -> tuple[int, str, str]:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -28,7 +28,7 @@ def _vd(capsys, *argv: str) -> tuple[int, str, str]:
 
 def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch, tmp_path,
                                                             sedan_master):
-    from vd_events.domain import claim_domain
+    from vd_events.orchestration.domain import claim_domain
 
     held = claim_domain()  # what a live run holds for its whole life
     try:
@@ -54,7 +54,7 @@ def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_mas
     The configuration of the same name, computed from other data (its data hash differs).
     """
     from vd_data_server.study import load_study
-    from vd_events.runner import RunRequest, run_embedded, validate
+    from vd_events.orchestration.runner import RunRequest, run_embedded, validate
 
     bag = tmp_path / 'bag'
     request = validate(load_study(sedan_master), RunRequest(
@@ -71,7 +71,7 @@ def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_mas
 
 
 def test_check_result_refuses_an_answer_to_another_request():
-    from vd_events.runner import RunError, RunRequest, check_result
+    from vd_events.orchestration.runner import RunError, RunRequest, check_result
     from vd_interfaces.msg import EventResult
 
     request = RunRequest(event='handling_diagram', configuration='baseline', model='two_track',
@@ -94,8 +94,8 @@ def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sed
     A goal that takes several accept timeouts is accepted once and finishes.
     """
     from vd_data_server.study import load_study
-    from vd_events import runner
-    import vd_solvers.analytical_node as analytical_node
+    from vd_events.orchestration import runner
+    import vd_solvers.nodes.analytical as analytical_node
 
     monkeypatch.setattr(runner, 'ACCEPT_TIMEOUT', 0.3)
     calls = []
@@ -136,7 +136,7 @@ def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master,
     shutil.copytree(sample_root, other_root)
     replace_once(other_root / 'sedan/front_spring/X.yaml', 'rate: 30.0', 'rate: 45.0')
     argv = ['run', 'parallel_wheel_travel', '--axle', 'front', '--param', 'steps=5', '--json']
-    procs = [subprocess.Popen([sys.executable, '-m', 'vd_events.cli', *argv, '--master',
+    procs = [subprocess.Popen([sys.executable, '-m', 'vd_events.cli.main', *argv, '--master',
                                str(root / 'studies' / 'sedan.yaml')], stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True)
              for root in (sample_root, other_root)]
@@ -154,7 +154,7 @@ def test_a_full_disk_while_recording_is_an_error_and_leaves_no_bag(capsys, monke
                                                                    sedan_master):
     import errno
 
-    from vd_events import bag as bag_module
+    from vd_events.bags import bag as bag_module
 
     def full(self, topic, msg, timestamp_ns, qos=()):
         raise OSError(errno.ENOSPC, 'No space left on device')

@@ -13,7 +13,7 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
 def _vd(capsys, *argv: str) -> tuple[int, str, str]:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -23,7 +23,7 @@ def _vd(capsys, *argv: str) -> tuple[int, str, str]:
 @pytest.mark.parametrize('distributed', [False, True])
 def test_run_in_a_namespace_records_the_namespaced_topics(capsys, tmp_path, sedan_master,
                                                           distributed):
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     bag = tmp_path / 'bag'
     rc, out, err = _vd(capsys, 'run', 'lateral_force', '--model', 'kc', '--axle', 'front',

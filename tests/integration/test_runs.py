@@ -16,7 +16,7 @@ G = 9.80665
 
 
 def _vd(capsys, *argv: str) -> tuple[int, str, str]:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -24,7 +24,7 @@ def _vd(capsys, *argv: str) -> tuple[int, str, str]:
 
 
 def _bag_topics(bag: Path) -> dict[str, int]:
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     counts: dict[str, int] = {}
     for item in read_bag(bag):
@@ -62,7 +62,7 @@ def test_embedded_run_writes_a_bag_mcap_and_rosbags_can_read(capsys, tmp_path, s
         assert b'NamedScalar[] metrics' in schemas['vd_interfaces/msg/EventResult'].data
         assert sum(summary.statistics.channel_message_counts.values()) == sum(counts.values())
     # provenance in the bag metadata
-    from vd_events.bag import custom_data
+    from vd_events.bags.bag import custom_data
 
     meta = custom_data(bag)
     assert meta['vd.configuration'] == 'stiff_rear'
@@ -84,7 +84,7 @@ def test_set_override_changes_result_and_is_recorded_as_modified(capsys, tmp_pat
     # a stiffer rear on a front-limited car raises the limit (thesis 4.1, trend a)
     assert (changed['metrics']['max_lateral_acceleration']['value']
             > base['metrics']['max_lateral_acceleration']['value'])
-    from vd_events.bag import custom_data
+    from vd_events.bags.bag import custom_data
 
     assert 'rear_stabilizer.bar_radius=' in custom_data(bag)['vd.modified']
 

@@ -18,7 +18,7 @@ SAMPLES = Path(__file__).resolve().parents[2] / 'src' / 'vd_events' / 'samples'
 
 
 def _vd(capsys, *argv):
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()

@@ -21,8 +21,8 @@ import pytest
 
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import load_study
-from vd_events.sweep import load_records, sweep
-from vd_events.sweep_plan import convert, load_plan
+from vd_events.sweeps.plan import convert, load_plan
+from vd_events.sweeps.sweep import load_records, sweep
 from vd_solvers.kc.from_config import run_kc_event
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
@@ -55,7 +55,7 @@ def _direct(study, radius: float) -> float:
 
 
 def test_two_solver_processes_and_one_killed_mid_sweep(tmp_path, sedan_master):
-    from vd_events.dispatch import SolverGraph
+    from vd_events.orchestration.dispatch import SolverGraph
 
     plan = load_plan(_plan(tmp_path, sedan_master, '11, 11.5, 12, 12.5, 13, 13.5'))
     study = load_study(plan.master)
@@ -99,11 +99,11 @@ def _hash(study, override: str) -> str:
 
 def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
     """`vd launch --distributed --solvers kc=2` serves a `vd sweep --attach`."""
-    from vd_events import cli
+    from vd_events.cli import main as cli
 
     domain = str(random.randint(216, 232))
     env = dict(os.environ, ROS_DOMAIN_ID=domain, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    launcher = subprocess.Popen([sys.executable, '-m', 'vd_events.cli', 'launch',
+    launcher = subprocess.Popen([sys.executable, '-m', 'vd_events.cli.main', 'launch',
                                  '--distributed', '--solvers', 'kc=2', '--master',
                                  str(sedan_master)], env=env, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, text=True)

@@ -14,7 +14,7 @@ pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
 def _vd(capsys, *argv: str) -> tuple[int, str, str]:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -22,7 +22,7 @@ def _vd(capsys, *argv: str) -> tuple[int, str, str]:
 
 
 def _messages(bag: Path) -> dict[str, list]:
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     out: dict[str, list] = {}
     for item in read_bag(bag):
@@ -128,7 +128,7 @@ def test_flexible_fidelity_without_flex_data_is_refused_before_the_run(capsys, t
 
 
 def test_constant_radius_turn_defaults_to_the_vehicle_model(capsys, sedan_master):
-    from vd_events.commands import default_model
+    from vd_events.cli.commands import default_model
 
     assert default_model('constant_radius_turn') == 'vehicle'
     assert default_model('step_steer') == 'bicycle'

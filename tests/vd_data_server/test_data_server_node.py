@@ -15,7 +15,7 @@ pytestmark = pytest.mark.ros
 def server(ros_domain, sedan_master: Path):
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.nodes.data_server import DataServer
 
     node = DataServer(parameter_overrides=[
         Parameter('master_file', value=str(sedan_master)),
@@ -28,7 +28,7 @@ def server(ros_domain, sedan_master: Path):
 def _listener(name: str):
     from rclpy.node import Node
 
-    from vd_data_server.qos import CONFIGURATIONS, LATEST
+    from vd_data_server.ros.qos import CONFIGURATIONS, LATEST
     from vd_interfaces.msg import Configuration, DataStatus
 
     node = Node(name)
@@ -191,7 +191,7 @@ def test_allow_edits_cannot_be_switched_on_over_ros(server):
 def editable_server(ros_domain, sedan_master: Path):
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.nodes.data_server import DataServer
 
     node = DataServer(parameter_overrides=[
         Parameter('master_file', value=str(sedan_master)),
@@ -307,7 +307,7 @@ def test_a_late_joiner_gets_exactly_the_current_version_of_every_configuration(
     """After a data change and after a configuration was removed: no stale versions."""
     from rclpy.node import Node
 
-    from vd_data_server.qos import CONFIGURATIONS
+    from vd_data_server.ros.qos import CONFIGURATIONS
     from vd_interfaces.msg import Configuration
     from vdtest import replace_once, spin_until
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from vd_data_server.launch_arguments import ARGUMENTS, data_server_settings
+from vd_data_server.ros.launch_arguments import ARGUMENTS, data_server_settings
 
 REPO = Path(__file__).resolve().parents[2]
 

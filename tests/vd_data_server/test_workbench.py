@@ -17,7 +17,7 @@ import pytest
 
 from vd_data_server.errors import DataError
 from vd_data_server.study import load_study
-from vd_data_server.workbench import EDITS_OFF, Workbench, WorkbenchServer
+from vd_data_server.workbench.server import EDITS_OFF, Workbench, WorkbenchServer
 from vdtest import line_no, replace_once, tree_snapshot
 
 CAMBER = {'op': 'override', 'configuration': 'baseline', 'key': 'front_alignment.camber',

@@ -15,8 +15,8 @@ def test_a_workbench_edit_is_republished_by_the_data_server(ros_domain,
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer, latched
-    from vd_data_server.workbench import Workbench
+    from vd_data_server.nodes.data_server import DataServer, latched
+    from vd_data_server.workbench.server import Workbench
     from vd_interfaces.msg import DataStatus
     from vdtest import spin_until
 

@@ -17,7 +17,7 @@ import sys
 import numpy as np
 import pytest
 
-from vd_events.capability import QUANTITIES, RELATIVE, compare
+from vd_events.studies.capability import QUANTITIES, RELATIVE, compare
 from vd_solvers.results import Channel, EventOutcome, Metric
 
 REPO = Path(__file__).resolve().parents[2]
@@ -93,14 +93,14 @@ def test_metrics_are_judged_relative_to_the_rigid_value():
 
 
 def _vd(*args, timeout=240):
-    return subprocess.run([sys.executable, '-m', 'vd_events.cli', *args], capture_output=True,
+    return subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *args], capture_output=True,
                           text=True, timeout=timeout, cwd=REPO)
 
 
 @pytest.mark.ros
 @pytest.mark.slow
 def test_vd_capability_end_to_end(tmp_path):
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     out = tmp_path / 'cap'
     proc = _vd('capability', '--axle', 'rear', '--param', 'steps=7', '--json', '--out', str(out))

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from vd_events.cli import main
+from vd_events.cli.main import main
 from vdtest import line_no, replace_once, tree_snapshot
 
 BIG = '9' * 400

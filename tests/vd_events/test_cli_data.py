@@ -11,7 +11,7 @@ from numpy.testing import assert_allclose
 import pytest
 
 from vd_data_server.study import load_study
-from vd_events.cli import main
+from vd_events.cli.main import main
 from vdtest import line_no, replace_once, tree_snapshot
 
 RTOL = 1e-12

@@ -11,7 +11,7 @@ import time
 import pytest
 
 from vd_data_server.master import load_master
-from vd_events.cli import main
+from vd_events.cli.main import main
 from vdtest import tree_snapshot
 
 
@@ -52,8 +52,8 @@ def test_bad_input_exits_2_and_writes_nothing(capsys: pytest.CaptureFixture[str]
 @pytest.mark.ros
 @pytest.mark.slow
 def test_update_marked_runs_the_events_and_shows_the_metrics(sedan_master: Path) -> None:
-    from vd_data_server.workbench import Workbench, WorkbenchServer
-    from vd_events.workbench_cmd import marked_runner
+    from vd_data_server.workbench.server import Workbench, WorkbenchServer
+    from vd_events.cli.workbench import marked_runner
 
     server = WorkbenchServer(Workbench(sedan_master, runner=marked_runner(sedan_master)))
     server.start()

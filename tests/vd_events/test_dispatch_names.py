@@ -5,8 +5,13 @@ from __future__ import annotations
 
 import pytest
 
-from vd_events.dispatch import instance_names, parse_instance, parse_solvers, solver_command
-from vd_events.runner import RunError
+from vd_events.orchestration.dispatch import (
+    instance_names,
+    parse_instance,
+    parse_solvers,
+    solver_command,
+)
+from vd_events.orchestration.runner import RunError
 
 
 def test_instance_names_keep_the_default_first():
@@ -47,7 +52,7 @@ def test_parse_solvers():
 
 def test_first_goals_wait_for_the_expected_instances():
     """Start a family's runs at ``expect`` ready instances, or EXPECT_WAIT s after the first."""
-    from vd_events.dispatch import Dispatcher, Instance
+    from vd_events.orchestration.dispatch import Dispatcher, Instance
 
     lines: list[str] = []
     dispatcher = Dispatcher(node=None, executor=None, expect={'kc': 2}, expect_wait=30.0,
@@ -113,8 +118,8 @@ def test_an_unanswered_goal_request_is_sent_again(monkeypatch, lost):
     """
     from types import SimpleNamespace
 
-    import vd_events.dispatch as dispatch
-    from vd_events.runner import RunRequest
+    import vd_events.orchestration.dispatch as dispatch
+    from vd_events.orchestration.runner import RunRequest
 
     monkeypatch.setattr(dispatch, 'ACCEPT_TIMEOUT', 0.01)
     monkeypatch.setattr(dispatch, 'DISCOVERY_GRACE', 0.0)
@@ -143,8 +148,8 @@ def test_a_silent_goal_has_its_result_asked_for_again(monkeypatch):
 
     from action_msgs.msg import GoalStatus
 
-    import vd_events.dispatch as dispatch
-    from vd_events.runner import RunRequest
+    import vd_events.orchestration.dispatch as dispatch
+    from vd_events.orchestration.runner import RunRequest
 
     monkeypatch.setattr(dispatch, 'DISCOVERY_GRACE', 0.0)
     answer = SimpleNamespace(status=GoalStatus.STATUS_ABORTED, result=SimpleNamespace(
@@ -181,7 +186,7 @@ def test_a_graph_look_that_misses_this_node_kills_no_instance():
     """
     from types import SimpleNamespace
 
-    import vd_events.dispatch as dispatch
+    import vd_events.orchestration.dispatch as dispatch
 
     graph = {'nodes': []}
     node = SimpleNamespace(get_node_names_and_namespaces=lambda: graph['nodes'],

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from vd_events.display import HEADLINE_NAMES, display, summary
+from vd_events.reports.display import HEADLINE_NAMES, display, summary
 
 G = 9.80665  # m/s^2, standard gravity (CGPM 1901)
 DEG = 180.0 / math.pi

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from vd_data_server.errors import DataError
-from vd_events.study_plan import expand, load_plan
+from vd_events.studies.plan import expand, load_plan
 from vdtest import line_no, tree_snapshot
 
 GOOD = """name: small

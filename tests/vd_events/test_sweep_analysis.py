@@ -8,7 +8,7 @@ import itertools
 import numpy as np
 from numpy.testing import assert_allclose
 
-from vd_events.sweep import first_order_indices, main_effects, pareto_front, src
+from vd_events.sweeps.sweep import first_order_indices, main_effects, pareto_front, src
 
 
 def test_src_of_a_linear_response():

@@ -19,10 +19,11 @@ import pytest
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import load_study
-from vd_events import cli
-from vd_events.optimize import check_plan, optimize
-from vd_events.sweep import RUNS_FILE, sweep
-from vd_events.sweep_plan import convert, load_plan
+from vd_events.cli import main as cli
+from vd_events.reports.sweep import write_outputs
+from vd_events.sweeps.optimize import check_plan, optimize
+from vd_events.sweeps.plan import convert, load_plan
+from vd_events.sweeps.sweep import RUNS_FILE, sweep
 from vd_solvers.kc.from_config import bar_stiffness, run_kc_event
 
 
@@ -79,6 +80,7 @@ def test_bar_sweep_main_effect_and_cache(tmp_path, bar_plan):
     out = tmp_path / 'out'
     local = Local(study)
     result = sweep(plan, study, local, out, bags=False)
+    write_outputs(result, out)
     assert local.calls == 3 and result.computed == 3 and not any(result.errors)
     total, bar, no_bar = result.responses.T
     # the bar does not change the rest of the axle, and the axle adds the bar's part
@@ -128,7 +130,7 @@ def test_interrupted_sweep_keeps_finished_runs(tmp_path, bar_plan):
 
 
 def test_sweep_writes_a_bag_per_run(tmp_path, bar_plan):
-    from vd_events.bag import read_bag
+    from vd_events.bags.bag import read_bag
 
     plan = load_plan(bar_plan)
     study = load_study(plan.master)
@@ -205,7 +207,7 @@ def test_optimize_refuses_an_existing_configuration(tmp_path, sedan_master, caps
 
 
 def test_plan_master_written_in_place_keeps_comments(tmp_path, sedan_master):
-    from vd_events.optimize import Evaluation, write_configuration
+    from vd_events.sweeps.optimize import Evaluation, write_configuration
 
     path = tmp_path / 'bump.yaml'
     path.write_text(OPT_PLAN.format(master=sedan_master))
@@ -228,7 +230,7 @@ def test_plans_folder_file_is_valid():
 
 def test_configuration_written_beside_the_bundled_study(tmp_path):
     """The sample plans' master is the installed share (links to the sources): still loads."""
-    from vd_events.optimize import Evaluation, write_configuration
+    from vd_events.sweeps.optimize import Evaluation, write_configuration
 
     plan = load_plan(Path(__file__).resolve().parents[2] / 'src' / 'vd_events' / 'plans' /
                      'optimize_sedan.yaml', optimize=True)

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from vd_data_server.errors import DataError
-from vd_events import cli
-from vd_events.sweep_plan import convert, load_plan, points
+from vd_events.cli import main as cli
+from vd_events.sweeps.plan import convert, load_plan, points
 
 REPO = Path(__file__).resolve().parents[2]
 SAMPLE_PLAN = REPO / 'src' / 'vd_events' / 'plans' / 'sweep_sedan.yaml'

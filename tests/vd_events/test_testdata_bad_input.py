@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from vd_events.cli import main
+from vd_events.cli.main import main
 
 KC_MAP = """kind: kc
 event: parallel_wheel_travel

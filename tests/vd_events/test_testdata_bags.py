@@ -17,11 +17,11 @@ from pathlib import Path
 from numpy.testing import assert_allclose
 import pytest
 
-from vd_events.bag import custom_data, read_bag
-from vd_events.testdata.columns import load_map
-from vd_events.testdata.compare import compare, compare_bags, load_outcomes
-from vd_events.testdata.importer import import_files
-from vd_events.testdata.vbo import read_vbo
+from vd_events.bags.bag import custom_data, read_bag
+from vd_events.measured.columns import load_map
+from vd_events.measured.compare import compare, compare_bags, load_outcomes
+from vd_events.measured.importer import import_files
+from vd_events.measured.vbo import read_vbo
 
 REPO = Path(__file__).resolve().parents[2]
 SAMPLES = REPO / 'src' / 'vd_events' / 'samples'
@@ -47,7 +47,7 @@ def vbox_bag(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope='module')
 def sim_bounce(baseline, tmp_path_factory) -> Path:
-    from vd_events.outcome_bag import write_outcomes
+    from vd_events.bags.outcomes import write_outcomes
     from vd_solvers.kc.from_config import run_kc_event
 
     outcome = run_kc_event(baseline, 'parallel_wheel_travel', 'front', ['steps=41'])
@@ -130,7 +130,7 @@ def test_rig_sign_convention_left_out_fails_on_the_gradient(sim_bounce: Path,
 
 def test_kc_compared_at_the_measured_points(baseline) -> None:
     """Lateral-force rig points (21) between the simulated ones (41): interpolated."""
-    from vd_events.testdata.importer import read_measurement, to_outcome
+    from vd_events.measured.importer import read_measurement, to_outcome
     from vd_solvers.kc.from_config import run_kc_event
 
     path = SAMPLES / 'kc_abd_lateral_front.txt'
@@ -150,7 +150,7 @@ def test_replay_through_both_models(vbox_bag: Path, tmp_path: Path) -> None:
     The log was made by the full vehicle: its replay reproduces yaw rate and lateral
     acceleration within the sensor noise, closer than the linear bicycle does.
     """
-    from vd_events.testdata.replay import replay_bag
+    from vd_events.measured.replay import replay_bag
 
     result = replay_bag(vbox_bag, ['bicycle', 'vehicle'], 'baseline', None,
                         tmp_path / 'replay', tmp_path / 'out')
@@ -166,7 +166,7 @@ def test_replay_through_both_models(vbox_bag: Path, tmp_path: Path) -> None:
 
 
 def test_study_report_from_bags_alone(sim_bounce: Path, vbox_bag: Path, tmp_path: Path) -> None:
-    from vd_events.study_report import build_study_report
+    from vd_events.reports.study import build_study_report
 
     rig = tmp_path / 'rig'
     import_files([SAMPLES / 'kc_spmm_bounce_front.csv'],
@@ -184,7 +184,7 @@ def test_study_report_from_bags_alone(sim_bounce: Path, vbox_bag: Path, tmp_path
 def test_import_and_compare_json(capsys, sim_bounce: Path, tmp_path: Path) -> None:
     import json
 
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rig = tmp_path / 'rig'
     rc = main(['import', str(SAMPLES / 'kc_spmm_bounce_front.csv'), '--map',
@@ -206,7 +206,7 @@ def test_import_and_compare_json(capsys, sim_bounce: Path, tmp_path: Path) -> No
 
 def test_compare_without_a_matching_simulation(capsys, vbox_bag: Path, sim_bounce: Path,
                                                tmp_path: Path) -> None:
-    from vd_events.cli import main
+    from vd_events.cli.main import main
 
     rc = main(['compare', str(sim_bounce), str(vbox_bag), '--out', str(tmp_path / 'cmp')])
     out, err = capsys.readouterr()

@@ -15,9 +15,9 @@ from pathlib import Path
 from numpy.testing import assert_allclose
 import pytest
 
-from vd_events.testdata.columns import InputError, load_map
-from vd_events.testdata.table import read_table
-from vd_events.testdata.vbo import read_vbo
+from vd_events.measured.columns import InputError, load_map
+from vd_events.measured.table import read_table
+from vd_events.measured.vbo import read_vbo
 
 REPO = Path(__file__).resolve().parents[2]
 SAMPLES = REPO / 'src' / 'vd_events' / 'samples'
@@ -153,7 +153,7 @@ def test_kc_csv_units_line_and_sign(tmp_path: Path) -> None:
 
 
 def test_samples_read_with_their_maps() -> None:
-    from vd_events.testdata.importer import read_measurement
+    from vd_events.measured.importer import read_measurement
 
     for data, cmap, n in (('kc_spmm_bounce_front.csv', 'kc_spmm_bounce_front.map.yaml', 41),
                           ('kc_abd_lateral_front.txt', 'kc_abd_lateral_front.map.yaml', 21),

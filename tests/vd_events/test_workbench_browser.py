@@ -18,8 +18,8 @@ from typing import Any
 
 import pytest
 
-from vd_events.cli import main
-from vd_events.workbench_browser import browser, unavailable, wait_for
+from vd_data_server.workbench.browser import browser, unavailable, wait_for
+from vd_events.cli.main import main
 from vdtest import replace_once, tree_snapshot
 
 REASON = unavailable()
@@ -39,7 +39,7 @@ def page(driver: Any, sedan_master: Path) -> Iterator[Any]:
     """Open the sedan study's workbench (edits on) in the browser."""
     from selenium.webdriver.common.by import By
 
-    from vd_data_server.workbench import Workbench, WorkbenchServer
+    from vd_data_server.workbench.server import Workbench, WorkbenchServer
 
     server = WorkbenchServer(Workbench(sedan_master, edits=True))
     server.start()
@@ -135,7 +135,7 @@ def test_an_edit_of_a_data_file_on_disk_updates_the_page(page: Any, sample_root:
 def test_the_page_says_when_edits_are_off(driver: Any, sedan_master: Path) -> None:
     from selenium.webdriver.common.by import By
 
-    from vd_data_server.workbench import Workbench, WorkbenchServer
+    from vd_data_server.workbench.server import Workbench, WorkbenchServer
 
     server = WorkbenchServer(Workbench(sedan_master))
     server.start()
@@ -150,7 +150,7 @@ def test_the_page_says_when_edits_are_off(driver: Any, sedan_master: Path) -> No
 
 
 def test_screenshots_of_the_tabs(sedan_master: Path, tmp_path: Path) -> None:
-    from vd_events.workbench_browser import save_screenshots
+    from vd_data_server.workbench.browser import save_screenshots
 
     out = tmp_path / 'img'
     paths = save_screenshots(sedan_master, out, groups=['front_hardpoints'])

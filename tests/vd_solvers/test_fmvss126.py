@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from vd_solvers import fmvss126 as f
+from vd_solvers.standards import fmvss126 as f
 
 DEG = math.pi / 180.0
 FS = 500.0  # Hz
@@ -261,6 +261,6 @@ def test_no_runs_is_refused():
 
 
 def test_the_grading_is_the_solver_s_one_implementation():
-    from vd_solvers import fmvss126 as core
+    from vd_solvers.standards import fmvss126 as core
 
     assert f.grade_run is core.grade_run and f.grade_procedure is core.grade_procedure

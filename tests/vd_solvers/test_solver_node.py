@@ -32,8 +32,8 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
-    from vd_solvers.analytical_node import AnalyticalSolver
+    from vd_data_server.nodes.data_server import DataServer
+    from vd_solvers.nodes.analytical import AnalyticalSolver
 
     server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
                                              Parameter('watch_period', value=0.0)])
@@ -81,9 +81,9 @@ def test_invalid_goals_are_rejected_with_the_reason_logged(ros_domain, sedan_mas
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.nodes.data_server import DataServer
     from vd_interfaces.action import RunEvent
-    from vd_solvers.kc_node import KCSolver
+    from vd_solvers.nodes.kc import KCSolver
 
     server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
                                              Parameter('watch_period', value=0.0)])
@@ -124,7 +124,7 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master,
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
+    from vd_data_server.nodes.data_server import DataServer
     from vd_interfaces.action import RunEvent
 
     server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
@@ -142,7 +142,7 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master,
 
         def accepted(goal):
             """Send ``goal``; return its answered request and the feedback of that goal."""
-            # as vd_events.runner.send_goal does: Fast DDS drops a goal response sent
+            # as vd_events.orchestration.runner.send_goal does: Fast DDS drops a goal response sent
             # before the server has discovered the client's reader, so ask again (a
             # list per request: an unanswered goal may still run and report)
             for _ in range(3):
@@ -188,10 +188,10 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 
-    from vd_data_server.data_server_node import DataServer
-    import vd_solvers.analytical_node as analytical_node
-    from vd_solvers.analytical_node import AnalyticalSolver
+    from vd_data_server.nodes.data_server import DataServer
     from vd_solvers.errors import SolverError
+    import vd_solvers.nodes.analytical as analytical_node
+    from vd_solvers.nodes.analytical import AnalyticalSolver
 
     real = analytical_node.run_event
 

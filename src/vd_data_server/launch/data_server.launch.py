@@ -12,7 +12,7 @@ from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
 from launch import LaunchDescription
-from vd_data_server.launch_arguments import data_server_settings, declare
+from vd_data_server.ros.launch_arguments import data_server_settings, declare
 
 
 def _nodes(context):

@@ -4,7 +4,7 @@
 Check the shape of a YAML tree against a spec of :mod:`.schema`.
 
 One walker for every file that is described by specs: master files
-(``schema.MASTER``) and study plans (``vd_events.study_plan.PLAN``) here, and the
+(``schema.MASTER``) and study plans (``vd_events.studies.plan.PLAN``) here, and the
 sections and name maps of data files (``datafile.py`` converts their leaves to SI
 on top). Every problem is collected as ``file: key: message (line N)``; unknown keys
 are errors. The walker checks shapes, types, choices and plain names; what needs

@@ -35,12 +35,13 @@ from openpyxl import Workbook, load_workbook
 from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
 
+from vd_data_server.workbench.server import study_state
+
 from . import schema
 from .errors import DataError, DataErrors
 from .masteredit import write_master
 from .shape import PLAIN_NAME as _NAME  # the one rule for configuration and variant names
 from .study import NOT_USED, Study
-from .workbench import study_state
 
 #: fills matching the workbench page (workbench.css)
 GREEN = PatternFill('solid', fgColor='B9F2B0')

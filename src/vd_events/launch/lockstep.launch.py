@@ -18,7 +18,7 @@ from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
 
 from launch import LaunchDescription
-from vd_data_server.names import DEFAULT_NAMESPACE
+from vd_data_server.ros.names import DEFAULT_NAMESPACE
 
 
 def generate_launch_description() -> LaunchDescription:

@@ -3,7 +3,7 @@
 """
 ``ros2 launch vd_events vd.launch.py``: the graph ``vd launch`` starts.
 
-The data server and one solver per family, from ``vd_events.graph.graph()`` (the one
+The data server and one solver per family, from ``vd_events.orchestration.graph.graph()`` (the one
 definition of the graph, shared with ``vd launch`` and ``vd run --distributed``).
 Arguments (the data server's, ``vd_data_server/launch_arguments.py``): ``namespace``
 (default ``/vd``), ``master_file`` (default: the bundled sedan study), ``allow_edits``
@@ -14,8 +14,8 @@ from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
 from launch import LaunchDescription
-from vd_data_server.launch_arguments import data_server_settings, declare
-from vd_events.graph import graph
+from vd_data_server.ros.launch_arguments import data_server_settings, declare
+from vd_events.orchestration.graph import graph
 
 
 def _nodes(context):

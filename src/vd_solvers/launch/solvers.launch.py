@@ -11,7 +11,7 @@ from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
 from launch import LaunchDescription
-from vd_data_server.names import DEFAULT_NAMESPACE
+from vd_data_server.ros.names import DEFAULT_NAMESPACE
 from vd_solvers.families import FAMILIES
 
 

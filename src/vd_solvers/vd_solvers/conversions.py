@@ -23,7 +23,7 @@ import threading
 
 import numpy as np
 
-from vd_data_server.names import BODY_FRAME, ODOM_FRAME
+from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC, message_family
 from vd_solvers.results import Channel, EventOutcome, Metric
 
@@ -125,7 +125,7 @@ def outcome_from_msg(msg) -> EventOutcome:
     """
     Return the EventOutcome of an EventResult.
 
-    ``msg`` is an rclpy message or one read from a bag (``vd_events.bag.read_bag``),
+    ``msg`` is an rclpy message or one read from a bag (``vd_events.bags.bag.read_bag``),
     whose fields are the same.
     """
     return EventOutcome(

@@ -5,7 +5,7 @@ The solver families: which node serves which models and events, under which name
 
 One definition, used by the solver nodes, the event runner, the recorder, ``vd launch``
 and the launch files. ROS-free: the names are relative (they resolve in the node's
-namespace, ``/vd`` by default, see ``vd_data_server.names``).
+namespace, ``/vd`` by default, see ``vd_data_server.ros.names``).
 
 A family's default instance (node name = its executable) serves ``<family>/run_event``;
 another instance of the same executable, started under another node name (``-r
@@ -73,6 +73,17 @@ CLI_FIELDS = {'axle': '--axle', 'fidelity': 'fidelity'}
 def message_family(model: str) -> str:
     """Return the family whose topics and state type carry results of ``model``."""
     return MODEL_FAMILY.get(model) or MEASURED_MODEL_FAMILY.get(model, 'steady_state')
+
+
+def event_model(event: str) -> str:
+    """
+    Return the model a run of ``event`` uses when none is named (``vd run``, plans).
+
+    two_track where it applies, else the first model that runs the event.
+    """
+    if event in events_for('two_track'):
+        return 'two_track'
+    return next((m for m in MODELS if event in events_for(m)), 'two_track')
 
 
 def events_for(model: str) -> tuple[str, ...]:

@@ -20,11 +20,11 @@ import pytest
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import load_study
-from vd_solvers import fmvss126 as rule
 from vd_solvers.analytical import bicycle
 from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
 from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.errors import SolverError
+from vd_solvers.standards import fmvss126 as rule
 from vd_solvers.vehicle import sine_with_dwell as swd
 from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel

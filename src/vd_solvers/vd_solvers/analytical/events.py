@@ -8,7 +8,7 @@ step steer (ISO 7401) of the bicycle model.
 
 ``run_event(config, event, model, params)`` returns an :class:`EventOutcome`
 with SI channels and metrics (display units such as deg/g and km/h are the
-CLI's and the report's business: ``vd_events.display``).
+CLI's and the report's business: ``vd_events.reports.display``).
 The roll properties and the compliance of both axles come from the K&C
 results of the same configuration and data hash, computed on demand and
 cached (``kc_link.py``); the understeer budget is part of every result.

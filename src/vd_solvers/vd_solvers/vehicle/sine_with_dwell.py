@@ -4,7 +4,7 @@
 The FMVSS 126 / UN R140 / GTR 8 sine-with-dwell procedure on the full vehicle.
 
 ``run_procedure(model, values, progress)`` drives the procedure as the rule writes it
-(49 CFR 571.126 S7.6, S7.9) and grades it with :mod:`vd_solvers.fmvss126`, the same
+(49 CFR 571.126 S7.6, S7.9) and grades it with :mod:`vd_solvers.standards.fmvss126`, the same
 processing that grades a measured log:
 
 1. **Slowly increasing steer** (S7.6): 80 km/h held by the speed controller, the
@@ -19,7 +19,7 @@ processing that grades a measured log:
    greater of 6.5A and 270 deg (300 deg at most), first to the left, then the series
    again first to the right. Each run is recorded to COS + 1.75 s + RECORD_MARGIN at
    RECORD_RATE and graded (filters, zeroing, BOS/COS, first local yaw-rate peak,
-   ratios, lateral displacement) by :func:`vd_solvers.fmvss126.grade_run`.
+   ratios, lateral displacement) by :func:`vd_solvers.standards.fmvss126.grade_run`.
 
 The vehicle model has no electronic stability control: the procedure grades the
 passive vehicle (the thesis' §3.4 / §4.4.2 manoeuvre), which is what a chassis set-up
@@ -32,11 +32,11 @@ import math
 
 import numpy as np
 
-from vd_solvers import fmvss126 as rule
 from vd_solvers.analytical.params import STANDARD_GRAVITY as G
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
+from vd_solvers.standards import fmvss126 as rule
 
 from .drivers import OpenLoopSteering, SpeedController
 from .model import STEP, VehicleModel

@@ -1,0 +1,326 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+``vd bench`` / ``make bench``: the figures vd promises, measured on this machine.
+
+Timings are medians of a few repetitions (wall clock, ``time.perf_counter``),
+printed with the machine they ran on. They never decide a unit test.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+import platform
+import statistics
+import tempfile
+import time
+from typing import Any
+
+from vd_solvers.timing import REPEATS, median_time
+
+
+def machine() -> dict[str, Any]:
+    import numpy
+
+    return {'python': platform.python_version(), 'machine': platform.machine(),
+            'cpus': os.cpu_count(), 'numpy': numpy.__version__,
+            'processor': platform.processor() or platform.uname().machine}
+
+
+def run_bench() -> dict[str, Any]:
+    from vd_data_server.paths import default_master
+    from vd_data_server.study import load_study
+    from vd_solvers.analytical.events import run_event
+    from vd_solvers.kc.bench import bench_kc
+    from vd_solvers.kc.from_config import suspension_input
+
+    results: dict[str, Any] = {'machine': machine()}
+    master = default_master()
+    results['load_study_s'] = median_time(lambda: load_study(master))
+    study = load_study(master)
+    config = study.configurations['baseline']
+    front, rear = suspension_input(config, 'front'), suspension_input(config, 'rear')
+    kc_runs = [bench_kc(front, rear) for _ in range(REPEATS)]
+    results['kc'] = {k: statistics.median(r[k] for r in kc_runs) for k in kc_runs[0]}
+    from vd_solvers.kc import cache
+
+    def cold() -> None:
+        cache.clear()
+        run_event(config, 'steady_state_circular', 'bicycle')
+
+    results['bicycle_cold_kc_s'] = median_time(cold)
+    results['bicycle_steady_state_s'] = median_time(
+        lambda: run_event(config, 'steady_state_circular', 'bicycle'))
+    results['two_track_handling_diagram_s'] = median_time(
+        lambda: run_event(config, 'handling_diagram', 'two_track'))
+    results['flex'] = _bench_flex(config)
+    results['capability_both_axles_s'] = _bench_capability(master)
+    from vd_solvers.vehicle.bench import bench_vehicle
+
+    results['vehicle'] = bench_vehicle(config)
+    from vd_events.orchestration.lockstep import bench_lockstep
+    from vd_solvers.vehicle.bench import bench_sine_with_dwell
+    results['lockstep'] = bench_lockstep()
+    results['sine_with_dwell'] = bench_sine_with_dwell(study)
+    results['embedded_run'] = _bench_embedded(master)
+    results['cli_run'] = bench_cli()
+    results['data_change_to_republish_s'] = _bench_data_change(master)
+    results['bag_write'] = _bench_bag()
+    from vd_events.bench.sweep import bench_sweep
+
+    results['sweep'] = bench_sweep(master)
+    return results
+
+
+def _bench_flex(config) -> dict[str, float]:
+    """
+    Time the 101-step parallel wheel travel, rigid and flexible, per axle.
+
+    Flexible: every component of the flex groups; target: flexible within 3x rigid.
+    """
+    from vd_solvers.kc.events import KCModel
+    from vd_solvers.kc.from_config import suspension_input
+
+    out: dict[str, float] = {}
+    for axle in ('front', 'rear'):
+        for fidelity in ('rigid', 'flexible'):
+            model = KCModel(suspension_input(config, axle, fidelity))
+            out[f'{axle}_{fidelity}_s'] = median_time(lambda: model.run('parallel_wheel_travel'))
+        out[f'{axle}_ratio'] = out[f'{axle}_flexible_s'] / out[f'{axle}_rigid_s']
+    return out
+
+
+def _bench_capability(master: Path) -> float:
+    """
+    Time the whole capability study of both axles; target: under 20 s.
+
+    22 runs of 101 steps, through the ROS graph, with bags.
+    """
+    from vd_data_server.study import load_study
+    from vd_events.studies.capability import run_study
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        run_study(master, load_study(master), 'baseline', ['front', 'rear'], Path(tmp) / 'cap')
+        return time.perf_counter() - t0
+
+
+def _bench_embedded(master: Path) -> dict[str, float]:
+    """End to end through the ROS graph in one process: start, one K&C run with a bag."""
+    from vd_events.orchestration.runner import RunRequest, run_embedded
+
+    with tempfile.TemporaryDirectory() as tmp:
+        request = RunRequest('parallel_wheel_travel', 'baseline', 'kc', axle='front',
+                             bag=Path(tmp) / 'bag')
+        t0 = time.perf_counter()
+        (outcome,) = run_embedded(master, [request])
+        total = time.perf_counter() - t0
+    if outcome.error:
+        raise RuntimeError(outcome.error)
+    return {'kc_parallel_wheel_travel_with_bag_s': total,
+            'goal_to_result_s': outcome.timings['run']}
+
+
+#: the command ``bench_cli`` times (one K&C event through the embedded ROS graph)
+CLI_RUN = ('run', 'parallel_wheel_travel', '--axle', 'front', '--model', 'kc', '--json')
+#: the phases of ``vd run --json``'s timings, in order (seconds)
+CLI_PHASES = ('load_and_validate', 'imports', 'graph_start', 'discovery', 'record', 'solve',
+              'shutdown')
+
+
+def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
+    """
+    Time ``vd run parallel_wheel_travel --axle front --model kc`` as a user runs it.
+
+    A new process each time (the median of ``repeats``): ``total`` is its wall time;
+    ``startup`` is what passes before the command starts (interpreter, imports of the
+    command line), the other phases come from the run's own timings (``--json``):
+    loading and validating the study, the imports of the ROS side, starting the graph,
+    discovery, recording, the goal (``solve``: goal sent to result received) and shutdown.
+    """
+    import json
+    import subprocess
+    import sys
+
+    runs = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        done = subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *CLI_RUN],
+                              capture_output=True, text=True, check=True)
+        total = time.perf_counter() - t0
+        timings = json.loads(done.stdout)['timings']
+        runs.append({'total': total, 'startup': total - timings['command'],
+                     **{k: timings.get(k, 0.0) for k in CLI_PHASES},
+                     'other': timings['command'] - sum(timings.get(k, 0.0)
+                                                       for k in CLI_PHASES)})
+    return {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+
+
+def _bench_data_change(master: Path) -> float:
+    """
+    Time from editing a data file on disk to the new configuration at a subscriber.
+
+    The data server watches every 0.5 s, its default.
+    """
+    import shutil
+
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+
+    from vd_data_server.nodes.data_server import DataServer
+    from vd_data_server.ros.names import CONFIGURATION, DEFAULT_NAMESPACE
+    from vd_data_server.ros.qos import CONFIGURATIONS
+    from vd_events.orchestration.runner import _claim_domain, _ros_args, _spin_until
+    from vd_interfaces.msg import Configuration
+
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp) / 'data'
+        shutil.copytree(master.parents[1], root)
+        copy = root / master.relative_to(master.parents[1])
+        claim = _claim_domain()
+        context = rclpy.Context()
+        rclpy.init(args=_ros_args(), context=context, domain_id=claim.domain,
+                   signal_handler_options=None)
+        executor = SingleThreadedExecutor(context=context)
+        server = DataServer(context=context, parameter_overrides=[
+            Parameter('master_file', value=str(copy))])
+        listener = Node('bench_listener', context=context, namespace=DEFAULT_NAMESPACE)
+        hashes: dict[str, str] = {}
+        listener.create_subscription(Configuration, CONFIGURATION,
+                                     lambda m: hashes.__setitem__(m.name, m.data_hash),
+                                     CONFIGURATIONS)
+        for node in (server, listener):
+            executor.add_node(node)
+        try:
+            _spin_until(executor, lambda: 'baseline' in hashes, 10.0)
+            before = hashes['baseline']
+            spring = root / 'sedan' / 'front_spring' / 'X.yaml'
+            t0 = time.perf_counter()
+            spring.write_text(spring.read_text().replace('rate: 30.0', 'rate: 31.0'))
+            _spin_until(executor, lambda: hashes['baseline'] != before, 10.0)
+            elapsed = time.perf_counter() - t0
+        finally:
+            for node in (server, listener):
+                executor.remove_node(node)
+                node.destroy_node()
+            executor.shutdown()
+            rclpy.try_shutdown(context=context)
+            claim.release()
+    return elapsed
+
+
+def _bench_bag(n: int = 20000) -> dict[str, float]:
+    """
+    Count AnalyticalState messages (17 channels) written to an MCAP bag per second.
+
+    Serialisation and chunk compression included.
+    """
+    from vd_events.bags.bag import BagWriter
+    from vd_interfaces.msg import AnalyticalState
+
+    msg = AnalyticalState(event='bench', configuration='baseline', model='two_track', step=0,
+                          lateral_acceleration=1.0, speed=20.0, steer_angle=0.01)
+    with tempfile.TemporaryDirectory() as tmp:
+        writer = BagWriter(Path(tmp) / 'bag')
+        t0 = time.perf_counter()
+        for i in range(n):
+            writer.write('/vd/kc/state', msg, i)
+        writer.close()
+        elapsed = time.perf_counter() - t0
+    return {'messages': n, 'messages_per_s': n / elapsed}
+
+
+def print_bench(results: dict[str, Any]) -> None:
+    from rich.table import Table
+
+    from vd_data_server.overview import console
+
+    table = Table(title='vd bench  (' + ', '.join(f'{k} {v}' for k, v in
+                                                  results['machine'].items()) + ')',
+                  title_justify='left')
+    table.add_column('figure')
+    table.add_column('value', justify='right')
+    table.add_column('target')
+    kc = results['kc']
+    rows = [
+        ('K&C 101-step parallel wheel travel, front', f"{kc['parallel_wheel_travel_front']:.3f} s",
+         'well under 1 s'),
+        ('K&C 101-step parallel wheel travel, rear', f"{kc['parallel_wheel_travel_rear']:.3f} s",
+         'well under 1 s'),
+        ('K&C six-event suite, both axles', f"{kc['suite_both_axles']:.2f} s", 'a few s'),
+        ('flexible K&C 101-step parallel travel, front',
+         f"{results['flex']['front_flexible_s']:.3f} s "
+         f"({results['flex']['front_ratio']:.2f}x rigid)",
+         'within 3x rigid'),
+        ('flexible K&C 101-step parallel travel, rear',
+         f"{results['flex']['rear_flexible_s']:.3f} s "
+         f"({results['flex']['rear_ratio']:.2f}x rigid)",
+         'within 3x rigid'),
+        ('capability study, both axles (22 runs via ROS, one bag)',
+         f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
+        ('load + resolve the sample study', f"{results['load_study_s']:.3f} s", ''),
+        ('bicycle steady state, K&C inputs computed (empty cache)',
+         f"{results['bicycle_cold_kc_s']:.2f} s", ''),
+        ('bicycle steady state (41 steps), K&C inputs cached',
+         f"{results['bicycle_steady_state_s']:.4f} s", ''),
+        ('two-track handling diagram to the limit, K&C inputs cached',
+         f"{results['two_track_handling_diagram_s']:.3f} s", ''),
+        ('embedded run, K&C event with bag, incl. start-up',
+         f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ''),
+        ('  of which goal to result', f"{results['embedded_run']['goal_to_result_s']:.3f} s", ''),
+        ('vd run, K&C event, new process (wall)', f"{results['cli_run']['total']:.2f} s",
+         'under 1.5 s'),
+        *((f'  {name}', f"{results['cli_run'][name]:.3f} s", '')
+          for name in ('startup', *CLI_PHASES, 'other')),
+        ('data file edited -> new configuration received',
+         f"{results['data_change_to_republish_s']:.2f} s", 'about 1 s'),
+        ('bag write rate (AnalyticalState, 17 channels)',
+         f"{results['bag_write']['messages_per_s']:.0f} msg/s", ''),
+    ]
+    vehicle = results['vehicle']
+    ss, crt, cr, per = (vehicle['step_steer_10s'], vehicle['constant_radius_turn'],
+                        vehicle['commonroad'], vehicle['per_step'])
+    rows += [
+        ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
+        (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
+         f"{vehicle['step_s'] * 1e3:g} ms)",
+         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         ''),
+        ('  per step', f"{ss['us_per_step']:.0f} us", ''),
+        ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),
+        ('    suspension maps', f"{per['suspension_maps_us']:.0f} us", ''),
+        ('    all forces (incl. the two above)', f"{per['forces_total_us']:.0f} us", ''),
+        ('    multibody (Pinocchio ABA + integration)', f"{per['multibody_us']:.0f} us", ''),
+        (f"full vehicle: constant radius turn ({crt['simulated_s']:.0f} s simulated)",
+         f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ''),
+        (f"CommonRoad MB ({cr['states']} states, odeint): 10 s step steer",
+         f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ''),
+        ('vd / CommonRoad real-time factor, step steer',
+         f"{vehicle['ratio_vs_commonroad']:.2f}", '>= 20'),
+    ]
+    sw = results['sweep']
+    rows += [
+        (f"K&C sweep, {sw['runs']} runs of 101 steps: in this process, one by one",
+         f"{sw['in_process_s']:.2f} s", ''),
+        ('  on 1 solver process (vd sweep --solvers 1)', f"{sw['1_process_s']:.2f} s", ''),
+        ('  on 2 solver processes (vd sweep --solvers 2)', f"{sw['2_process_s']:.2f} s", ''),
+        ('  speed-up 1 -> 2 processes', f"{sw['speed_up']:.2f}x", '>= 1.8x on 2 cores'),
+        (f"  dispatch overhead per run (median of {sw['pairs']} pairs)",
+         f"{sw['overhead_per_run_s'] * 1e3:.0f} ms ({100 * sw['overhead_fraction']:.1f} % of a "
+         'run)', 'under 5 %'),
+    ]
+    for name, r in results.get('lockstep', {}).items():
+        us = r['us_per_step']
+        rows.append((f'lock-step over DDS, events executor ({name})',
+                     f"{r['steps_per_second']:.0f} steps/s", '>= 1000'))
+        rows.append(('  per step: model, messages, DDS + executor + controller',
+                     f"{us['model']:.0f} / {us['publish']:.0f} / {us['rest']:.0f} us", ''))
+    for name, r in results.get('sine_with_dwell', {}).items():
+        rows.append((f"FMVSS 126 procedure, {name} ({r['runs']} runs, "
+                     f"A {r['a_reference_deg']:.1f} deg)",
+                     f"{r['wall_s']:.0f} s, {'PASS' if r['passed'] else 'FAIL'}", ''))
+    for row in rows:
+        table.add_row(*row)
+    console().print(table)

@@ -1,0 +1,8 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""``python -m vd_events.cli``: the vd command-line tool (what ``./vd`` runs)."""
+import sys
+
+from vd_events.cli.main import main
+
+sys.exit(main())

@@ -1,0 +1,475 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+Simulation vs test: per-channel errors, gradient errors, tolerance bands and verdicts.
+
+``compare(sim, test)`` pairs two EventOutcomes of the same event (and axle) and compares
+every channel both have, on the **test's points**:
+
+* K&C (test model ``rig``): the simulation is interpolated linearly at the measured
+  values of the event's swept channel (wheel travel, applied force or moment,
+  steering-wheel angle; the simulation sorted by it); measured points outside the
+  simulated range are left out and counted. The gradient error is the difference of
+  the slopes at design (x = 0) of simulation and test, both from the same quadratic
+  least-squares fit over the same window (``kc.metrics.slope_at`` with the K&C metrics'
+  windows: 10 mm, 500 N, 25 N*m; 10 deg of steering-wheel angle): bump steer, camber
+  gain, lateral compliance steer and the other slopes. It passes within
+  GRADIENT_TOLERANCE of the measured slope plus two standard errors of that slope (a
+  straight line through the window's measured points), so rig noise on a coarse sweep
+  is not counted as model error.
+* Vehicle (test model ``test``): the simulation is interpolated linearly at the log's
+  times over the common time span. Where both signals are uniformly sampled at 20 Hz or
+  more, both are low-passed first with the 12-pole phaseless Butterworth of the
+  sine-with-dwell processing (``fmvss126.lowpass``, 6 Hz for responses, 10 Hz for
+  the steering-wheel angle), so sensor noise does not count as model error.
+
+Per channel: RMS of (sim - test), max |sim - test|, bias (mean of sim - test), each in
+the channel's SI unit, and the test signal's RMS for scale. A channel passes when every
+metric is within its tolerance (:data:`TOLERANCES`, by SI unit; override per channel
+with ``--tolerances``). Units: the test's values are converted to the simulation's unit
+with pint before anything is compared.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+import html
+import math
+from pathlib import Path
+
+import numpy as np
+
+from vd_events.measured.columns import KC_SWEEP, InputError, unit_factor
+from vd_solvers.kc.metrics import FORCE_WINDOW, TRAVEL_WINDOW, slope_at
+from vd_solvers.results import EventOutcome
+
+DEG = 180.0 / math.pi
+#: half-width of the gradient window per swept channel (SI)
+#: N*m of applied aligning torque: the half-width of that event's gradient window
+MOMENT_WINDOW = 25.0
+GRADIENT_WINDOWS = {'wheel_travel_left': TRAVEL_WINDOW, 'applied_force': FORCE_WINDOW,
+                    'applied_moment': MOMENT_WINDOW, 'steering_wheel_angle': math.radians(10.0)}
+#: low-pass cut-offs of the vehicle signals before comparison, Hz (fmvss126)
+STEERING_CHANNELS = ('steering_wheel_angle',)
+#: channels never compared (the axis itself and positions that drift with any error)
+NOT_COMPARED = ('time', 'x', 'y', 'yaw')
+#: default tolerance band by SI unit: rms, max, bias (SI) and relative gradient error
+TOLERANCES: Mapping[str, Mapping[str, float]] = {
+    'rad': {'rms': math.radians(0.1), 'max': math.radians(0.3), 'bias': math.radians(0.1)},
+    'rad/s': {'rms': math.radians(1.0), 'max': math.radians(3.0), 'bias': math.radians(0.5)},
+    'm/s^2': {'rms': 0.3, 'max': 1.0, 'bias': 0.2},
+    'm/s': {'rms': 0.3, 'max': 1.0, 'bias': 0.3},
+    'm': {'rms': 1e-3, 'max': 3e-3, 'bias': 1e-3},
+    'N': {'rms': 100.0, 'max': 300.0, 'bias': 100.0},
+    'N*m': {'rms': 10.0, 'max': 30.0, 'bias': 10.0},
+}
+GRADIENT_TOLERANCE = 0.10  # relative error of a slope at design
+#: a simulation's note naming the channels it took from the test (a replay's inputs)
+INPUTS_NOTE = 'inputs taken from the log: '
+#: how a unit is shown in tables (the values stay SI in JSON)
+DISPLAY = {'rad': ('deg', DEG), 'rad/s': ('deg/s', DEG), 'm': ('mm', 1e3)}
+
+
+@dataclass(frozen=True)
+class ChannelError:
+    channel: str
+    unit: str  # SI
+    points: int
+    rms: float
+    max: float
+    bias: float
+    test_rms: float
+    gradient_sim: float | None = None
+    gradient_test: float | None = None
+    gradient_unit: str = ''
+    tolerance: Mapping[str, float] = field(default_factory=dict)
+    gradient_uncertainty: float = 0.0  # standard error of the measured slope
+
+    @property
+    def gradient_error(self) -> float | None:
+        if self.gradient_sim is None or self.gradient_test is None:
+            return None
+        return self.gradient_sim - self.gradient_test
+
+    @property
+    def failures(self) -> list[str]:
+        out = [k for k in ('rms', 'max', 'bias')
+               if k in self.tolerance and abs(getattr(self, k)) > self.tolerance[k]]
+        rel = self.tolerance.get('gradient')
+        g = self.gradient_error
+        if rel is not None and g is not None and self.gradient_test is not None:
+            if abs(g) > rel * abs(self.gradient_test) + 2.0 * self.gradient_uncertainty:
+                out.append('gradient')
+        return out
+
+    @property
+    def verdict(self) -> str:
+        if not self.tolerance:
+            return 'no tolerance'
+        return 'FAIL' if self.failures else 'PASS'
+
+    def to_json(self) -> dict:
+        return {'channel': self.channel, 'unit': self.unit, 'points': self.points,
+                'rms': self.rms, 'max': self.max, 'bias': self.bias, 'test_rms': self.test_rms,
+                'gradient_sim': self.gradient_sim, 'gradient_test': self.gradient_test,
+                'gradient_error': self.gradient_error, 'gradient_unit': self.gradient_unit,
+                'gradient_uncertainty': self.gradient_uncertainty,
+                'tolerance': dict(self.tolerance), 'verdict': self.verdict,
+                'failures': self.failures}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    sim: EventOutcome
+    test: EventOutcome
+    axis: str
+    errors: list[ChannelError]
+    notes: list[str]
+    sim_x: dict[str, np.ndarray]  # channel -> simulation on the test's points (for plots)
+    test_x: np.ndarray  # the test's axis values used
+
+    @property
+    def verdict(self) -> str:
+        verdicts = {e.verdict for e in self.errors}
+        if 'FAIL' in verdicts:
+            return 'FAIL'
+        return 'PASS' if 'PASS' in verdicts else 'no tolerance'
+
+    @property
+    def label(self) -> str:
+        axle = f' {self.test.axle}' if self.test.axle else ''
+        return (f'{self.test.event}{axle}: {self.sim.configuration} ({self.sim.model}, '
+                f'{self.sim.fidelity}) vs {self.test.configuration} ({self.test.model})')
+
+    def to_json(self) -> dict:
+        return {'event': self.test.event, 'axle': self.test.axle,
+                'sim': {'configuration': self.sim.configuration, 'model': self.sim.model,
+                        'fidelity': self.sim.fidelity, 'data_hash': self.sim.data_hash},
+                'test': {'configuration': self.test.configuration, 'model': self.test.model,
+                         'source_sha256': self.test.data_hash},
+                'axis': self.axis, 'verdict': self.verdict, 'notes': self.notes,
+                'channels': [e.to_json() for e in self.errors]}
+
+
+def _tolerance(channel: str, unit: str, overrides: Mapping[str, Mapping[str, float]],
+               kc: bool) -> dict[str, float]:
+    tol = dict(TOLERANCES.get(unit, {}))
+    if kc and tol:
+        tol['gradient'] = GRADIENT_TOLERANCE
+    tol.update(overrides.get(channel, {}))
+    return tol
+
+
+def slope_uncertainty(x: np.ndarray, y: np.ndarray, half_width: float) -> float:
+    """
+    Return the standard error of the measured slope at x = 0.
+
+    A straight line is fitted to the points of the gradient window (those ``slope_at``
+    uses); its slope's standard error is the measurement noise in the slope.
+    """
+    distance = np.abs(x)
+    mask = distance <= half_width + 1e-12
+    if np.count_nonzero(mask) < 3:
+        mask = distance <= np.sort(distance)[min(2, distance.size - 1)] + 1e-12
+    xs, ys = x[mask], y[mask]
+    if xs.size < 3:
+        return 0.0
+    b, a = np.polyfit(xs, ys, 1)
+    spread = float(np.sum((xs - xs.mean()) ** 2))
+    residual = float(np.sum((ys - a - b * xs) ** 2))
+    return math.sqrt(residual / (xs.size - 2) / spread) if spread > 0.0 else 0.0
+
+
+def _uniform(t: np.ndarray) -> bool:
+    dt = np.diff(t)
+    return bool(dt.size and np.all(dt > 0) and np.ptp(dt) <= 1e-6 * dt.mean() + 1e-12)
+
+
+def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> np.ndarray:
+    from vd_solvers.standards.fmvss126 import (
+        RESPONSE_CUTOFF,
+        STEER_CUTOFF,
+        ProcessingError,
+        lowpass,
+    )
+
+    cutoff = STEER_CUTOFF if channel in STEERING_CHANNELS else RESPONSE_CUTOFF
+    try:
+        return lowpass(t, x, cutoff)
+    except ProcessingError:
+        return x
+
+
+def compare(sim: EventOutcome, test: EventOutcome,
+            overrides: Mapping[str, Mapping[str, float]] | None = None,
+            inputs: Sequence[str] = ()) -> Comparison:
+    """
+    Compare ``sim`` with ``test`` on the test's points (module doc).
+
+    ``inputs``: channels the simulation took from the test (a replay's steering and
+    speed, also read from a sim note starting INPUTS_NOTE), named in the notes and not
+    compared.
+    """
+    overrides = overrides or {}
+    inputs = tuple(inputs) + tuple(c.strip() for n in sim.notes if n.startswith(INPUTS_NOTE)
+                                   for c in n[len(INPUTS_NOTE):].split(','))
+    kc = test.model == 'rig'
+    axis = KC_SWEEP.get(test.event, 'wheel_travel_left') if kc else 'time'
+    notes: list[str] = []
+    for who, o in (('simulation', sim), ('test', test)):
+        if axis not in o.channels:
+            raise InputError(who, f"{o.event}: no '{axis}' channel to compare on")
+    to_test = unit_factor(sim.channels[axis].unit, test.channels[axis].unit)
+    xs = sim.channels[axis].values * to_test[0] + to_test[1]
+    xt = test.channels[axis].values
+    order = np.argsort(xs, kind='stable')
+    xs_sorted = xs[order]
+    inside = (xt >= xs_sorted[0]) & (xt <= xs_sorted[-1])
+    if np.count_nonzero(inside) < 2:
+        raise InputError('comparison', f'{test.event}: the test and the simulation share '
+                         f'fewer than two points of {axis}')
+    if not np.all(inside):
+        notes.append(f'{np.count_nonzero(~inside)} of {xt.size} test points lie outside '
+                     f'the simulated {axis} range and are left out')
+    notes.append(f"simulation interpolated linearly at the test's {axis} values")
+    filter_both = (not kc and _uniform(xt[inside]) and _uniform(xs_sorted)
+                   and 1.0 / np.mean(np.diff(xt)) >= 20.0)
+    if filter_both:
+        notes.append('both low-passed first: 12-pole phaseless Butterworth (fmvss126), '
+                     '6 Hz responses, 10 Hz steering-wheel angle')
+    if inputs:
+        notes.append(f"inputs of the simulation, taken from the test: "
+                     f"{', '.join(dict.fromkeys(inputs))} (not compared)")
+    errors, sim_x = [], {}
+    for name in test.channels:
+        if name == axis or name in NOT_COMPARED or name in inputs or name not in sim.channels:
+            continue
+        unit = sim.channels[name].unit
+        try:
+            factor, offset = unit_factor(test.channels[name].unit, unit)
+        except ValueError:
+            notes.append(f'{name}: units {test.channels[name].unit!r} and {unit!r} differ in '
+                         'kind; not compared')
+            continue
+        y_test = test.channels[name].values * factor + offset
+        y_sim_sorted = sim.channels[name].values[order]
+        if not (np.all(np.isfinite(y_test)) and np.all(np.isfinite(y_sim_sorted))):
+            notes.append(f'{name}: not finite in one of the two; not compared')
+            continue
+        if filter_both:
+            y_test = _filtered(xt, y_test, name)
+            y_sim_sorted = _filtered(xs_sorted, y_sim_sorted, name)
+        y_sim = np.interp(xt[inside], xs_sorted, y_sim_sorted)
+        diff = y_sim - y_test[inside]
+        sim_x[name] = y_sim
+        grad_sim = grad_test = None
+        grad_unit, grad_se = '', 0.0
+        if kc and axis in GRADIENT_WINDOWS and xt[inside].min() < 0.0 < xt[inside].max():
+            window = GRADIENT_WINDOWS[axis]
+            grad_sim = float(slope_at(xs_sorted, y_sim_sorted, 0.0, window))
+            grad_test = float(slope_at(xt, y_test, 0.0, window))
+            grad_se = slope_uncertainty(xt, y_test, window)
+            grad_unit = f'{unit}/{test.channels[axis].unit}'
+        errors.append(ChannelError(
+            channel=name, unit=unit, points=int(diff.size), rms=float(np.sqrt(np.mean(diff**2))),
+            max=float(np.max(np.abs(diff))), bias=float(np.mean(diff)),
+            test_rms=float(np.sqrt(np.mean(y_test[inside]**2))), gradient_sim=grad_sim,
+            gradient_test=grad_test, gradient_unit=grad_unit, gradient_uncertainty=grad_se,
+            tolerance=_tolerance(name, unit, overrides, kc)))
+    if not errors:
+        raise InputError('comparison', f'{test.event}: the test and the simulation have no '
+                         'channel in common besides the axis')
+    return Comparison(sim=sim, test=test, axis=axis, errors=errors, notes=notes,
+                      sim_x=sim_x, test_x=xt[inside])
+
+
+def load_outcomes(bag: Path) -> list[EventOutcome]:
+    """Every EventOutcome in a finished bag (its ``*/result`` messages)."""
+    from vd_events.bags.bag import read_bag
+    from vd_solvers.conversions import outcome_from_msg
+
+    return [outcome_from_msg(item.msg) for item in read_bag(bag)
+            if item.topic.endswith('/result')]
+
+
+def pair(sims: Sequence[EventOutcome], tests: Sequence[EventOutcome]
+         ) -> list[tuple[EventOutcome, EventOutcome]]:
+    """Every (simulation, test) of the same event and axle."""
+    return [(s, t) for t in tests for s in sims
+            if s.event == t.event and s.axle == t.axle and s.model not in ('rig', 'test')]
+
+
+def load_tolerances(path: Path | None) -> dict[str, dict[str, float]]:
+    """``channel: {rms: '0.05 deg', max: ..., bias: ..., gradient: 0.1}`` -> SI values."""
+    if path is None:
+        return {}
+    import yaml
+
+    from vd_events.measured.columns import si_unit
+
+    try:
+        raw = yaml.safe_load(path.read_text(encoding='utf-8'))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError) as err:
+        raise InputError(path, f'cannot read the tolerances: {err}') from None
+    if not isinstance(raw, dict):
+        raise InputError(path, 'a mapping channel -> {rms, max, bias, gradient}')
+    out: dict[str, dict[str, float]] = {}
+    for channel, spec in raw.items():
+        target = si_unit('vehicle', channel) or si_unit('kc', channel)
+        if target is None or not isinstance(spec, dict):
+            raise InputError(path, f'{channel}: not a channel with a tolerance mapping')
+        out[channel] = {}
+        for key, value in spec.items():
+            if key == 'gradient':
+                out[channel][key] = float(value)
+                continue
+            if key not in ('rms', 'max', 'bias'):
+                raise InputError(path, f'{channel}.{key}: unknown key (rms, max, bias, gradient)')
+            number, _, unit = str(value).partition(' ')
+            try:
+                factor, _ = unit_factor(unit or target, target)
+                out[channel][key] = float(number) * factor
+            except ValueError as err:
+                raise InputError(path, f'{channel}.{key}: {err}') from None
+    return out
+
+
+def compare_bags(sim_bag: Path, test_bag: Path, out: Path,
+                 tolerances: Mapping[str, Mapping[str, float]] | None = None
+                 ) -> tuple[list[Comparison], Path]:
+    """Compare every matching pair of two bags and write ``out/compare.html``."""
+    sims, tests = load_outcomes(sim_bag), load_outcomes(test_bag)
+    tests = [t for t in tests if t.model in ('rig', 'test')]
+    if not tests:
+        raise InputError(test_bag, 'no measured results (model rig or test) in the bag '
+                         '(vd import writes them)')
+    pairs = pair(sims, tests)
+    if not pairs:
+        have = ', '.join(sorted({f'{s.event} {s.axle}'.strip() for s in sims})) or 'none'
+        want = ', '.join(sorted({f'{t.event} {t.axle}'.strip() for t in tests}))
+        raise InputError(sim_bag, f'no simulation of the measured events ({want}); the bag '
+                         f'has: {have}')
+    comparisons = [compare(s, t, tolerances) for s, t in pairs]
+    page = write_page(comparisons, out, [sim_bag, test_bag])
+    return comparisons, page
+
+
+def _shown(value: float | None, unit: str) -> str:
+    if value is None or not math.isfinite(value):
+        return '–'
+    name, scale = DISPLAY.get(unit, (unit, 1.0))
+    return f'{value * scale:.4g} {name}'.strip()
+
+
+def _gradient_shown(value: float | None, unit: str) -> str:
+    if value is None:
+        return '–'
+    top, _, bottom = unit.partition('/')
+    top_name, top_scale = DISPLAY.get(top, (top, 1.0))
+    return f'{value * top_scale:.4g} {top_name}/{bottom}'
+
+
+def comparison_html(c: Comparison, images: Sequence[str]) -> str:
+    """One simulation-vs-test section: overlays, the error table, the verdict."""
+    rows = []
+    for e in c.errors:
+        tol = ', '.join(f"{k} {_shown(v, e.unit) if k != 'gradient' else f'{100 * v:g} %'}"
+                        for k, v in e.tolerance.items())
+        colour = {'PASS': '#c9e7c0', 'FAIL': '#f4c7c3'}.get(e.verdict, '#eee')
+        rows.append(
+            f'<tr><td>{html.escape(e.channel)}</td><td>{e.points}</td>'
+            f'<td>{_shown(e.rms, e.unit)}</td><td>{_shown(e.max, e.unit)}</td>'
+            f'<td>{_shown(e.bias, e.unit)}</td><td>{_shown(e.test_rms, e.unit)}</td>'
+            f'<td>{_gradient_shown(e.gradient_sim, e.gradient_unit)}</td>'
+            f'<td>{_gradient_shown(e.gradient_test, e.gradient_unit)}</td>'
+            f'<td>{html.escape(tol)}</td>'
+            f'<td style="background:{colour}">{e.verdict}'
+            f"{' (' + ', '.join(e.failures) + ')' if e.failures else ''}</td></tr>")
+    imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
+    prov = [n for n in c.test.notes if n.split(':')[0] in (
+        'source', 'source_sha256', 'rig', 'logger', 'vehicle', 'date', 'column map')]
+    return (f'<h2>Simulation vs test — {html.escape(c.label)}: {c.verdict}</h2>'
+            f"<div class='plots'>{imgs}</div>"
+            '<table><tr><th>channel</th><th>points</th><th>RMS error</th><th>max error</th>'
+            '<th>bias (sim − test)</th><th>test RMS</th><th>gradient sim</th>'
+            '<th>gradient test</th><th>tolerance</th><th>verdict</th></tr>'
+            f"{''.join(rows)}</table>"
+            f"<ul class='notes'>{''.join(f'<li>{html.escape(n)}</li>' for n in c.notes)}"
+            f"{''.join(f'<li>{html.escape(n)}</li>' for n in prov)}"
+            f'<li>simulation: data hash {html.escape(c.sim.data_hash)}</li></ul>')
+
+
+def plot_comparison(c: Comparison, out: Path, prefix: str) -> list[str]:
+    """PNG overlays of simulation and test per compared channel; returns the file names."""
+    import matplotlib
+
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+
+    names = []
+    ax_unit = c.test.channels[c.axis].unit
+    xscale = DISPLAY.get(ax_unit, (ax_unit, 1.0))
+    for i, e in enumerate(c.errors):
+        yname, yscale = DISPLAY.get(e.unit, (e.unit, 1.0))
+        factor, offset = unit_factor(c.test.channels[e.channel].unit, e.unit)
+        fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
+        ax.plot(c.test.channels[c.axis].values * xscale[1],
+                (c.test.channels[e.channel].values * factor + offset) * yscale,
+                '.', markersize=3, label=f'test: {c.test.configuration}')
+        ax.plot(c.test_x * xscale[1], c.sim_x[e.channel] * yscale, '-',
+                label=f'sim: {c.sim.configuration} ({c.sim.model})')
+        ax.set_xlabel(f'{c.axis} [{xscale[0]}]')
+        ax.set_ylabel(f'{e.channel} [{yname}]')
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize='small')
+        ax.set_title(f'{c.test.event}: {e.channel} ({e.verdict})', fontsize='medium')
+        name = f'{prefix}_{i}.png'
+        fig.tight_layout()
+        fig.savefig(out / name)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
+def sections(comparisons: Sequence[Comparison], out: Path, prefix: str = 'compare') -> list[str]:
+    """Return the HTML sections of ``comparisons``; their PNGs go into ``out``."""
+    return [comparison_html(c, plot_comparison(c, out, f'{prefix}_{k}'))
+            for k, c in enumerate(comparisons)]
+
+
+def write_page(comparisons: Sequence[Comparison], out: Path, bags: Sequence[Path]) -> Path:
+    import os
+
+    from vd_events.reports.report import CSS
+
+    out.mkdir(parents=True, exist_ok=True)
+    body = ''.join(sections(comparisons, out))
+    summary = ''.join(f'<tr><td>{html.escape(c.label)}</td><td>{c.verdict}</td></tr>'
+                      for c in comparisons)
+    page = (f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>vd compare</title>'
+            f'<style>{CSS}</style></head><body><h1>Simulation vs test</h1>'
+            f"<p>Bags: {html.escape(', '.join(str(b) for b in bags))}</p>"
+            f'<table><tr><th>comparison</th><th>verdict</th></tr>{summary}</table>'
+            f'{body}</body></html>')
+    path = out / 'compare.html'
+    tmp = out / '.compare.html.partial'
+    tmp.write_text(page, encoding='utf-8')
+    os.replace(tmp, path)
+    return path
+
+
+def print_comparisons(comparisons: Sequence[Comparison]) -> None:
+    for c in comparisons:
+        print(f'{c.label}: {c.verdict}')
+        for e in c.errors:
+            grad = ''
+            if e.gradient_error is not None:
+                grad = (f', gradient {_gradient_shown(e.gradient_sim, e.gradient_unit)} vs '
+                        f'{_gradient_shown(e.gradient_test, e.gradient_unit)}')
+            print(f'  {e.channel:28s} rms {_shown(e.rms, e.unit):>14s}  max '
+                  f'{_shown(e.max, e.unit):>14s}  bias {_shown(e.bias, e.unit):>14s}{grad}  '
+                  f'{e.verdict}')
+
+
+__all__ = ['compare', 'compare_bags', 'Comparison', 'ChannelError', 'load_outcomes', 'pair',
+           'TOLERANCES', 'sections', 'print_comparisons']

@@ -1,0 +1,149 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+``ros2 run vd_solvers vehicle_solver``: the full-vehicle dynamics solver.
+
+Names relative to the node's namespace (``/vd`` by default). Action ``vehicle/run_event``
+(vd_interfaces/RunEvent; events constant_radius_turn and step_steer, goal.fidelity
+rigid|flexible passed to the K&C maps); results on ``vehicle/result``, one
+``VehicleState`` per recorded step on ``vehicle/state`` (named fields, four
+``VehicleWheel``s) with header stamps on the simulation-time axis (run start + simulated
+time), and the body pose as ``nav_msgs/Odometry`` on ``vehicle/odom`` (frame ``odom``,
+child ``base_link``, REP 105) and as TF on the global ``/tf`` (``tf2_msgs/TFMessage``),
+stamped alike. Outside the default namespace the frames carry the parameter
+``frame_prefix`` (default: the namespace, ``car2/odom`` -> ``car2/base_link``), so
+several vehicles share one TF tree.
+
+Parameter ``mode``: ``events`` (default, the above), ``lockstep`` or ``free``: the
+co-simulation of :mod:`vd_solvers.nodes.lockstep` -- one vehicle of ``configuration`` driven
+step by step by an external controller (``/clock``, state, odometry and TF out,
+``vd_interfaces/VehicleCommand`` in); docs/ros-api.md.
+"""
+from __future__ import annotations
+
+from nav_msgs.msg import Odometry
+from rcl_interfaces.msg import ParameterDescriptor
+
+from tf2_msgs.msg import TFMessage
+from vd_data_server.errors import DataError
+from vd_data_server.model import Configuration
+from vd_data_server.ros.node_main import make_executor, run_node
+from vd_data_server.ros.qos import STATES
+from vd_interfaces.msg import VehicleState
+from vd_solvers.errors import SolverError
+from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
+from vd_solvers.nodes.solver import SolverNode
+from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.events import run_vehicle_event
+
+FAMILY = 'vehicle'
+MODES = ('events', 'lockstep', 'free')
+#: lock-step parameters: name -> (default, description)
+LOCKSTEP_PARAMS = {
+    'configuration': ('', "configuration to drive ('' = the study's first)"),
+    'master': ('', "master file ('' = the bundled sample study)"),
+    'fidelity': ('rigid', 'K&C maps: rigid | flexible'),
+    'step': (0.005, 'integration step = lock-step, s'),
+    'initial_speed': (0.0, 'speed at t = 0, m/s (straight ahead)'),
+    'duration': (0.0, 'simulated time after which the session finishes, s (0: no end)'),
+    'command_timeout': (2.0, 'wall seconds to wait for the command of a step'),
+    'start_timeout': (30.0, 'wall seconds to wait for the first command'),
+    'real_time_factor': (1.0, 'free mode: simulated seconds per wall second'),
+    'drive_front': (0.5, 'front share of the drive torque'),
+    'brake_front': (0.65, 'front share of the brake torque'),
+}
+
+
+def _run(config: Configuration, goal, progress) -> EventOutcome:
+    return run_vehicle_event(config, goal.event, list(goal.parameters), goal.fidelity or 'rigid',
+                             progress)
+
+
+class VehicleSolver(SolverNode):
+    """The full-vehicle solver; the body pose also as odometry and TF."""
+
+    STATE_TYPE = VehicleState
+
+    def __init__(self, **kwargs) -> None:
+        super().__init__('vehicle_solver', FAMILY, _run, **kwargs)
+        self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
+        # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
+        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+        self.publishers_by_topic.update({ODOMETRY_TOPIC: self.odom_pub, TF_TOPIC: self.tf_pub})
+        self.declare_parameter('mode', 'events', ParameterDescriptor(
+            description='events | lockstep | free', read_only=True))
+        self.mode = self.get_parameter('mode').value
+        self.lockstep = None
+        if self.mode != 'events':
+            self.lockstep = self._start_lockstep()
+
+    def _start_lockstep(self):
+        """Build the vehicle and start the co-simulation session (ValueError if unusable)."""
+        from vd_data_server.paths import default_master
+        from vd_data_server.study import load_study
+        from vd_solvers.nodes.lockstep import LockstepSession
+        from vd_solvers.vehicle.cosim import Stepper
+        from vd_solvers.vehicle.model import VehicleModel
+
+        if self.mode not in MODES:
+            raise ValueError(f"parameter 'mode' must be one of {', '.join(MODES)}, "
+                             f'got {self.mode!r}')
+        p = {}
+        for name, (default, doc) in LOCKSTEP_PARAMS.items():
+            numeric = isinstance(default, float)
+            self.declare_parameter(name, default, ParameterDescriptor(
+                description=doc, read_only=True, dynamic_typing=numeric))
+            value = self.get_parameter(name).value
+            if numeric:
+                if isinstance(value, bool) or not isinstance(value, (int, float)):
+                    raise ValueError(f"parameter '{name}' must be a number, got {value!r}")
+                value = float(value)
+            elif not isinstance(value, str):
+                raise ValueError(f"parameter '{name}' must be a string, got {value!r}")
+            p[name] = value
+        for name in ('command_timeout', 'start_timeout', 'real_time_factor'):
+            if not (0.0 < p[name] < 1e6):
+                raise ValueError(f"parameter '{name}' must be a positive number of seconds "
+                                 f"(or factor), got {p[name]!r}")
+        for name in ('initial_speed', 'duration'):
+            if not (0.0 <= p[name] < 1e6):
+                raise ValueError(f"parameter '{name}' must be >= 0, got {p[name]!r}")
+        from pathlib import Path
+
+        study = load_study(Path(p['master']) if p['master'] else default_master())
+        name = p['configuration'] or study.configuration_names[0]
+        if name not in study.configurations:
+            raise ValueError(f"configuration '{name}' is not in the study (configurations: "
+                             f"{', '.join(study.configuration_names)})")
+        model = VehicleModel(study.configurations[name], p['fidelity'])
+        stepper = Stepper(model, float(p['step']), float(p['initial_speed']),
+                          float(p['drive_front']), float(p['brake_front']))
+        self.get_logger().info(f"{self.mode} co-simulation of '{name}': step "
+                               f"{stepper.h * 1e3:g} ms")
+        return LockstepSession(self, stepper, mode=self.mode, duration=float(p['duration']),
+                               command_timeout=p['command_timeout'],
+                               start_timeout=p['start_timeout'],
+                               real_time_factor=p['real_time_factor'], configuration=name,
+                               state_pub=self.sample_pub, odom_pub=self.odom_pub,
+                               tf_pub=self.tf_pub, frame_prefix=self.frame_prefix)
+
+
+def main(args=None) -> None:
+    """Spin the solver; in lockstep/free mode on the events executor (docs/ros-api.md)."""
+    import sys
+
+    from rclpy.experimental import EventsExecutor
+
+    def build() -> VehicleSolver:
+        try:
+            return VehicleSolver()
+        except (ValueError, SolverError, DataError) as err:
+            print(f'vehicle_solver: {err}', file=sys.stderr)
+            raise SystemExit(2) from None
+
+    run_node(build, args=args, executor=lambda node: make_executor(2) if node.mode == 'events'
+             else EventsExecutor())
+
+
+if __name__ == '__main__':
+    main()
