@@ -7,11 +7,13 @@ from pathlib import Path
 import subprocess
 import sys
 
+from vdtest import HANG_GUARD
+
 REPO = Path(__file__).resolve().parents[1]
 
 
 def test_the_cores_type_check_clean() -> None:
     run = subprocess.run([sys.executable, '-m', 'mypy', '--config-file', 'mypy.ini'],
-                         cwd=REPO, capture_output=True, text=True, timeout=600)
+                         cwd=REPO, capture_output=True, text=True, timeout=HANG_GUARD)
     assert run.returncode == 0, run.stdout + run.stderr
     assert run.stdout.startswith('Success: no issues found'), run.stdout

@@ -14,8 +14,24 @@ def tree_snapshot(root: Path) -> dict[str, bytes]:
             if p.is_file()}
 
 
+#: s: the longest a test waits for something that must happen (DDS discovery, a message, a
+#: process's start or end). Not a performance bound: a loaded machine makes these waits
+#: slower, never failed; only a hang (something that will never happen) meets this guard.
+HANG_GUARD = 600.0
+
+
+def wait_for(nodes, predicate: Callable[[], bool]) -> bool:
+    """Spin ``nodes`` until ``predicate()`` holds (False only after HANG_GUARD s: a hang)."""
+    return spin_until(nodes, predicate, HANG_GUARD)
+
+
 def spin_until(nodes, predicate: Callable[[], bool], timeout: float = 10.0) -> bool:
-    """Spin ``nodes`` until ``predicate()`` holds or ``timeout`` seconds pass."""
+    """
+    Spin ``nodes`` until ``predicate()`` holds or ``timeout`` seconds pass.
+
+    For something that must happen use :func:`wait_for`; a ``timeout`` here is for letting
+    a fixed time pass (``lambda: False``) or for asserting that nothing happens.
+    """
     from rclpy.executors import SingleThreadedExecutor
 
     executor = SingleThreadedExecutor()

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 import pytest
 
 from fuzzing import QUANTITIES
-from vdtest import spin_until
+from vdtest import wait_for
 
 pytestmark = pytest.mark.ros
 
@@ -42,7 +42,7 @@ def graph(ros_domain, tmp_path_factory):
     solver = AnalyticalSolver()
     client = Node('fuzz_client')
     nodes = [server, solver, client]
-    assert spin_until(nodes, lambda: len(solver.configurations) == 3)
+    assert wait_for(nodes, lambda: len(solver.configurations) == 3)
     yield nodes
     for node in nodes:
         node.destroy_node()
@@ -51,9 +51,9 @@ def graph(ros_domain, tmp_path_factory):
 def _call(nodes, srv_type, name, request):
     client = nodes[2].create_client(srv_type, name)
     try:
-        assert spin_until(nodes, client.service_is_ready, timeout=5.0)
+        assert wait_for(nodes, client.service_is_ready)
         future = client.call_async(request)
-        assert spin_until(nodes, future.done, timeout=10.0), f'{name}: no answer'
+        assert wait_for(nodes, future.done), f'{name}: no answer'
         return future.result()
     finally:
         nodes[2].destroy_client(client)
@@ -100,14 +100,14 @@ def test_run_event_goals(graph, event, configuration, model, overrides, paramete
 
     action = ActionClient(graph[2], RunEvent, '/vd/steady_state/run_event')
     try:
-        assert spin_until(graph, action.server_is_ready, timeout=5.0)
+        assert wait_for(graph, action.server_is_ready)
         send = action.send_goal_async(RunEvent.Goal(
             event=event, configuration=configuration, model=model, overrides=overrides,
             parameters=parameters))
-        assert spin_until(graph, send.done, timeout=30.0)
+        assert wait_for(graph, send.done)
         if send.result().accepted:  # else rejected in the goal callback: an answer too
             result = send.result().get_result_async()
-            assert spin_until(graph, result.done, timeout=30.0), 'no answer to the goal'
+            assert wait_for(graph, result.done), 'no answer to the goal'
             answer = result.result().result
             assert answer.message and 'Traceback' not in answer.message
     finally:

@@ -22,6 +22,8 @@ import time
 
 import pytest
 
+from vdtest import HANG_GUARD
+
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 FUZZ = os.environ.get('HYPOTHESIS_PROFILE') == 'fuzz'
@@ -79,7 +81,7 @@ def test_signal_during_a_run(tmp_path, sedan_master, mode, sig):
             time.sleep(random.uniform(0.0, 2.0))
         children = _children_of(proc.pid)
         os.kill(proc.pid, sig)
-        out, err = proc.communicate(timeout=60)
+        out, err = proc.communicate(timeout=HANG_GUARD)
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -108,7 +110,7 @@ def test_signal_during_a_run(tmp_path, sedan_master, mode, sig):
         rerun = tmp_path / 'rerun'
         done = subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *argv[:-3], '--bag',
                                str(bag if not finished else rerun), '--json'],
-                              capture_output=True, text=True, timeout=120)
+                              capture_output=True, text=True, timeout=HANG_GUARD)
         assert done.returncode == 0, done.stderr
         result = json.loads(done.stdout)
         assert (Path(result['bag']) / 'metadata.yaml').is_file()

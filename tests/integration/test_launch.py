@@ -18,6 +18,8 @@ import time
 
 import pytest
 
+from vdtest import HANG_GUARD
+
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 
@@ -46,14 +48,14 @@ runs:
     try:
         runner = Path(get_package_prefix('vd_events')) / 'lib' / 'vd_events' / 'event_runner'
         done = subprocess.run([str(runner), '--ros-args', '-p', f'plan:={plan}'], env=env,
-                              capture_output=True, text=True, timeout=120)
+                              capture_output=True, text=True, timeout=HANG_GUARD)
         assert done.returncode == 0, done.stdout + done.stderr
         log = done.stdout + done.stderr
         assert "configuration 'baseline', event 'handling_diagram': 5 steps" in log
         assert "configuration 'sport', event 'lateral_force': 11 steps" in log
     finally:
         launcher.send_signal(signal.SIGTERM)
-        out, _ = launcher.communicate(timeout=30)
+        out, _ = launcher.communicate(timeout=HANG_GUARD)
     assert launcher.returncode == 0, out
     time.sleep(0.5)
     leftover = subprocess.run(['pgrep', '-f', f'master_file:={sedan_master}'],

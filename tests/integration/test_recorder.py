@@ -14,7 +14,7 @@ import subprocess
 
 import pytest
 
-from vdtest import spin_until
+from vdtest import HANG_GUARD, wait_for
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -47,8 +47,8 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str,
         recorded: list[int] = []
         node.create_subscription(UInt32, '/vd/recorder/recorded',
                                  lambda m: recorded.append(m.data), LATEST)
-        assert spin_until([node], lambda: provenance_pub.get_subscription_count() >= 1
-                          and result_pub.get_subscription_count() >= 1, timeout=60.0)
+        assert wait_for([node], lambda: provenance_pub.get_subscription_count() >= 1
+                          and result_pub.get_subscription_count() >= 1)
         now = node.get_clock().now().nanoseconds
         provenance_pub.publish(Provenance(stamp=time_msg(now), event='e', configuration='c',
                                           model='kc'))
@@ -56,9 +56,9 @@ def _record_three_samples(ros_domain, bag, stop) -> tuple[subprocess.Popen, str,
         result_pub.publish(EventResult(
             stamp=time_msg(now + 2_000_000), event='e', configuration='c', model='kc',
             channels=[Channel(name='track', unit='m', values=[0.0, 1.0, 2.0])]))
-        assert spin_until([node], lambda: recorded and recorded[-1] == 1, timeout=60.0)
+        assert wait_for([node], lambda: recorded and recorded[-1] == 1)
         stop(node, proc)
-        out, _ = proc.communicate(timeout=60)
+        out, _ = proc.communicate(timeout=HANG_GUARD)
     finally:
         node.destroy_node()
         if proc.poll() is None:
@@ -76,9 +76,9 @@ def test_finish_closes_the_bag_under_its_final_name(ros_domain, tmp_path):
 
     def finish(node, proc) -> None:
         client = node.create_client(Trigger, '/vd/recorder/finish')
-        assert spin_until([node], client.service_is_ready, timeout=10.0)
+        assert wait_for([node], client.service_is_ready)
         future = client.call_async(Trigger.Request())
-        assert spin_until([node], future.done, timeout=10.0)
+        assert wait_for([node], future.done)
         answers.append(future.result())
 
     proc, out, start = _record_three_samples(ros_domain, bag, finish)
@@ -113,7 +113,7 @@ def test_recorder_refuses_an_existing_bag(ros_domain, tmp_path):
     bag = tmp_path / 'bag'
     bag.mkdir()
     done = subprocess.run([exe, '--ros-args', '-p', f'bag:={bag}'], capture_output=True,
-                          text=True, timeout=30,
+                          text=True, timeout=HANG_GUARD,
                           env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)))
     assert done.returncode == 2
     assert f'recorder: {bag}: bag path already exists (choose another --bag)' in done.stdout

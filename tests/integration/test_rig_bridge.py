@@ -14,7 +14,7 @@ import subprocess
 from numpy.testing import assert_allclose
 import pytest
 
-from vdtest import spin_until
+from vdtest import HANG_GUARD, spin_until, wait_for
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -53,7 +53,7 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path):
     node = Node('rig_publisher')
     try:
         pub = node.create_publisher(JointState, '/rig/joint_states', SAMPLES)
-        assert spin_until([node], lambda: pub.get_subscription_count() >= 1, timeout=20.0)
+        assert wait_for([node], lambda: pub.get_subscription_count() >= 1)
         travel = [-0.02, -0.01, 0.0, 0.01, 0.02]
         for k, z in enumerate(travel):
             msg = JointState(name=['post_left', 'wheel_left', 'other'],
@@ -65,14 +65,14 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path):
         pub.publish(JointState(name=['other'], position=[1.0], velocity=[], effort=[0.0]))
         spin_until([node], lambda: False, timeout=1.0)
         client = node.create_client(Trigger, '/rig_bridge/finish')
-        assert spin_until([node], client.service_is_ready, timeout=10.0)
+        assert wait_for([node], client.service_is_ready)
         future = client.call_async(Trigger.Request())
-        assert spin_until([node], future.done, timeout=20.0)
+        assert wait_for([node], future.done)
         answer = future.result()
     finally:
         node.destroy_node()
         proc.terminate()
-        out, _ = proc.communicate(timeout=20)
+        out, _ = proc.communicate(timeout=HANG_GUARD)
     assert (answer.success, answer.message) == (True, str(bag)), out
     (outcome,) = load_outcomes(bag)
     assert (outcome.model, outcome.fidelity, outcome.axle) == ('rig', 'measured', 'front')
@@ -88,7 +88,7 @@ def test_rig_bridge_refuses_a_bad_map(ros_domain, tmp_path):
     cmap.write_text(RIG_MAP.replace('post_left.effort', 'post_left.force'))
     done = subprocess.run([_exe(), '--ros-args', '-p', f'map:={cmap}', '-p',
                            f'bag:={tmp_path / "bag"}'], capture_output=True, text=True,
-                          timeout=30, env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)))
+                          timeout=HANG_GUARD, env=dict(os.environ, ROS_DOMAIN_ID=str(ros_domain)))
     assert done.returncode == 2
     assert done.stderr.strip().splitlines()[-1] == (
         f'{cmap}: columns.post_left.force: a rig column is JOINT.position, JOINT.velocity '

@@ -12,6 +12,7 @@ checked from outside the graph, with ``ros2`` commands, in a private domain.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 import os
 from pathlib import Path
 import shutil
@@ -20,6 +21,8 @@ import subprocess
 import time
 
 import pytest
+
+from vdtest import HANG_GUARD
 
 REPO = Path(__file__).resolve().parents[2]
 ROS_TOOLS = REPO.parent / 'shared' / 'ros-tools'
@@ -57,7 +60,7 @@ def env():
     claim.release()
 
 
-def ros2(env, *args: str, timeout: float = 60.0, check: bool = True):
+def ros2(env, *args: str, timeout: float = 0.0, check: bool = True):
     """
     Run ``ros2 ARGS``; return the completed process (stdout and stderr joined).
 
@@ -71,7 +74,8 @@ def ros2(env, *args: str, timeout: float = 60.0, check: bool = True):
         args = (*args[:2], '--no-daemon', '--spin-time', '3', *args[2:])
     for _ in range(4 if param else 1):
         done = subprocess.run(['ros2', *args], env=env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True, timeout=timeout)
+                              stderr=subprocess.STDOUT, text=True,
+                              timeout=timeout or HANG_GUARD)
         if not done.stdout.startswith('Node not found'):
             break
     if check:
@@ -96,22 +100,32 @@ def stop(proc: subprocess.Popen, twice: bool = False) -> str:
             except ProcessLookupError:
                 pass
     try:
-        out, _ = proc.communicate(timeout=30)
+        out, _ = proc.communicate(timeout=HANG_GUARD)
     except subprocess.TimeoutExpired:
         os.killpg(proc.pid, signal.SIGKILL)
         out, _ = proc.communicate()
     return out
 
 
-def wait_for_nodes(env, names: set[str], timeout: float = 40.0, kind: str = 'node') -> set[str]:
-    """Poll ``ros2 node list`` (or ``topic``) until ``names`` are all there; return the list."""
-    deadline = time.monotonic() + timeout
+def wait_for_nodes(env, names: set[str], procs: Sequence[subprocess.Popen] = (),
+                   kind: str = 'node') -> set[str]:
+    """
+    Poll ``ros2 node list`` (or ``topic``) until ``names`` are all there; return the list.
+
+    No deadline on a loaded machine's slow start: a process of ``procs`` that exits ends
+    the wait (its output in the failure), and only a hang meets HANG_GUARD.
+    """
+    deadline = time.monotonic() + HANG_GUARD
     seen: set[str] = set()
     while time.monotonic() < deadline:
         done = ros2(env, kind, 'list', '--no-daemon', '--spin-time', '2', check=False)
         seen = set(done.stdout.split())
         if names <= seen:
             return seen
+        for proc in procs:
+            if proc.poll() is not None:
+                pytest.fail(f'{proc.args} exited with {proc.returncode} before '
+                            f'{sorted(names - seen)} appeared:\n{stop(proc)}')
     return seen
 
 
@@ -125,7 +139,7 @@ def graph(env, tmp_path_factory):
                  f'master_file:={master}', 'allow_edits:=true', 'watch_period:=0.0')
     nodes = {'/cli/data_server', '/cli/kc_solver', '/cli/analytical_solver',
              '/cli/vehicle_solver'}
-    seen = wait_for_nodes(env, nodes)
+    seen = wait_for_nodes(env, nodes, [proc])
     if not nodes <= seen:
         pytest.fail(f'the launch did not start its nodes (seen: {sorted(seen)}):\n'
                     f'{stop(proc)}')
@@ -179,14 +193,14 @@ def test_action_goal_with_feedback_and_an_invalid_goal_rejected(env, graph):
     goal = ("{event: parallel_wheel_travel, configuration: baseline, model: kc, axle: front, "
             "parameters: ['steps=21']}")
     done = ros2(env, 'action', 'send_goal', '--feedback', '/cli/kc/run_event',
-                'vd_interfaces/action/RunEvent', goal, timeout=120).stdout
+                'vd_interfaces/action/RunEvent', goal).stdout
     assert 'Feedback:' in done and 'progress: 1.0' in done
     assert "message: 'configuration ''baseline'', event ''parallel_wheel_travel'': 21 steps'" \
         in done
     assert 'Goal finished with status: SUCCEEDED' in done
     bad = ros2(env, 'action', 'send_goal', '/cli/kc/run_event', 'vd_interfaces/action/RunEvent',
                '{event: parallel_wheel_travel, configuration: baseline, model: kc}',
-               check=False, timeout=60).stdout
+               check=False).stdout
     assert 'Goal was rejected.' in bad
 
 
@@ -205,18 +219,18 @@ def test_ros2_run_of_every_executable(env, tmp_path, graph):
     try:
         wanted = {'/run/data_server', '/run/analytical_solver', '/run/kc_solver',
                   '/run/vehicle_solver', '/run/recorder'}
-        assert wanted <= wait_for_nodes(env, wanted)
+        assert wanted <= wait_for_nodes(env, wanted, [*procs, recorder])
         plan = tmp_path / 'plan.yaml'
         plan.write_text(f'name: cli\nmaster: {master}\nruns:\n  - event: handling_diagram\n'
                         '    models: [two_track]\n    configurations: [baseline]\n'
                         '    parameters: [steps=5]\n')
         runner = ros2(env, 'run', 'vd_events', 'event_runner', '--ros-args', '-r',
-                      '__ns:=/run', '-p', f'plan:={plan}', timeout=120)
+                      '__ns:=/run', '-p', f'plan:={plan}')
         assert "configuration 'baseline', event 'handling_diagram': 5 steps" in runner.stdout
         finish = ros2(env, 'service', 'call', '/run/recorder/finish',
                       'std_srvs/srv/Trigger').stdout
         assert f"message='{bag}'" in finish
-        recorder.communicate(timeout=30)
+        recorder.communicate(timeout=HANG_GUARD)
         topics = [m.topic for m in read_bag(bag)]
         assert topics.count('/run/steady_state/result') == 1
         assert topics.count('/run/steady_state/state') == 5
@@ -237,7 +251,7 @@ def test_package_launch_files_with_namespace_and_parameters(env, graph):
                     'families:=steady_state')
     try:
         wanted = {'/xml/data_server', '/py/data_server', '/xml/analytical_solver'}
-        assert wanted <= wait_for_nodes(env, wanted)
+        assert wanted <= wait_for_nodes(env, wanted, [xml, py, solvers])
         assert ros2(env, 'param', 'get', '/py/data_server', 'watch_period').stdout.strip() == \
             'Double value is: 0.25'
         assert str(graph['master']) in ros2(env, 'param', 'get', '/xml/data_server',
@@ -245,7 +259,7 @@ def test_package_launch_files_with_namespace_and_parameters(env, graph):
         goal = ("{event: steady_state_circular, configuration: sport, model: bicycle, "
                 "parameters: ['steps=5']}")
         done = ros2(env, 'action', 'send_goal', '/xml/steady_state/run_event',
-                    'vd_interfaces/action/RunEvent', goal, timeout=120).stdout
+                    'vd_interfaces/action/RunEvent', goal).stdout
         assert 'Goal finished with status: SUCCEEDED' in done
     finally:
         outs = [stop(p, twice=True) for p in (xml, py, solvers)]
@@ -262,23 +276,23 @@ def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
                    'duration:=2.0', 'speed:=10.0', 'radius:=30.0', 'command_timeout:=30.0')
     try:
         wanted = {'/ls/vehicle_solver', '/ls/path_follower'}
-        assert wanted <= wait_for_nodes(env, wanted)
+        assert wanted <= wait_for_nodes(env, wanted, [launch])
         assert ros2(env, 'param', 'get', '/ls/path_follower', 'radius').stdout.strip() == \
             'Double value is: 30.0'
         assert ros2(env, 'param', 'get', '/ls/vehicle_solver', 'frame_prefix').stdout.strip() \
             == 'String value is: ls/'
         # 2 s of 5 ms steps, each one answered by the controller over ROS
-        deadline, status = time.monotonic() + 120, ''
+        deadline, status = time.monotonic() + HANG_GUARD, ''
         while time.monotonic() < deadline and not status.startswith('data: finished'):
             status = ros2(env, 'topic', 'echo', '--once', '--qos-durability',
                           'transient_local', '--qos-reliability', 'reliable',
-                          '/ls/vehicle/lockstep_status', timeout=60).stdout.strip()
+                          '/ls/vehicle/lockstep_status').stdout.strip()
             time.sleep(2.0)
         assert status.startswith('data: finished at t = 2.000000 s (400 steps)'), status
         assert ros2(env, 'param', 'get', '/ls/vehicle_solver', 'command_timeout').stdout \
             .strip() == 'Double value is: 30.0'
         odom = ros2(env, 'topic', 'echo', '--once', '--qos-durability', 'transient_local',
-                    '--qos-reliability', 'reliable', '/ls/vehicle/odom', timeout=60).stdout
+                    '--qos-reliability', 'reliable', '/ls/vehicle/odom').stdout
         assert 'frame_id: ls/odom' in odom and 'child_frame_id: ls/base_link' in odom
     finally:
         out = stop(launch, twice=True)

@@ -13,7 +13,7 @@ import time
 
 import pytest
 
-from vdtest import tree_snapshot
+from vdtest import HANG_GUARD, tree_snapshot
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -71,7 +71,8 @@ def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_mas
 
 
 def test_check_result_refuses_an_answer_to_another_request():
-    from vd_events.orchestration.runner import RunError, RunRequest, check_result
+    from vd_events.orchestration.runner import RunRequest, check_result
+    from vd_events.errors import RunError
     from vd_interfaces.msg import EventResult
 
     request = RunRequest(event='handling_diagram', configuration='baseline', model='two_track',
@@ -142,7 +143,7 @@ def test_two_embedded_runs_at_once_get_their_own_results(tmp_path, sedan_master,
              for root in (sample_root, other_root)]
     results = []
     for proc in procs:
-        out, err = proc.communicate(timeout=120)
+        out, err = proc.communicate(timeout=HANG_GUARD)
         assert proc.returncode == 0, err
         results.append(json.loads(out))
     rates = [r['metrics']['wheel_rate']['value'] for r in results]

@@ -24,6 +24,7 @@ from vd_data_server.study import load_study
 from vd_events.sweeps.plan import convert, load_plan
 from vd_events.sweeps.sweep import load_records, sweep
 from vd_solvers.kc.from_config import run_kc_event
+from vdtest import HANG_GUARD
 
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
@@ -123,7 +124,7 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
         else:
             os.environ['ROS_DOMAIN_ID'] = old
         launcher.send_signal(signal.SIGTERM)
-        log, _ = launcher.communicate(timeout=30)
+        log, _ = launcher.communicate(timeout=HANG_GUARD)
     summary = json.loads(capsys.readouterr().out)
     assert code == 0, (summary['errors'], log)
     assert summary['computed'] == 4 and summary['failed'] == 0

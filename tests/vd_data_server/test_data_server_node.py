@@ -8,6 +8,8 @@ import time
 
 import pytest
 
+from vdtest import wait_for
+
 pytestmark = pytest.mark.ros
 
 
@@ -42,12 +44,12 @@ def _listener(name: str):
 
 
 def test_late_subscriber_receives_every_configuration(server):
-    from vdtest import spin_until
+    from vdtest import spin_until, wait_for
 
     spin_until([server], lambda: False, timeout=0.3)  # the server has published by now
     listener = _listener('late_listener')
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3 and
+        assert wait_for([server, listener], lambda: len(listener.configs) == 3 and
                           listener.statuses)
         assert set(listener.configs) == {'baseline', 'stiff_rear', 'sport'}
         status = listener.statuses[-1]
@@ -62,10 +64,9 @@ def test_configuration_message_round_trips_losslessly(server):
     from vd_data_server.conversions import configuration_from_msg
 
     listener = _listener('roundtrip_listener')
-    from vdtest import spin_until
 
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3)
+        assert wait_for([server, listener], lambda: len(listener.configs) == 3)
         for name, original in server.service.study.configurations.items():
             assert configuration_from_msg(listener.configs[name]) == original
             assert listener.configs[name].data_hash == original.data_hash
@@ -74,11 +75,10 @@ def test_configuration_message_round_trips_losslessly(server):
 
 
 def test_editing_a_data_file_republishes_new_values_and_feedback(server, sample_root: Path):
-    from vdtest import spin_until
 
     listener = _listener('edit_listener')
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3)
+        assert wait_for([server, listener], lambda: len(listener.configs) == 3)
         old_hash = listener.configs['baseline'].data_hash
         spring = sample_root / 'sedan' / 'front_spring' / 'X.yaml'
         time.sleep(0.01)
@@ -88,7 +88,7 @@ def test_editing_a_data_file_republishes_new_values_and_feedback(server, sample_
             msg = listener.configs.get('baseline')
             return msg is not None and msg.data_hash != old_hash
 
-        assert spin_until([server, listener], updated, timeout=5.0)
+        assert wait_for([server, listener], updated)
         group = next(g for g in listener.configs['baseline'].groups if g.name == 'front_spring')
         rate = next(s for s in group.scalars if s.name == 'rate')
         assert rate.value == pytest.approx(33000.0)
@@ -103,11 +103,10 @@ def test_editing_a_data_file_republishes_new_values_and_feedback(server, sample_
 
 
 def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: Path):
-    from vdtest import spin_until
 
     listener = _listener('master_listener')
     try:
-        assert spin_until([server, listener], lambda: listener.statuses)
+        assert wait_for([server, listener], lambda: listener.statuses)
         text = sedan_master.read_text().replace(
             '  baseline:\n    description: Reference car, all shared data unchanged.\n',
             '  baseline:\n    description: Reference car.\n    overrides:\n'
@@ -119,7 +118,7 @@ def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: P
             return any(s.configuration == 'baseline' and s.group == 'rear_alignment'
                        and s.state == s.MODIFIED for s in listener.statuses[-1].status)
 
-        assert spin_until([server, listener], flipped, timeout=5.0)
+        assert wait_for([server, listener], flipped)
         row = next(s for s in listener.statuses[-1].status
                    if s.configuration == 'baseline' and s.group == 'rear_alignment')
         assert [(k.key, k.data_value, k.master_value, k.unit) for k in row.modified_keys] == [
@@ -129,17 +128,17 @@ def test_master_override_edit_flips_feedback_to_modified(server, sedan_master: P
 
 
 def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: Path):
-    from vdtest import line_no, spin_until
+    from vdtest import line_no
 
     listener = _listener('broken_listener')
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3
+        assert wait_for([server, listener], lambda: len(listener.configs) == 3
                           and listener.statuses)
         before = {n: m.data_hash for n, m in listener.configs.items()}
         spring = sample_root / 'sedan' / 'front_spring' / 'X.yaml'
         time.sleep(0.01)
         spring.write_text(spring.read_text().replace('rate: 30.0', 'rate: -30.0'))
-        assert spin_until([server, listener], lambda: listener.statuses[-1].errors, timeout=5.0)
+        assert wait_for([server, listener], lambda: listener.statuses[-1].errors)
         assert listener.statuses[-1].errors == [
             "sedan/front_spring/X.yaml: rate: must be positive, found -30.0 "
             f"(line {line_no(spring, '  rate:')})"]
@@ -149,12 +148,11 @@ def test_broken_data_file_keeps_previous_data_and_reports(server, sample_root: P
 
 
 def _call(server, client_node, srv_type, name, request):
-    from vdtest import spin_until
 
     client = client_node.create_client(srv_type, name)
-    assert spin_until([server, client_node], client.service_is_ready, timeout=5.0)
+    assert wait_for([server, client_node], client.service_is_ready)
     future = client.call_async(request)
-    assert spin_until([server, client_node], future.done, timeout=5.0)
+    assert wait_for([server, client_node], future.done)
     return future.result()
 
 
@@ -256,21 +254,20 @@ def test_any_failure_of_a_reload_keeps_the_last_good_data(server, monkeypatch):
     reports it on its status topic.
     """
     import vd_data_server.service as service
-    from vdtest import spin_until
 
     def broken(*args, **kwargs):
         raise RecursionError('maximum recursion depth exceeded')
 
     listener = _listener('reload_listener')
     try:
-        assert spin_until([server, listener], lambda: len(listener.configs) == 3
+        assert wait_for([server, listener], lambda: len(listener.configs) == 3
                           and listener.statuses)
         before = server.service.study
         monkeypatch.setattr(service, 'load_study', broken)
         server._publish_outcome(server.service.load())
         expected = [f'{server.service.master_file}: cannot load: RecursionError: maximum '
                     'recursion depth exceeded']
-        assert spin_until([server, listener], lambda: listener.statuses[-1].errors == expected)
+        assert wait_for([server, listener], lambda: listener.statuses[-1].errors == expected)
         assert server.service.study is before
         assert len(listener.statuses[-1].status) > 0  # the last good feedback is still served
     finally:
@@ -320,13 +317,13 @@ def test_a_late_joiner_gets_exactly_the_current_version_of_every_configuration(
 
     first = late_listener('before_listener')
     try:
-        assert spin_until([server, first], lambda: len(first.received) == 3)
+        assert wait_for([server, first], lambda: len(first.received) == 3)
         old = {m.name: m.data_hash for m in first.received}
     finally:
         first.destroy_node()
     replace_once(sample_root / 'sedan' / 'front_spring' / 'X.yaml', 'rate: 30.0', 'rate: 33.0')
-    assert spin_until([server], lambda: server.service.study.configurations[
-        'baseline'].data_hash != old['baseline'], timeout=10.0)
+    assert wait_for([server], lambda: server.service.study.configurations[
+        'baseline'].data_hash != old['baseline'])
     second = late_listener('after_edit_listener')
     try:
         spin_until([server, second], lambda: len(second.received) > 3, timeout=2.0)
@@ -342,8 +339,8 @@ def test_a_late_joiner_gets_exactly_the_current_version_of_every_configuration(
     start = text.index('  stiff_rear:')
     end = text.index('  sport:')
     sedan_master.write_text(text[:start] + text[end:], encoding='utf-8')
-    assert spin_until([server], lambda: sorted(server.service.study.configurations) ==
-                      ['baseline', 'sport'], timeout=10.0)
+    assert wait_for([server], lambda: sorted(server.service.study.configurations) ==
+                      ['baseline', 'sport'])
     third = late_listener('after_removal_listener')
     try:
         spin_until([server, third], lambda: len(third.received) > 2, timeout=2.0)

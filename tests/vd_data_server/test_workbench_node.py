@@ -18,7 +18,7 @@ def test_a_workbench_edit_is_republished_by_the_data_server(ros_domain,
     from vd_data_server.nodes.data_server import DataServer, latched
     from vd_data_server.workbench.server import Workbench
     from vd_interfaces.msg import DataStatus
-    from vdtest import spin_until
+    from vdtest import wait_for
 
     node = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
                                            Parameter('watch_period', value=0.2)])
@@ -32,13 +32,13 @@ def test_a_workbench_edit_is_republished_by_the_data_server(ros_domain,
                 if s.state == s.MODIFIED} if statuses else set()
 
     try:
-        assert spin_until([node, listener], lambda: bool(statuses))
+        assert wait_for([node, listener], lambda: bool(statuses))
         assert ('baseline', 'front_alignment') not in modified()
         assert bench.edit({'op': 'override', 'configuration': 'baseline',
                            'key': 'front_alignment.camber', 'value': '-1.2 deg'}) == (
             'baseline: front_alignment.camber = -1.2 deg')
-        assert spin_until([node, listener],
-                          lambda: ('baseline', 'front_alignment') in modified(), timeout=20.0)
+        assert wait_for([node, listener],
+                          lambda: ('baseline', 'front_alignment') in modified())
     finally:
         bench.stop()
         listener.destroy_node()

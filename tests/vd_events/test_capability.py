@@ -19,6 +19,7 @@ import pytest
 
 from vd_events.studies.capability import QUANTITIES, RELATIVE, compare
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vdtest import HANG_GUARD
 
 REPO = Path(__file__).resolve().parents[2]
 N = 11
@@ -92,7 +93,7 @@ def test_metrics_are_judged_relative_to_the_rigid_value():
     assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1.0e6, 0.9e6, 'Flexible')
 
 
-def _vd(*args, timeout=240):
+def _vd(*args, timeout=HANG_GUARD):
     return subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *args], capture_output=True,
                           text=True, timeout=timeout, cwd=REPO)
 
@@ -123,9 +124,13 @@ def test_vd_capability_end_to_end(tmp_path):
     # one time axis for the ten runs: each message logged at its stamp, stamps strictly
     # increasing on every topic, the runs one after the other
     for m in messages:
-        stamp = m.msg.header.stamp if hasattr(m.msg, 'header') else m.msg.stamp
+        if m.topic == '/tf':  # the wheels' frames, one message per step, stamped alike
+            stamp = m.msg.transforms[0].header.stamp
+        else:
+            stamp = m.msg.header.stamp if hasattr(m.msg, 'header') else m.msg.stamp
         assert m.timestamp == stamp.sec * 1_000_000_000 + stamp.nanosec, m.topic
-    for topic in ('/vd/kc/state', '/vd/kc/result', '/vd/capability/table'):
+    assert len([m for m in messages if m.topic == '/tf']) == len(states)
+    for topic in ('/vd/kc/state', '/vd/kc/result', '/vd/capability/table', '/tf'):
         times = [m.timestamp for m in messages if m.topic == topic]
         assert all(b > a for a, b in zip(times, times[1:])), topic
     assert [(m.msg.event, m.msg.fidelity) for m in states[::7]] == [

@@ -11,7 +11,7 @@ from vd_events.orchestration.dispatch import (
     parse_solvers,
     solver_command,
 )
-from vd_events.orchestration.runner import RunError
+from vd_events.errors import RunError
 
 
 def test_instance_names_keep_the_default_first():
@@ -87,8 +87,11 @@ class _Future:
 class _Client:
     """An action client whose first ``lost`` goal requests are never answered."""
 
-    def __init__(self, lost: int):
+    def __init__(self, lost: int, clock=None):
+        import time
+
         self.lost, self.sent = lost, 0
+        self.clock = clock or time.monotonic
         self.times: list[float] = []
 
     def send_goal_async(self, goal, feedback_callback=None):
@@ -121,12 +124,19 @@ def test_an_unanswered_goal_request_is_sent_again(monkeypatch, lost):
     import vd_events.orchestration.dispatch as dispatch
     from vd_events.orchestration.runner import RunRequest
 
+    # the dispatcher's clock: 1 ms per spin, so the schedule is exact whatever the load
+    clock = SimpleNamespace(now=0.0)
+    monkeypatch.setattr(dispatch.time, 'monotonic', lambda: clock.now)
+
+    def spin_once(timeout_sec):
+        clock.now += 0.001
+
     monkeypatch.setattr(dispatch, 'ACCEPT_TIMEOUT', 0.01)
     monkeypatch.setattr(dispatch, 'DISCOVERY_GRACE', 0.0)
-    client = _Client(lost)
+    client = _Client(lost, lambda: clock.now)
     lines: list[str] = []
-    dispatcher = dispatch.Dispatcher(node=None, executor=SimpleNamespace(
-        spin_once=lambda timeout_sec: None), log=lines.append)
+    dispatcher = dispatch.Dispatcher(node=None, executor=SimpleNamespace(spin_once=spin_once),
+                                     log=lines.append)
     dispatcher.instances['/vd/kc/run_event'] = dispatch.Instance(
         '/vd/kc/run_event', '/vd/kc_solver', 'kc', client, ready_since=0.0)
     monkeypatch.setattr(dispatcher, 'discover', lambda: None)  # the graph does not change
@@ -136,9 +146,9 @@ def test_an_unanswered_goal_request_is_sent_again(monkeypatch, lost):
     assert [(r[0], r[1], r[2]) for r in results] == [(request, None, 'solver says no')]
     assert client.sent == lost + 1
     gaps = [b - a for a, b in zip(client.times, client.times[1:])]
-    # each resend waits twice as long as the one before (a lower bound: load only adds;
-    # the clock is read just after the dispatcher's own reading, hence 0.9)
-    assert all(gap >= 0.9 * 0.01 * 2 ** k for k, gap in enumerate(gaps)), gaps
+    # each resend waits twice as long as the one before: 10, 20, 40 ... ms (to a spin)
+    assert all(0.01 * 2 ** k - 1e-9 <= gap <= 0.01 * 2 ** k + 0.002
+               for k, gap in enumerate(gaps)), gaps
     assert not lines and not dispatcher.instances['/vd/kc/run_event'].dead
 
 
@@ -177,7 +187,7 @@ def test_a_silent_goal_has_its_result_asked_for_again(monkeypatch):
     assert not lines and not dispatcher.instances['/vd/kc/run_event'].dead
 
 
-def test_a_graph_look_that_misses_this_node_kills_no_instance():
+def test_a_graph_look_that_misses_this_node_kills_no_instance(monkeypatch):
     """
     An empty or partial graph query (a loaded machine) is not a node leaving the graph.
 
@@ -195,18 +205,12 @@ def test_a_graph_look_that_misses_this_node_kills_no_instance():
     inst = dispatch.Instance('/vd/kc/run_event', '/vd/kc_solver', 'kc',
                              SimpleNamespace(server_is_ready=lambda: True), ready_since=0.0)
     dispatcher.instances[inst.action] = inst
-    import rclpy.action.graph as action_graph
-
-    real = action_graph.get_action_names_and_types
-    action_graph.get_action_names_and_types = lambda _node: []
-    try:
-        dispatcher.discover()  # nothing seen at all
-        assert not inst.dead
-        graph['nodes'] = [('kc_solver', '/vd')]  # this node missing: partial
-        dispatcher.discover()
-        assert not inst.dead
-        graph['nodes'] = [('sweep_runner', '/')]  # a trusted look without the instance
-        dispatcher.discover()
-        assert inst.dead == 'its node left the ROS graph'
-    finally:
-        action_graph.get_action_names_and_types = real
+    monkeypatch.setattr(dispatch, 'get_action_names_and_types', lambda _node: [])
+    dispatcher.discover()  # nothing seen at all
+    assert not inst.dead
+    graph['nodes'] = [('kc_solver', '/vd')]  # this node missing: partial
+    dispatcher.discover()
+    assert not inst.dead
+    graph['nodes'] = [('sweep_runner', '/')]  # a trusted look without the instance
+    dispatcher.discover()
+    assert inst.dead == 'its node left the ROS graph'

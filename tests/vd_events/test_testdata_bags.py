@@ -20,6 +20,7 @@ import pytest
 from vd_events.bags.bag import custom_data, read_bag
 from vd_events.measured.columns import load_map
 from vd_events.measured.compare import compare, compare_bags, load_outcomes
+from vd_events.reports.compare import write_compare_page
 from vd_events.measured.importer import import_files
 from vd_events.measured.vbo import read_vbo
 
@@ -104,7 +105,8 @@ def test_rig_measurement_passes_against_its_model(sim_bounce: Path, tmp_path: Pa
     rig = tmp_path / 'rig'
     import_files([SAMPLES / 'kc_spmm_bounce_front.csv'],
                  SAMPLES / 'kc_spmm_bounce_front.map.yaml', rig)
-    (c,), page = compare_bags(sim_bounce, rig, tmp_path / 'cmp')
+    (c,) = compare_bags(sim_bounce, rig)
+    page = write_compare_page([c], tmp_path / 'cmp', [sim_bounce, rig])
     assert c.verdict == 'PASS'
     toe = next(e for e in c.errors if e.channel == 'toe_left')
     # the rig's noisy end point (-80.013 mm) lies beyond the simulated -80 mm: left out
@@ -122,7 +124,7 @@ def test_rig_sign_convention_left_out_fails_on_the_gradient(sim_bounce: Path,
                     .replace(', sign: -1}', '}'))
     rig = tmp_path / 'rig'
     import_files([SAMPLES / 'kc_spmm_bounce_front.csv'], cmap, rig)
-    (c,), _ = compare_bags(sim_bounce, rig, tmp_path / 'cmp')
+    (c,) = compare_bags(sim_bounce, rig)
     toe = next(e for e in c.errors if e.channel == 'toe_left')
     assert c.verdict == 'FAIL' and 'gradient' in toe.failures
     assert toe.gradient_test == pytest.approx(-toe.gradient_sim, rel=0.01)
@@ -153,7 +155,7 @@ def test_replay_through_both_models(vbox_bag: Path, tmp_path: Path) -> None:
     from vd_events.measured.replay import replay_bag
 
     result = replay_bag(vbox_bag, ['bicycle', 'vehicle'], 'baseline', None,
-                        tmp_path / 'replay', tmp_path / 'out')
+                        tmp_path / 'replay')
     by_model = {c.sim.model: {e.channel: e for e in c.errors}
                 for c in result['_comparisons']}
     vehicle, bicycle = by_model['vehicle'], by_model['bicycle']
@@ -162,7 +164,9 @@ def test_replay_through_both_models(vbox_bag: Path, tmp_path: Path) -> None:
     assert vehicle['lateral_acceleration'].rms < 0.1
     assert bicycle['yaw_rate'].rms > vehicle['yaw_rate'].rms
     assert {o.model for o in load_outcomes(tmp_path / 'replay')} == {'bicycle', 'vehicle'}
-    assert Path(result['report']).is_file()
+    page = write_compare_page(result['_comparisons'], tmp_path / 'out',
+                              [tmp_path / 'replay', vbox_bag])
+    assert 'yaw_rate' in page.read_text()
 
 
 def test_study_report_from_bags_alone(sim_bounce: Path, vbox_bag: Path, tmp_path: Path) -> None:

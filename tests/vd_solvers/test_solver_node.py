@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from vdtest import spin_until
+from vdtest import HANG_GUARD, spin_until, wait_for
 
 pytestmark = pytest.mark.ros
 
@@ -17,13 +17,13 @@ def _goal(client_node, solver, server, **fields):
 
     client = ActionClient(client_node, RunEvent, '/vd/steady_state/run_event')
     nodes = [server, solver, client_node]
-    assert spin_until(nodes, client.server_is_ready)
+    assert wait_for(nodes, client.server_is_ready)
     send = client.send_goal_async(RunEvent.Goal(**fields))
     # one thread: the acceptance reaches the client only after the goal has run (the
     # first analytical goal computes its K&C inputs, several seconds on a busy machine)
-    assert spin_until(nodes, send.done, timeout=60)
+    assert wait_for(nodes, send.done)
     result = send.result().get_result_async()
-    assert spin_until(nodes, result.done, timeout=60)
+    assert wait_for(nodes, result.done)
     return result.result().result
 
 
@@ -40,7 +40,7 @@ def test_solver_error_names_configuration_and_event_and_node_keeps_serving(ros_d
     solver = AnalyticalSolver()
     client_node = Node('goal_client')
     try:
-        assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
+        assert wait_for([server, solver], lambda: len(solver.configurations) == 3)
         bad = _goal(client_node, solver, server, event='handling_diagram',
                     configuration='baseline', model='two_track',
                     overrides=['mass.sprung_cog.z=20000 mm'])
@@ -91,12 +91,12 @@ def test_invalid_goals_are_rejected_with_the_reason_logged(ros_domain, sedan_mas
     client_node = Node('reject_client')
     nodes = [server, solver, client_node]
     try:
-        assert spin_until(nodes, lambda: solver.status is not None and
+        assert wait_for(nodes, lambda: solver.status is not None and
                           len(solver.configurations) == 3)
         client = ActionClient(client_node, RunEvent, '/vd/kc/run_event')
-        assert spin_until(nodes, client.server_is_ready)
+        assert wait_for(nodes, client.server_is_ready)
         send = client.send_goal_async(RunEvent.Goal(**{'configuration': 'baseline', **fields}))
-        assert spin_until(nodes, send.done)
+        assert wait_for(nodes, send.done)
         assert not send.result().accepted
         err = capfd.readouterr().err
         label = f"configuration '{fields.get('configuration', 'baseline')}', event " \
@@ -137,7 +137,7 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master,
     nodes = [server, client_node]
     try:
         client = ActionClient(client_node, RunEvent, '/vd/kc/run_event')
-        assert spin_until(nodes, client.server_is_ready, timeout=30)
+        assert wait_for(nodes, client.server_is_ready)
         spin_until(nodes, lambda: False, timeout=1.0)  # discovery of the response readers
 
         def accepted(goal):
@@ -158,10 +158,10 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master,
             RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
                           axle='front', parameters=['steps=401']))
         done = send.result().get_result_async()
-        assert spin_until(nodes, done.done, timeout=60)
+        assert wait_for(nodes, done.done)
         assert done.result().result.success
         # feedback is a topic, the result a service: the last feedback may come after it
-        assert spin_until(nodes, lambda: seen and seen[-1] == 1.0, timeout=5)
+        assert wait_for(nodes, lambda: seen and seen[-1] == 1.0)
         assert seen == sorted(seen) and len(seen) >= 3
         send, _ = accepted(
             RunEvent.Goal(event='parallel_wheel_travel', configuration='baseline', model='kc',
@@ -169,15 +169,15 @@ def test_kc_goal_reports_progress_and_can_be_cancelled(ros_domain, sedan_master,
         handle = send.result()
         spin_until(nodes, lambda: False, timeout=0.3)
         cancel = handle.cancel_goal_async()
-        assert spin_until(nodes, cancel.done, timeout=30)
+        assert wait_for(nodes, cancel.done)
         result = handle.get_result_async()
-        assert spin_until(nodes, result.done, timeout=60)
+        assert wait_for(nodes, result.done)
         assert result.result().status == GoalStatus.STATUS_CANCELED
         assert result.result().result.message == ("configuration 'baseline', event "
                                                   "'parallel_wheel_travel': cancelled")
     finally:
         solver.send_signal(signal.SIGINT)
-        solver.wait(timeout=20)
+        solver.wait(timeout=HANG_GUARD)
         for node in reversed(nodes):
             node.destroy_node()
 
@@ -207,7 +207,7 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
     solver = AnalyticalSolver()
     client_node = Node('warning_client')
     try:
-        assert spin_until([server, solver], lambda: len(solver.configurations) == 3)
+        assert wait_for([server, solver], lambda: len(solver.configurations) == 3)
         capfd.readouterr()
         bad = _goal(client_node, solver, server, event='handling_diagram',
                     configuration='baseline', model='two_track', parameters=['steps=3'])

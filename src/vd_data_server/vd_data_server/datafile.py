@@ -28,7 +28,7 @@ from . import plausibility, schema
 from .errors import DataError
 from .model import GroupData, Value
 from .shape import Collector, join, kind_of, section_keys
-from .units import SI_UNITS, UnitSystem, parse_quantity, si_factor, to_si
+from .units import SI_UNITS, UnitSystem, parse_quantity, parse_unit, si_factor, to_si
 from .yamlio import line_of, load_file
 
 TOP_KEYS = ('kind', 'description', 'source', 'units', 'mirror', 'data')
@@ -231,8 +231,6 @@ def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
 
 
 def _short(unit: str) -> str:
-    from .units import parse_unit
-
     return format(parse_unit(unit), '~') if unit else '-'
 
 

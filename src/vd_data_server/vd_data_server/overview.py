@@ -20,8 +20,6 @@ PIPE_WIDTH = 140
 
 def console():
     """Return a rich console: the terminal's width, or PIPE_WIDTH when piped."""
-    from rich.console import Console
-
     probe = Console()
     return Console(highlight=False, width=None if probe.is_terminal else PIPE_WIDTH)
 RED = 'bold red'

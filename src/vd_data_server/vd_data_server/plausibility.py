@@ -21,6 +21,7 @@ from collections.abc import Mapping
 import math
 
 from .errors import DataError
+from .units import SI_UNITS
 
 #: quantity -> (smallest magnitude of a non-zero value, largest magnitude), SI
 LIMITS: Mapping[str, tuple[float, float]] = {
@@ -90,8 +91,6 @@ def unusual_point(xyz: tuple[float, float, float]) -> str | None:
 
 
 def _si(quantity: str) -> str:
-    from .units import SI_UNITS
-
     return SI_UNITS.get(quantity, '') or '-'
 
 

@@ -52,6 +52,7 @@ import pint
 
 from vd_data_server.errors import DataError, DataErrors
 from vd_data_server.units import UREG
+from vd_data_server.yamlio import MAX_FILE_BYTES
 
 __all__ = [
     'DIMENSIONAL_KEYS',
@@ -306,8 +307,6 @@ def read_tir(path: str | Path) -> TireProperties:
     Raises :class:`DataError` (or :class:`DataErrors` for several independent
     problems) naming the file, the key and, where known, the line.
     """
-    from vd_data_server.yamlio import MAX_FILE_BYTES
-
     file = Path(path)
     try:
         with file.open('rb') as stream:

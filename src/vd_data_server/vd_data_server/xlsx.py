@@ -34,6 +34,7 @@ from typing import Any
 from openpyxl import Workbook, load_workbook
 from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
+from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
 from vd_data_server.workbench.server import study_state
 
@@ -405,8 +406,6 @@ def import_workbook(path: Path, target: Path) -> str:
 
 def _flow(doc: Mapping[str, Any]) -> Any:
     """Turn the plain mapping into a round-trip document: component lists in flow style."""
-    from ruamel.yaml.comments import CommentedMap, CommentedSeq
-
     def convert(value: Any) -> Any:
         if isinstance(value, Mapping):
             return CommentedMap((k, convert(v)) for k, v in value.items())

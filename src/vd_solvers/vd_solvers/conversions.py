@@ -21,9 +21,24 @@ from collections.abc import Mapping, Sequence
 import math
 import threading
 
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Point, TransformStamped, Vector3
+from nav_msgs.msg import Odometry
 import numpy as np
 
+from tf2_msgs.msg import TFMessage
 from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
+from vd_interfaces.msg import (
+    AnalyticalState,
+    Bushing,
+    EventResult,
+    KcState,
+    KcWheel,
+    NamedScalar,
+    VehicleState,
+    VehicleWheel,
+)
+from vd_interfaces.msg import Channel as ChannelMsg
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC, message_family
 from vd_solvers.results import Channel, EventOutcome, Metric
 
@@ -106,9 +121,6 @@ VEHICLE_WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
 
 def outcome_to_msg(outcome: EventOutcome, stamp=None):
     """vd_interfaces/EventResult of ``outcome`` (stamped ``stamp`` if given)."""
-    from vd_interfaces.msg import Channel as ChannelMsg
-    from vd_interfaces.msg import EventResult, NamedScalar
-
     msg = EventResult(event=outcome.event, configuration=outcome.configuration,
                       model=outcome.model, fidelity=outcome.fidelity, axle=outcome.axle,
                       data_hash=outcome.data_hash, notes=list(outcome.notes))
@@ -159,8 +171,6 @@ def stamp_ns(stamp) -> int:
 
 def time_msg(ns: int):
     """builtin_interfaces/Time of ``ns`` nanoseconds."""
-    from builtin_interfaces.msg import Time
-
     return Time(sec=int(ns) // _NS, nanosec=int(ns) % _NS)
 
 
@@ -292,10 +302,6 @@ def bushing_names(channels: Mapping[str, Channel]) -> list[str]:
 
 def outcome_kc_states(outcome: EventOutcome, stamp) -> list:
     """vd_interfaces/KcState per step of a K&C outcome (pseudo-time, frame ``base_link``)."""
-    from geometry_msgs.msg import Point, Vector3
-
-    from vd_interfaces.msg import Bushing, KcState, KcWheel
-
     ch, n = outcome.channels, outcome.n_steps
     axle = {f: _column(ch, f, n) for f in KC_AXLE_FIELDS}
     side_cols = []
@@ -334,8 +340,6 @@ def outcome_kc_states(outcome: EventOutcome, stamp) -> list:
 
 def outcome_analytical_states(outcome: EventOutcome, stamp) -> list:
     """vd_interfaces/AnalyticalState per step of a bicycle or two-track outcome."""
-    from vd_interfaces.msg import AnalyticalState
-
     ch, n = outcome.channels, outcome.n_steps
     cols = {f: _column(ch, f, n) for f in ANALYTICAL_FIELDS}
     out = []
@@ -354,8 +358,6 @@ def outcome_vehicle_states(outcome: EventOutcome, stamp) -> list:
 
     Stamped ``stamp`` + simulated time, frame ``odom``.
     """
-    from vd_interfaces.msg import VehicleState, VehicleWheel
-
     ch, n = outcome.channels, outcome.n_steps
     body = {f: _column(ch, f, n) for f in VEHICLE_FIELDS}
     wheels = {w: {f: _column(ch, f'{p}_{w}', n) for f, (p, _) in WHEEL_FIELDS.items()}
@@ -442,10 +444,6 @@ def outcome_transforms(outcome: EventOutcome, stamp) -> list:
 
 def _odometry_transforms(odometry: Sequence) -> list:
     """Return the TFMessage of each Odometry message: its frame -> its child frame."""
-    from geometry_msgs.msg import TransformStamped
-
-    from tf2_msgs.msg import TFMessage
-
     out = []
     for odom in odometry:
         t = TransformStamped()
@@ -499,10 +497,6 @@ def outcome_kc_transforms(outcome: EventOutcome, stamp, prefix: str = '') -> lis
     body is fixed on the rig, so base_link is the frame of the K&C points (docs/kc.md).
     Empty when the outcome has no wheel centres (a measured rig file without them).
     """
-    from geometry_msgs.msg import TransformStamped
-
-    from tf2_msgs.msg import TFMessage
-
     ch, n = outcome.channels, outcome.n_steps
     if not has_wheel_frames({k: c.values for k, c in ch.items()}):
         return []
@@ -538,8 +532,6 @@ def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     channel: z = 0. A channel not measured (absent or NaN: roll, pitch, sideslip of a
     vehicle-test log without them) is 0 in the pose and the twist.
     """
-    from nav_msgs.msg import Odometry
-
     n = outcome.n_steps
     ch = {k: np.nan_to_num(_column(outcome.channels, k, n)) for k in
           ('x', 'y', 'yaw', 'roll', 'pitch', 'speed', 'sideslip', 'yaw_rate')}

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from launch.actions import DeclareLaunchArgument
+
 from vd_data_server.ros.names import DEFAULT_NAMESPACE
 
 #: (name, default, description) of each argument
@@ -23,8 +25,6 @@ ARGUMENTS = (
 
 def declare() -> list:
     """Return the ``DeclareLaunchArgument`` actions of :data:`ARGUMENTS`."""
-    from launch.actions import DeclareLaunchArgument
-
     return [DeclareLaunchArgument(name, default_value=default, description=text)
             for name, default, text in ARGUMENTS]
 

@@ -12,7 +12,12 @@ from contextlib import contextmanager
 import os
 from pathlib import Path
 import shutil
+import tempfile
 from typing import Any
+
+from PIL import Image
+
+from vd_data_server.workbench.server import Workbench, WorkbenchServer
 
 CHROMIUM = '/usr/bin/chromium'
 CHROMEDRIVER = '/usr/bin/chromedriver'
@@ -78,8 +83,6 @@ def full_page_screenshot(driver: Any, path: Path) -> Path:
 
 def _shrink(path: Path) -> None:
     """Store the screenshot with a palette of its colours (a page has few): ~4x smaller."""
-    from PIL import Image
-
     with Image.open(path) as image:
         small = image.convert('RGB').quantize(colors=128, method=Image.Quantize.MEDIANCUT)
     small.save(path, optimize=True)
@@ -88,11 +91,8 @@ def _shrink(path: Path) -> None:
 def save_screenshots(master: Path, out: Path, *, edits: bool = False,
                      groups: list[str] | None = None) -> list[Path]:
     """Save a PNG of the overview and of every group tab (or of ``groups``) into ``out``."""
-    import tempfile
-
     from selenium.webdriver.common.by import By
 
-    from vd_data_server.workbench.server import Workbench, WorkbenchServer
 
     reason = unavailable()
     if reason:

@@ -22,6 +22,7 @@ from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 import json
 from pathlib import Path
+import sys
 import threading
 import time
 from typing import Any, cast
@@ -456,8 +457,6 @@ class WorkbenchServer(ThreadingHTTPServer):
 
     def handle_error(self, request: Any, client_address: Any) -> None:
         """Say nothing of a page that went away; one line for anything else."""
-        import sys
-
         error = sys.exc_info()[1]
         if isinstance(error, (ConnectionResetError, BrokenPipeError, TimeoutError)):
             return

@@ -27,6 +27,31 @@ from pathlib import Path
 import shutil
 from typing import TYPE_CHECKING, Any
 
+from ament_index_python.packages import get_package_share_directory
+from rclpy.duration import Duration
+from rclpy.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    LivelinessPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+)
+from rclpy.serialization import serialize_message
+from rosbags.interfaces import (
+    Qos,
+    QosDurability,
+    QosHistory,
+    QosLiveliness,
+    QosReliability,
+    QosTime,
+)
+from rosbags.rosbag2 import CompressionFormat, CompressionMode, Reader, StoragePlugin, Writer
+from rosbags.rosbag2.storage_mcap import McapWriter
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+import yaml
+
+from vd_events.errors import BagError
+
 # rosbags is imported where a bag is written or read: a run without a bag (and the
 # command line's start) does not pay for it
 if TYPE_CHECKING:
@@ -42,16 +67,11 @@ ROS_DISTRO = 'jazzy'
 _ROSBAGS_DISTRO = 'ros_distro: rosbags'
 
 
-class BagError(Exception):
-    """The bag path cannot be used (exists, unwritable, not a bag)."""
 
 
 @lru_cache(maxsize=1)
 def typestore() -> Typestore:
     """Jazzy's types plus every vd_interfaces message, from the installed .msg files."""
-    from ament_index_python.packages import get_package_share_directory
-    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-
     store = get_typestore(Stores.ROS2_JAZZY)
     msg_dir = Path(get_package_share_directory(INTERFACES)) / 'msg'
     types: dict[str, Any] = {}
@@ -104,9 +124,6 @@ def _partial_is_live(partial: Path) -> bool:
 @lru_cache(maxsize=1)
 def _writer_class() -> type:
     """Return rosbags' Writer whose metadata names the Jazzy distribution."""
-    from rosbags.rosbag2 import StoragePlugin, Writer
-    from rosbags.rosbag2.storage_mcap import McapWriter
-
     class JazzyMcapWriter(McapWriter):
         """rosbags' MCAP storage, with the metadata record naming the Jazzy distribution."""
 
@@ -128,15 +145,6 @@ def _writer_class() -> type:
 
 def qos_record(profile) -> Qos:
     """Return the bag's record of an rclpy QoSProfile (the same enumerations, by value)."""
-    from rosbags.interfaces import (
-        Qos,
-        QosDurability,
-        QosHistory,
-        QosLiveliness,
-        QosReliability,
-        QosTime,
-    )
-
     def duration(d) -> QosTime:
         ns = d.nanoseconds
         return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
@@ -156,15 +164,6 @@ def offered_qos(path: str | Path) -> dict[str, list]:
 
     What ``ros2 bag play`` publishes with.
     """
-    from rclpy.duration import Duration
-    from rclpy.qos import (
-        DurabilityPolicy,
-        HistoryPolicy,
-        LivelinessPolicy,
-        QoSProfile,
-        ReliabilityPolicy,
-    )
-    import yaml
 
     def duration(d) -> Duration:
         return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
@@ -209,7 +208,6 @@ class BagWriter:
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
         # imported before the partial folder exists: a signal during the import
         # leaves nothing behind
-        from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
 
         writer_class = _writer_class()
         self.path = Path(path)
@@ -254,8 +252,6 @@ class BagWriter:
         ``qos`` (rclpy QoSProfiles) is what the topic's publishers offered, recorded
         with the topic's first message.
         """
-        from rclpy.serialization import serialize_message
-
         msgtype = _type_name(msg)
         conn = self._connections.get(topic)
         if conn is None:
@@ -312,7 +308,6 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
     path = Path(path)
     if not (path / 'metadata.yaml').is_file():
         raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')
-    from rosbags.rosbag2 import Reader
 
     store = typestore()
     with Reader(path) as reader:
@@ -325,7 +320,6 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
 
 
 def custom_data(path: str | Path) -> dict[str, str]:
-    import yaml
 
     meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
     return dict(meta.get('rosbag2_bagfile_information', {}).get('custom_data') or {})

@@ -16,12 +16,18 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from builtin_interfaces.msg import Time
+
+from vd_data_server.ros.names import DEFAULT_NAMESPACE
+from vd_data_server.ros.qos import RESULTS, STATES
+from vd_events.bags.bag import BagWriter, log_time
+from vd_interfaces.msg import Provenance
 from vd_solvers import __version__
+from vd_solvers.conversions import outcome_messages as messages
 from vd_solvers.results import EventOutcome
 
 
 def _time(ns: int):
-    from builtin_interfaces.msg import Time
 
     return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
 
@@ -33,9 +39,6 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
     The messages of :func:`vd_solvers.conversions.outcome_messages` (a log's unmeasured
     channels are NaN in the typed states and 0 in the pose, docs/testdata.md).
     """
-    from vd_data_server.ros.names import DEFAULT_NAMESPACE
-    from vd_solvers.conversions import outcome_messages as messages
-
     return [(topic if topic.startswith('/') else f'{DEFAULT_NAMESPACE}/{topic}', msg)
             for topic, msg in messages(outcome, _time(stamp_ns))]
 
@@ -43,10 +46,6 @@ def outcome_messages(outcome: EventOutcome, stamp_ns: int) -> list[tuple[str, ob
 def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
                    custom_data: Mapping[str, str], master_file: str = '') -> Path:
     """Write every (outcome, start stamp ns) to the new bag ``bag``; return its path."""
-    from vd_data_server.ros.qos import RESULTS, STATES
-    from vd_events.bags.bag import BagWriter, log_time
-    from vd_interfaces.msg import Provenance
-
     messages = []
     for outcome, stamp_ns in items:
         provenance = Provenance(stamp=_time(stamp_ns), configuration=outcome.configuration,

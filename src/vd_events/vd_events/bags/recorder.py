@@ -36,7 +36,8 @@ from std_srvs.srv import Trigger
 
 from vd_data_server.ros import names
 from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
-from vd_events.bags.bag import BagError, BagWriter, log_time
+from vd_events.bags.bag import BagWriter, log_time
+from vd_events.errors import BagError
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance
 from vd_solvers.conversions import TIME_AXIS, outcome_from_msg, outcome_messages, start_stamp
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC

@@ -8,19 +8,53 @@ printed with the machine they ran on. They never decide a unit test.
 """
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 import platform
+import shutil
 import statistics
+import subprocess
+import sys
 import tempfile
 import time
 from typing import Any
 
+import numpy
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rich.table import Table
+
+from vd_data_server.nodes.data_server import DataServer
+from vd_data_server.overview import console
+from vd_data_server.paths import default_master
+from vd_data_server.ros.names import CONFIGURATION, DEFAULT_NAMESPACE
+from vd_data_server.ros.qos import CONFIGURATIONS
+from vd_data_server.study import load_study
+from vd_events.bags.bag import BagWriter
+from vd_events.bench.sweep import bench_sweep
+from vd_events.orchestration.lockstep import bench_lockstep
+from vd_events.orchestration.runner import (
+    RunRequest,
+    _claim_domain,
+    _ros_args,
+    _spin_until,
+    run_embedded,
+)
+from vd_events.studies.capability import run_study
+from vd_interfaces.msg import AnalyticalState, Configuration
+from vd_solvers.analytical.events import run_event
+from vd_solvers.kc import cache
+from vd_solvers.kc.bench import bench_kc
+from vd_solvers.kc.events import KCModel
+from vd_solvers.kc.from_config import suspension_input
 from vd_solvers.timing import REPEATS, median_time
+from vd_solvers.vehicle.bench import bench_sine_with_dwell, bench_vehicle
 
 
 def machine() -> dict[str, Any]:
-    import numpy
 
     return {'python': platform.python_version(), 'machine': platform.machine(),
             'cpus': os.cpu_count(), 'numpy': numpy.__version__,
@@ -28,11 +62,6 @@ def machine() -> dict[str, Any]:
 
 
 def run_bench() -> dict[str, Any]:
-    from vd_data_server.paths import default_master
-    from vd_data_server.study import load_study
-    from vd_solvers.analytical.events import run_event
-    from vd_solvers.kc.bench import bench_kc
-    from vd_solvers.kc.from_config import suspension_input
 
     results: dict[str, Any] = {'machine': machine()}
     master = default_master()
@@ -42,7 +71,6 @@ def run_bench() -> dict[str, Any]:
     front, rear = suspension_input(config, 'front'), suspension_input(config, 'rear')
     kc_runs = [bench_kc(front, rear) for _ in range(REPEATS)]
     results['kc'] = {k: statistics.median(r[k] for r in kc_runs) for k in kc_runs[0]}
-    from vd_solvers.kc import cache
 
     def cold() -> None:
         cache.clear()
@@ -55,18 +83,14 @@ def run_bench() -> dict[str, Any]:
         lambda: run_event(config, 'handling_diagram', 'two_track'))
     results['flex'] = _bench_flex(config)
     results['capability_both_axles_s'] = _bench_capability(master)
-    from vd_solvers.vehicle.bench import bench_vehicle
 
     results['vehicle'] = bench_vehicle(config)
-    from vd_events.orchestration.lockstep import bench_lockstep
-    from vd_solvers.vehicle.bench import bench_sine_with_dwell
     results['lockstep'] = bench_lockstep()
     results['sine_with_dwell'] = bench_sine_with_dwell(study)
     results['embedded_run'] = _bench_embedded(master)
     results['cli_run'] = bench_cli()
     results['data_change_to_republish_s'] = _bench_data_change(master)
     results['bag_write'] = _bench_bag()
-    from vd_events.bench.sweep import bench_sweep
 
     results['sweep'] = bench_sweep(master)
     return results
@@ -78,9 +102,6 @@ def _bench_flex(config) -> dict[str, float]:
 
     Flexible: every component of the flex groups; target: flexible within 3x rigid.
     """
-    from vd_solvers.kc.events import KCModel
-    from vd_solvers.kc.from_config import suspension_input
-
     out: dict[str, float] = {}
     for axle in ('front', 'rear'):
         for fidelity in ('rigid', 'flexible'):
@@ -96,9 +117,6 @@ def _bench_capability(master: Path) -> float:
 
     22 runs of 101 steps, through the ROS graph, with bags.
     """
-    from vd_data_server.study import load_study
-    from vd_events.studies.capability import run_study
-
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
         run_study(master, load_study(master), 'baseline', ['front', 'rear'], Path(tmp) / 'cap')
@@ -107,8 +125,6 @@ def _bench_capability(master: Path) -> float:
 
 def _bench_embedded(master: Path) -> dict[str, float]:
     """End to end through the ROS graph in one process: start, one K&C run with a bag."""
-    from vd_events.orchestration.runner import RunRequest, run_embedded
-
     with tempfile.TemporaryDirectory() as tmp:
         request = RunRequest('parallel_wheel_travel', 'baseline', 'kc', axle='front',
                              bag=Path(tmp) / 'bag')
@@ -138,10 +154,6 @@ def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
     loading and validating the study, the imports of the ROS side, starting the graph,
     discovery, recording, the goal (``solve``: goal sent to result received) and shutdown.
     """
-    import json
-    import subprocess
-    import sys
-
     runs = []
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -162,19 +174,6 @@ def _bench_data_change(master: Path) -> float:
 
     The data server watches every 0.5 s, its default.
     """
-    import shutil
-
-    import rclpy
-    from rclpy.executors import SingleThreadedExecutor
-    from rclpy.node import Node
-    from rclpy.parameter import Parameter
-
-    from vd_data_server.nodes.data_server import DataServer
-    from vd_data_server.ros.names import CONFIGURATION, DEFAULT_NAMESPACE
-    from vd_data_server.ros.qos import CONFIGURATIONS
-    from vd_events.orchestration.runner import _claim_domain, _ros_args, _spin_until
-    from vd_interfaces.msg import Configuration
-
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp) / 'data'
         shutil.copytree(master.parents[1], root)
@@ -217,9 +216,6 @@ def _bench_bag(n: int = 20000) -> dict[str, float]:
 
     Serialisation and chunk compression included.
     """
-    from vd_events.bags.bag import BagWriter
-    from vd_interfaces.msg import AnalyticalState
-
     msg = AnalyticalState(event='bench', configuration='baseline', model='two_track', step=0,
                           lateral_acceleration=1.0, speed=20.0, steer_angle=0.01)
     with tempfile.TemporaryDirectory() as tmp:
@@ -233,9 +229,7 @@ def _bench_bag(n: int = 20000) -> dict[str, float]:
 
 
 def print_bench(results: dict[str, Any]) -> None:
-    from rich.table import Table
 
-    from vd_data_server.overview import console
 
     table = Table(title='vd bench  (' + ', '.join(f'{k} {v}' for k, v in
                                                   results['machine'].items()) + ')',

@@ -18,10 +18,20 @@ overhead is the median of (goal time - local time) / local time over
 """
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
+import statistics
 import tempfile
 import time
 from typing import Any
+
+from vd_data_server.master import parse_set, with_overrides
+from vd_data_server.study import load_study
+from vd_events.orchestration.dispatch import SolverGraph
+from vd_events.orchestration.runner import validate
+from vd_events.sweeps.plan import load_plan, points
+from vd_events.sweeps.sweep import requests_for
+from vd_solvers.kc.from_config import run_kc_event
 
 RUNS = 40
 PAIRS = 10
@@ -43,11 +53,6 @@ responses:
 
 
 def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
-    from vd_data_server.master import parse_set, with_overrides
-    from vd_data_server.study import load_study
-    from vd_events.sweeps.plan import load_plan, points
-    from vd_events.sweeps.sweep import requests_for
-    from vd_solvers.kc.from_config import run_kc_event
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / 'bench.yaml'
@@ -65,9 +70,7 @@ def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
     compute = time.perf_counter() - t0
     out: dict[str, Any] = {'runs': runs, 'in_process_s': compute,
                            'per_run_s': compute / runs}
-    import dataclasses
 
-    from vd_events.orchestration.runner import validate
 
     # a warm-up run per instance (imports, first allocation) on the base configuration
     warm = validate(study, dataclasses.replace(requests[0], overrides=(), data_hash=''))
@@ -77,7 +80,6 @@ def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
                                        local if n == 1 else None, pairs)
     one, two = out['1_process_s'], out['2_process_s']
     out['speed_up'] = one / two
-    import statistics
 
     out['overhead_per_run_s'] = statistics.median(goal - here for here, goal in pairs)
     out['overhead_fraction'] = statistics.median((goal - here) / here for here, goal in pairs)
@@ -87,7 +89,6 @@ def bench_sweep(master: Path, runs: int = RUNS) -> dict[str, Any]:
 
 def _timed(master: Path, requests, warm, n: int, local=None,
            pairs: list[tuple[float, float]] | None = None) -> float:
-    from vd_events.orchestration.dispatch import SolverGraph
 
     failures: list[str] = []
 

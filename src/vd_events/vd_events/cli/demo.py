@@ -18,23 +18,23 @@ import shutil
 import sys
 import time
 
-from vd_data_server.overview import console
+from ament_index_python.packages import get_package_share_directory
+
+from vd_data_server.overview import console, print_status
+from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
+from vd_events.reports.display import summary as run_summary
+from vd_events.reports.report import build_pages
+from vd_events.studies.capability import run_study
+from vd_events.studies.plan import expand, load_plan, run_plan
 
 OUT = Path('out/demo')
 def _plan_path() -> Path:
-    from ament_index_python.packages import get_package_share_directory
 
     return Path(get_package_share_directory('vd_events')) / 'plans' / 'demo.yaml'
 
 
 def main() -> int:
-    from vd_data_server.overview import print_status
-    from vd_data_server.paths import default_master
-    from vd_data_server.study import load_study
-    from vd_events.reports.display import summary as run_summary
-    from vd_events.reports.report import build_report
-    from vd_events.studies.capability import run_study
-    from vd_events.studies.plan import expand, load_plan, run_plan
 
     term = console()
     t0 = time.perf_counter()
@@ -74,11 +74,12 @@ def main() -> int:
         needs = sorted({c.event for c in table.cells if c.verdict == 'Flexible'})
         term.print(f"  baseline    {table.axle:<5} flexible ({', '.join(table.components)}) "
                    f"needed for: {', '.join(needs) or 'none'}", soft_wrap=True)
-    bags = [Path(r['bag']) for r in summary['runs'] if r['bag']]
+    bags = [Path(b) for b in summary['finished']]
     bags += sorted((OUT / 'capability').glob('capability_*'))
-    summary['report'] = str(build_report(bags, OUT))
+    summary.update(build_pages(bags, OUT))
     term.print(f"\nbags:   {summary['bags']} ({len(summary['runs'])} runs)")
     term.print(f"report: {summary['report']}")
+    term.print(f"study report (one self-contained file): {summary['study_report']}")
     term.print(f'done in {time.perf_counter() - t0:.1f} s')
     return 1 if summary['errors'] else 0
 

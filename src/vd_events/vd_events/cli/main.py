@@ -1,161 +1,51 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
 """
-The ``vd`` command-line tool (ARCHITECTURE §5).
+The ``vd`` command-line tool (ARCHITECTURE §5): parse, run the verb's handler, report.
 
 Bad input never ends in a traceback: every expected error is printed as
 ``file: key: message`` lines (or ``{"error": ...}`` with ``--json``) and the
 exit code is 2. Nothing is written before the inputs are validated.
+
+The one place of lazy imports in vd: a verb's module is imported when the verb runs
+(:func:`load_handler`), so ``vd data status`` does not pay for rclpy, Pinocchio,
+matplotlib and plotly, which the run, report and sweep verbs import (docs/architecture.md
+gives the measured start-up times).
 """
 from __future__ import annotations
 
 import argparse
 from collections.abc import Callable, Sequence
+import importlib
 import json
 import signal
 import sys
 
 from vd_data_server.errors import DataError
-from vd_events.bags.bag import BagError
-from vd_events.orchestration.domain import DomainError
-from vd_events.orchestration.runner import Interrupted, RunError
+from vd_events.cli.parsers import build_parser
+from vd_events.errors import EventsError, Interrupted
 
 EXIT_OK = 0
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
 
 
-class UsageError(Exception):
-    """Bad command-line input (unknown event, model, configuration, bag path...)."""
-
-
-def _master_arg(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--master', help='master file (default: the bundled sample study)')
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog='vd', description='vd: vehicle-dynamics simulation '
-                                     'on one shared vehicle data set')
-    sub = parser.add_subparsers(dest='command', required=True)
-
-    data = sub.add_parser('data', help='vehicle data and master files').add_subparsers(
-        dest='data_command', required=True)
-    status = data.add_parser('status', help='overview: variant, UNCHANGED/MODIFIED, SAME/DIFFERS')
-    _master_arg(status)
-    status.add_argument('--json', action='store_true')
-    show = data.add_parser('show', help='the resolved configuration in SI')
-    show.add_argument('config')
-    _master_arg(show)
-    show.add_argument('--json', action='store_true')
-    check = data.add_parser('check', help='validate the master file and every data file')
-    _master_arg(check)
-    check.add_argument('--json', action='store_true')
-
-    from vd_events.cli import commands
-
-    commands.add_subcommands(sub)
-    from vd_events.cli import workbench as workbench_cmd
-
-    workbench_cmd.add_subcommands(sub, commands.HANDLERS)
-    return parser
-
-
-def _load(master: str | None):
-    from vd_data_server.paths import default_master
-    from vd_data_server.study import load_study
-
-    return load_study(master or default_master())
-
-
-def cmd_data(args: argparse.Namespace) -> int:
-    from vd_data_server.overview import (
-        configuration_json,
-        console,
-        print_configuration,
-        print_status,
-    )
-
-    study = _load(args.master)
-    term = console()
-    if args.data_command == 'status':
-        if args.json:
-            print(json.dumps(study.to_json(), indent=2))
-        else:
-            print_status(study, term)
-    elif args.data_command == 'show':
-        if args.config not in study.configurations:
-            raise UsageError(f"{study.master.path}: configuration '{args.config}' does not exist "
-                             f"(available: {', '.join(study.configuration_names)})")
-        config = study.configurations[args.config]
-        if args.json:
-            print(json.dumps(configuration_json(config), indent=2))
-        else:
-            print_configuration(config, term)
-    else:
-        _check_models(study)
-        n_files = len({g.file for c in study.configurations.values() for g in c.groups.values()})
-        message = (f'{study.master.path}: OK ({len(study.configurations)} configurations, '
-                   f'{n_files} data files)')
-        if args.json:
-            print(json.dumps({'ok': True, 'message': message, 'warnings': list(study.warnings)}
-                             if study.warnings else {'ok': True, 'message': message}))
-        else:
-            for warning in study.warnings:
-                print(f'warning: {warning}', file=sys.stderr)
-            print(message)
-    return EXIT_OK
-
-
-def _check_models(study) -> None:
-    """
-    Build what a run builds from the data beyond loading it.
-
-    That is each configuration's tire models (finite forces over the working range), so
-    `vd data check` and a run agree.
-    """
-    from vd_data_server.errors import DataErrors
-    from vd_data_server.tire_group import tire_properties
-    from vd_solvers.errors import SolverError
-    from vd_solvers.tire.magic_formula import MagicFormula
-
-    errors: dict[str, DataError] = {}
-    for config in study.configurations.values():
-        for group in config.groups.values():
-            if group.kind != 'tire':
-                continue
-            try:
-                MagicFormula(tire_properties(group))
-            except DataError as err:
-                errors.setdefault(str(err), err)
-            except SolverError:  # a format the analytical models do not evaluate: not bad data
-                continue
-    if errors:
-        found = list(errors.values())
-        raise found[0] if len(found) == 1 else DataErrors(found)
+def load_handler(target: str) -> Callable[[argparse.Namespace], int]:
+    """Import the module of a verb's handler (``module:function``) and return the function."""
+    module, _, function = target.partition(':')
+    return getattr(importlib.import_module(module), function)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from vd_events.cli import commands
-    from vd_events.cli import workbench as workbench_cmd
-
-    argv = list(sys.argv[1:] if argv is None else argv)
-    handlers: dict[str, Callable[[argparse.Namespace], int]] = {'data': cmd_data}
-    xlsx = argv[:2] == ['import', 'xlsx']  # beside `vd import FILE... --bag` (test data)
-    if xlsx:
-        args = workbench_cmd.import_xlsx_parser().parse_args(argv[2:])
-    else:
-        args = build_parser().parse_args(argv)
-    handlers.update(commands.HANDLERS)  # filled in while the parser is built
-    if xlsx:
-        handlers['import'] = workbench_cmd.cmd_import
+    args = build_parser().parse_args(list(sys.argv[1:] if argv is None else argv))
     want_json = bool(getattr(args, 'json', False))
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
-        return handlers[args.command](args)
+        return load_handler(args.handler)(args)
     except Interrupted as err:
         _report_error(str(err), want_json)
         return EXIT_INTERRUPTED
-    except (DataError, UsageError, RunError, BagError, DomainError) as err:
+    except (DataError, EventsError) as err:
         _report_error(str(err), want_json)
         return EXIT_USAGE
     except OSError as err:  # a file or folder the input named cannot be used
@@ -179,6 +69,9 @@ def _report_error(message: str, want_json: bool) -> None:
         print(json.dumps({'error': message}))
     else:
         print(message, file=sys.stderr)
+
+
+__all__ = ['main', 'load_handler', 'EXIT_OK', 'EXIT_USAGE', 'EXIT_INTERRUPTED']
 
 
 if __name__ == '__main__':

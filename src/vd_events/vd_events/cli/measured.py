@@ -4,47 +4,40 @@
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
+from collections.abc import Sequence
 import json
 from pathlib import Path
 
-
-def add_subcommands(sub: argparse._SubParsersAction,
-                    handlers: dict[str, Callable[[argparse.Namespace], int]]) -> None:
-    imp = sub.add_parser('import', help='rig / vehicle-test data (CSV, VBOX .vbo) into a bag')
-    imp.add_argument('files', nargs='+', metavar='FILE')
-    imp.add_argument('--map', help='column map YAML (docs/testdata.md; needed for tables, '
-                     'optional for .vbo)')
-    imp.add_argument('--bag', required=True, help='bag directory to write (must not exist)')
-    imp.add_argument('--json', action='store_true')
-    handlers['import'] = cmd_import
-
-    cmp = sub.add_parser('compare', help='simulation vs test: overlays, error metrics, verdicts')
-    cmp.add_argument('sim_bag', metavar='SIM_BAG')
-    cmp.add_argument('test_bag', metavar='TEST_BAG')
-    cmp.add_argument('--out', default='out/compare', help='report folder')
-    cmp.add_argument('--tolerances', help='tolerance YAML (channel: {rms, max, bias, '
-                     'gradient}); default: docs/testdata.md')
-    cmp.add_argument('--json', action='store_true')
-    handlers['compare'] = cmd_compare
-
-    rep = sub.add_parser('replay', help='drive the bicycle and full-vehicle models with the '
-                         'steering and speed of a vehicle log and compare (open-loop '
-                         'validation)')
-    rep.add_argument('test_bag', metavar='TEST_BAG')
-    rep.add_argument('--config', default=None, help='configuration (default: the first)')
-    rep.add_argument('--master', help='master file (default: the bundled sample study)')
-    rep.add_argument('--models', default='bicycle,vehicle', help='bicycle,vehicle')
-    rep.add_argument('--bag', help='bag for the replayed runs (must not exist; default: '
-                     '<out>/replay)')
-    rep.add_argument('--out', default='out/replay', help='report folder')
-    rep.add_argument('--json', action='store_true')
-    handlers['replay'] = cmd_replay
+from vd_events.cli.parsers import XLSX
+from vd_events.cli.workbench import import_xlsx
+from vd_events.errors import UsageError
+from vd_events.measured.compare import (
+    Comparison,
+    compare_bags,
+    gradient_shown,
+    load_tolerances,
+    shown,
+)
+from vd_events.measured.importer import import_files
+from vd_events.measured.replay import replay_bag
+from vd_events.reports.compare import write_compare_page
 
 
 def cmd_import(args: argparse.Namespace) -> int:
-    from vd_events.measured.importer import import_files
+    """
+    ``vd import FILE... --bag DIR`` (measured data), or ``vd import xlsx WORKBOOK --out MASTER``.
 
+    The two forms share the verb (ARCHITECTURE §5); the first FILE says which it is.
+    """
+    if args.files[0] == XLSX:
+        if len(args.files) != 2 or not args.out or args.bag or args.map:
+            raise UsageError('vd import xlsx takes one workbook and --out MASTER (no --bag or '
+                             '--map): vd import xlsx WORKBOOK --out MASTER')
+        return import_xlsx(Path(args.files[1]), Path(args.out))
+    if not args.bag or args.out:
+        raise UsageError('vd import of measured data takes --bag DIR (and no --out): vd import '
+                         'FILE... [--map COLUMNS.yaml] --bag DIR; a master workbook: vd import '
+                         'xlsx WORKBOOK --out MASTER')
     path, outcomes = import_files([Path(f) for f in args.files],
                                   Path(args.map) if args.map else None, Path(args.bag))
     if args.json:
@@ -61,11 +54,10 @@ def cmd_import(args: argparse.Namespace) -> int:
 
 
 def cmd_compare(args: argparse.Namespace) -> int:
-    from vd_events.measured.compare import compare_bags, load_tolerances, print_comparisons
-
     tolerances = load_tolerances(Path(args.tolerances) if args.tolerances else None)
-    comparisons, page = compare_bags(Path(args.sim_bag), Path(args.test_bag), Path(args.out),
-                                     tolerances)
+    sim_bag, test_bag = Path(args.sim_bag), Path(args.test_bag)
+    comparisons = compare_bags(sim_bag, test_bag, tolerances)
+    page = write_compare_page(comparisons, Path(args.out), [sim_bag, test_bag])
     if args.json:
         print(json.dumps({'report': str(page), 'comparisons': [c.to_json() for c in comparisons]}))
     else:
@@ -75,23 +67,34 @@ def cmd_compare(args: argparse.Namespace) -> int:
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
-    from vd_events.measured.replay import replay_bag
-
     models = [m.strip() for m in args.models.split(',') if m.strip()]
     out = Path(args.out)
     result = replay_bag(Path(args.test_bag), models, args.config,
                         Path(args.master) if args.master else None,
-                        Path(args.bag) if args.bag else out / 'replay', out)
+                        Path(args.bag) if args.bag else out / 'replay')
     comparisons = result.pop('_comparisons')
+    result['report'] = str(write_compare_page(comparisons, out, [Path(result['bag']),
+                                                                 Path(args.test_bag)]))
     if args.json:
         print(json.dumps(result))
     else:
-        from vd_events.measured.compare import print_comparisons
-
         print_comparisons(comparisons)
         print(f"bag:    {result['bag']}")
         print(f"report: {result['report']}")
     return 0
 
 
-__all__ = ['add_subcommands']
+def print_comparisons(comparisons: Sequence[Comparison]) -> None:
+    for c in comparisons:
+        print(f'{c.label}: {c.verdict}')
+        for e in c.errors:
+            grad = ''
+            if e.gradient_error is not None:
+                grad = (f', gradient {gradient_shown(e.gradient_sim, e.gradient_unit)} vs '
+                        f'{gradient_shown(e.gradient_test, e.gradient_unit)}')
+            print(f'  {e.channel:28s} rms {shown(e.rms, e.unit):>14s}  max '
+                  f'{shown(e.max, e.unit):>14s}  bias {shown(e.bias, e.unit):>14s}{grad}  '
+                  f'{e.verdict}')
+
+
+__all__ = ['cmd_import', 'cmd_compare', 'cmd_replay']

@@ -4,44 +4,30 @@
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
 from contextlib import contextmanager
 import json
 from pathlib import Path
 import sys
 
-from vd_events.orchestration.runner import MODEL_FAMILY, Interrupted
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
 
-
-def add_subcommands(sub: argparse._SubParsersAction,
-                    handlers: dict[str, Callable[[argparse.Namespace], int]]) -> None:
-    for name, helptext in (('sweep', 'DOE over override factors; table + report pages'),
-                           ('optimize', 'reach targets by changing factors; writes a '
-                                        'configuration')):
-        cmd = sub.add_parser(name, help=helptext)
-        cmd.add_argument('plan', help='sweep plan YAML (docs/sweeps.md)')
-        cmd.add_argument('--solvers', help='solver processes to start: N of each family the '
-                         'runs need, or FAMILY=N,... (e.g. kc=2); default 2. With --attach: '
-                         'the instances to wait for before the runs start (default 1)')
-        cmd.add_argument('--attach', action='store_true', help='use the solver instances '
-                         'already running on ROS_DOMAIN_ID (vd launch --solvers, other hosts) '
-                         'instead of starting any')
-        cmd.add_argument('--out', help='output folder (default: out/<plan name>)')
-        cmd.add_argument('--json', action='store_true')
-    handlers['sweep'] = cmd_sweep
-    handlers['optimize'] = cmd_optimize
+from vd_data_server.study import load_study
+from vd_events.errors import Interrupted, RunError
+from vd_events.orchestration.dispatch import Dispatcher, SolverGraph, parse_solvers
+from vd_events.orchestration.runner import MODEL_FAMILY
+from vd_events.reports.sweep import write_outputs
+from vd_events.sweeps.optimize import check_plan, optimize
+from vd_events.sweeps.plan import load_plan, points
+from vd_events.sweeps.sweep import requests_for, sweep
 
 
 def _solvers(text: str | None, attach: bool = False):
-    from vd_events.orchestration.dispatch import parse_solvers
 
     if text is None:
         return 1 if attach else 2
     text = text.strip()
     if text.isdigit():
         if int(text) < 1:
-            from vd_events.orchestration.runner import RunError
-
             raise RunError(f'--solvers: expected a positive number, found {text!r}')
         return int(text)
     return parse_solvers(text)
@@ -50,8 +36,6 @@ def _solvers(text: str | None, attach: bool = False):
 @contextmanager
 def _graph(plan, args):
     """Yield an evaluator over the solver instances of the sweep's graph."""
-    from vd_events.orchestration.dispatch import Dispatcher, SolverGraph
-
     solvers = _solvers(args.solvers, args.attach)
     families = sorted({MODEL_FAMILY[r.model] for r in plan.runs})
     counts = (dict.fromkeys(families, solvers) if isinstance(solvers, int)
@@ -86,7 +70,6 @@ def _bar(quiet: bool):
     """Make a rich progress bar on the terminal (runs done / runs to compute)."""
     if quiet:
         return None, None
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
 
     progress = Progress('[progress.description]{task.description}', BarColumn(),
                         MofNCompleteColumn(), TimeRemainingColumn(), transient=True)
@@ -98,18 +81,12 @@ def _bar(quiet: bool):
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from vd_data_server.study import load_study
-    from vd_events.reports.sweep import write_outputs
-    from vd_events.sweeps.plan import load_plan
-    from vd_events.sweeps.sweep import sweep
 
     path = Path(args.plan)
     plan = load_plan(path)
     study = load_study(plan.master)
     out = Path(args.out) if args.out else Path('out') / plan.name
     _solvers(args.solvers, args.attach)
-    from vd_events.sweeps.plan import points
-    from vd_events.sweeps.sweep import requests_for
 
     requests_for(plan, study, points(plan))  # every point checked before a process starts
     with _graph(plan, args) as (evaluator, quiet):
@@ -138,9 +115,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def cmd_optimize(args: argparse.Namespace) -> int:
-    from vd_data_server.study import load_study
-    from vd_events.sweeps.optimize import check_plan, optimize
-    from vd_events.sweeps.plan import load_plan
 
     plan = load_plan(Path(args.plan), optimize=True)
     study = load_study(plan.master)

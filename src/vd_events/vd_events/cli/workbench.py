@@ -9,6 +9,15 @@ from pathlib import Path
 from typing import Any
 
 from vd_data_server.errors import DataError
+from vd_data_server.masteredit import load_document
+from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
+from vd_data_server.workbench.server import serve
+from vd_data_server.xlsx import export_workbook, import_workbook
+from vd_data_server.yamlio import read_bytes
+from vd_events.errors import RunError
+from vd_events.orchestration.runner import RunRequest, run_embedded, validate
+from vd_events.reports.display import HEADLINE_NAMES, display
 
 #: the events "Update marked" runs for each marked configuration: (event, model)
 MARKED_EVENTS = (('steady_state_circular', 'bicycle'), ('handling_diagram', 'two_track'))
@@ -16,48 +25,7 @@ MARKED_EVENTS = (('steady_state_circular', 'bicycle'), ('handling_diagram', 'two
 HEADLINE_COUNT = 4
 
 
-def add_subcommands(sub: argparse._SubParsersAction,
-                    handlers: dict[str, Callable[[argparse.Namespace], int]]) -> None:
-    gui = sub.add_parser('gui', help='the master-file workbench in a browser (127.0.0.1)')
-    gui.add_argument('--master', help='master file (default: the bundled sample study)')
-    gui.add_argument('--port', type=int, default=8765, help='port on 127.0.0.1 (default 8765; '
-                     '0: any free port)')
-    gui.add_argument('--edits', action='store_true', help='allow edits of the master file '
-                     'from the page (off by default)')
-    gui.add_argument('--screenshots', metavar='DIR', help='save a screenshot of every tab '
-                     'into DIR (headless Chromium) and exit')
-    handlers['gui'] = cmd_gui
-
-    export = sub.add_parser('export', help='export the study (vd export xlsx; back with: vd '
-                            'import xlsx WORKBOOK --out MASTER)').add_subparsers(
-        dest='export_format', required=True)
-    xlsx = export.add_parser('xlsx', help='the overview and group tabs as an Excel workbook')
-    xlsx.add_argument('--master', help='master file (default: the bundled sample study)')
-    xlsx.add_argument('--out', default=None, help='workbook to write (default: '
-                      'out/<master file name>.xlsx)')
-    handlers['export'] = cmd_export
-
-
-
-def import_xlsx_parser() -> argparse.ArgumentParser:
-    """
-    Build the parser of ``vd import xlsx WORKBOOK --out MASTER``.
-
-    ``vd import`` also takes measured data (``vd import FILE... --bag DIR``): ``cli.main``
-    hands ``vd import xlsx ...`` to this parser, so the two never share one.
-    """
-    parser = argparse.ArgumentParser(prog='vd import xlsx', description='a master workbook '
-                                     '(vd export xlsx layout) into a master file')
-    parser.add_argument('workbook')
-    parser.add_argument('--out', required=True, help='master file to write (its folder '
-                        'decides the data root, as for any master file; a previous file is '
-                        'kept as .bak)')
-    parser.set_defaults(command='import')
-    return parser
-
-
 def _master(path: str | None) -> Path:
-    from vd_data_server.paths import default_master
 
     return Path(path) if path else default_master()
 
@@ -65,9 +33,6 @@ def _master(path: str | None) -> Path:
 def marked_runner(master: Path) -> Callable[[Sequence[str]], Mapping[str, Any]]:
     """Run :data:`MARKED_EVENTS` for configurations through the ordinary runner."""
     def run(names: Sequence[str]) -> Mapping[str, Any]:
-        from vd_data_server.study import load_study
-        from vd_events.orchestration.runner import RunError, RunRequest, run_embedded, validate
-        from vd_events.reports.display import HEADLINE_NAMES, display
 
         study = load_study(master)
         requests = []
@@ -104,7 +69,6 @@ def _text(value: float, unit: str) -> str:
 
 
 def cmd_gui(args: argparse.Namespace) -> int:
-    from vd_data_server.workbench.server import serve
 
     master = _master(args.master)
     if not 0 <= args.port <= 65535:
@@ -120,10 +84,6 @@ def cmd_gui(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    from vd_data_server.masteredit import load_document
-    from vd_data_server.study import load_study
-    from vd_data_server.xlsx import export_workbook
-    from vd_data_server.yamlio import read_bytes
 
     master = _master(args.master)
     study = load_study(master)
@@ -136,10 +96,8 @@ def cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_import(args: argparse.Namespace) -> int:
-    from vd_data_server.xlsx import import_workbook
-
-    out = Path(args.out)
-    import_workbook(Path(args.workbook), out)
-    print(f'{out}: written from {args.workbook}')
+def import_xlsx(workbook: Path, out: Path) -> int:
+    """``vd import xlsx WORKBOOK --out MASTER``: a master workbook into a master file."""
+    import_workbook(workbook, out)
+    print(f'{out}: written from {workbook}')
     return 0

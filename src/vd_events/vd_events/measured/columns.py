@@ -32,8 +32,10 @@ from pathlib import Path
 import re
 from typing import Any, cast
 
-from vd_data_server.errors import DataError
+import yaml
+
 from vd_data_server.units import UREG, parse_unit
+from vd_events.errors import InputError
 from vd_solvers.kc.channels import UNITS as KC_BASE_UNITS
 
 KINDS = ('kc', 'vehicle')
@@ -72,19 +74,6 @@ _UNIT_ALIASES = {'°': 'deg', 'degrees': 'deg', 'kmh': 'km/h', 'kph': 'km/h', 'g
                  'nm': 'N*m', 'Nm': 'N*m', '-': '', '': ''}
 
 
-class InputError(DataError):
-    """Bad measured input: names the file, the line and the column where known."""
-
-    def __init__(self, file: str | Path, message: str, *, line: int | None = None,
-                 column: int | None = None, name: str | None = None) -> None:
-        where = []
-        if line is not None:
-            where.append(f'line {line}')
-        if column is not None:
-            where.append(f'column {column}' + (f' {name!r}' if name else ''))
-        elif name:
-            where.append(f'column {name!r}')
-        super().__init__(message, file=str(file), key=', '.join(where) or None)
 
 
 def finite_number(file: str | Path, text: str, *, line: int, column: int, name: str) -> float:
@@ -186,8 +175,6 @@ def _radian_power(unit) -> int:
 
 def load_map(path: str | Path) -> ColumnMap:
     """Read and validate a column map; InputError names the map's file and key."""
-    import yaml
-
     path = Path(path)
     try:
         text = path.read_text(encoding='utf-8')

@@ -33,17 +33,21 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-import html
 import math
 from pathlib import Path
 
 import numpy as np
+import yaml
 
-from vd_events.measured.columns import KC_SWEEP, InputError, unit_factor
+from vd_events.bags.bag import read_bag
+from vd_events.errors import InputError
+from vd_events.measured.columns import KC_SWEEP, si_unit, unit_factor
+from vd_solvers.constants import DEG
+from vd_solvers.conversions import outcome_from_msg
 from vd_solvers.kc.metrics import FORCE_WINDOW, TRAVEL_WINDOW, slope_at
 from vd_solvers.results import EventOutcome
+from vd_solvers.standards.fmvss126 import RESPONSE_CUTOFF, STEER_CUTOFF, ProcessingError, lowpass
 
-DEG = 180.0 / math.pi
 #: half-width of the gradient window per swept channel (SI)
 #: N*m of applied aligning torque: the half-width of that event's gradient window
 MOMENT_WINDOW = 25.0
@@ -67,7 +71,7 @@ GRADIENT_TOLERANCE = 0.10  # relative error of a slope at design
 #: a simulation's note naming the channels it took from the test (a replay's inputs)
 INPUTS_NOTE = 'inputs taken from the log: '
 #: how a unit is shown in tables (the values stay SI in JSON)
-DISPLAY = {'rad': ('deg', DEG), 'rad/s': ('deg/s', DEG), 'm': ('mm', 1e3)}
+DISPLAY = {'rad': ('deg', 1.0 / DEG), 'rad/s': ('deg/s', 1.0 / DEG), 'm': ('mm', 1e3)}
 
 
 @dataclass(frozen=True)
@@ -186,12 +190,6 @@ def _uniform(t: np.ndarray) -> bool:
 
 
 def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> np.ndarray:
-    from vd_solvers.standards.fmvss126 import (
-        RESPONSE_CUTOFF,
-        STEER_CUTOFF,
-        ProcessingError,
-        lowpass,
-    )
 
     cutoff = STEER_CUTOFF if channel in STEERING_CHANNELS else RESPONSE_CUTOFF
     try:
@@ -285,9 +283,6 @@ def compare(sim: EventOutcome, test: EventOutcome,
 
 def load_outcomes(bag: Path) -> list[EventOutcome]:
     """Every EventOutcome in a finished bag (its ``*/result`` messages)."""
-    from vd_events.bags.bag import read_bag
-    from vd_solvers.conversions import outcome_from_msg
-
     return [outcome_from_msg(item.msg) for item in read_bag(bag)
             if item.topic.endswith('/result')]
 
@@ -303,9 +298,7 @@ def load_tolerances(path: Path | None) -> dict[str, dict[str, float]]:
     """``channel: {rms: '0.05 deg', max: ..., bias: ..., gradient: 0.1}`` -> SI values."""
     if path is None:
         return {}
-    import yaml
 
-    from vd_events.measured.columns import si_unit
 
     try:
         raw = yaml.safe_load(path.read_text(encoding='utf-8'))
@@ -334,10 +327,10 @@ def load_tolerances(path: Path | None) -> dict[str, dict[str, float]]:
     return out
 
 
-def compare_bags(sim_bag: Path, test_bag: Path, out: Path,
+def compare_bags(sim_bag: Path, test_bag: Path,
                  tolerances: Mapping[str, Mapping[str, float]] | None = None
-                 ) -> tuple[list[Comparison], Path]:
-    """Compare every matching pair of two bags and write ``out/compare.html``."""
+                 ) -> list[Comparison]:
+    """Compare every matching pair of two bags (the page: ``reports.compare``)."""
     sims, tests = load_outcomes(sim_bag), load_outcomes(test_bag)
     tests = [t for t in tests if t.model in ('rig', 'test')]
     if not tests:
@@ -349,19 +342,17 @@ def compare_bags(sim_bag: Path, test_bag: Path, out: Path,
         want = ', '.join(sorted({f'{t.event} {t.axle}'.strip() for t in tests}))
         raise InputError(sim_bag, f'no simulation of the measured events ({want}); the bag '
                          f'has: {have}')
-    comparisons = [compare(s, t, tolerances) for s, t in pairs]
-    page = write_page(comparisons, out, [sim_bag, test_bag])
-    return comparisons, page
+    return [compare(s, t, tolerances) for s, t in pairs]
 
 
-def _shown(value: float | None, unit: str) -> str:
+def shown(value: float | None, unit: str) -> str:
     if value is None or not math.isfinite(value):
         return '–'
     name, scale = DISPLAY.get(unit, (unit, 1.0))
     return f'{value * scale:.4g} {name}'.strip()
 
 
-def _gradient_shown(value: float | None, unit: str) -> str:
+def gradient_shown(value: float | None, unit: str) -> str:
     if value is None:
         return '–'
     top, _, bottom = unit.partition('/')
@@ -369,107 +360,5 @@ def _gradient_shown(value: float | None, unit: str) -> str:
     return f'{value * top_scale:.4g} {top_name}/{bottom}'
 
 
-def comparison_html(c: Comparison, images: Sequence[str]) -> str:
-    """One simulation-vs-test section: overlays, the error table, the verdict."""
-    rows = []
-    for e in c.errors:
-        tol = ', '.join(f"{k} {_shown(v, e.unit) if k != 'gradient' else f'{100 * v:g} %'}"
-                        for k, v in e.tolerance.items())
-        colour = {'PASS': '#c9e7c0', 'FAIL': '#f4c7c3'}.get(e.verdict, '#eee')
-        rows.append(
-            f'<tr><td>{html.escape(e.channel)}</td><td>{e.points}</td>'
-            f'<td>{_shown(e.rms, e.unit)}</td><td>{_shown(e.max, e.unit)}</td>'
-            f'<td>{_shown(e.bias, e.unit)}</td><td>{_shown(e.test_rms, e.unit)}</td>'
-            f'<td>{_gradient_shown(e.gradient_sim, e.gradient_unit)}</td>'
-            f'<td>{_gradient_shown(e.gradient_test, e.gradient_unit)}</td>'
-            f'<td>{html.escape(tol)}</td>'
-            f'<td style="background:{colour}">{e.verdict}'
-            f"{' (' + ', '.join(e.failures) + ')' if e.failures else ''}</td></tr>")
-    imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
-    prov = [n for n in c.test.notes if n.split(':')[0] in (
-        'source', 'source_sha256', 'rig', 'logger', 'vehicle', 'date', 'column map')]
-    return (f'<h2>Simulation vs test — {html.escape(c.label)}: {c.verdict}</h2>'
-            f"<div class='plots'>{imgs}</div>"
-            '<table><tr><th>channel</th><th>points</th><th>RMS error</th><th>max error</th>'
-            '<th>bias (sim − test)</th><th>test RMS</th><th>gradient sim</th>'
-            '<th>gradient test</th><th>tolerance</th><th>verdict</th></tr>'
-            f"{''.join(rows)}</table>"
-            f"<ul class='notes'>{''.join(f'<li>{html.escape(n)}</li>' for n in c.notes)}"
-            f"{''.join(f'<li>{html.escape(n)}</li>' for n in prov)}"
-            f'<li>simulation: data hash {html.escape(c.sim.data_hash)}</li></ul>')
-
-
-def plot_comparison(c: Comparison, out: Path, prefix: str) -> list[str]:
-    """PNG overlays of simulation and test per compared channel; returns the file names."""
-    import matplotlib
-
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-
-    names = []
-    ax_unit = c.test.channels[c.axis].unit
-    xscale = DISPLAY.get(ax_unit, (ax_unit, 1.0))
-    for i, e in enumerate(c.errors):
-        yname, yscale = DISPLAY.get(e.unit, (e.unit, 1.0))
-        factor, offset = unit_factor(c.test.channels[e.channel].unit, e.unit)
-        fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
-        ax.plot(c.test.channels[c.axis].values * xscale[1],
-                (c.test.channels[e.channel].values * factor + offset) * yscale,
-                '.', markersize=3, label=f'test: {c.test.configuration}')
-        ax.plot(c.test_x * xscale[1], c.sim_x[e.channel] * yscale, '-',
-                label=f'sim: {c.sim.configuration} ({c.sim.model})')
-        ax.set_xlabel(f'{c.axis} [{xscale[0]}]')
-        ax.set_ylabel(f'{e.channel} [{yname}]')
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize='small')
-        ax.set_title(f'{c.test.event}: {e.channel} ({e.verdict})', fontsize='medium')
-        name = f'{prefix}_{i}.png'
-        fig.tight_layout()
-        fig.savefig(out / name)
-        plt.close(fig)
-        names.append(name)
-    return names
-
-
-def sections(comparisons: Sequence[Comparison], out: Path, prefix: str = 'compare') -> list[str]:
-    """Return the HTML sections of ``comparisons``; their PNGs go into ``out``."""
-    return [comparison_html(c, plot_comparison(c, out, f'{prefix}_{k}'))
-            for k, c in enumerate(comparisons)]
-
-
-def write_page(comparisons: Sequence[Comparison], out: Path, bags: Sequence[Path]) -> Path:
-    import os
-
-    from vd_events.reports.report import CSS
-
-    out.mkdir(parents=True, exist_ok=True)
-    body = ''.join(sections(comparisons, out))
-    summary = ''.join(f'<tr><td>{html.escape(c.label)}</td><td>{c.verdict}</td></tr>'
-                      for c in comparisons)
-    page = (f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>vd compare</title>'
-            f'<style>{CSS}</style></head><body><h1>Simulation vs test</h1>'
-            f"<p>Bags: {html.escape(', '.join(str(b) for b in bags))}</p>"
-            f'<table><tr><th>comparison</th><th>verdict</th></tr>{summary}</table>'
-            f'{body}</body></html>')
-    path = out / 'compare.html'
-    tmp = out / '.compare.html.partial'
-    tmp.write_text(page, encoding='utf-8')
-    os.replace(tmp, path)
-    return path
-
-
-def print_comparisons(comparisons: Sequence[Comparison]) -> None:
-    for c in comparisons:
-        print(f'{c.label}: {c.verdict}')
-        for e in c.errors:
-            grad = ''
-            if e.gradient_error is not None:
-                grad = (f', gradient {_gradient_shown(e.gradient_sim, e.gradient_unit)} vs '
-                        f'{_gradient_shown(e.gradient_test, e.gradient_unit)}')
-            print(f'  {e.channel:28s} rms {_shown(e.rms, e.unit):>14s}  max '
-                  f'{_shown(e.max, e.unit):>14s}  bias {_shown(e.bias, e.unit):>14s}{grad}  '
-                  f'{e.verdict}')
-
-
 __all__ = ['compare', 'compare_bags', 'Comparison', 'ChannelError', 'load_outcomes', 'pair',
-           'TOLERANCES', 'sections', 'print_comparisons']
+           'TOLERANCES', 'shown', 'gradient_shown', 'DISPLAY', 'load_tolerances']

@@ -17,7 +17,10 @@ import datetime as dt
 import hashlib
 from pathlib import Path
 
-from vd_events.measured.columns import ColumnMap, InputError, load_map
+from vd_events.bags.bag import check_bag_path
+from vd_events.bags.outcomes import write_outcomes
+from vd_events.errors import InputError
+from vd_events.measured.columns import ColumnMap, load_map
 from vd_events.measured.table import Measured, read_table
 from vd_events.measured.vbo import read_vbo
 from vd_solvers import __version__
@@ -95,9 +98,6 @@ def start_stamp(measured: Measured) -> int:
 
 def import_files(files: Sequence[Path], map_path: Path | None, bag: Path) -> tuple[Path, list]:
     """Read and check every file, then write one bag with all of them; return it."""
-    from vd_events.bags.bag import check_bag_path
-    from vd_events.bags.outcomes import write_outcomes
-
     check_bag_path(bag)
     cmap = load_map(map_path) if map_path is not None else None
     items = []

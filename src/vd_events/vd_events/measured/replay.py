@@ -19,8 +19,20 @@ import dataclasses
 import datetime as dt
 from pathlib import Path
 
-from vd_events.measured.columns import InputError
+from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
+from vd_events.bags.bag import check_bag_path
+from vd_events.bags.outcomes import write_outcomes
+from vd_events.errors import InputError
+from vd_events.measured.compare import INPUTS_NOTE, compare, load_outcomes
+from vd_solvers import __version__
+from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
+from vd_solvers.analytical.kc_link import try_kc_inputs
+from vd_solvers.analytical.replay import replay_bicycle
+from vd_solvers.errors import SolverError
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.vehicle.model import VehicleModel
+from vd_solvers.vehicle.replay import replay_vehicle
 
 MODELS = ('bicycle', 'vehicle')
 NEEDED = ('time', 'steering_wheel_angle', 'speed')
@@ -33,9 +45,6 @@ UNITS = {'time': 's', 'yaw_rate': 'rad/s', 'lateral_acceleration': 'm/s^2', 'sid
 
 def bicycle_outcome(config, test: EventOutcome, steering_ratio: float,
                     ratio_source: str) -> EventOutcome:
-    from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
-    from vd_solvers.analytical.kc_link import try_kc_inputs
-    from vd_solvers.analytical.replay import replay_bicycle
 
     kc = try_kc_inputs(config, static_wheel_loads(config))
     p = vehicle_params(config) if isinstance(kc, str) else vehicle_params(
@@ -55,10 +64,6 @@ def bicycle_outcome(config, test: EventOutcome, steering_ratio: float,
 
 def replay_outcomes(config, test: EventOutcome, models: Sequence[str]) -> list[EventOutcome]:
     """Replay ``test`` on ``config`` with each of ``models``."""
-    from vd_solvers.errors import SolverError
-    from vd_solvers.vehicle.model import VehicleModel
-    from vd_solvers.vehicle.replay import replay_vehicle
-
     missing = [k for k in NEEDED if k not in test.channels]
     if missing:
         raise InputError(test.configuration, f"the log of '{test.event}' has no "
@@ -88,15 +93,13 @@ def replay_outcomes(config, test: EventOutcome, models: Sequence[str]) -> list[E
 
 
 def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
-               master: Path | None, bag: Path, out: Path) -> dict:
-    """Replay every vehicle log of ``test_bag``; write the runs' bag and the comparison."""
-    from vd_data_server.paths import default_master
-    from vd_data_server.study import load_study
-    from vd_events.bags.bag import check_bag_path
-    from vd_events.bags.outcomes import write_outcomes
-    from vd_events.measured.compare import INPUTS_NOTE, compare, load_outcomes, write_page
-    from vd_solvers import __version__
+               master: Path | None, bag: Path) -> dict:
+    """
+    Replay every vehicle log of ``test_bag``; write the runs' bag; compare.
 
+    Returns the bag, the comparisons as JSON and (``_comparisons``) as objects, whose page
+    ``reports.compare.write_compare_page`` writes.
+    """
     check_bag_path(bag)
     tests = [o for o in load_outcomes(test_bag) if o.model == 'test']
     if not tests:
@@ -119,8 +122,7 @@ def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
         'vd.data_hash': config.data_hash, 'vd.master_file': str(master),
         'vd.models': ' '.join(models), 'vd.test_bag': str(test_bag),
         'vd.software_version': __version__}, master_file=str(master))
-    page = write_page(comparisons, out, [path, test_bag])
-    return {'bag': str(path), 'report': str(page),
+    return {'bag': str(path),
             'comparisons': [c.to_json() for c in comparisons], '_comparisons': comparisons}
 
 

@@ -18,7 +18,8 @@ import hashlib
 
 import numpy as np
 
-from vd_events.measured.columns import ColumnMap, InputError, si_unit, unit_factor
+from vd_events.errors import InputError
+from vd_events.measured.columns import ColumnMap, si_unit, unit_factor
 from vd_solvers.results import Channel, EventOutcome, Metric
 
 FIELDS = ('position', 'velocity', 'effort')

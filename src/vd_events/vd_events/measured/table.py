@@ -15,7 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from vd_events.measured.columns import ColumnMap, InputError, finite_number, si_unit, unit_factor
+from vd_events.errors import InputError
+from vd_events.measured.columns import ColumnMap, finite_number, si_unit, unit_factor
 
 
 @dataclass(frozen=True)

@@ -46,14 +46,8 @@ import re
 
 import numpy as np
 
-from vd_events.measured.columns import (
-    ColumnMap,
-    InputError,
-    finite_number,
-    normalise,
-    si_unit,
-    unit_factor,
-)
+from vd_events.errors import InputError
+from vd_events.measured.columns import ColumnMap, finite_number, normalise, si_unit, unit_factor
 from vd_events.measured.table import Measured, check_increasing, read_text
 
 #: WGS84 semi-major axis, m, and first eccentricity squared

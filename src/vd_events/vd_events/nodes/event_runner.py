@@ -21,7 +21,8 @@ from vd_data_server.errors import DataError
 from vd_data_server.ros import names
 from vd_data_server.ros.node_main import run_node
 from vd_data_server.study import load_study
-from vd_events.orchestration.runner import EventClient, RunError, send_goal, validate
+from vd_events.errors import RunError
+from vd_events.orchestration.runner import EventClient, send_goal, validate
 from vd_events.studies.plan import expand, load_plan
 
 #: exit code when Ctrl-C or SIGTERM stopped the plan (as a shell reports SIGINT)

@@ -26,7 +26,9 @@ from std_srvs.srv import Trigger
 
 from vd_data_server.errors import DataError
 from vd_data_server.ros.node_main import spin_node
-from vd_events.bags.bag import BagError, check_bag_path
+from vd_events.bags.bag import check_bag_path
+from vd_events.bags.outcomes import write_outcomes
+from vd_events.errors import BagError
 from vd_events.measured.columns import load_map
 from vd_events.measured.rig import RigRecording
 from vd_solvers.nodes.solver import SAMPLES
@@ -62,8 +64,6 @@ class RigBridge(Node):
 
     def finish(self) -> str:
         """Write the bag; return its path (DataError/BagError: nothing written)."""
-        from vd_events.bags.outcomes import write_outcomes
-
         if self.written is not None:
             return self.written
         outcome = self.recording.outcome()

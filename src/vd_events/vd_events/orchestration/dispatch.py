@@ -32,18 +32,29 @@ import tempfile
 import time
 from typing import IO, Any
 
+from action_msgs.msg import GoalStatus
+import rclpy
+from rclpy.action import ActionClient
+from rclpy.action.graph import get_action_names_and_types
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+
+from vd_events.errors import RunError
 from vd_events.orchestration import graph
 from vd_events.orchestration.graph import instance_names
 from vd_events.orchestration.runner import (
     ACCEPT_TIMEOUT,
     DISCOVERY_GRACE,
-    RunError,
+    EventClient,
     RunRequest,
+    _claim_domain,
     _ros_args,
     _spin_until,
     check_result,
     stop_processes,
 )
+from vd_interfaces.action import RunEvent
+from vd_solvers.conversions import outcome_from_msg
 from vd_solvers.families import FAMILIES as SOLVER_FAMILIES
 from vd_solvers.results import EventOutcome
 
@@ -132,10 +143,7 @@ class Dispatcher:
     expect_wait: float = EXPECT_WAIT
 
     def discover(self) -> None:
-        from rclpy.action import ActionClient
-        from rclpy.action.graph import get_action_names_and_types
 
-        from vd_interfaces.action import RunEvent
 
         nodes = {(ns.rstrip('/') + '/' + name) for name, ns in
                  self.node.get_node_names_and_namespaces()}
@@ -177,11 +185,6 @@ class Dispatcher:
 
     def run(self, requests: Sequence[RunRequest], done: Done) -> None:
         """Compute every request; ``done`` is called once per request, as each finishes."""
-        from action_msgs.msg import GoalStatus
-
-        from vd_events.orchestration.runner import EventClient
-        from vd_solvers.conversions import outcome_from_msg
-
         goal_of = EventClient.goal
         pending = [_Job(r) for r in requests]
         active: list[Instance] = []
@@ -337,11 +340,7 @@ class SolverGraph:
         self._logs: IO[str] | None = None
 
     def __enter__(self) -> Dispatcher:
-        import rclpy
-        from rclpy.executors import SingleThreadedExecutor
-        from rclpy.node import Node
 
-        from vd_events.orchestration.runner import _claim_domain
 
         try:
             if self.attach:
@@ -383,7 +382,6 @@ class SolverGraph:
                 start(name, solver_command(family, name))
 
     def __exit__(self, *exc) -> None:
-        import rclpy
 
         if self.node is not None:
             self.executor.remove_node(self.node)

@@ -19,6 +19,8 @@ from pathlib import Path
 import random
 import tempfile
 
+from vd_events.errors import DomainError
+
 #: domains drawn for runs (clear of the default 0 and of what ROS tools tend to use)
 DOMAINS = range(101, 216)
 #: the highest domain id ROS 2 accepts with the default port layout
@@ -26,8 +28,6 @@ MAX_DOMAIN_ID = 232
 ENV = 'VD_DOMAIN_ID'
 
 
-class DomainError(Exception):
-    """No domain could be claimed (message says which and why)."""
 
 
 def lock_dir() -> Path:

@@ -16,8 +16,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ament_index_python.packages import get_package_prefix
+
 from vd_data_server.ros import names
 from vd_solvers.families import FAMILIES
+from vd_solvers.nodes.vehicle import VehicleSolver
 
 
 @dataclass(frozen=True)
@@ -83,8 +86,6 @@ def parameter_text(value: object) -> str:
 
 def executable(package: str, name: str) -> Path:
     """Return the path ``ros2 run PACKAGE NAME`` starts, or FileNotFoundError."""
-    from ament_index_python.packages import get_package_prefix
-
     path = Path(get_package_prefix(package)) / 'lib' / package / name
     if not path.exists():
         raise FileNotFoundError(f'executable {path} not found (is the workspace built?)')
@@ -113,7 +114,6 @@ def solver_class(family: str) -> type:
         from vd_solvers.nodes.kc import KCSolver
 
         return KCSolver
-    from vd_solvers.nodes.vehicle import VehicleSolver
 
     return VehicleSolver
 

@@ -18,18 +18,23 @@ import signal
 import subprocess
 import time
 
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.parameter import Parameter
+
+from vd_data_server.paths import default_master
 from vd_data_server.ros import names
+from vd_data_server.ros.node_main import make_executor, quiet_teardown, spin_guarded
+from vd_data_server.study import load_study
+from vd_events.orchestration import graph
+from vd_events.orchestration.dispatch import parse_solvers
+from vd_events.orchestration.runner import stop_processes
 
 
 def launch(master: Path | None, *, distributed: bool,
            namespace: str = names.DEFAULT_NAMESPACE, allow_edits: bool = False,
            solvers: str = '') -> int:
     """Start the graph (validated first: bad data starts nothing); return the exit code."""
-    from vd_data_server.paths import default_master
-    from vd_data_server.study import load_study
-    from vd_events.orchestration import graph
-    from vd_events.orchestration.dispatch import parse_solvers
-
     # instances per family (vd_events.orchestration.dispatch); default 1
     counts = parse_solvers(solvers)
     master = master or default_master()
@@ -41,12 +46,7 @@ def launch(master: Path | None, *, distributed: bool,
 
 
 def _embedded(specs, master: Path, namespace: str) -> int:
-    import rclpy
-    from rclpy.executors import ExternalShutdownException
-    from rclpy.parameter import Parameter
 
-    from vd_data_server.ros.node_main import make_executor, quiet_teardown, spin_guarded
-    from vd_events.orchestration import graph
 
     rclpy.init()
     nodes = [graph.node_class(spec)(
@@ -68,8 +68,6 @@ def _embedded(specs, master: Path, namespace: str) -> int:
 
 
 def _distributed(specs, master: Path, namespace: str) -> int:
-    from vd_events.orchestration import graph
-    from vd_events.orchestration.runner import stop_processes
 
     commands = [graph.command(spec, namespace) for spec in specs]
 

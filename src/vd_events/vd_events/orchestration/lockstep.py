@@ -21,6 +21,23 @@ from dataclasses import dataclass, field
 from pathlib import Path
 import time
 
+from nav_msgs.msg import Odometry
+import rclpy
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import String
+
+from tf2_msgs.msg import TFMessage
+from vd_data_server.ros.qos import COMMANDS, STATUS
+from vd_events.bags.bag import BagWriter, check_bag_path
+from vd_events.orchestration.path_follower import PathFollower
+from vd_interfaces.msg import VehicleCommand, VehicleState
+from vd_solvers.nodes.lockstep import STATUS_TOPIC
+from vd_solvers.nodes.solver import SAMPLES
+from vd_solvers.nodes.vehicle import VehicleSolver
+
 
 @dataclass
 class LockstepOutcome:
@@ -61,17 +78,6 @@ def run_lockstep(*, configuration: str = '', master: Path | None = None, duratio
     (the transport's own cost, for the benchmark); ``track=False`` keeps no path (one
     subscriber less). ``wall_limit`` bounds the wall time.
     """
-    import rclpy
-    from rclpy.experimental import EventsExecutor
-    from rclpy.parameter import Parameter
-    from std_msgs.msg import String
-
-    from vd_data_server.ros.qos import STATUS
-    from vd_events.bags.bag import BagWriter, check_bag_path
-    from vd_events.orchestration.path_follower import PathFollower
-    from vd_solvers.nodes.lockstep import STATUS_TOPIC
-    from vd_solvers.nodes.vehicle import VehicleSolver
-
     if bag is not None:
         check_bag_path(Path(bag))
     own = not rclpy.ok()
@@ -145,10 +151,6 @@ def run_lockstep(*, configuration: str = '', master: Path | None = None, duratio
 
 def _zero_commander():
     """Return a node answering every odometry message with a zero command of its stamp."""
-    from nav_msgs.msg import Odometry
-    from rclpy.node import Node
-
-    from vd_interfaces.msg import VehicleCommand
 
     class ZeroCommander(Node):
         """Answer every odometry message with a zero command of its stamp."""
@@ -166,11 +168,7 @@ def _zero_commander():
 
 
 def _types():
-    from nav_msgs.msg import Odometry
-    from rosgraph_msgs.msg import Clock
 
-    from tf2_msgs.msg import TFMessage
-    from vd_interfaces.msg import VehicleCommand, VehicleState
     return {'/clock': Clock, '/vd/vehicle/state': VehicleState, '/vd/vehicle/odom': Odometry,
             '/tf': TFMessage, '/vd/vehicle/command': VehicleCommand}
 
@@ -187,9 +185,6 @@ def _stamp(msg) -> int:
 
 def _record(node, writer, path) -> None:
     """Subscribe ``node`` to RECORDED and write each message at its stamp."""
-    from vd_data_server.ros.qos import COMMANDS
-    from vd_solvers.nodes.solver import SAMPLES
-
     types = _types()
     last: dict[str, int] = {}
 
@@ -210,9 +205,7 @@ def _record(node, writer, path) -> None:
 
 
 def _track(node, path) -> None:
-    from nav_msgs.msg import Odometry
 
-    from vd_solvers.nodes.solver import SAMPLES
 
     def keep(msg) -> None:
         path.append((_stamp(msg) * 1e-9, msg.pose.pose.position.x, msg.pose.pose.position.y))

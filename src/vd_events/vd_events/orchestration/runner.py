@@ -29,12 +29,28 @@ import sys
 import tempfile
 import time
 
+import rclpy
+from rclpy.action import ActionClient
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from std_msgs.msg import UInt32
+from std_srvs.srv import Trigger
+
 from vd_data_server.errors import DataError
 from vd_data_server.master import parse_set, with_overrides
+from vd_data_server.nodes.data_server import DataServer
 from vd_data_server.ros import names
+from vd_data_server.ros.qos import LATEST
 from vd_data_server.study import Study
-from vd_events.bags.bag import PARTIAL_SUFFIX, BagError, check_bag_path
-from vd_events.orchestration.domain import DomainError, claim_domain
+from vd_events.bags.bag import PARTIAL_SUFFIX, check_bag_path, read_bag
+from vd_events.bags.recorder import FINISH_SERVICE, RECORDED_TOPIC, Recorder
+from vd_events.errors import BagError, DomainError, Interrupted, RunError
+from vd_events.orchestration import graph
+from vd_events.orchestration.domain import claim_domain
+from vd_events.orchestration.graph import solver_class
+from vd_interfaces.action import RunEvent
+from vd_solvers.conversions import outcome_from_msg
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
 from vd_solvers.families import (
@@ -67,12 +83,8 @@ NOTICE_PERIOD = 30.0
 SPIN_PERIOD = 0.1
 
 
-class RunError(Exception):
-    """A run could not start or did not finish (message names configuration and event)."""
 
 
-class Interrupted(RunError):
-    """Ctrl-C or SIGTERM during a run: what was written is removed, and the message says so."""
 
 
 @dataclass(frozen=True)
@@ -171,9 +183,7 @@ class EventClient:
     """
 
     def __init__(self, node, discovery_grace: float = DISCOVERY_GRACE) -> None:
-        from rclpy.action import ActionClient
 
-        from vd_interfaces.action import RunEvent
 
         self.node = node
         self.discovery_grace = discovery_grace
@@ -185,8 +195,6 @@ class EventClient:
     @staticmethod
     def goal(request: RunRequest):
         """Return the RunEvent goal of ``request``."""
-        from vd_interfaces.action import RunEvent
-
         return RunEvent.Goal(event=request.event, configuration=request.configuration,
                              model=request.model, fidelity=request.fidelity, axle=request.axle,
                              overrides=list(request.overrides),
@@ -303,8 +311,6 @@ def _run_goal(executor, client: EventClient, request: RunRequest,
               progress: Callable[[RunRequest, float, str], None] | None,
               alive: Alive = _always) -> EventOutcome:
     """One goal to its solver; the result as an EventOutcome, or RunError."""
-    from vd_solvers.conversions import outcome_from_msg
-
     ok, message, result = send_goal(executor, client, request,
                                      lambda p, s: progress(request, p, s) if progress else None,
                                      alive, _notice)
@@ -349,14 +355,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     (if given) hears each run's outcome as soon as it is complete.
     """
     clock = _Phases(timings)
-    import rclpy
-    from rclpy.executors import MultiThreadedExecutor
-    from rclpy.node import Node
-    from rclpy.parameter import Parameter
 
-    from vd_data_server.nodes.data_server import DataServer
-    from vd_events.bags.recorder import Recorder
-    from vd_events.orchestration.graph import solver_class
 
     families = sorted({r.family for r in requests})
     classes = [solver_class(f) for f in families]
@@ -487,17 +486,6 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     terminal reaches only this process, which stops them in order) and end with
     it however it ends (node_main.die_with_parent, also after ``kill -9``).
     """
-    import rclpy
-    from rclpy.executors import SingleThreadedExecutor
-    from rclpy.node import Node
-    from std_msgs.msg import UInt32
-    from std_srvs.srv import Trigger
-
-    from vd_data_server.ros.qos import LATEST
-    from vd_events.bags.bag import read_bag
-    from vd_events.bags.recorder import FINISH_SERVICE, RECORDED_TOPIC
-    from vd_events.orchestration import graph
-
     claim = _claim_domain()
     env = dict(os.environ, ROS_DOMAIN_ID=str(claim.domain), VD_PARENT_PID=str(os.getpid()),
                ROS_AUTOMATIC_DISCOVERY_RANGE=os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE',
@@ -610,7 +598,6 @@ def _finish_recording(executor, finish, recorder: subprocess.Popen, request: Run
     (an answer Fast DDS dropped still leaves the final bag behind).
     """
     assert request.bag is not None
-    from std_srvs.srv import Trigger
 
     def recorder_alive() -> str | None:
         return (None if recorder.poll() is None

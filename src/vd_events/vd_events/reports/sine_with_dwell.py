@@ -14,15 +14,16 @@ configuration's verdict with the deciding run (49 CFR 571.126 S5.2).
 from __future__ import annotations
 
 from collections.abc import Sequence
-import html
 import math
 from pathlib import Path
 
-DEG = 180.0 / math.pi
-G = 9.80665
+from vd_events.reports.figures import new_figure, save_figure
+from vd_events.reports.html import Cell, Section, Table, images
+from vd_events.reports.runs import TO_DEG, TO_G
+
 FIGURES = (('series_lateral_acceleration', 'lateral acceleration [m/s²]', 1.0, '4.4.4'),
-           ('series_roll', 'roll angle [deg]', DEG, '4.4.5'),
-           ('series_yaw_rate', 'yaw rate [deg/s]', DEG, '4.4.6'))
+           ('series_roll', 'roll angle [deg]', TO_DEG, '4.4.5'),
+           ('series_yaw_rate', 'yaw rate [deg/s]', TO_DEG, '4.4.6'))
 STYLES = ('-', '--')
 COLOURS = ('tab:blue', 'tab:orange', 'tab:green', 'tab:red', 'tab:purple', 'tab:brown')
 
@@ -40,80 +41,69 @@ def _picked(run) -> list[int]:
     return sorted({near, last})
 
 
-def sine_with_dwell_section(runs: Sequence, out: Path, family: str) -> str:
-    """Write the figures into ``out``; return the HTML section."""
-    import matplotlib.pyplot as plt
-
-    from vd_events.reports.report import save_figure
-
+def sine_with_dwell_section(runs: Sequence, out: Path, family: str) -> Section:
+    """Write the figures into ``out``; return the section."""
     usable = [r for r in runs if 'series_time' in r.channels]
-    images = []
+    names = []
     for channel, label, scale, fig_no in FIGURES:
-        fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
+        fig, ax = new_figure()
         for c, run in enumerate(usable):
             ch = run.channels
             for s, k in enumerate(_picked(run)):
-                amp = ch['run_amplitude'][k] * DEG
+                amp = ch['run_amplitude'][k] * TO_DEG
                 ax.plot(ch['series_time'], ch[f'{channel}_{k + 1:02d}'] * scale,
                         color=COLOURS[c % len(COLOURS)], linestyle=STYLES[s % len(STYLES)],
                         label=f'{run.label}, {amp:.0f} deg')
         name = f'sine_with_dwell_{family}_{channel}.png'
         save_figure(fig, ax, out / name, 'time [s]', label,
                     f'sine with dwell (Fig. {fig_no}): {label.split(" [")[0]}', legend='x-small')
-        images.append(name)
-    imgs = ''.join(f'<img src="{html.escape(i)}" alt="{html.escape(i)}">' for i in images)
-    return (f"<h2>sine_with_dwell ({html.escape(family)}) — FMVSS 126 / UN R140 / GTR 8</h2>"
-            f"<div class='plots'>{imgs}</div>{_verdicts(runs)}"
-            + ''.join(_run_table(r) for r in runs))
+        names.append(name)
+    return Section(f'sine_with_dwell ({family}) — FMVSS 126 / UN R140 / GTR 8',
+                   images=images(names), tables=[_verdicts(runs)],
+                   subsections=[s for s in (_run_table(r) for r in runs) if s is not None])
 
 
-def _flag(value: float) -> str:
+def _flag(value: float) -> Cell:
     if not math.isfinite(value):
-        return '–'
-    return 'pass' if value > 0.5 else '<b>FAIL</b>'
+        return Cell('–', cls='na')
+    return Cell('pass', cls='ok') if value > 0.5 else Cell('FAIL', cls='bad')
 
 
-def _verdicts(runs: Sequence) -> str:
+def _verdicts(runs: Sequence) -> Table:
     rows = []
     for r in runs:
         m = {k: v.value for k, v in r.metrics.items()}
         if 'passed' not in m:
             continue
-        rows.append(
-            f"<tr><td>{html.escape(r.label)}</td>"
-            f"<td>{m.get('a_reference', math.nan) * DEG:.1f}</td>"
-            f"<td>{int(m.get('runs', 0))}</td>"
-            f"<td>{_flag(m.get('lateral_stability_1_00_passed', math.nan))}</td>"
-            f"<td>{_flag(m.get('lateral_stability_1_75_passed', math.nan))}</td>"
-            f"<td>{_flag(m.get('responsiveness_passed', math.nan))}</td>"
-            f"<td>{_flag(m['passed'])}</td><td>{html.escape(r.notes[0] if r.notes else '')}"
-            '</td></tr>')
-    return ("<table><tr><th>configuration</th><th>A [deg]</th><th>runs</th>"
-            "<th>r(COS+1.0) ≤ 35 %</th><th>r(COS+1.75) ≤ 20 %</th><th>Y(BOS+1.07)</th>"
-            f"<th>overall</th><th>deciding run</th></tr>{''.join(rows)}</table>")
+        rows.append([r.label, f"{m.get('a_reference', math.nan) * TO_DEG:.1f}",
+                     int(m.get('runs', 0)),
+                     _flag(m.get('lateral_stability_1_00_passed', math.nan)),
+                     _flag(m.get('lateral_stability_1_75_passed', math.nan)),
+                     _flag(m.get('responsiveness_passed', math.nan)), _flag(m['passed']),
+                     r.notes[0] if r.notes else ''])
+    return Table(['configuration', 'A [deg]', 'runs', 'r(COS+1.0) ≤ 35 %',
+                  'r(COS+1.75) ≤ 20 %', 'Y(BOS+1.07)', 'overall', 'deciding run'], rows)
 
 
-def _run_table(run) -> str:
+def _run_table(run) -> Section | None:
     ch = run.channels
     if 'run_amplitude' not in ch:
-        return ''
+        return None
     rows = []
     for k in range(len(ch['run_amplitude'])):
-        side = 'left' if ch['run_direction'][k] > 0 else 'right'
-        rows.append(
-            f"<tr><td>{k + 1}</td><td>{ch['run_amplitude'][k] * DEG:.1f}</td><td>{side}</td>"
-            f"<td>{ch['run_peak_yaw_rate'][k] * DEG:.1f}</td>"
-            f"<td>{100 * ch['run_yaw_rate_ratio_1_00'][k]:.1f}</td>"
-            f"<td>{100 * ch['run_yaw_rate_ratio_1_75'][k]:.1f}</td>"
-            f"<td>{ch['run_lateral_displacement'][k]:.2f}</td>"
-            f"<td>{ch['run_peak_lateral_acceleration'][k] / G:.3f}</td>"
-            f"<td>{ch['run_peak_roll'][k] * DEG:.2f}</td>"
-            f"<td>{_flag(float(ch['run_passed'][k]))}</td></tr>")
-    return (f"<h3>Runs — {html.escape(run.label)}</h3><div class='scroll'><table>"
-            '<tr><th>#</th><th>amplitude [deg]</th><th>first</th><th>peak yaw rate [deg/s]</th>'
-            '<th>r(COS+1.0) [%]</th><th>r(COS+1.75) [%]</th><th>Y(BOS+1.07) [m]</th>'
-            '<th>a_y,max [g]</th><th>roll,max [deg]</th><th>result</th></tr>'
-            f"{''.join(rows)}</table></div>")
+        rows.append([
+            k + 1, f"{ch['run_amplitude'][k] * TO_DEG:.1f}",
+            'left' if ch['run_direction'][k] > 0 else 'right',
+            f"{ch['run_peak_yaw_rate'][k] * TO_DEG:.1f}",
+            f"{100 * ch['run_yaw_rate_ratio_1_00'][k]:.1f}",
+            f"{100 * ch['run_yaw_rate_ratio_1_75'][k]:.1f}",
+            f"{ch['run_lateral_displacement'][k]:.2f}",
+            f"{ch['run_peak_lateral_acceleration'][k] * TO_G:.3f}",
+            f"{ch['run_peak_roll'][k] * TO_DEG:.2f}", _flag(float(ch['run_passed'][k]))])
+    return Section(f'Runs — {run.label}', level=3, tables=[Table(
+        ['#', 'amplitude [deg]', 'first', 'peak yaw rate [deg/s]', 'r(COS+1.0) [%]',
+         'r(COS+1.75) [%]', 'Y(BOS+1.07) [m]', 'a_y,max [g]', 'roll,max [deg]', 'result'],
+        rows)])
 
 
 __all__ = ['sine_with_dwell_section']

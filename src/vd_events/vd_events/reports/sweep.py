@@ -3,21 +3,22 @@
 """
 The files of a sweep: table (CSV, Parquet), sensitivity, main effects, Pareto front, HTML.
 
-Every file is written under a temporary name and renamed, so a reader never sees a
+Every file is written atomically (``vd_data_server.files``), so a reader never sees a
 half-written one. The CSV is complete on its own; the Parquet copy (same columns,
 units in the column metadata) is written when pyarrow is installed.
 """
 from __future__ import annotations
 
-import html
 import json
 import math
-import os
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from vd_data_server.files import atomic_path, atomic_write
+from vd_events.reports.figures import plt, save
+from vd_events.reports.html import Cell, Section, Table, images, write_page
 from vd_events.sweeps.sweep import (
     SweepResult,
     columns,
@@ -27,12 +28,6 @@ from vd_events.sweeps.sweep import (
     src,
     table_csv,
 )
-
-
-def _atomic(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f'.{path.name}.tmp')
-    tmp.write_bytes(data)
-    os.replace(tmp, path)
 
 
 def sensitivity(result: SweepResult) -> dict[str, Any]:
@@ -57,10 +52,10 @@ def _num(v: float) -> float | None:
 
 
 def write_outputs(result: SweepResult, out: Path) -> dict[str, str]:
+    """Write the table, its Parquet copy, the summary, the plots and the page of a sweep."""
     out.mkdir(parents=True, exist_ok=True)
     files: dict[str, str] = {}
-    _atomic(out / 'table.csv', table_csv(result).encode())
-    files['csv'] = str(out / 'table.csv')
+    files['csv'] = str(atomic_write(out / 'table.csv', table_csv(result)))
     parquet = _write_parquet(result, out / 'table.parquet')
     if parquet:
         files['parquet'] = parquet
@@ -73,10 +68,8 @@ def write_outputs(result: SweepResult, out: Path) -> dict[str, str]:
                'sensitivity': sens,
                'pareto': {'responses': [n for n, _ in result.plan.pareto],
                           'points': [int(i) for i in fronts]} if result.plan.pareto else None}
-    _atomic(out / 'summary.json', json.dumps(summary, indent=2).encode())
-    files['summary'] = str(out / 'summary.json')
-    _atomic(out / 'sweep.html', _html(result, sens, fronts, plots).encode())
-    files['report'] = str(out / 'sweep.html')
+    files['summary'] = str(atomic_write(out / 'summary.json', json.dumps(summary, indent=2)))
+    files['report'] = str(_page(result, sens, fronts, plots, out / 'sweep.html'))
     return files
 
 
@@ -84,7 +77,7 @@ def _write_parquet(result: SweepResult, path: Path) -> str | None:
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
-    except ImportError:
+    except ImportError:  # optional: the CSV is complete on its own
         return None
     plan = result.plan
     fields = [pa.field('point', pa.int64())]
@@ -103,9 +96,8 @@ def _write_parquet(result: SweepResult, path: Path) -> str | None:
     table = pa.Table.from_arrays(arrays, schema=pa.schema(fields, metadata={
         'vd.plan': str(plan.path), 'vd.design': plan.design,
         'vd.columns': json.dumps(columns(plan))}))
-    tmp = path.with_name(f'.{path.name}.tmp')
-    pq.write_table(table, tmp)
-    os.replace(tmp, path)
+    with atomic_path(path) as tmp:
+        pq.write_table(table, tmp)
     return str(path)
 
 
@@ -120,11 +112,6 @@ def _fronts(result: SweepResult) -> np.ndarray:
 
 
 def _plots(result: SweepResult, out: Path, fronts: np.ndarray) -> list[str]:
-    import matplotlib
-
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-
     plan = result.plan
     x = np.array(result.points, dtype=float)
     files = []
@@ -145,10 +132,8 @@ def _plots(result: SweepResult, out: Path, fronts: np.ndarray) -> list[str]:
                 ax.axhline(r.target.value, color='C3', lw=0.8)
     fig.suptitle(f'{plan.name}: main effects' if plan.design == 'full_factorial'
                  else f'{plan.name}: responses over each factor')
-    fig.tight_layout()
-    _save(fig, out / 'main_effects.png')
+    save(fig, out / 'main_effects.png', dpi=90)
     files.append('main_effects.png')
-    plt.close(fig)
     if plan.pareto:
         names = [r.name for r in plan.responses]
         (a, sa), (b, sb) = plan.pareto
@@ -160,66 +145,40 @@ def _plots(result: SweepResult, out: Path, fronts: np.ndarray) -> list[str]:
         ax.set_xlabel(f'{a} [{ra.unit}] ({sa})')
         ax.set_ylabel(f'{b} [{rb.unit}] ({sb})')
         ax.legend()
-        fig.tight_layout()
-        _save(fig, out / 'pareto.png')
+        save(fig, out / 'pareto.png', dpi=90)
         files.append('pareto.png')
-        plt.close(fig)
     return files
 
 
-def _save(fig, path: Path) -> None:
-    tmp = path.with_name(f'.{path.stem}.tmp.png')
-    fig.savefig(tmp, dpi=90)
-    os.replace(tmp, path)
-
-
-def _fmt(v: Any) -> str:
-    if v is None or (isinstance(v, float) and math.isnan(v)):
-        return '-'
-    return f'{v:.4g}' if isinstance(v, float) else html.escape(str(v))
-
-
-def _html(result: SweepResult, sens: dict, fronts: np.ndarray, plots: list[str]) -> str:
+def _page(result: SweepResult, sens: dict, fronts: np.ndarray, plots: list[str],
+          path: Path) -> Path:
     plan = result.plan
-    cols = columns(plan)
-    rows = []
-    for i, p in enumerate(result.points):
-        cells = [str(i), *(_fmt(float(v)) for v in p), *(_fmt(float(v)) for v in
-                                                        result.responses[i]),
-                 html.escape(result.errors[i])]
-        rows.append('<tr>' + ''.join(f'<td>{c}</td>' for c in cells) + '</tr>')
-    sens_rows = []
-    for name, entry in sens.items():
-        cells = [name, *(_fmt(entry['src'][f.name]) for f in plan.factors), _fmt(entry['r2'])]
-        if 'first_order' in entry:
-            cells += [_fmt(entry['first_order'][f.name]) for f in plan.factors]
-        sens_rows.append('<tr>' + ''.join(f'<td>{c}</td>' for c in cells) + '</tr>')
-    s1_head = ''.join(f'<th>S1 {html.escape(f.name)}</th>' for f in plan.factors) \
-        if plan.design == 'full_factorial' else ''
+    factors = [f.name for f in plan.factors]
+    full = plan.design == 'full_factorial'
+    sens_rows = [[name, *(entry['src'][f] for f in factors), entry['r2'],
+                  *((entry['first_order'][f] for f in factors) if 'first_order' in entry
+                    else ())] for name, entry in sens.items()]
     failed = sum(1 for e in result.errors if e)
-    parts = [
-        f'<!doctype html><html><head><meta charset="utf-8"><title>sweep {html.escape(plan.name)}'
-        '</title><style>body{font-family:sans-serif}table{border-collapse:collapse}'
-        'td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}</style></head><body>',
-        f'<h1>Sweep {html.escape(plan.name)}</h1>',
-        f'<p>{html.escape(plan.description)}</p>' if plan.description else '',
-        f'<p>master {html.escape(str(plan.master))}, configuration '
-        f'<b>{html.escape(plan.configuration)}</b>, design {plan.design}, {len(result.points)} '
-        f'points x {len(plan.runs)} runs; {result.computed} runs computed, {result.cached} '
-        f'taken from earlier results; {failed} points failed. Table: '
-        '<a href="table.csv">table.csv</a></p>',
-        '<h2>Sensitivity</h2><p>Standardised regression coefficients (SRC) of each response '
-        'on the factors, R&sup2; of the linear fit'
-        + ('; first-order Sobol indices S1 of the full factorial (ANOVA)'
-           if plan.design == 'full_factorial' else '') + '.</p>',
-        '<table><tr><th>response</th>'
-        + ''.join(f'<th>SRC {html.escape(f.name)}</th>' for f in plan.factors)
-        + f'<th>R&sup2;</th>{s1_head}</tr>' + ''.join(sens_rows) + '</table>',
-        *(f'<p><img src="{p}" alt="{p}"></p>' for p in plots),
-    ]
+    body = [Section('Sensitivity', paragraphs=[
+        'Standardised regression coefficients (SRC) of each response on the factors, R² of '
+        'the linear fit' + ('; first-order Sobol indices S1 of the full factorial (ANOVA)'
+                            if full else '') + '.'],
+        tables=[Table(['response', *(f'SRC {f}' for f in factors), 'R²',
+                       *((f'S1 {f}' for f in factors) if full else ())], sens_rows)],
+        images=images(plots))]
     if plan.pareto:
-        parts.append('<h2>Pareto front</h2><p>points ' + ', '.join(str(int(i)) for i in fronts)
-                     + '</p>')
-    parts += ['<h2>Table</h2><table><tr>' + ''.join(f'<th>{html.escape(c)}</th>' for c in cols)
-              + '</tr>' + ''.join(rows) + '</table></body></html>']
-    return '\n'.join(parts)
+        body.append(Section('Pareto front', paragraphs=[
+            'points ' + ', '.join(str(int(i)) for i in fronts)]))
+    rows = [[i, *(float(v) for v in p), *(float(v) for v in result.responses[i]),
+             result.errors[i]] for i, p in enumerate(result.points)]
+    body.append(Section('Table', tables=[Table(columns(plan), rows)]))
+    intro = [plan.description] if plan.description else []
+    intro.append(f'master {plan.master}, configuration {plan.configuration}, design '
+                 f'{plan.design}, {len(result.points)} points x {len(plan.runs)} runs; '
+                 f'{result.computed} runs computed, {result.cached} taken from earlier '
+                 f'results; {failed} points failed. Table: table.csv')
+    body.insert(0, Section(tables=[Table(['table'], [[Cell('table.csv', href='table.csv')]])]))
+    return write_page(path, f'Sweep {plan.name}', body, intro=intro)
+
+
+__all__ = ['write_outputs', 'sensitivity']

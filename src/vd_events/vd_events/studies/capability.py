@@ -30,11 +30,21 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 import math
+from pathlib import Path
+import time
 
 import numpy as np
 
-from vd_events.reports.display import display
+from vd_data_server.errors import DataError
+from vd_data_server.master import flex_components
+from vd_data_server.ros.qos import RESULTS, STATES
+from vd_events.bags.bag import BagWriter, check_bag_path, log_time
+from vd_events.bags.outcomes import outcome_messages
+from vd_events.errors import RunError
+from vd_events.orchestration.runner import RunRequest, run_embedded, validate
+from vd_interfaces.msg import CapabilityCell, CapabilityTable
 from vd_solvers.constants import DEG
+from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
 from vd_solvers.results import EventOutcome
 
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
@@ -202,21 +212,7 @@ def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: 
                  tuple(cells), tuple(metrics), notes)
 
 
-def format_table(table: Table) -> list[list[str]]:
-    """Rows (event, then one 'verdict (worst difference unit)' per quantity)."""
-    rows = []
-    for event in dict.fromkeys(c.event for c in table.cells):
-        row = [event]
-        for quantity in QUANTITIES:
-            cell = next(c for c in table.cells if c.event == event and c.quantity == quantity)
-            value, unit = display(cell.max_difference, cell.unit, quantity)
-            row.append(f'{cell.label} ({value:.3g} {unit})')
-        rows.append(row)
-    return rows
-
-
 def to_msg(table: Table, stamp=None):
-    from vd_interfaces.msg import CapabilityCell, CapabilityTable
 
     def cell(c: Cell) -> CapabilityCell:
         return CapabilityCell(event=c.event, quantity=c.quantity, unit=c.unit,
@@ -267,17 +263,6 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
 
     One bag for the study: a recorder per run would cost more than the runs themselves.
     """
-    from pathlib import Path
-    import time
-
-    from vd_data_server.errors import DataError
-    from vd_data_server.master import flex_components
-    from vd_data_server.ros.qos import RESULTS, STATES
-    from vd_events.bags.bag import BagWriter, check_bag_path, log_time
-    from vd_events.bags.outcomes import outcome_messages
-    from vd_events.orchestration.runner import RunError, RunRequest, run_embedded, validate
-    from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
-
     out = Path(out)
     config = study.configurations[configuration]
     defined = flex_components(config.groups)

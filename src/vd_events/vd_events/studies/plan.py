@@ -31,14 +31,8 @@ from vd_data_server.paths import default_master
 from vd_data_server.shape import Collector, check
 from vd_data_server.study import load_study
 from vd_data_server.yamlio import load_file
-from vd_events.bags.bag import BagError
-from vd_events.orchestration.runner import (
-    RunError,
-    RunRequest,
-    run_distributed,
-    run_embedded,
-    validate,
-)
+from vd_events.errors import BagError, RunError
+from vd_events.orchestration.runner import RunRequest, run_distributed, run_embedded, validate
 
 #: a study plan, in the specs of the data files (``vd_data_server.schema``)
 PLAN = schema.Section({
@@ -133,13 +127,12 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
              progress: Callable | None = None, namespace: str | None = None,
              on_done: Callable | None = None) -> dict[str, Any]:
     """
-    Validate every run, then run them all, then build the report.
+    Validate every run, then run them all; return the summary (``vd study --json``).
 
-    ``on_done(RunOutcome)`` hears each run as soon as it is complete.
+    ``on_done(RunOutcome)`` hears each run as soon as it is complete. ``finished``: the
+    bags of the runs that finished and the plan's measurements, the input of the
+    reports (``vd_events.reports.report.build_pages``).
     """
-    from vd_events.reports.report import build_report
-    from vd_events.reports.study import build_study_report
-
     study = load_study(plan.master)
     requests = expand(plan, study.configuration_names, bags)
     seen = set()
@@ -158,12 +151,10 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
                      **({'namespace': namespace} if namespace else {}))
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
-    bags_done = [*(r.bag for r in done if r.bag), *plan.measurements]
-    report = build_report(bags_done, out) if done else None
-    study_report = build_study_report(bags_done, out) if done else None
     return {
-        'plan': str(plan.path), 'master': str(plan.master), 'report': str(report),
-        'study_report': str(study_report),
+        'plan': str(plan.path), 'master': str(plan.master),
+        'finished': [str(b) for b in [*(r.bag for r in done if r.bag), *plan.measurements]]
+        if done else [],
         'bags': str(bags), 'errors': errors,
         'runs': [{'event': r.request.event, 'configuration': r.request.configuration,
                   'model': r.request.model, 'axle': r.request.axle,

@@ -32,8 +32,11 @@ import os
 from pathlib import Path
 
 import numpy as np
+from ruamel.yaml import YAML
+from scipy import optimize as so
 
 from vd_data_server.errors import DataError
+from vd_data_server.study import load_study
 from vd_events.sweeps.plan import SweepPlan, format_number
 from vd_events.sweeps.sweep import Evaluator, evaluate, load_records, requests_for, response_values
 
@@ -103,8 +106,6 @@ def check_plan(plan: SweepPlan, study, out: Path | None = None) -> str:
     if target.resolve() == plan.master.resolve():
         existing = study.configuration_names
     elif target.exists():
-        from vd_data_server.study import load_study
-
         existing = load_study(target).configuration_names
     else:
         existing = []
@@ -130,8 +131,6 @@ def output_master(plan: SweepPlan, out: Path | None) -> Path:
 def optimize(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *,
              log: Callable[[str], None] | None = None) -> OptimizeResult:
     """Run the optimisation, record its history and write the best configuration."""
-    from scipy import optimize as so
-
     name = check_plan(plan, study, out)
     spec = plan.optimize
     method = spec.method if spec else 'least_squares'
@@ -221,7 +220,6 @@ def optimize(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *,
 class _Budget(Exception):
     """The evaluation budget is spent."""
 
-
 def _margin(plan: SweepPlan, ev: Evaluation, k: int) -> float:
     r, v = plan.responses[k], ev.responses[k]
     bound = r.minimum if r.minimum is not None else r.maximum
@@ -266,10 +264,6 @@ def write_configuration(plan: SweepPlan, study, name: str, best: Evaluation,
     the plan's master with ``study.data_root`` pointing at the same data). Written
     under a temporary name, loaded and checked like any master file, then renamed.
     """
-    from ruamel.yaml import YAML
-
-    from vd_data_server.study import load_study
-
     yaml = YAML()
     yaml.preserve_quotes = True
     source = target if target.exists() else plan.master

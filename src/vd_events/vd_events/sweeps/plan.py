@@ -44,12 +44,15 @@ import re
 from typing import Any, cast
 
 import numpy as np
+from scipy.stats import qmc
 
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration, Value
 from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
 from vd_data_server.units import SI_UNITS, UREG, parse_unit, si_factor
 from vd_data_server.yamlio import load_file
+from vd_solvers.families import event_model
 
 DESIGNS = ('full_factorial', 'latin_hypercube', 'sobol')
 PLAN_KEYS = ('name', 'description', 'master', 'configuration', 'design', 'samples', 'seed',
@@ -215,8 +218,6 @@ def load_plan(path: Path, study=None, *, optimize: bool = False) -> SweepPlan:
     are ranges; a ``design`` given is checked all the same). DataError naming the
     plan file and key on any problem.
     """
-    from vd_data_server.study import load_study
-
     file = str(path)
     raw = load_file(path, display=file)
     if not isinstance(raw, Mapping):
@@ -435,7 +436,6 @@ def _texts(value: Any, file: str, key: str) -> tuple[str, ...]:
 
 
 def _runs(raw: Any, file: str) -> tuple[RunSpec, ...]:
-    from vd_solvers.families import event_model
 
     if not isinstance(raw, list) or not raw:
         raise DataError('expected a non-empty list of runs', file=file, key='runs')
@@ -581,7 +581,6 @@ def points(plan: SweepPlan) -> list[tuple[float, ...]]:
         raise ValueError(f'{plan.path}: the plan has no design (an optimisation plan)')
     if plan.design == 'full_factorial':
         return [tuple(p) for p in itertools.product(*(f.level_values() for f in plan.factors))]
-    from scipy.stats import qmc
 
     d = len(plan.factors)
     if plan.design == 'latin_hypercube':

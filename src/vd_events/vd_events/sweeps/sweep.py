@@ -25,14 +25,19 @@ import json
 import math
 import os
 from pathlib import Path
+import shutil
+import time
 from typing import Any
 
+from builtin_interfaces.msg import Time
 import numpy as np
 
 from vd_data_server.errors import DataError
-from vd_events.bags.bag import BagError
-from vd_events.orchestration.runner import RunError, RunRequest, validate
+from vd_events.bags.bag import BagWriter
+from vd_events.errors import BagError, RunError
+from vd_events.orchestration.runner import RunRequest, validate
 from vd_events.sweeps.plan import SweepPlan, convert, points
+from vd_solvers.conversions import outcome_to_msg
 from vd_solvers.results import EventOutcome
 
 #: evaluator(requests, done) computes every request and calls done(request, outcome, error,
@@ -203,12 +208,6 @@ def evaluate(requests: Sequence[RunRequest], evaluator: Evaluator, folder: Path,
 
 def _write_bag(folder: Path, request: RunRequest, outcome: EventOutcome) -> Path:
     """One run's EventResult (every channel and metric) as an MCAP bag."""
-    import shutil
-    import time
-
-    from vd_events.bags.bag import BagWriter
-    from vd_solvers.conversions import outcome_to_msg
-
     name = f"{request.event}{'_' + request.axle if request.axle else ''}_{request.model}_" \
            f'{request.data_hash}'
     if request.fidelity != 'rigid':
@@ -221,8 +220,6 @@ def _write_bag(folder: Path, request: RunRequest, outcome: EventOutcome) -> Path
                               'vd.overrides': '; '.join(request.overrides),
                               'vd.data_hash': request.data_hash})
     try:
-        from builtin_interfaces.msg import Time
-
         msg = outcome_to_msg(outcome, Time(sec=stamp // 10**9, nanosec=stamp % 10**9))
         writer.write(f'/vd/{request.family}/result', msg, stamp)
         return writer.close()

@@ -33,6 +33,8 @@ from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.params import AxleCompliance
 from vd_solvers.errors import SolverError
+from vd_solvers.kc.cache import kc_model, kc_result
+from vd_solvers.kc.metrics import derived_metrics
 from vd_solvers.tire.magic_formula import MagicFormula
 
 #: K&C events the analytical rung needs, per axle
@@ -77,9 +79,6 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
     ``static_loads``: static load of one front and one rear wheel, N.
     Raises SolverError / DataError when the configuration has no K&C model.
     """
-    from vd_solvers.kc.cache import kc_model, kc_result
-    from vd_solvers.kc.metrics import derived_metrics
-
     suspension, compliance = {}, {}
     for axle, fz in zip(('front', 'rear'), static_loads):
         model = kc_model(config, axle)
@@ -126,8 +125,6 @@ def try_kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> K
     event that fails on a model that could be assembled is an error, not a
     reason to drop the K&C values.
     """
-    from vd_solvers.kc.cache import kc_model
-
     try:
         for axle in ('front', 'rear'):
             kc_model(config, axle)

@@ -74,6 +74,7 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy import optimize
 
 from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.errors import BeyondLimitError, SolverError
@@ -377,7 +378,6 @@ def tire_peak_slip(tire: SimpleTire, fz: ArrayLike) -> np.ndarray:
     # (1 - E) u + E arctan(u) >= (1 - E) u - |E| pi/2 for u >= 0, which
     # reaches the target at the upper end of this bracket.
     upper = (target + abs(e) * math.pi / 2.0) / (1.0 - e)
-    from scipy import optimize  # on use: its import costs a K&C run a second
 
     u_peak = optimize.brentq(lambda u: (1.0 - e) * u + e * math.atan(u) - target, 0.0, upper)
     stiffness_factor = tire.cornering_stiffness(fz) / (tire.friction(fz) * tire.shape * fz)
@@ -400,8 +400,6 @@ def axle_peak(tire: SimpleTire, loads: ArrayLike) -> tuple[float, float]:
 
     candidates = [low, high]
     if high - low > PEAK_TOLERANCE:
-        from scipy import optimize
-
         found = optimize.minimize_scalar(
             lambda alpha: -force(alpha), bounds=(low, high), method='bounded',
             options={'xatol': PEAK_TOLERANCE}
@@ -619,7 +617,6 @@ def _axle_slip(
     def residual(alpha: float) -> float:
         return float(axle_lateral_force(tire, loads, alpha)) - magnitude
 
-    from scipy import optimize
 
     alpha = optimize.brentq(residual, 0.0, alpha_peak, xtol=SLIP_TOLERANCE)
     return math.copysign(alpha, required)

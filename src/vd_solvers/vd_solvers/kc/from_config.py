@@ -16,11 +16,16 @@ from collections.abc import Callable, Mapping, Sequence
 import math
 
 import numpy as np
+import yaml
 
 from vd_data_server.model import Configuration, GroupData
 from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
+from vd_data_server.units import si_factor
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
+from vd_solvers.flex import section as sec
+from vd_solvers.flex.component import ShapePoint
+from vd_solvers.flex.imported import from_dmig, from_plain
 from vd_solvers.results import Channel, EventOutcome, Metric
 from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
@@ -148,9 +153,6 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
 
 def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
     """Every component of a flex group: its FlexSpec and its rigid-model mass (kg)."""
-    from vd_solvers.flex import section as sec
-    from vd_solvers.flex.component import ShapePoint
-
     materials = {}
     for name in sorted({k.split('.')[1] for k in group.values if k.startswith('materials.')}):
         base = f'materials.{name}'
@@ -212,11 +214,6 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
 
 def _imported(group: GroupData, comp: str, base: str):
     """Read the reduced stiffness of an imported component (file content in the group)."""
-    import yaml
-
-    from vd_data_server.units import si_factor
-    from vd_solvers.flex.imported import from_dmig, from_plain
-
     rel = group.text(f'{base}.imported.file')
     text = group.text(f'{base}.imported.content')
     what = f'{rel} ({group.file} {base}.imported)'

@@ -17,7 +17,7 @@ behaviour beyond the small curve evaluation and checks of their own shape.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal, Union
 
 import numpy as np
@@ -333,7 +333,5 @@ def validate(inp: SuspensionInput) -> None:
 
 def without_bar(inp: SuspensionInput) -> SuspensionInput:
     """``inp`` with the anti-roll bar removed (and its beam model, if flexible)."""
-    from dataclasses import replace
-
     return replace(inp, stabilizer=None,
                    flexible={k: v for k, v in inp.flexible.items() if k != 'anti_roll_bar'})

@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.sparse
 
 from vd_solvers.errors import SolverError
 from vd_solvers.flex.component import Condensed
@@ -178,7 +179,6 @@ class System:
         # The primitive-combination matrices are very sparse (a few entries per row):
         # products with them dominate an evaluation in dense form. (scipy.sparse is
         # imported here, not with the module, to keep the solver nodes' start fast.)
-        import scipy.sparse
 
         self.c_g, self.c_e = scipy.sparse.csr_matrix(c_g), scipy.sparse.csr_matrix(c_e)
         self.laws = laws
@@ -305,7 +305,6 @@ class System:
         g_slot = np.concatenate(grads)
         j_slot = jac[self._slot_marker]
         d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
-        import scipy.sparse
 
         d = scipy.sparse.csr_matrix((d_vals.ravel(), (self._d_rows, self._d_cols)),
                                     shape=(self.n_prim, self._nc))[:, : self.n_dof]

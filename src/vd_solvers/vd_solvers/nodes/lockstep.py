@@ -33,6 +33,7 @@ import math
 import time
 
 from builtin_interfaces.msg import Time
+from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
@@ -253,8 +254,6 @@ def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '') -> Odo
 
 def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
     """Return the TF odom -> base_link of an Odometry (filled into ``msg`` if given)."""
-    from geometry_msgs.msg import TransformStamped
-
     if msg is None or not msg.transforms:
         msg = TFMessage(transforms=[TransformStamped()])
     t = msg.transforms[0]

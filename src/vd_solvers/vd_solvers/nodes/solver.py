@@ -37,7 +37,8 @@ from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
 from vd_data_server.study import modified_keys
 from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
-from vd_interfaces.msg import DataStatus, EventResult, Provenance
+from vd_interfaces.msg import DataStatus, EventResult, ModifiedKey, Provenance
+from vd_interfaces.msg import GroupStatus as GroupStatusMsg
 from vd_solvers import __version__
 from vd_solvers.conversions import outcome_messages, outcome_to_msg, run_stamp
 from vd_solvers.errors import SolverError
@@ -59,7 +60,6 @@ SAMPLES = STATES
 
 class Cancelled(Exception):
     """The client cancelled the goal while it was being solved."""
-
 
 
 class SolverNode(Node):
@@ -243,9 +243,6 @@ def _warnings_text(caught) -> str:
 
 def set_changes(base: Configuration, config: Configuration) -> list:
     """GroupStatus messages for the groups a run's ``--set`` overrides changed."""
-    from vd_interfaces.msg import GroupStatus as GroupStatusMsg
-    from vd_interfaces.msg import ModifiedKey
-
     out = []
     for name, group in config.groups.items():
         keys = modified_keys(base.groups[name].values, group.values)

@@ -21,20 +21,29 @@ step by step by an external controller (``/clock``, state, odometry and TF out,
 """
 from __future__ import annotations
 
+from pathlib import Path
+import sys
+
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.experimental import EventsExecutor
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
+from vd_data_server.paths import default_master
 from vd_data_server.ros.node_main import make_executor, run_node
 from vd_data_server.ros.qos import STATES
+from vd_data_server.study import load_study
 from vd_interfaces.msg import VehicleState
 from vd_solvers.errors import SolverError
 from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
+from vd_solvers.nodes.lockstep import LockstepSession
 from vd_solvers.nodes.solver import SolverNode
 from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.cosim import Stepper
 from vd_solvers.vehicle.events import run_vehicle_event
+from vd_solvers.vehicle.model import VehicleModel
 
 FAMILY = 'vehicle'
 MODES = ('events', 'lockstep', 'free')
@@ -79,12 +88,6 @@ class VehicleSolver(SolverNode):
 
     def _start_lockstep(self):
         """Build the vehicle and start the co-simulation session (ValueError if unusable)."""
-        from vd_data_server.paths import default_master
-        from vd_data_server.study import load_study
-        from vd_solvers.nodes.lockstep import LockstepSession
-        from vd_solvers.vehicle.cosim import Stepper
-        from vd_solvers.vehicle.model import VehicleModel
-
         if self.mode not in MODES:
             raise ValueError(f"parameter 'mode' must be one of {', '.join(MODES)}, "
                              f'got {self.mode!r}')
@@ -108,7 +111,6 @@ class VehicleSolver(SolverNode):
         for name in ('initial_speed', 'duration'):
             if not (0.0 <= p[name] < 1e6):
                 raise ValueError(f"parameter '{name}' must be >= 0, got {p[name]!r}")
-        from pathlib import Path
 
         study = load_study(Path(p['master']) if p['master'] else default_master())
         name = p['configuration'] or study.configuration_names[0]
@@ -130,9 +132,6 @@ class VehicleSolver(SolverNode):
 
 def main(args=None) -> None:
     """Spin the solver; in lockstep/free mode on the events executor (docs/ros-api.md)."""
-    import sys
-
-    from rclpy.experimental import EventsExecutor
 
     def build() -> VehicleSolver:
         try:

@@ -23,6 +23,7 @@ import time
 from typing import Any
 
 import numpy as np
+from scipy.integrate import odeint
 
 from vd_solvers.timing import median_time
 
@@ -121,7 +122,6 @@ def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
     step scaled so that its steady yaw rate is ``yaw_rate`` (rad/s; from one untimed
     run with a small step, the response being linear there).
     """
-    from scipy.integrate import odeint
     from vehiclemodels.init_mb import init_mb
     from vehiclemodels.parameters_vehicle2 import parameters_vehicle2
     from vehiclemodels.vehicle_dynamics_mb import vehicle_dynamics_mb

@@ -1,0 +1,217 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+The ``vd`` command line's grammar (ARCHITECTURE §5): every verb, its arguments, its handler.
+
+Only argparse here, so ``vd --help`` and a bad argument cost nothing else. Each verb names
+its handler as ``module:function`` (:func:`handler`); ``cli.main`` imports that module when
+the verb runs.
+"""
+from __future__ import annotations
+
+import argparse
+
+#: how ``vd import`` tells an Excel master workbook from measured data
+XLSX = 'xlsx'
+
+
+def handler(target: str):
+    """Return the ``set_defaults`` of a verb whose handler is ``module:function``."""
+    return {'handler': f'vd_events.cli.{target}'}
+
+
+def _master(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--master', help='master file (default: the bundled sample study)')
+
+
+def _namespace(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--namespace', default=None, metavar='NS',
+                        help='ROS namespace of the nodes (default: /vd): /car2 gives '
+                        '/car2/configuration, /car2/kc/run_event, ...')
+
+
+def _json(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--json', action='store_true', help='machine-readable output')
+
+
+def _data(sub) -> None:
+    data = sub.add_parser('data', help='vehicle data and master files').add_subparsers(
+        dest='data_command', required=True)
+    for name, helptext in (('status', 'overview: variant, UNCHANGED/MODIFIED, SAME/DIFFERS'),
+                           ('show', 'the resolved configuration in SI'),
+                           ('check', 'validate the master file and every data file')):
+        cmd = data.add_parser(name, help=helptext)
+        if name == 'show':
+            cmd.add_argument('config')
+        _master(cmd)
+        _json(cmd)
+        cmd.set_defaults(**handler(f'data:cmd_{name}'))
+
+
+def _run(sub) -> None:
+    run = sub.add_parser('run', help='run one event on one configuration')
+    run.add_argument('event')
+    run.add_argument('--config', default=None,
+                     help="configuration (default: the first; 'all': every configuration)")
+    run.add_argument('--model', default=None, help='bicycle | two_track | kc | vehicle')
+    run.add_argument('--fidelity', default='', help="rigid | flexible (K&C; default: the "
+                     "configuration's 'flexible' switch in the master file)")
+    run.add_argument('--axle', default='', help='front | rear (K&C events)')
+    run.add_argument('--set', dest='overrides', action='append', default=[],
+                     metavar='KEY=VALUE', help="temporary override, e.g. "
+                     "front_alignment.camber='-1 deg'")
+    run.add_argument('--param', dest='parameters', action='append', default=[],
+                     metavar='NAME=VALUE', help="event parameter, e.g. radius='40 m'")
+    _master(run)
+    run.add_argument('--bag', help='bag directory to write (must not exist)')
+    run.add_argument('--distributed', action='store_true',
+                     help='one process per node (DDS on loopback) instead of one process')
+    _namespace(run)
+    _json(run)
+    run.set_defaults(**handler('run:cmd_run'))
+
+
+def _study(sub) -> None:
+    study = sub.add_parser('study', help='many events x configurations x models')
+    study.add_argument('plan', help='study plan YAML')
+    study.add_argument('--bag', help='folder for the bags (default: out/<plan name>/bags)')
+    study.add_argument('--report', help='folder for the report (default: out/<plan name>)')
+    study.add_argument('--distributed', action='store_true')
+    _namespace(study)
+    _json(study)
+    study.set_defaults(**handler('study:cmd_study'))
+
+    report = sub.add_parser('report', help='HTML report + PNG plots from bags')
+    report.add_argument('bags', nargs='+')
+    report.add_argument('--out', default='out/report', help='report folder')
+    report.set_defaults(**handler('study:cmd_report'))
+
+
+def _launch(sub) -> None:
+    launch = sub.add_parser('launch', help='start the nodes and keep them running')
+    launch.add_argument('--distributed', action='store_true')
+    _master(launch)
+    _namespace(launch)
+    launch.add_argument('--allow-edits', action='store_true',
+                        help='start the data server with allow_edits:=true (set_override)')
+    launch.add_argument('--solvers', default='', metavar='FAMILY=N,...', help='solver '
+                        'instances per family, e.g. kc=2 (default one of each)')
+    launch.add_argument('--lockstep', action='store_true',
+                        help='the lock-step vehicle and the example path follower, closed loop')
+    launch.add_argument('--config', default='', help='lock-step configuration (default: first)')
+    launch.add_argument('--duration', type=float, default=20.0,
+                        help='lock-step simulated time, s')
+    launch.add_argument('--radius', type=float, default=40.0, help='lock-step circle radius, m')
+    launch.add_argument('--speed', type=float, default=12.0, help='lock-step speed, m/s')
+    launch.add_argument('--bag', help='lock-step: bag directory to write (must not exist)')
+    _json(launch)
+    launch.set_defaults(**handler('launch:cmd_launch'))
+
+
+def _capability(sub) -> None:
+    cap = sub.add_parser('capability', help='rigid vs flexible K&C: which model each '
+                         'event and quantity needs (thesis Tables 5.2.1/5.2.2)')
+    cap.add_argument('--config', default=None, help='configuration (default: the first)')
+    cap.add_argument('--axle', default='', help='front | rear (default: both)')
+    _master(cap)
+    cap.add_argument('--out', default=None, help='folder for the bag of the runs and tables '
+                     '(default: out/capability/<configuration>; must not hold it yet)')
+    cap.add_argument('--param', dest='parameters', action='append', default=[],
+                     metavar='NAME=VALUE', help='event parameter for every event, e.g. steps=41')
+    _json(cap)
+    cap.set_defaults(**handler('capability:cmd_capability'))
+
+
+def _sweeps(sub) -> None:
+    for name, helptext in (('sweep', 'DOE over override factors; table + report pages'),
+                           ('optimize', 'reach targets by changing factors; writes a '
+                                        'configuration')):
+        cmd = sub.add_parser(name, help=helptext)
+        cmd.add_argument('plan', help='sweep plan YAML (docs/sweeps.md)')
+        cmd.add_argument('--solvers', help='solver processes to start: N of each family the '
+                         'runs need, or FAMILY=N,... (e.g. kc=2); default 2. With --attach: '
+                         'the instances to wait for before the runs start (default 1)')
+        cmd.add_argument('--attach', action='store_true', help='use the solver instances '
+                         'already running on ROS_DOMAIN_ID (vd launch --solvers, other hosts) '
+                         'instead of starting any')
+        cmd.add_argument('--out', help='output folder (default: out/<plan name>)')
+        _json(cmd)
+        cmd.set_defaults(**handler(f'sweep:cmd_{name}'))
+
+
+def _measured(sub) -> None:
+    imp = sub.add_parser('import', help='rig / vehicle-test data (CSV, VBOX .vbo) into a bag '
+                         '(vd import FILE... --bag DIR), or a master workbook into a master '
+                         'file (vd import xlsx WORKBOOK --out MASTER)')
+    imp.add_argument('files', nargs='+', metavar='FILE',
+                     help="measured data files, or 'xlsx' and the workbook")
+    imp.add_argument('--map', help='column map YAML (docs/testdata.md; needed for tables, '
+                     'optional for .vbo)')
+    imp.add_argument('--bag', help='bag directory to write (must not exist; measured data)')
+    imp.add_argument('--out', help='master file to write (xlsx: its folder decides the data '
+                     'root, as for any master file; a previous file is kept as .bak)')
+    _json(imp)
+    imp.set_defaults(**handler('measured:cmd_import'))
+
+    cmp = sub.add_parser('compare', help='simulation vs test: overlays, error metrics, verdicts')
+    cmp.add_argument('sim_bag', metavar='SIM_BAG')
+    cmp.add_argument('test_bag', metavar='TEST_BAG')
+    cmp.add_argument('--out', default='out/compare', help='report folder')
+    cmp.add_argument('--tolerances', help='tolerance YAML (channel: {rms, max, bias, '
+                     'gradient}); default: docs/testdata.md')
+    _json(cmp)
+    cmp.set_defaults(**handler('measured:cmd_compare'))
+
+    rep = sub.add_parser('replay', help='drive the bicycle and full-vehicle models with the '
+                         'steering and speed of a vehicle log and compare (open-loop '
+                         'validation)')
+    rep.add_argument('test_bag', metavar='TEST_BAG')
+    rep.add_argument('--config', default=None, help='configuration (default: the first)')
+    _master(rep)
+    rep.add_argument('--models', default='bicycle,vehicle', help='bicycle,vehicle')
+    rep.add_argument('--bag', help='bag for the replayed runs (must not exist; default: '
+                     '<out>/replay)')
+    rep.add_argument('--out', default='out/replay', help='report folder')
+    _json(rep)
+    rep.set_defaults(**handler('measured:cmd_replay'))
+
+
+def _workbench(sub) -> None:
+    gui = sub.add_parser('gui', help='the master-file workbench in a browser (127.0.0.1)')
+    _master(gui)
+    gui.add_argument('--port', type=int, default=8765, help='port on 127.0.0.1 (default 8765; '
+                     '0: any free port)')
+    gui.add_argument('--edits', action='store_true', help='allow edits of the master file '
+                     'from the page (off by default)')
+    gui.add_argument('--screenshots', metavar='DIR', help='save a screenshot of every tab '
+                     'into DIR (headless Chromium) and exit')
+    gui.set_defaults(**handler('workbench:cmd_gui'))
+
+    export = sub.add_parser('export', help='export the study (vd export xlsx; back with: vd '
+                            'import xlsx WORKBOOK --out MASTER)').add_subparsers(
+        dest='export_format', required=True)
+    xlsx = export.add_parser(XLSX, help='the overview and group tabs as an Excel workbook')
+    _master(xlsx)
+    xlsx.add_argument('--out', default=None, help='workbook to write (default: '
+                      'out/<master file name>.xlsx)')
+    xlsx.set_defaults(**handler('workbench:cmd_export'))
+
+
+def _bench(sub) -> None:
+    bench = sub.add_parser('bench', help='the benchmark suite')
+    _json(bench)
+    bench.set_defaults(**handler('bench:cmd_bench'))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Return the parser of every ``vd`` verb."""
+    parser = argparse.ArgumentParser(prog='vd', description='vd: vehicle-dynamics simulation '
+                                     'on one shared vehicle data set')
+    sub = parser.add_subparsers(dest='command', required=True)
+    for add in (_data, _run, _study, _launch, _capability, _sweeps, _bench, _measured,
+                _workbench):
+        add(sub)
+    return parser
+
+
+__all__ = ['build_parser', 'handler', 'XLSX']
