@@ -203,9 +203,8 @@ def test_mutated_study_plans(data, root):
     This is what `vd study` does before it starts anything.
     """
     from vd_data_server.study import load_study
-    from vd_events.errors import BagError
+    from vd_events.errors import BagError, RunError
     from vd_events.orchestration.runner import validate
-    from vd_events.errors import RunError
     from vd_events.studies.plan import expand, load_plan
 
     tree = yaml.safe_load(PLAN.read_text())

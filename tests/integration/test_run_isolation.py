@@ -71,8 +71,8 @@ def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_mas
 
 
 def test_check_result_refuses_an_answer_to_another_request():
-    from vd_events.orchestration.runner import RunRequest, check_result
     from vd_events.errors import RunError
+    from vd_events.orchestration.runner import RunRequest, check_result
     from vd_interfaces.msg import EventResult
 
     request = RunRequest(event='handling_diagram', configuration='baseline', model='two_track',

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import pytest
 
+from vd_events.errors import RunError
 from vd_events.orchestration.dispatch import (
     instance_names,
     parse_instance,
     parse_solvers,
     solver_command,
 )
-from vd_events.errors import RunError
 
 
 def test_instance_names_keep_the_default_first():

@@ -20,9 +20,9 @@ import pytest
 from vd_events.bags.bag import custom_data, read_bag
 from vd_events.measured.columns import load_map
 from vd_events.measured.compare import compare, compare_bags, load_outcomes
-from vd_events.reports.compare import write_compare_page
 from vd_events.measured.importer import import_files
 from vd_events.measured.vbo import read_vbo
+from vd_events.reports.compare import write_compare_page
 
 REPO = Path(__file__).resolve().parents[2]
 SAMPLES = REPO / 'src' / 'vd_events' / 'samples'

@@ -15,8 +15,8 @@ from pathlib import Path
 from numpy.testing import assert_allclose
 import pytest
 
-from vd_events.measured.columns import load_map
 from vd_events.errors import InputError
+from vd_events.measured.columns import load_map
 from vd_events.measured.table import read_table
 from vd_events.measured.vbo import read_vbo
 

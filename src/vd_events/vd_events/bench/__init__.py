@@ -1,0 +1,3 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""The benchmark suite (``make bench``): timings of the product against its peers, never in pass/fail tests."""

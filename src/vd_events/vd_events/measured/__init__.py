@@ -1,3 +1,3 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
-"""Measured data (K&C rigs, vehicle-test logs) into vd bags: column maps and readers."""
+"""Measured data: rig and vehicle-test readers (CSV, VBOX), import into bags, replay, comparison with simulation."""
