@@ -1,6 +1,7 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
 """
-The master-file workbench: a local web page (server, page files) and its headless-browser
-driver.
+The master-file workbench.
+
+A local web page (server, page files) and its headless-browser driver.
 """

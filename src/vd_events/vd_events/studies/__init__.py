@@ -1,5 +1,3 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
-"""
-Study plans (many events x configurations x models) and the rigid-vs-flexible capability study.
-"""
+"""Study plans (many events x configurations x models) and the rigid-vs-flexible capability study."""
