@@ -1,3 +1,8 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
-"""Study plans (many events x configurations x models) and the rigid-vs-flexible capability study."""
+"""
+Studies of many runs.
+
+Study plans (many events x configurations x models) and the rigid-vs-flexible capability
+study.
+"""
