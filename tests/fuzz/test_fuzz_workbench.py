@@ -16,9 +16,9 @@ from hypothesis import strategies as st
 import pytest
 
 from fuzzing import QUANTITIES, clean, no_hang
-from vd_data_server.errors import DataError
+from vd_data_server.errors import DataError, WorkbenchError
 from vd_data_server.study import load_study
-from vd_data_server.workbench.server import Workbench, WorkbenchError
+from vd_data_server.workbench.server import Workbench
 
 SAMPLE = Path(__file__).resolve().parents[2] / 'src' / 'vd_data_server' / 'data'
 TEXTS = st.one_of(st.text(max_size=20), st.integers(), st.none(), st.lists(st.text(max_size=3),

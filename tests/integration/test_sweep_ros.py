@@ -113,7 +113,7 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
     old = os.environ.get('ROS_DOMAIN_ID')
     os.environ['ROS_DOMAIN_ID'] = domain
     try:
-        names = _action_names(int(domain))
+        names = _action_names(int(domain), launcher)
         # --solvers kc=2 with --attach: the runs wait until the sweep has found both
         # instances, so both get goals (a late instance would join only once it appears)
         code = cli.main(['sweep', str(plan), '--attach', '--solvers', 'kc=2', '--out',
@@ -137,8 +137,12 @@ def test_launch_solvers_and_sweep_attach(tmp_path, sedan_master, capsys):
     assert (out / 'table.csv').is_file()
 
 
-def _action_names(domain: int) -> dict[str, set[str]]:
-    """Return the RunEvent actions each kc solver node serves, once both are discovered."""
+def _action_names(domain: int, launcher: subprocess.Popen) -> dict[str, set[str]]:
+    """
+    Return the RunEvent actions each kc solver node serves, once both are discovered.
+
+    However long a loaded machine takes to start them; the launcher's exit ends the wait.
+    """
     import time
 
     import rclpy
@@ -149,9 +153,9 @@ def _action_names(domain: int) -> dict[str, set[str]]:
     rclpy.init(context=context, domain_id=domain, signal_handler_options=None)
     node = Node('probe', context=context)
     try:
-        deadline = time.monotonic() + 15
+        deadline = time.monotonic() + HANG_GUARD
         servers: dict[str, set[str]] = {}
-        while time.monotonic() < deadline:
+        while time.monotonic() < deadline and launcher.poll() is None:
             try:
                 servers = {name: {n for n, _ in get_action_server_names_and_types_by_node(
                     node, name, '/vd')} for name in ('kc_solver', 'kc_solver_2')}

@@ -128,7 +128,7 @@ def test_flexible_fidelity_without_flex_data_is_refused_before_the_run(capsys, t
 
 
 def test_constant_radius_turn_defaults_to_the_vehicle_model(capsys, sedan_master):
-    from vd_events.cli.commands import default_model
+    from vd_solvers.families import event_model
 
-    assert default_model('constant_radius_turn') == 'vehicle'
-    assert default_model('step_steer') == 'bicycle'
+    assert event_model('constant_radius_turn') == 'vehicle'
+    assert event_model('step_steer') == 'bicycle'

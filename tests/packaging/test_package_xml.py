@@ -36,6 +36,8 @@ ROSDEP_KEYS = {
     'pyarrow': 'python3-pyarrow',
     'PIL': 'python3-pil',
     'selenium': 'python3-selenium',
+    'jinja2': 'python3-jinja2',
+    'markupsafe': 'python3-markupsafe',
 }
 #: imported for type checking only (typeshed's stub-only module)
 TYPE_ONLY = {'_typeshed'}

@@ -9,6 +9,7 @@ configuration: values, units, display units and sources survive unchanged.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import cast
 
 from vd_interfaces.msg import Configuration as ConfigurationMsg
 from vd_interfaces.msg import (
@@ -22,21 +23,21 @@ from vd_interfaces.msg import (
 from vd_interfaces.msg import GroupStatus as GroupStatusMsg
 from vd_interfaces.msg import ModifiedKey as ModifiedKeyMsg
 
-from .model import Configuration, GroupData, Value
+from .model import Configuration, GroupData, Value, ValueType
 from .study import GroupStatus, Study
 
 
 def value_to_fields(value: Value) -> NamedScalar | NamedCurve | NamedPoint | NamedText:
     if value.type == 'scalar':
-        return NamedScalar(name=value.key, value=float(value.si), unit=value.unit,  # type: ignore[arg-type]
+        return NamedScalar(name=value.key, value=float(cast(float, value.si)), unit=value.unit,
                            display_unit=value.display_unit, source=value.source)
     if value.type == 'curve':
-        xs, ys = value.si  # type: ignore[misc]
+        xs, ys = cast(tuple[tuple[float, ...], tuple[float, ...]], value.si)
         return NamedCurve(name=value.key, x=list(xs), y=list(ys), x_unit=value.x_unit,
                           y_unit=value.unit, x_display_unit=value.x_display_unit,
                           y_display_unit=value.display_unit, source=value.source)
     if value.type in ('point', 'vector'):
-        x, y, z = value.si  # type: ignore[misc]
+        x, y, z = cast(tuple[float, float, float], value.si)
         return NamedPoint(name=value.key, kind=NamedPoint.POINT if value.type == 'point'
                           else NamedPoint.VECTOR, x=x, y=y, z=z, display_unit=value.display_unit,
                           source=value.source)
@@ -76,7 +77,7 @@ def group_from_msg(msg: InputGroup) -> GroupData:
                                                   tuple(float(v) for v in c.y)), c.y_unit,
                                c.x_unit, c.y_display_unit, c.x_display_unit, c.source)
     for p in msg.points:
-        kind = 'point' if p.kind == NamedPoint.POINT else 'vector'
+        kind: ValueType = 'point' if p.kind == NamedPoint.POINT else 'vector'
         values[p.name] = Value(p.name, kind, (float(p.x), float(p.y), float(p.z)),
                                'm' if kind == 'point' else '', display_unit=p.display_unit,
                                source=p.source)

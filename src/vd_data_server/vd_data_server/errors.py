@@ -8,6 +8,8 @@ involved) so that a user can go straight to the line that is wrong.
 """
 from __future__ import annotations
 
+from http import HTTPStatus
+
 #: longest message of one problem (a quoted value can be a whole file), characters
 MAX_MESSAGE = 500
 #: most problems listed from one validation pass
@@ -50,3 +52,11 @@ class DataErrors(DataError):
         self.file = None
         self.key = None
         self.detail = str(self)
+
+
+class WorkbenchError(Exception):
+    """A request the workbench refuses: ``status`` and a message for the page."""
+
+    def __init__(self, status: HTTPStatus, message: str) -> None:
+        super().__init__(message)
+        self.status = status

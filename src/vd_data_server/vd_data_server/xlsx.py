@@ -36,7 +36,7 @@ from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
-from vd_data_server.workbench.server import study_state
+from vd_data_server.overview import study_state
 
 from . import schema
 from .errors import DataError, DataErrors

@@ -479,7 +479,7 @@ def kc_wheel_frame(axle: str, side: str) -> str:
 KC_FRAME_CHANNELS = tuple(f'wheel_centre_{c}_{side}' for side in SIDES for c in XYZ)
 
 
-def has_wheel_frames(channels: Mapping[str, Sequence[float]]) -> bool:
+def has_wheel_frames(channels: Mapping[str, Sequence[float] | np.ndarray]) -> bool:
     """Say whether a K&C outcome's channels (name -> values) give its wheels' TF frames."""
     return all(k in channels and np.isfinite(np.asarray(channels[k], dtype=float)).all()
                for k in KC_FRAME_CHANNELS)

@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from .errors import SolverError
+from .results import FIDELITIES
 
 
 @dataclass(frozen=True)
@@ -57,7 +58,6 @@ MODEL_FAMILY: Mapping[str, str] = {m: f.name for f in FAMILIES.values() for m in
 MODELS = tuple(MODEL_FAMILY)
 #: models of measured data (vd import) -> the family whose messages carry them
 MEASURED_MODEL_FAMILY: Mapping[str, str] = {'test': 'vehicle', 'rig': 'kc'}
-FIDELITIES = ('rigid', 'flexible')
 #: the full vehicle's pose, one message per recorded step (nav_msgs/Odometry)
 ODOMETRY_TOPIC = 'vehicle/odom'
 #: the TF tree is global (tf2's convention): every vehicle on the domain publishes here
@@ -84,6 +84,11 @@ def event_model(event: str) -> str:
     if event in events_for('two_track'):
         return 'two_track'
     return next((m for m in MODELS if event in events_for(m)), 'two_track')
+
+
+def all_events() -> tuple[str, ...]:
+    """Return every event of every model, each once (from the rungs' own event tables)."""
+    return tuple(dict.fromkeys(e for model in MODELS for e in events_for(model)))
 
 
 def events_for(model: str) -> tuple[str, ...]:

@@ -15,11 +15,15 @@ from typing import Any
 
 import numpy as np
 
+#: the fidelities of the K&C data a result is computed from: the rigid parts, or the
+#: flexible components of the configuration's flex groups
+FIDELITIES = ('rigid', 'flexible')
+
 
 @dataclass(frozen=True)
 class Metric:
     value: float
-    unit: str  # SI; display units are applied at the edges (vd_events/display.py)
+    unit: str  # SI; display units are applied at the edges (vd_events/reports/display.py)
     source: str = ''
 
 

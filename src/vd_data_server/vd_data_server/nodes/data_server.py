@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
+from rclpy.publisher import Publisher
 
 from vd_data_server.conversions import configuration_to_msg, study_to_status_msg
 from vd_data_server.errors import DataError
@@ -49,7 +50,8 @@ class DataServer(Node):
         edits = self.resolve_service_name(names.SET_OVERRIDE)
         self.service = DataService(self.get_parameter('master_file').value,
                                    edit_source=f'ROS edit {edits}')
-        self.config_pub = None  # created for the study's number of configurations
+        # created for the study's number of configurations
+        self.config_pub: Publisher | None = None
         self.status_pub = self.create_publisher(DataStatus, names.DATA_STATUS, LATEST)
         self.create_service(GetConfiguration, names.GET_CONFIGURATION, self._get_configuration)
         self.create_service(SetOverride, names.SET_OVERRIDE, self._set_override)

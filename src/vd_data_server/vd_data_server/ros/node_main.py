@@ -10,6 +10,7 @@ import threading
 
 import rclpy
 from rclpy.executors import (
+    Executor,
     ExternalShutdownException,
     MultiThreadedExecutor,
     SingleThreadedExecutor,
@@ -87,7 +88,7 @@ def quiet_teardown(nodes: Sequence[Node], context=None) -> None:
 
 
 def run_node(factory: Callable[[], Node], body: Callable | None = None, args=None,
-             threads: int = 1, executor: Callable[[Node], object] | None = None):
+             threads: int = 1, executor: Callable[[Node], Executor] | None = None):
     """
     Run one node the ros2/examples way; return what ``body(executor, node)`` returns.
 

@@ -25,15 +25,14 @@ from pathlib import Path
 import sys
 import threading
 import time
-from typing import Any, cast
+from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
-from vd_data_server.errors import DataError
+from vd_data_server.errors import DataError, WorkbenchError
 from vd_data_server.master import inside
 from vd_data_server.masteredit import Edit, edit_master
-from vd_data_server.model import Value
+from vd_data_server.overview import study_state
 from vd_data_server.service import DataService
-from vd_data_server.study import NOT_USED, Study, format_value
 from vd_data_server.yamlio import read_bytes
 
 #: seconds between looks at the watched files (a change shows within a second)
@@ -51,92 +50,6 @@ STATIC = {'/': ('index.html', 'text/html; charset=utf-8'),
 EDITS_OFF = 'edits are disabled (start the workbench with: vd gui --edits)'
 #: runs "Update marked" starts: (configuration names) -> per configuration metrics
 Runner = Callable[[Sequence[str]], Mapping[str, Any]]
-
-
-class WorkbenchError(Exception):
-    """A request the workbench refuses: ``status`` and a message for the page."""
-
-    def __init__(self, status: HTTPStatus, message: str) -> None:
-        super().__init__(message)
-        self.status = status
-
-
-def _display(value: Value) -> tuple[str, str]:
-    """(text, unit) of a value in the unit its data file was written in."""
-    unit = value.display_unit or value.unit
-    if value.type == 'curve':
-        return format_value(value, ''), value.unit
-    return format_value(value, unit), unit if value.type != 'text' else ''
-
-
-def study_state(study: Study) -> dict[str, Any]:
-    """Everything the page shows, from one loaded study (plain JSON)."""
-    names = study.configuration_names
-    status = study.to_json()
-    modified = {(s.configuration, s.group): {m.key: m for m in s.modified_keys}
-                for s in study.status}
-    groups: dict[str, Any] = {}
-    hardpoints: dict[str, Any] = {}
-    for group in study.groups:
-        users = {n: study.configurations[n].groups[group] for n in names
-                 if group in study.configurations[n].groups}
-        keys = sorted({k for g in users.values() for k in g.values})
-        rows = []
-        for key in keys:
-            cells: dict[str, Any] = {}
-            values = [g.values.get(key) for g in users.values()]
-            for name, data in users.items():
-                value = data.values.get(key)
-                if value is None:
-                    continue
-                text, unit = _display(value)
-                mod = modified[(name, group)].get(key)
-                cells[name] = {'text': text, 'unit': unit, 'source': value.source,
-                               'modified': mod is not None,
-                               'data_value': mod.data_value if mod else text}
-            first = values[0]
-            differs = len(users) != len(names) or any(
-                v is None or first is None or not v.same_data(first) for v in values)
-            rows.append({'key': key, 'type': first.type if first else '', 'cells': cells,
-                         'consistency': 'DIFFERS' if differs else 'SAME'})
-        kinds = {g.kind for g in users.values()}
-        groups[group] = {'kind': kinds.pop() if len(kinds) == 1 else '',
-                         'files': {n: g.file for n, g in users.items()}, 'rows': rows}
-        if 'hardpoints' in {g.kind for g in users.values()}:
-            hardpoints[group] = {
-                n: {k.split('.', 1)[1]: [1e3 * c for c in cast(tuple[float, ...], v.si)]
-                    for k, v in g.values.items() if v.type == 'point'}
-                for n, g in users.items()}
-    configs = []
-    for name in names:
-        spec = study.master.configurations[name]
-        config = study.configurations[name]
-        overrides = []
-        for key, raw in spec.overrides.items():
-            group, _, rest = str(key).partition('.')
-            grp = config.groups.get(group)
-            unit = ''
-            if grp is not None:
-                base = rest[:-2] if rest not in grp.values and rest[-2:] in (
-                    '.x', '.y', '.z') else rest
-                if base in grp.values:
-                    unit = grp.values[base].display_unit or grp.values[base].unit
-            overrides.append({'key': str(key), 'value': str(raw), 'unit': unit})
-        configs.append({'name': name, 'description': spec.description,
-                        'flexible': config.flexible,
-                        'components': list(config.flexible_components),
-                        'variants': {g: study.status_of(name, g).variant for g in study.groups
-                                     if study.status_of(name, g).variant != NOT_USED},
-                        'overrides': overrides})
-    available = {}
-    root = study.master.data_root / study.master.vehicle
-    for group in study.groups:
-        folder = root / group
-        available[group] = sorted(p.stem for p in folder.glob('*.yaml')) if folder.is_dir() \
-            else []
-    return {'name': study.master.name, 'description': study.master.description,
-            'status': status, 'configurations': configs, 'groups': groups,
-            'hardpoints': hardpoints, 'available': available}
 
 
 class Workbench:

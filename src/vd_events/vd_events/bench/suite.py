@@ -187,8 +187,11 @@ def _bench_data_change(master: Path) -> float:
             Parameter('master_file', value=str(copy))])
         listener = Node('bench_listener', context=context, namespace=DEFAULT_NAMESPACE)
         hashes: dict[str, str] = {}
-        listener.create_subscription(Configuration, CONFIGURATION,
-                                     lambda m: hashes.__setitem__(m.name, m.data_hash),
+
+        def on_configuration(msg: Configuration) -> None:
+            hashes[msg.name] = msg.data_hash
+
+        listener.create_subscription(Configuration, CONFIGURATION, on_configuration,
                                      CONFIGURATIONS)
         for node in (server, listener):
             executor.add_node(node)

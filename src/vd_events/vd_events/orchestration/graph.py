@@ -20,7 +20,7 @@ from ament_index_python.packages import get_package_prefix
 
 from vd_data_server.ros import names
 from vd_solvers.families import FAMILIES
-from vd_solvers.nodes.vehicle import VehicleSolver
+from vd_solvers.nodes.solver import SolverNode
 
 
 @dataclass(frozen=True)
@@ -104,8 +104,13 @@ def command(spec: NodeSpec, namespace: str = names.DEFAULT_NAMESPACE,
     return args
 
 
-def solver_class(family: str) -> type:
-    """Return the node class of ``family``'s solver (imported on demand: imports cost)."""
+def solver_class(family: str) -> type[SolverNode]:
+    """
+    Return the node class of ``family``'s solver.
+
+    Imported on demand (docs/architecture.md#imports): an embedded run imports only the
+    solvers it starts, and the vehicle's imports Pinocchio.
+    """
     if family == 'steady_state':
         from vd_solvers.nodes.analytical import AnalyticalSolver
 
@@ -114,6 +119,7 @@ def solver_class(family: str) -> type:
         from vd_solvers.nodes.kc import KCSolver
 
         return KCSolver
+    from vd_solvers.nodes.vehicle import VehicleSolver
 
     return VehicleSolver
 

@@ -83,7 +83,7 @@ def run_lockstep(*, configuration: str = '', master: Path | None = None, duratio
     own = not rclpy.ok()
     if own:
         rclpy.init()
-    nodes = []
+    nodes: list[Node] = []
     writer = None
     try:
         params = [Parameter('mode', value='lockstep'),
@@ -95,6 +95,7 @@ def run_lockstep(*, configuration: str = '', master: Path | None = None, duratio
         solver = VehicleSolver(parameter_overrides=params)
         nodes.append(solver)
         session = solver.lockstep
+        assert session is not None  # mode lockstep
         if controller:
             nodes.append(PathFollower(parameter_overrides=[
                 Parameter('radius', value=float(radius)), Parameter('speed', value=float(speed)),
@@ -108,8 +109,11 @@ def run_lockstep(*, configuration: str = '', master: Path | None = None, duratio
         watcher = rclpy.create_node('lockstep_watch')
         nodes.append(watcher)
         status: list[str] = []
-        watcher.create_subscription(String, '/vd/' + STATUS_TOPIC, lambda m: status.append(m.data),
-                                    STATUS)
+
+        def on_status(msg: String) -> None:
+            status.append(msg.data)
+
+        watcher.create_subscription(String, '/vd/' + STATUS_TOPIC, on_status, STATUS)
         path: list[tuple[float, float, float]] = []
         if bag is not None:
             writer = BagWriter(Path(bag), {'vd.lockstep': configuration or 'first'})

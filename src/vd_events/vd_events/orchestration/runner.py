@@ -28,6 +28,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from typing import Any
 
 import rclpy
 from rclpy.action import ActionClient
@@ -58,15 +59,13 @@ from vd_solvers.families import (
     FAMILIES,
     MODEL_FAMILY,
     MODELS,
+    all_events,
     check_request,
     event_params,
     events_for,
 )
 from vd_solvers.results import EventOutcome
 
-ALL_EVENTS = ('steady_state_circular', 'handling_diagram', 'parallel_wheel_travel',
-              'opposite_wheel_travel', 'lateral_force', 'longitudinal_force', 'steering',
-              'aligning_torque', 'constant_radius_turn', 'sine_with_dwell', 'step_steer')
 #: s of silence (no result, no feedback) after which the result is asked for again: a
 #: response Fast DDS dropped is not a dead solver (a dead one is told by its process exit)
 GOAL_TIMEOUT = 60.0
@@ -125,8 +124,8 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
 
     Returns the request with the data hash its result must carry.
     """
-    if request.event not in ALL_EVENTS:
-        raise RunError(f"unknown event '{request.event}' (events: {', '.join(ALL_EVENTS)})")
+    if request.event not in all_events():
+        raise RunError(f"unknown event '{request.event}' (events: {', '.join(all_events())})")
     if request.model not in MODELS:
         raise RunError(f"unknown model '{request.model}' (models: {', '.join(MODELS)})")
     if not request.fidelity:
@@ -368,18 +367,16 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     executor = MultiThreadedExecutor(num_threads=EMBEDDED_THREADS, context=context)
     # a private graph: no parameter services and no /rosout (fewer DDS endpoints to create
     # and discover, a smaller wait set for every spin)
-    private = {'context': context, 'namespace': namespace, 'start_parameter_services': False,
-               'enable_rosout': False}
-    nodes = [DataServer(**private, study=study, parameter_overrides=[
-                 Parameter('master_file', value=str(master)), Parameter('watch_period',
-                                                                        value=0.0)])]
-    nodes += [cls(**private) for cls in classes]
+    private: dict[str, Any] = {'context': context, 'namespace': namespace,
+                               'start_parameter_services': False, 'enable_rosout': False}
+    server = DataServer(**private, study=study, parameter_overrides=[
+        Parameter('master_file', value=str(master)), Parameter('watch_period', value=0.0)])
+    solvers = [cls(**private) for cls in classes]
     client_node = Node('event_runner', **private)
-    nodes.append(client_node)
+    nodes: list[Node] = [server, *solvers, client_node]
     for node in nodes:
         executor.add_node(node)
     client = EventClient(client_node, discovery_grace=0.0)
-    solvers = nodes[1:-1]
     outcomes: list[RunOutcome] = []
     clock.lap('graph_start')
     try:
@@ -530,8 +527,9 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
             """Say why the graph is dead: a node process that exited is the one signal."""
             for proc in [*procs, *([recorder] if recorder is not None else [])]:
                 if proc.poll() is not None:
-                    return (f"the node process '{Path(proc.args[0]).name}' exited with "
-                            f'code {proc.returncode}')
+                    name = Path(str(proc.args[0] if isinstance(proc.args, list)
+                                    else proc.args)).name
+                    return f"the node process '{name}' exited with code {proc.returncode}"
             return None
 
         for request in requests:
@@ -579,7 +577,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     finally:
         if request is not None:
             _drop_recording(recorder, request)
-        if node is not None:
+        if node is not None and executor is not None:
             executor.remove_node(node)
             node.destroy_node()
             executor.shutdown()

@@ -174,6 +174,7 @@ def compare(rigid: EventOutcome, flexible: EventOutcome,
             span = max(span, float(np.ptp(r[~stops])) if np.any(~stops) else 0.0)
             if abs(f[at] - r[at]) > abs(offset):
                 offset = float(f[at] - r[at])
+        assert tolerance is not None  # the wheel load's is set from the design load above
         limit = max(float(tolerance), RELATIVE * span)
         cells.append(Cell(event, quantity, unit, worst, limit,
                           'Rigid' if worst <= limit else 'Flexible', bool(np.any(stops)),

@@ -28,6 +28,7 @@ from typing import Any
 from vd_data_server import schema
 from vd_data_server.errors import DataError
 from vd_data_server.paths import default_master
+from vd_data_server.ros.names import DEFAULT_NAMESPACE
 from vd_data_server.shape import Collector, check
 from vd_data_server.study import load_study
 from vd_data_server.yamlio import load_file
@@ -146,9 +147,13 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
             raise DataError(f'two runs write the same bag {request.bag}', file=str(plan.path))
         seen.add(request.bag)
     requests = checked
-    runner = run_distributed if distributed else run_embedded
-    results = runner(plan.master, requests, progress, on_done=on_done,
-                     **({'namespace': namespace} if namespace else {}))
+    ns = namespace or DEFAULT_NAMESPACE
+    if distributed:
+        results = run_distributed(plan.master, requests, progress, namespace=ns,
+                                  on_done=on_done)
+    else:
+        results = run_embedded(plan.master, requests, progress, namespace=ns,
+                               on_done=on_done)
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
     return {

@@ -24,13 +24,13 @@ from threading import Lock
 
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
+from vd_solvers.results import FIDELITIES
 
 from .events import EventResult, KCModel
 from .model import without_bar
 
 #: results kept per process
 MAX_ENTRIES = 256
-from .from_config import FIDELITIES  # noqa: E402  (fidelities the K&C model offers)
 
 #: the opposite-wheel-travel run without the anti-roll bar (roll stiffness split)
 NO_BAR = 'opposite_wheel_travel_no_bar'

@@ -26,7 +26,7 @@ from vd_solvers.event_params import parse_params
 from vd_solvers.flex import section as sec
 from vd_solvers.flex.component import ShapePoint
 from vd_solvers.flex.imported import from_dmig, from_plain
-from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.results import FIDELITIES, Channel, EventOutcome, Metric
 from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 from .channels import UNITS, bushing_unit
@@ -45,8 +45,6 @@ from .model import (
     SuspensionInput,
     without_bar,
 )
-
-FIDELITIES = ('rigid', 'flexible')
 
 
 def _curve(group: GroupData, key: str, scale: float = 1.0) -> Curve:

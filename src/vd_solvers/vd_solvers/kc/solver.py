@@ -111,22 +111,16 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
             return state, ev, Convergence(iteration, c_res, f_res)
         if iteration == MAX_NEWTON_ITERATIONS:
             break
-        k = ev.tangent(state.lam)
         j = ev.jacobian
-        s = max(float(np.max(np.abs(k))), 1.0)
-        n, m = k.shape[0], j.shape[0]
-        kkt = np.zeros((n + m, n + m))
-        kkt[:n, :n] = k
-        kkt[:n, n:] = s * j.T
-        kkt[n:, :n] = s * j
-        rhs = np.concatenate((-(residual - j.T @ state.lam), -s * ev.g))
-        lu, piv = scipy.linalg.lu_factor(kkt, check_finite=False)
-        pivots = np.abs(np.diag(lu))
-        if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
+        factors = _kkt(ev.tangent(state.lam), j)
+        if factors is None:
             raise _StepFailure(
                 'singular equilibrium equations: the mechanism is locked (at a '
                 'singular position) or a part is unrestrained'
             )
+        lu, piv, s = factors
+        n = j.shape[1]
+        rhs = np.concatenate((-(residual - j.T @ state.lam), -s * ev.g))
         sol = scipy.linalg.lu_solve((lu, piv), rhs, check_finite=False)
         dq = sol[:n].reshape(-1, 6)
         longest = max(
@@ -290,8 +284,25 @@ def sensitivity(system: System, state: State, load: LoadCase, ahead: LoadCase,
         further = system.evaluate(state, ahead)
         d_force = (further.force_residual(state.lam) - ev.force_residual(state.lam)) / step
         d_g = (further.g - ev.g) / step
-    k = ev.tangent(state.lam)
-    j = ev.jacobian
+    factors = _kkt(ev.tangent(state.lam), ev.jacobian)
+    if factors is None:
+        raise SolverError('sensitivity: singular equilibrium equations at the state')
+    lu, piv, s = factors
+    n = ev.jacobian.shape[1]
+    sol = scipy.linalg.lu_solve((lu, piv), -np.concatenate((d_force, s * d_g)),
+                                check_finite=False)
+    return Sensitivity(sol[:n].reshape(-1, 6), s * sol[n:])
+
+
+def _kkt(k: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """
+    Return the LU factors of the scaled KKT matrix [[K, s Jᵀ], [s J, 0]] and the scale s.
+
+    The constraint blocks are scaled by s = max |K| (at least 1) so that the pivots of
+    both blocks are of one size and a small pivot reveals a singular system: None when
+    the smallest pivot is below SINGULAR_PIVOT_RATIO of the largest (a locked or
+    unrestrained mechanism). Used by Newton and by the sensitivities alike.
+    """
     s = max(float(np.max(np.abs(k))), 1.0)
     n, m = k.shape[0], j.shape[0]
     kkt = np.zeros((n + m, n + m))
@@ -301,10 +312,8 @@ def sensitivity(system: System, state: State, load: LoadCase, ahead: LoadCase,
     lu, piv = scipy.linalg.lu_factor(kkt, check_finite=False)
     pivots = np.abs(np.diag(lu))
     if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
-        raise SolverError('sensitivity: singular equilibrium equations at the state')
-    sol = scipy.linalg.lu_solve((lu, piv), -np.concatenate((d_force, s * d_g)),
-                                check_finite=False)
-    return Sensitivity(sol[:n].reshape(-1, 6), s * sol[n:])
+        return None
+    return lu, piv, s
 
 
 def _pads_only(load: LoadCase, other: LoadCase) -> bool:

@@ -20,9 +20,9 @@ from vd_data_server.ros.qos import STATES
 from vd_interfaces.msg import KcState
 from vd_solvers.errors import SolverError
 from vd_solvers.families import TF_TOPIC
-from vd_solvers.kc.from_config import FIDELITIES, run_kc_event
+from vd_solvers.kc.from_config import run_kc_event
 from vd_solvers.nodes.solver import SolverNode
-from vd_solvers.results import EventOutcome
+from vd_solvers.results import FIDELITIES, EventOutcome
 
 FAMILY = 'kc'
 

@@ -26,6 +26,7 @@ import sys
 
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.executors import Executor
 from rclpy.experimental import EventsExecutor
 
 from tf2_msgs.msg import TFMessage
@@ -140,8 +141,10 @@ def main(args=None) -> None:
             print(f'vehicle_solver: {err}', file=sys.stderr)
             raise SystemExit(2) from None
 
-    run_node(build, args=args, executor=lambda node: make_executor(2) if node.mode == 'events'
-             else EventsExecutor())
+    def executor(node) -> Executor:
+        return make_executor(2) if node.mode == 'events' else EventsExecutor()
+
+    run_node(build, args=args, executor=executor)
 
 
 if __name__ == '__main__':

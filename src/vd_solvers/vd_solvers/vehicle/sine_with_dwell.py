@@ -28,11 +28,11 @@ study compares.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-import math
 
 import numpy as np
 
-from vd_solvers.analytical.params import STANDARD_GRAVITY as G
+from vd_solvers.constants import DEG
+from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
@@ -42,7 +42,6 @@ from .drivers import OpenLoopSteering, SpeedController
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
 
-DEG = math.pi / 180.0
 #: SIS: entry speed, steering-wheel rate, lateral acceleration at which a run ends
 SIS_SPEED = 80.0 / 3.6  # m/s
 SIS_RATE = 13.5 * DEG  # rad/s
