@@ -23,6 +23,7 @@ from vd_data_server.tir import TireProperties, TireTable, parse_tir_text, read_t
 DATA_DIR = Path(__file__).resolve().parents[2] / 'src' / 'vd_data_server' / 'data' / 'tires'
 SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
 HMMWV = DATA_DIR / 'HMMWV_Pac02Tire.tir'
+MF62 = DATA_DIR / 'MF62_255_55R20.tir'
 RTOL = 1e-12
 
 
@@ -193,16 +194,29 @@ def test_utf8_byte_order_mark_is_accepted(tmp_path: Path) -> None:
     ('declaration', 'expected'),
     [
         ("PROPERTY_FILE_FORMAT = 'MF_05'", 'MF52'),
-        ("PROPERTY_FILE_FORMAT = 'mf61'", 'MF61'),
         ('FITTYP = 6', 'MF52'),
         ('FITTYP = 21', 'MF52'),
-        ('FITTYP = 61', 'MF61'),
-        ('FITTYP = 62', 'MF62'),
-        ("PROPERTY_FILE_FORMAT = 'MF-TYRE'\nFITTYP = 62", 'MF62'),
     ],
 )
 def test_file_format_from_property_file_format_or_fittyp(declaration: str, expected: str) -> None:
     text = set_line(sedan_text(), 'PROPERTY_FILE_FORMAT', declaration)
+    assert parse_tir_text(text, 'x').file_format == expected
+
+
+@pytest.mark.parametrize(
+    ('declaration', 'expected'),
+    [
+        ("PROPERTY_FILE_FORMAT = 'mf61'", 'MF61'),
+        ('FITTYP = 61', 'MF61'),
+        ('FITTYP = 62', 'MF62'),
+        ("PROPERTY_FILE_FORMAT = 'MF-TYRE'\nFITTYP = 62", 'MF62'),
+        ("PROPERTY_FILE_FORMAT = 'USER'\nFITTYP = 61", 'MF61'),
+    ],
+)
+def test_mf6_file_format(declaration: str, expected: str) -> None:
+    """An MF 6.x file (the bundled 6.2 sample) as its [MODEL] declares it."""
+    text = drop_line(MF62.read_text(encoding='ascii'), 'FITTYP')
+    text = set_line(text, 'PROPERTY_FILE_FORMAT', declaration)
     assert parse_tir_text(text, 'x').file_format == expected
 
 
@@ -420,7 +434,7 @@ def test_unknown_property_file_format(tmp_path: Path) -> None:
     error = expect_read_error(tmp_path, text)
     assert (error.detail, error.key) == (
         f"line {line_of(text, 'PROPERTY_FILE_FORMAT')}: unknown PROPERTY_FILE_FORMAT 'PAC89' "
-        "(known: 'MF-TYRE', 'MF52', 'MF61', 'MF62', 'MF_05', 'MF_TYRE', 'PAC2002')",
+        "(known: 'MF-TYRE', 'MF52', 'MF61', 'MF62', 'MF_05', 'MF_TYRE', 'PAC2002', 'USER')",
         'PROPERTY_FILE_FORMAT',
     )
 
