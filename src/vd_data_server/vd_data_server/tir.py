@@ -816,6 +816,8 @@ def _pressure_range(sections, source, at, number) -> list[DataError]:
     """Check that the inflation pressure lies in the file's [PRESMIN, PRESMAX]."""
     low = number('INFLATION_PRESSURE_RANGE', 'PRESMIN')
     high = number('INFLATION_PRESSURE_RANGE', 'PRESMAX')
+    if low is not None and high is not None and low >= high:
+        return []  # the range itself is reported
     for block, key, _ in PRESSURE_KEYS:
         pressure = number(block, key)
         if pressure is None or low is None or high is None or low <= pressure <= high:
