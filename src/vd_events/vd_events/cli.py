@@ -58,6 +58,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import workbench_cmd
 
     workbench_cmd.add_subcommands(sub, commands.HANDLERS)
+    from . import tire_cmd
+
+    tire_cmd.add_subcommands(sub, commands.HANDLERS)
     return parser
 
 

@@ -54,7 +54,7 @@ def test_a_pressure_outside_the_files_range_is_refused(sample_root: Path,
         load_study(mf62_master)
     assert tree_snapshot(sample_root) == before
     assert str(info.value) == (
-        'sedan/front_tire/MF62.yaml -> tires/MF62_255_55R20.tir: INFLPRES: key \'INFLPRES\' in '
+        "sedan/front_tire/MF62.yaml -> tires/MF62_255_55R20.tir: INFLPRES: key 'INFLPRES' in "
         'block [OPERATING_CONDITIONS] must lie in the range the file is valid for, '
         'PRESMIN..PRESMAX = 200000..400000 Pa, found 500000')
 
