@@ -511,7 +511,8 @@ class MagicFormula:
         construction, so the four wheels of a car are one call. Off the ground (Fz <= 0)
         every output is 0.
         """
-        fz_, kappa_, alpha_, gamma_, vx_, phit_ = _arrays(fz, kappa, alpha, gamma, vx, phit)
+        fz_, kappa_, alpha_, gamma_, vx_ = _arrays(fz, kappa, alpha, gamma, vx)
+        phit_ = np.asarray(phit, dtype=float)  # broadcast where used (0 unless turn slip)
         s = np.broadcast_to(np.asarray(self._mirror if mirror is None else mirror, dtype=float),
                             fz_.shape)
         p = self._p
@@ -554,8 +555,8 @@ class MagicFormula:
         module doc.
         """
         self._need_vertical_stiffness()
-        fz_, omega_ = _arrays(fz, omega)
-        fz_ = np.maximum(fz_, 0.0)
+        fz_ = np.maximum(np.asarray(fz, dtype=float), 0.0)
+        omega_ = np.asarray(omega, dtype=float)
         p = self._p
         loaded = _loaded_radius(p, fz_, omega_, 0.0, 0.0)
         if p[RE_LINEAR] != 0.0:
@@ -1061,13 +1062,16 @@ def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.nd
     # overturning moment ([Bd] 49) and rolling resistance ([5]; [B] A48)
     fnom = p[FNOMIN]
     r0 = p[R0]
-    mx = (r0 * fz * p[LMX] * (
-        p[QSX1] * p[LVMX] - p[QSX2] * gamma * (1.0 + p[PPMX1] * p[DPI])
-        - p[QSX12] * gamma * np.abs(gamma) + p[QSX3] * fy / fnom
-        + p[QSX4] * np.cos(p[QSX5] * np.arctan((p[QSX6] * fz / fnom) ** 2))
-        * np.sin(p[QSX7] * gamma + p[QSX8] * np.arctan(p[QSX9] * fy / fnom))
-        + p[QSX10] * np.arctan(p[QSX11] * fz / fnom) * gamma)
-        + r0 * fy * p[LMX] * (p[QSX13] + p[QSX14] * np.abs(gamma)))
+    couple = (p[QSX1] * p[LVMX] - p[QSX2] * gamma * (1.0 + p[PPMX1] * p[DPI])
+              + p[QSX3] * fy / fnom)
+    if p[QSX4] != 0.0 or p[QSX10] != 0.0 or p[QSX12] != 0.0:  # terms 0 without them
+        couple = (couple - p[QSX12] * gamma * np.abs(gamma)
+                  + p[QSX4] * np.cos(p[QSX5] * np.arctan((p[QSX6] * fz / fnom) ** 2))
+                  * np.sin(p[QSX7] * gamma + p[QSX8] * np.arctan(p[QSX9] * fy / fnom))
+                  + p[QSX10] * np.arctan(p[QSX11] * fz / fnom) * gamma)
+    mx = r0 * fz * p[LMX] * couple
+    if p[QSX13] != 0.0 or p[QSX14] != 0.0:
+        mx = mx + r0 * fy * p[LMX] * (p[QSX13] + p[QSX14] * np.abs(gamma))
     v_rel = vx / p[LONGVL] if p[LONGVL] > 0.0 else np.zeros_like(vx)
     rolling = (p[QSY1] + p[QSY2] * fx / fnom + p[QSY3] * np.abs(v_rel)
                + p[QSY4] * v_rel ** 4)
