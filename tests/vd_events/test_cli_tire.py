@@ -118,3 +118,29 @@ def test_a_missing_file_is_refused(capsys: pytest.CaptureFixture[str], tmp_path:
     rc, out, err = run(capsys, 'tire', str(missing))
     assert (rc, out) == (2, '')
     assert err == f'{missing}: cannot read tire property file: No such file or directory\n'
+
+
+def test_data_check_accepts_the_mf62_study(capsys: pytest.CaptureFixture[str],
+                                           sample_root: Path) -> None:
+    master = sample_root / 'studies' / 'sedan_mf62.yaml'
+    rc, out, err = run(capsys, 'data', 'check', '--master', str(master))
+    assert (rc, err) == (0, '')
+    assert out == f'{master}: OK (2 configurations, 24 data files)\n'
+
+
+def test_data_check_names_the_line_of_a_bad_mf62_value(capsys: pytest.CaptureFixture[str],
+                                                       sample_root: Path) -> None:
+    tire = sample_root / 'tires' / 'MF62_255_55R20.tir'
+    text = tire.read_text(encoding='ascii')
+    assert text.count('PDYP1                     = 0.4') == 1
+    tire.write_text(text.replace('PDYP1                     = 0.4',
+                                 'PDYP1                     = 0.4\nPDYP5 = 1'), encoding='ascii')
+    line = next(n for n, t in enumerate(tire.read_text().splitlines(), start=1)
+                if t.startswith('PDYP5'))
+    before = tree_snapshot(sample_root)
+    rc, out, err = run(capsys, 'data', 'check', '--master',
+                       str(sample_root / 'studies' / 'sedan_mf62.yaml'))
+    assert (rc, out) == (2, '')
+    assert err == (f"{tire}: PDYP5: line {line}: 'PDYP5' is no MF 6.2 coefficient of block "
+                   '[TURNSLIP_COEFFICIENTS] (a misspelt coefficient would silently be 0)\n')
+    assert tree_snapshot(sample_root) == before

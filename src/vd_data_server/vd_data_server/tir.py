@@ -39,7 +39,7 @@ camber in radians), so [UNITS] does not apply to them.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 import enum
 import math
@@ -806,13 +806,18 @@ def check_values(
             errors.append(DataError(
                 f'{line}key {high_key!r} in block [{block}] must be > {low_key} '
                 f'({low:g}), found {text}', file=source, key=high_key))
-    errors.extend(_pressure_range(sections, source, at, number))
-    errors.extend(_vertical_curve(sections, source, at, number))
+    errors.extend(_pressure_range(source, at, number))
+    errors.extend(_vertical_curve(source, at, number))
     errors.extend(_use_mode(sections, source, at, file_format))
     return errors
 
 
-def _pressure_range(sections, source, at, number) -> list[DataError]:
+_Sections = Mapping[str, Mapping[str, float | str]]
+_At = Callable[[str, str, float | str], tuple[str, str]]
+_Number = Callable[[str, str], float | None]
+
+
+def _pressure_range(source: str, at: _At, number: _Number) -> list[DataError]:
     """Check that the inflation pressure lies in the file's [PRESMIN, PRESMAX]."""
     low = number('INFLATION_PRESSURE_RANGE', 'PRESMIN')
     high = number('INFLATION_PRESSURE_RANGE', 'PRESMAX')
@@ -830,7 +835,7 @@ def _pressure_range(sections, source, at, number) -> list[DataError]:
     return []
 
 
-def _vertical_curve(sections, source, at, number) -> list[DataError]:
+def _vertical_curve(source: str, at: _At, number: _Number) -> list[DataError]:
     """Check that Q_FZ1 = sqrt((C_z R0 / FNOMIN)^2 - 4 Q_FZ2) is real (Besselink 2010, eq. 4)."""
     q_fz2 = number('VERTICAL', 'Q_FZ2')
     stiffness = number('VERTICAL', 'VERTICAL_STIFFNESS')
@@ -850,7 +855,7 @@ def _vertical_curve(sections, source, at, number) -> list[DataError]:
         f'FNOMIN)^2 - 4 Q_FZ2)), found {text}', file=source, key='Q_FZ2')]
 
 
-def _use_mode(sections, source, at, file_format: str) -> list[DataError]:
+def _use_mode(sections: _Sections, source: str, at: _At, file_format: str) -> list[DataError]:
     """Check that USE_MODE ends in a digit vd evaluates; turn slip needs an MF 6.x file."""
     value = sections.get('MODEL', {}).get('USE_MODE')
     if value is None:
