@@ -156,9 +156,10 @@ Sign conventions
 the TYDEX / ISO W-axis system of MF-Tyre and Adams (x forward, y left, z up,
 forces on the tire from the road) with alpha = arctan(V_sy / |V_x|), i.e.
 ISO 8855's slip angle, positive when the contact patch slides to the left.
-Fitted files therefore have PKY1 < 0: a positive alpha gives a negative Fy and
-the cornering stiffness dFy/dalpha is negative (about -77 kN/rad for the
-sedan tire at 4850 N). kappa > 0 (driving) gives Fx > 0.
+Fitted files therefore have a negative cornering stiffness: a positive alpha gives a
+negative Fy (about -77 kN/rad for the sedan tire at 4850 N, PKY1 < 0 with PKY4 = 2;
+-142 kN/rad for the MF 6.2 sample at 6752 N, PKY1 > 0 with PKY4 < 0). kappa > 0
+(driving) gives Fx > 0.
 
 :meth:`MagicFormula.fy_iso` is the convention of the analytical models and of
 :class:`vd_solvers.tire.simple.SimpleTire`: the same physical force along ISO
