@@ -23,6 +23,7 @@ from vd_data_server.tir import TireProperties, TireTable, parse_tir_text, read_t
 DATA_DIR = Path(__file__).resolve().parents[2] / 'src' / 'vd_data_server' / 'data' / 'tires'
 SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
 HMMWV = DATA_DIR / 'HMMWV_Pac02Tire.tir'
+MF62 = DATA_DIR / 'MF62_255_55R20.tir'
 RTOL = 1e-12
 
 
@@ -193,16 +194,29 @@ def test_utf8_byte_order_mark_is_accepted(tmp_path: Path) -> None:
     ('declaration', 'expected'),
     [
         ("PROPERTY_FILE_FORMAT = 'MF_05'", 'MF52'),
-        ("PROPERTY_FILE_FORMAT = 'mf61'", 'MF61'),
         ('FITTYP = 6', 'MF52'),
         ('FITTYP = 21', 'MF52'),
-        ('FITTYP = 61', 'MF61'),
-        ('FITTYP = 62', 'MF62'),
-        ("PROPERTY_FILE_FORMAT = 'MF-TYRE'\nFITTYP = 62", 'MF62'),
     ],
 )
 def test_file_format_from_property_file_format_or_fittyp(declaration: str, expected: str) -> None:
     text = set_line(sedan_text(), 'PROPERTY_FILE_FORMAT', declaration)
+    assert parse_tir_text(text, 'x').file_format == expected
+
+
+@pytest.mark.parametrize(
+    ('declaration', 'expected'),
+    [
+        ("PROPERTY_FILE_FORMAT = 'mf61'", 'MF61'),
+        ('FITTYP = 61', 'MF61'),
+        ('FITTYP = 62', 'MF62'),
+        ("PROPERTY_FILE_FORMAT = 'MF-TYRE'\nFITTYP = 62", 'MF62'),
+        ("PROPERTY_FILE_FORMAT = 'USER'\nFITTYP = 61", 'MF61'),
+    ],
+)
+def test_mf6_file_format(declaration: str, expected: str) -> None:
+    """An MF 6.x file (the bundled 6.2 sample) as its [MODEL] declares it."""
+    text = drop_line(MF62.read_text(encoding='ascii'), 'FITTYP')
+    text = set_line(text, 'PROPERTY_FILE_FORMAT', declaration)
     assert parse_tir_text(text, 'x').file_format == expected
 
 
@@ -420,7 +434,7 @@ def test_unknown_property_file_format(tmp_path: Path) -> None:
     error = expect_read_error(tmp_path, text)
     assert (error.detail, error.key) == (
         f"line {line_of(text, 'PROPERTY_FILE_FORMAT')}: unknown PROPERTY_FILE_FORMAT 'PAC89' "
-        "(known: 'MF-TYRE', 'MF52', 'MF61', 'MF62', 'MF_05', 'MF_TYRE', 'PAC2002')",
+        "(known: 'MF-TYRE', 'MF52', 'MF61', 'MF62', 'MF_05', 'MF_TYRE', 'PAC2002', 'USER')",
         'PROPERTY_FILE_FORMAT',
     )
 
@@ -569,3 +583,111 @@ def test_syntax_error_names_the_line(
 def test_parse_tir_text_uses_source_as_path() -> None:
     props = parse_tir_text(sedan_text(), 'memory:sedan')
     assert isinstance(props, TireProperties) and props.path == 'memory:sedan'
+
+
+# --- MF 6.1 / 6.2 files -------------------------------------------------------------
+
+
+def mf62_text() -> str:
+    return MF62.read_text(encoding='ascii')
+
+
+def test_the_mf62_sample_is_read_as_62_with_its_pressures() -> None:
+    props = read_tir(MF62)
+    assert props.file_format == 'MF62'
+    assert props.number('OPERATING_CONDITIONS', 'INFLPRES') == 260000.0
+    assert props.number('OPERATING_CONDITIONS', 'NOMPRES') == 260000.0
+    assert props.get('UNITS', 'ANGLE') == 'radians'  # pint's plural of radian
+
+
+@pytest.mark.parametrize(
+    ('case', 'edit', 'key', 'message'),
+    [
+        ('no operating conditions', lambda t: drop_block(t, 'OPERATING_CONDITIONS'), None,
+         'missing block [OPERATING_CONDITIONS] (needed by MF 6.2)'),
+        ('no NOMPRES', lambda t: drop_line(t, 'NOMPRES'), 'NOMPRES',
+         "key 'NOMPRES' missing in block [OPERATING_CONDITIONS]"),
+        ('no aligning coefficients', lambda t: drop_block(t, 'ALIGNING_COEFFICIENTS'), None,
+         'missing block [ALIGNING_COEFFICIENTS] (needed by MF 6.2)'),
+        ('misspelt coefficient', lambda t: set_line(t, 'PKY7', 'PKY7 = 0.2665448\nPKY8 = 1'),
+         'PKY8', "line {PKY8}: 'PKY8' is no MF 6.2 coefficient of block [LATERAL_COEFFICIENTS] "
+         '(a misspelt coefficient would silently be 0)'),
+        ('PAC2002 coefficient', lambda t: set_line(t, 'PHY2', 'PHY2 = 0.0016\nPHY3 = 0.03'),
+         'PHY3', "line {PHY3}: 'PHY3' is no MF 6.2 coefficient of block [LATERAL_COEFFICIENTS] "
+         '(a misspelt coefficient would silently be 0)'),
+        ('unknown FITTYP', lambda t: set_line(t, 'FITTYP', 'FITTYP = 63'), 'FITTYP',
+         'line {FITTYP}: unknown FITTYP 63 (known: 6, 21, 61, 62)'),
+        ('FITTYP against the format',
+         lambda t: set_line(t, 'PROPERTY_FILE_FORMAT', "PROPERTY_FILE_FORMAT = 'PAC2002'"),
+         'FITTYP', "line {FITTYP}: FITTYP 62 (MF 6.2) contradicts PROPERTY_FILE_FORMAT "
+         "'PAC2002' of line {PROPERTY_FILE_FORMAT} (MF 5.2)"),
+        ('pressure outside the range', lambda t: set_line(t, 'INFLPRES', 'INFLPRES = 500000'),
+         'INFLPRES', "line {INFLPRES}: key 'INFLPRES' in block [OPERATING_CONDITIONS] must lie "
+         'in the range the file is valid for, PRESMIN..PRESMAX = 200000..400000 Pa, found '
+         '500000'),
+        ('negative nominal pressure', lambda t: set_line(t, 'NOMPRES', 'NOMPRES = -1'),
+         'NOMPRES', "line {NOMPRES}: key 'NOMPRES' in block [OPERATING_CONDITIONS] must be > 0, "
+         'found -1'),
+        ('pressure range upside down', lambda t: set_line(t, 'PRESMIN', 'PRESMIN = 500000'),
+         'PRESMAX', "line {PRESMAX}: key 'PRESMAX' in block [INFLATION_PRESSURE_RANGE] must be > "
+         'PRESMIN (500000), found 400000'),
+        ('no real Q_FZ1', lambda t: set_line(t, 'Q_FZ2', 'Q_FZ2 = 500'), 'Q_FZ2',
+         "line {Q_FZ2}: key 'Q_FZ2' in block [VERTICAL] must be at most (VERTICAL_STIFFNESS "
+         'UNLOADED_RADIUS / FNOMIN)^2 / 4 = 88.5757 (Q_FZ1 = sqrt((C_z R0 / FNOMIN)^2 - 4 '
+         'Q_FZ2)), found 500'),
+        ('USE_MODE not evaluated', lambda t: set_line(t, 'USE_MODE', 'USE_MODE = 127'),
+         'USE_MODE', "line {USE_MODE}: key 'USE_MODE' in block [MODEL] must end in one of 1, 2, "
+         '3, 4, 5 (1 Fx, 2 Fy and Mz, 3 uncombined, 4 combined, 5 combined with turn slip), '
+         'found 127'),
+        ('turn slip without its coefficients',
+         lambda t: set_line(set_line(t, 'PHYP2', 'PHYP2 = 0'), 'USE_MODE', 'USE_MODE = 125'),
+         'USE_MODE', "line {USE_MODE}: key 'USE_MODE' in block [MODEL] asks for turn slip (5), "
+         'which needs PHYP2 != 0 in block [TURNSLIP_COEFFICIENTS]'),
+        ('pressure not a number', lambda t: set_line(t, 'NOMPRES', "NOMPRES = 'high'"),
+         'NOMPRES', "line {NOMPRES}: key 'NOMPRES' in block [OPERATING_CONDITIONS] is not a "
+         "number: 'high'"),
+        ('unknown unit', lambda t: set_line(t, 'LENGTH', "LENGTH = 'furlong_x'"), 'LENGTH',
+         "line {LENGTH}: 'furlong_x' is not a known unit of length"),
+    ],
+)
+def test_bad_mf6_files_are_refused_naming_file_and_line(
+    tmp_path: Path, case: str, edit: Callable[[str], str], key: str | None, message: str
+) -> None:
+    text = edit(mf62_text())
+    lines = {k: line_of(text, k) for k in re.findall(r'\{(\w+)\}', message)}
+    error = expect_read_error(tmp_path, text)
+    assert (error.detail, error.key) == (message.format(**lines), key), case
+
+
+def test_turn_slip_needs_an_mf6_file(tmp_path: Path) -> None:
+    text = set_line(sedan_text(), 'USE_MODE', 'USE_MODE = 5')
+    error = expect_read_error(tmp_path, text)
+    assert (error.detail, error.key) == (
+        f"line {line_of(text, 'USE_MODE')}: key 'USE_MODE' in block [MODEL] asks for turn slip "
+        '(5), which needs an MF 6.1 / 6.2 file, found 5 in a PAC2002 file', 'USE_MODE')
+
+
+# (key, factor of its value in the millimetre file): lengths x 1000, N/m / 1000, ...
+MILLIMETRE = {
+    'UNLOADED_RADIUS': 1e3, 'WIDTH': 1e3, 'RIM_RADIUS': 1e3, 'RIM_WIDTH': 1e3,
+    'BOTTOM_OFFST': 1e3, 'ROAD_INCREMENT': 1e3, 'ELLIPS_MAX_STEP': 1e3, 'LONGVL': 1e3,
+    'VXLOW': 1e3, 'VERTICAL_STIFFNESS': 1e-3, 'VERTICAL_DAMPING': 1e-3, 'BOTTOM_STIFF': 1e-3,
+    'LONGITUDINAL_STIFFNESS': 1e-3, 'LATERAL_STIFFNESS': 1e-3, 'YAW_STIFFNESS': 1e3,
+    'IXX': 1e6, 'IYY': 1e6, 'BELT_IXX': 1e6, 'BELT_IYY': 1e6, 'GRAVITY': 1e3,
+}  # fmt: skip
+
+
+def test_an_mf6_file_in_millimetres_is_the_same_tire() -> None:
+    """LENGTH = 'mm' converts every key with a length; the coefficients stay as written."""
+    text = set_line(mf62_text(), 'LENGTH', "LENGTH = 'mm'")
+    for key, factor in MILLIMETRE.items():
+        value = float(re.search(rf'(?m)^{key}\s*=\s*(\S+)', text)[1])
+        text = set_line(text, key, f'{key} = {value * factor!r}')
+    metre, millimetre = read_tir(MF62), parse_tir_text(text, 'mm.tir')
+    for block, entries in metre.sections.items():
+        for key, value in entries.items():
+            if isinstance(value, str):
+                assert millimetre.sections[block][key] == value or block == 'UNITS'
+            else:
+                npt.assert_allclose(millimetre.sections[block][key], value, rtol=1e-12,
+                                    err_msg=f'{block} {key}')

@@ -249,6 +249,10 @@ KINDS: Mapping[str, Section] = {
     }),
     'tire': Section({
         'file': Text('TeimOrbit .tir property file, path relative to the data root'),
+        'aligning_normalisation': Text(
+            "load the pneumatic trail and the Fx arm of Mz are normalised by: 'mf-tyre' "
+            "(FNOMIN, as MF-Tyre) or 'book' (FNOMIN LFZO, Pacejka 2012 4.E42); default mf-tyre",
+            choices=('mf-tyre', 'book'), required=False),
     }),
     'mass': Section({
         'sprung_mass': Scalar('mass', 'sprung (body) mass', positive=True),

@@ -39,7 +39,7 @@ camber in radians), so [UNITS] does not apply to them.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 import enum
 import math
@@ -56,6 +56,9 @@ from vd_data_server.yamlio import MAX_FILE_BYTES
 
 __all__ = [
     'DIMENSIONAL_KEYS',
+    'MF6_COEFFICIENTS',
+    'MF6_REQUIRED_BLOCKS',
+    'MF6_REQUIRED_KEYS',
     'REQUIRED_BLOCKS',
     'REQUIRED_KEYS',
     'TireProperties',
@@ -86,6 +89,51 @@ REQUIRED_KEYS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
     }
 )
 
+#: Blocks an MF 6.1 / 6.2 file must contain besides :data:`REQUIRED_BLOCKS`: the pressures
+#: the Magic Formula is normalised by, and the aligning moment every 6.x file carries.
+MF6_REQUIRED_BLOCKS: Final[tuple[str, ...]] = ('OPERATING_CONDITIONS', 'ALIGNING_COEFFICIENTS')
+
+#: Keys an MF 6.1 / 6.2 file must give besides :data:`REQUIRED_KEYS`: INFLPRES is the one a
+#: configuration overrides, NOMPRES normalises it (dpi, Pacejka 4.E2b); VERTICAL_STIFFNESS
+#: gives the 6.x load-deflection curve (Q_FZ1); QBZ1, QCZ1, QDZ1 the pneumatic trail.
+MF6_REQUIRED_KEYS: Final[Mapping[str, tuple[str, ...]]] = MappingProxyType(
+    {
+        'OPERATING_CONDITIONS': ('INFLPRES', 'NOMPRES'),
+        'VERTICAL': ('VERTICAL_STIFFNESS',),
+        'ALIGNING_COEFFICIENTS': ('QBZ1', 'QCZ1', 'QDZ1'),
+    }
+)
+
+#: The coefficients MF-Tyre 6.1 / 6.2 defines in each coefficient block (Besselink et al.
+#: 2010 appendix, Pacejka 2012 sec. 4.3.2 and 4.3.3, the MF-Tyre 6.x sample files). In a 6.x
+#: file any other key in these blocks is refused: a misspelt coefficient would silently be
+#: 0. PAC2002 / MF 5.2 files, whose blocks carry tool-specific extras, are not checked so.
+MF6_COEFFICIENTS: Final[Mapping[str, frozenset[str]]] = MappingProxyType(
+    {
+        'SCALING_COEFFICIENTS': frozenset(
+            'LFZO LCX LMUX LEX LKX LHX LVX LCY LMUY LEY LKY LKYC LKZC LHY LVY LTR LRES LXAL '
+            'LYKA LVYKA LS LMX LVMX LMY LMP'.split()),
+        'LONGITUDINAL_COEFFICIENTS': frozenset(
+            'PCX1 PDX1 PDX2 PDX3 PEX1 PEX2 PEX3 PEX4 PKX1 PKX2 PKX3 PHX1 PHX2 PVX1 PVX2 PPX1 '
+            'PPX2 PPX3 PPX4 RBX1 RBX2 RBX3 RCX1 REX1 REX2 RHX1'.split()),
+        'OVERTURNING_COEFFICIENTS': frozenset(
+            'QSX1 QSX2 QSX3 QSX4 QSX5 QSX6 QSX7 QSX8 QSX9 QSX10 QSX11 QSX12 QSX13 QSX14 '
+            'PPMX1'.split()),
+        'LATERAL_COEFFICIENTS': frozenset(
+            'PCY1 PDY1 PDY2 PDY3 PEY1 PEY2 PEY3 PEY4 PEY5 PKY1 PKY2 PKY3 PKY4 PKY5 PKY6 PKY7 '
+            'PHY1 PHY2 PVY1 PVY2 PVY3 PVY4 PPY1 PPY2 PPY3 PPY4 PPY5 RBY1 RBY2 RBY3 RBY4 RCY1 '
+            'REY1 REY2 RHY1 RHY2 RVY1 RVY2 RVY3 RVY4 RVY5 RVY6'.split()),
+        'ROLLING_COEFFICIENTS': frozenset('QSY1 QSY2 QSY3 QSY4 QSY5 QSY6 QSY7 QSY8'.split()),
+        'ALIGNING_COEFFICIENTS': frozenset(
+            'QBZ1 QBZ2 QBZ3 QBZ4 QBZ5 QBZ9 QBZ10 QCZ1 QDZ1 QDZ2 QDZ3 QDZ4 QDZ6 QDZ7 QDZ8 QDZ9 '
+            'QDZ10 QDZ11 QEZ1 QEZ2 QEZ3 QEZ4 QEZ5 QHZ1 QHZ2 QHZ3 QHZ4 PPZ1 PPZ2 SSZ1 SSZ2 '
+            'SSZ3 SSZ4'.split()),
+        'TURNSLIP_COEFFICIENTS': frozenset(
+            'PDXP1 PDXP2 PDXP3 PKYP1 PDYP1 PDYP2 PDYP3 PDYP4 PHYP1 PHYP2 PHYP3 PHYP4 PECP1 '
+            'PECP2 QDTP1 QCRP1 QCRP2 QBRP1 QDRP1'.split()),
+    }
+)
+
 #: Keys with units: key -> ((quantity in [UNITS], exponent), ...). Key names are
 #: unique across the PAC2002 and MF 6.x blocks, so the block is not needed.
 DIMENSIONAL_KEYS: Final[Mapping[str, tuple[tuple[str, int], ...]]] = MappingProxyType(
@@ -93,6 +141,10 @@ DIMENSIONAL_KEYS: Final[Mapping[str, tuple[tuple[str, int], ...]]] = MappingProx
         # [MODEL]: measurement speed and the speed below which forces fade out, m/s
         'LONGVL': (('LENGTH', 1), ('TIME', -1)),
         'VXLOW': (('LENGTH', 1), ('TIME', -1)),
+        # MF 6.x [MODEL]: road sampling distance, m; Adams integration settings, s
+        'ROAD_INCREMENT': (('LENGTH', 1),),
+        'HMAX_LOCAL': (('TIME', 1),),
+        'TIME_SWITCH_INTEG': (('TIME', 1),),
         # [DIMENSION], m
         'UNLOADED_RADIUS': (('LENGTH', 1),),
         'WIDTH': (('LENGTH', 1),),
@@ -138,6 +190,8 @@ DIMENSIONAL_KEYS: Final[Mapping[str, tuple[tuple[str, int], ...]]] = MappingProx
         'FREQ_LAT': (('TIME', -1),),
         'FREQ_YAW': (('TIME', -1),),
         'FREQ_WINDUP': (('TIME', -1),),
+        # MF 6.x [CONTACT_PATCH]: largest road step of the enveloping model, m
+        'ELLIPS_MAX_STEP': (('LENGTH', 1),),
     }
 )
 
@@ -172,14 +226,21 @@ _FORMAT_NAMES: Final[Mapping[str, str]] = MappingProxyType(
     {'PAC2002': 'PAC2002', 'MF_05': 'MF52', 'MF52': 'MF52', 'MF61': 'MF61', 'MF62': 'MF62'}
 )
 # PROPERTY_FILE_FORMAT values that leave the version to FITTYP.
-_GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({'MF-TYRE', 'MF_TYRE'})
+# 'USER' is how MF-Tyre 6.x files for Adams name their format (with USER_SUB_ID = 815).
+_GENERIC_FORMAT_NAMES: Final[frozenset[str]] = frozenset({'MF-TYRE', 'MF_TYRE', 'USER'})
+# Versions with the same steady-state equations: a PROPERTY_FILE_FORMAT and a FITTYP of the
+# same family agree.
+_FAMILIES: Final[Mapping[str, str]] = MappingProxyType(
+    {'PAC2002': 'MF 5.2', 'MF52': 'MF 5.2', 'MF61': 'MF 6.1', 'MF62': 'MF 6.2'})
+_MF6_FORMATS: Final[frozenset[str]] = frozenset({'MF61', 'MF62'})
 # FITTYP (MF-Tyre "Magic Formula version number"): 6 and 21 are MF 5.2.
 _FITTYP_FORMATS: Final[Mapping[int, str]] = MappingProxyType(
     {6: 'MF52', 21: 'MF52', 61: 'MF61', 62: 'MF62'}
 )
 
 # Blocks in which every value must be a number.
-_NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset({'DIMENSION', 'VERTICAL'})
+_NUMERIC_BLOCKS: Final[frozenset[str]] = frozenset(
+    {'DIMENSION', 'VERTICAL', 'OPERATING_CONDITIONS', 'STRUCTURAL', 'INERTIA', 'CONTACT_PATCH'})
 _NUMERIC_BLOCK_SUFFIXES: Final[tuple[str, ...]] = ('_COEFFICIENTS', '_RANGE')
 
 _COMMENT_CHARS: Final[str] = '$!'
@@ -225,6 +286,10 @@ class TireProperties:
     file_format: str  # 'PAC2002', 'MF52', 'MF61' or 'MF62'
     sections: Mapping[str, Mapping[str, float | str]]
     tables: Mapping[str, TireTable] = field(default_factory=lambda: MappingProxyType({}))
+    # load the pneumatic trail and the Fx arm are normalised by: 'mf-tyre' (FNOMIN) or
+    # 'book' (FNOMIN LFZO); a choice of the tire group, not of the file
+    # (vd_solvers.tire.magic_formula, module doc)
+    aligning_normalisation: str = 'mf-tyre'
 
     def get(
         self, section: str, key: str, default: float | str | _Required = _REQUIRED
@@ -329,14 +394,14 @@ def read_tir(path: str | Path) -> TireProperties:
 def parse_tir_text(text: str, source: str) -> TireProperties:
     """Parse the text of a .tir file; ``source`` names it in messages and ``path``."""
     raw = _read_lines(text, source)
-    _raise_if_any(_check_structure(raw.blocks, source))
-    file_format = _file_format(raw.blocks['MODEL'], source)
+    file_format = _file_format(raw.blocks['MODEL'], source) if 'MODEL' in raw.blocks else ''
+    _raise_if_any(_check_structure(raw.blocks, source, file_format))
     factors = _unit_factors(raw.blocks['UNITS'], source)
     sections = {
         block: {key: _to_si(block, key, entry.value, factors) for key, entry in entries.items()}
         for block, entries in raw.blocks.items()
     }
-    _raise_if_any(_check_physical(raw.blocks, sections, source))
+    _raise_if_any(_check_physical(raw.blocks, sections, source, file_format))
     return TireProperties(
         path=source,
         file_format=file_format,
@@ -473,19 +538,37 @@ def _read_table_line(
     return None
 
 
-def _check_structure(blocks: Mapping[str, Mapping[str, _Entry]], source: str) -> list[DataError]:
-    """Missing blocks or keys and non-numbers where numbers are needed."""
+def _check_structure(
+    blocks: Mapping[str, Mapping[str, _Entry]], source: str, file_format: str
+) -> list[DataError]:
+    """Missing blocks or keys, unknown 6.x coefficients, non-numbers where numbers are needed."""
+    mf6 = file_format in _MF6_FORMATS
+    required_blocks = REQUIRED_BLOCKS + (MF6_REQUIRED_BLOCKS if mf6 else ())
     errors = [
-        DataError(f'missing block [{name}]', file=source)
-        for name in REQUIRED_BLOCKS
+        DataError(f'missing block [{name}]' + (f' (needed by {_FAMILIES[file_format]})'
+                                                 if name in MF6_REQUIRED_BLOCKS else ''),
+                  file=source)
+        for name in required_blocks
         if name not in blocks
     ]
-    for block, keys in REQUIRED_KEYS.items():
-        if block in blocks:
+    required_keys = [REQUIRED_KEYS, MF6_REQUIRED_KEYS] if mf6 else [REQUIRED_KEYS]
+    for table in required_keys:
+        for block, keys in table.items():
+            if block in blocks:
+                errors.extend(
+                    DataError(_missing_key_message(key, block), file=source, key=key)
+                    for key in keys
+                    if key not in blocks[block]
+                )
+    if mf6:
+        for block, known in MF6_COEFFICIENTS.items():
             errors.extend(
-                DataError(_missing_key_message(key, block), file=source, key=key)
-                for key in keys
-                if key not in blocks[block]
+                DataError(
+                    f'line {entry.line}: {key!r} is no {_FAMILIES[file_format]} coefficient of '
+                    f'block [{block}] (a misspelt coefficient would silently be 0)',
+                    file=source, key=key)
+                for key, entry in blocks.get(block, {}).items()
+                if key not in known
             )
     for block, entries in blocks.items():
         numeric_block = block in _NUMERIC_BLOCKS or block.endswith(_NUMERIC_BLOCK_SUFFIXES)
@@ -508,12 +591,28 @@ def _missing_key_message(key: str, block: str) -> str:
 
 
 def _file_format(model: Mapping[str, _Entry], source: str) -> str:
-    """Version from PROPERTY_FILE_FORMAT, or from FITTYP where that is absent or generic."""
+    """
+    Version from PROPERTY_FILE_FORMAT, or from FITTYP where that is absent or generic.
+
+    Where both name a version they must agree (MF 5.2 and PAC2002 are one family).
+    """
     declared = model.get('PROPERTY_FILE_FORMAT')
     if declared is not None:
         name = str(declared.value).upper()
         if name in _FORMAT_NAMES:
-            return _FORMAT_NAMES[name]
+            named = _FORMAT_NAMES[name]
+            fittyp = model.get('FITTYP')
+            if fittyp is not None:
+                by_fittyp = _fittyp_format(fittyp, source)
+                if _FAMILIES[by_fittyp] != _FAMILIES[named]:
+                    raise DataError(
+                        f'line {fittyp.line}: FITTYP {fittyp.text} ({_FAMILIES[by_fittyp]}) '
+                        f'contradicts PROPERTY_FILE_FORMAT {declared.value!r} of line '
+                        f'{declared.line} ({_FAMILIES[named]})',
+                        file=source,
+                        key='FITTYP',
+                    )
+            return named
         if name not in _GENERIC_FORMAT_NAMES:
             known = ', '.join(repr(n) for n in sorted({*_FORMAT_NAMES, *_GENERIC_FORMAT_NAMES}))
             raise DataError(
@@ -534,6 +633,11 @@ def _file_format(model: Mapping[str, _Entry], source: str) -> str:
             file=source,
             key='FITTYP',
         )
+    return _fittyp_format(fittyp, source)
+
+
+def _fittyp_format(fittyp: _Entry, source: str) -> str:
+    """Version named by FITTYP, or the error naming its line."""
     value = fittyp.value
     if isinstance(value, float) and value.is_integer() and int(value) in _FITTYP_FORMATS:
         return _FITTYP_FORMATS[int(value)]
@@ -598,11 +702,17 @@ def _to_si(block: str, key: str, value: float | str, factors: Mapping[str, float
 
 
 #: (block, key) that must be > 0: the loads, lengths and scaling factors the Magic
-#: Formula divides by or normalises with (Pacejka 4.E1: dfz = (Fz - Fz0') / Fz0').
+#: Formula divides by or normalises with (Pacejka 4.E1: dfz = (Fz - Fz0') / Fz0'; 4.E2b:
+#: dpi = (p - p0) / p0), and the pressures and stiffnesses a tire has where a file gives them.
 POSITIVE_KEYS: Final[tuple[tuple[str, str], ...]] = (
     ('VERTICAL', 'FNOMIN'),
     ('DIMENSION', 'UNLOADED_RADIUS'),
     ('SCALING_COEFFICIENTS', 'LFZO'),
+    ('VERTICAL', 'VERTICAL_STIFFNESS'),
+    ('OPERATING_CONDITIONS', 'NOMPRES'),
+    ('OPERATING_CONDITIONS', 'INFLPRES'),
+    ('TIRE_CONDITIONS', 'IP_NOM'),
+    ('TIRE_CONDITIONS', 'IP'),
 )
 #: (block, key) that must not be 0: B = K / (C D) divides by the shape factors C and the
 #: peak factors D (and their scaling factors), and K_y by PKY2 (Pacejka 4.E25).
@@ -617,54 +727,173 @@ NONZERO_KEYS: Final[tuple[tuple[str, str], ...]] = (
     ('SCALING_COEFFICIENTS', 'LCX'),
     ('SCALING_COEFFICIENTS', 'LMUX'),
 )
+#: Validity ranges (block, smallest key, largest key): the smallest must lie below the largest.
+RANGES: Final[tuple[tuple[str, str, str], ...]] = (
+    ('INFLATION_PRESSURE_RANGE', 'PRESMIN', 'PRESMAX'),
+    ('VERTICAL_FORCE_RANGE', 'FZMIN', 'FZMAX'),
+    ('LONG_SLIP_RANGE', 'KPUMIN', 'KPUMAX'),
+    ('SLIP_ANGLE_RANGE', 'ALPMIN', 'ALPMAX'),
+    ('INCLINATION_ANGLE_RANGE', 'CAMMIN', 'CAMMAX'),
+)
+#: Where each version keeps its inflation pressure (block, pressure, nominal pressure).
+PRESSURE_KEYS: Final[tuple[tuple[str, str, str], ...]] = (
+    ('OPERATING_CONDITIONS', 'INFLPRES', 'NOMPRES'),
+    ('TIRE_CONDITIONS', 'IP', 'IP_NOM'),
+)
+#: USE_MODE: its last digit selects the forces (1 Fx, 2 Fy/Mz, 3 uncombined, 4 combined,
+#: 5 combined with turn slip, MF-Tyre 6.x and Adams PAC2002); the digits before it pick
+#: transient and contact models vd does not use.
+USE_MODES: Final[tuple[int, ...]] = (1, 2, 3, 4, 5)
+TURN_SLIP_MODE: Final[int] = 5
+#: Turn-slip coefficients the equations divide by (Pacejka 4.88: C_Hyp D_Hyp; 4.94:
+#: sin(pi/2 C_Drp)), so USE_MODE 5 needs them != 0.
+TURN_SLIP_DIVISORS: Final[tuple[str, ...]] = ('PHYP1', 'PHYP2', 'QDRP1')
 
 
 def check_values(
     sections: Mapping[str, Mapping[str, float | str]],
     source: str,
     where: Mapping[tuple[str, str], tuple[str, str]] | None = None,
+    file_format: str = '',
 ) -> list[DataError]:
     """
     Return the problems of values no tire can have.
 
-    These are non-finite numbers (``1e999``), a non-positive nominal load, free
-    radius or LFZO, and a zero divisor of the Magic Formula.
+    These are non-finite numbers (``1e999``), a non-positive nominal load, free radius,
+    LFZO, pressure or vertical stiffness, a zero divisor of the Magic Formula, a validity
+    range whose minimum is not below its maximum, an inflation pressure outside
+    [PRESMIN, PRESMAX], a load-deflection curve without a real Q_FZ1
+    ((C_z R0 / FNOMIN)^2 < 4 Q_FZ2), and a USE_MODE vd does not evaluate.
 
     ``where`` gives the ``line N: `` prefix and the text as written of a (block, key)
     read from a file; the same check runs on the values of a tire group after
-    master-file overrides.
+    master-file overrides (``front_tire.tir.OPERATING_CONDITIONS.INFLPRES: 5 bar``).
+    ``file_format`` ('PAC2002', 'MF52', 'MF61', 'MF62') selects the version's rules.
     """
     where = where or {}
     errors = []
 
-    def bad(block: str, key: str, rule: str, value: float) -> None:
-        line, text = where.get((block, key), ('', f'{value:g}'))
+    def at(block: str, key: str, value: float | str) -> tuple[str, str]:
+        return where.get((block, key), ('', f'{value:g}' if isinstance(value, float)
+                                         else repr(value)))
+
+    def bad(block: str, key: str, rule: str, value: float | str) -> None:
+        line, text = at(block, key, value)
         errors.append(DataError(f'{line}key {key!r} in block [{block}] {rule}, found {text}',
                                 file=source, key=key))
+
+    def number(block: str, key: str) -> float | None:
+        value = sections.get(block, {}).get(key)
+        return value if isinstance(value, float) and math.isfinite(value) else None
 
     for block, entries in sections.items():
         for key, value in entries.items():
             if isinstance(value, float) and not math.isfinite(value):
                 bad(block, key, 'must be a finite number', value)
     for block, key in POSITIVE_KEYS:
-        given = sections.get(block, {}).get(key)
-        if isinstance(given, float) and math.isfinite(given) and given <= 0.0:
+        given = number(block, key)
+        if given is not None and given <= 0.0:
             bad(block, key, 'must be > 0', given)
     for block, key in NONZERO_KEYS:
-        given = sections.get(block, {}).get(key)
-        if isinstance(given, float) and given == 0.0:
-            bad(block, key, 'must not be 0 (the Magic Formula divides by it)', given)
+        divisor = sections.get(block, {}).get(key)
+        if isinstance(divisor, float) and divisor == 0.0:
+            bad(block, key, 'must not be 0 (the Magic Formula divides by it)', divisor)
+    for block, low_key, high_key in RANGES:
+        low, high = number(block, low_key), number(block, high_key)
+        if low is not None and high is not None and not low < high:
+            line, text = at(block, high_key, high)
+            errors.append(DataError(
+                f'{line}key {high_key!r} in block [{block}] must be > {low_key} '
+                f'({low:g}), found {text}', file=source, key=high_key))
+    errors.extend(_pressure_range(source, at, number))
+    errors.extend(_vertical_curve(source, at, number))
+    errors.extend(_use_mode(sections, source, at, file_format))
     return errors
+
+
+_Sections = Mapping[str, Mapping[str, float | str]]
+_At = Callable[[str, str, float | str], tuple[str, str]]
+_Number = Callable[[str, str], float | None]
+
+
+def _pressure_range(source: str, at: _At, number: _Number) -> list[DataError]:
+    """Check that the inflation pressure lies in the file's [PRESMIN, PRESMAX]."""
+    low = number('INFLATION_PRESSURE_RANGE', 'PRESMIN')
+    high = number('INFLATION_PRESSURE_RANGE', 'PRESMAX')
+    if low is not None and high is not None and low >= high:
+        return []  # the range itself is reported
+    for block, key, _ in PRESSURE_KEYS:
+        pressure = number(block, key)
+        if pressure is None or low is None or high is None or low <= pressure <= high:
+            continue
+        line, text = at(block, key, pressure)
+        return [DataError(
+            f'{line}key {key!r} in block [{block}] must lie in the range the file is valid '
+            f'for, PRESMIN..PRESMAX = {low:g}..{high:g} Pa, found {text}',
+            file=source, key=key)]
+    return []
+
+
+def _vertical_curve(source: str, at: _At, number: _Number) -> list[DataError]:
+    """Check that Q_FZ1 = sqrt((C_z R0 / FNOMIN)^2 - 4 Q_FZ2) is real (Besselink 2010, eq. 4)."""
+    q_fz2 = number('VERTICAL', 'Q_FZ2')
+    stiffness = number('VERTICAL', 'VERTICAL_STIFFNESS')
+    radius = number('DIMENSION', 'UNLOADED_RADIUS')
+    load = number('VERTICAL', 'FNOMIN')
+    if None in (q_fz2, stiffness, radius, load) or number('VERTICAL', 'Q_FZ1') is not None:
+        return []
+    assert q_fz2 is not None and stiffness is not None and radius is not None
+    assert load is not None
+    linear = stiffness * radius / load
+    if linear * linear >= 4.0 * q_fz2 or load <= 0.0:
+        return []
+    line, text = at('VERTICAL', 'Q_FZ2', q_fz2)
+    return [DataError(
+        f'{line}key {"Q_FZ2"!r} in block [VERTICAL] must be at most (VERTICAL_STIFFNESS '
+        f'UNLOADED_RADIUS / FNOMIN)^2 / 4 = {linear * linear / 4.0:g} (Q_FZ1 = sqrt((C_z R0 / '
+        f'FNOMIN)^2 - 4 Q_FZ2)), found {text}', file=source, key='Q_FZ2')]
+
+
+def _use_mode(sections: _Sections, source: str, at: _At, file_format: str) -> list[DataError]:
+    """Check that USE_MODE ends in a digit vd evaluates; turn slip needs an MF 6.x file."""
+    value = sections.get('MODEL', {}).get('USE_MODE')
+    if value is None:
+        return []
+    line, text = at('MODEL', 'USE_MODE', value)
+    if not isinstance(value, float) or not value.is_integer() or value < 0:
+        return [DataError(f'{line}key {"USE_MODE"!r} in block [MODEL] must be a whole number '
+                          f'ending in one of {", ".join(map(str, USE_MODES))}, found {text}',
+                          file=source, key='USE_MODE')]
+    digit = int(value) % 10
+    if digit not in USE_MODES:
+        return [DataError(
+            f'{line}key {"USE_MODE"!r} in block [MODEL] must end in one of '
+            f'{", ".join(map(str, USE_MODES))} (1 Fx, 2 Fy and Mz, 3 uncombined, 4 combined, '
+            f'5 combined with turn slip), found {text}', file=source, key='USE_MODE')]
+    if digit != TURN_SLIP_MODE:
+        return []
+    if file_format and file_format not in _MF6_FORMATS:
+        return [DataError(f'{line}key {"USE_MODE"!r} in block [MODEL] asks for turn slip (5), '
+                          f'which needs an MF 6.1 / 6.2 file, found {text} in a {file_format} '
+                          'file', file=source, key='USE_MODE')]
+    turn = sections.get('TURNSLIP_COEFFICIENTS', {})
+    missing = [key for key in TURN_SLIP_DIVISORS if not turn.get(key)]
+    if missing:
+        return [DataError(f'{line}key {"USE_MODE"!r} in block [MODEL] asks for turn slip (5), '
+                          f'which needs {", ".join(missing)} != 0 in block '
+                          '[TURNSLIP_COEFFICIENTS]', file=source, key='USE_MODE')]
+    return []
 
 
 def _check_physical(
     blocks: Mapping[str, Mapping[str, _Entry]],
     sections: Mapping[str, Mapping[str, float | str]],
     source: str,
+    file_format: str,
 ) -> list[DataError]:
     where = {(block, key): (f'line {entry.line}: ', entry.text)
              for block, entries in blocks.items() for key, entry in entries.items()}
-    return check_values(sections, source, where)
+    return check_values(sections, source, where, file_format)
 
 
 def _raise_if_any(errors: list[DataError]) -> None:

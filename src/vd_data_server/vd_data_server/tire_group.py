@@ -8,7 +8,13 @@ and adds every entry as ``tir.<BLOCK>.<KEY>`` (numbers in SI, text as text).
 Solvers on any machine of the ROS graph thus get the tire from the
 configuration message alone; a changed .tir shows in the feedback like any
 other data; and single coefficients can be overridden in master files
-(``front_tire.tir.SCALING_COEFFICIENTS.LMUY: 0.9``).
+(``front_tire.tir.SCALING_COEFFICIENTS.LMUY: 0.9``), among them the inflation pressure
+of an MF 6.x file (``front_tire.tir.OPERATING_CONDITIONS.INFLPRES: 2.4 bar``).
+
+The group's own key ``aligning_normalisation`` (``mf-tyre``, the default, or ``book``)
+picks the load the Magic Formula normalises the pneumatic trail and the Fx arm by
+(vd_solvers.tire.magic_formula); the group always carries it, so a configuration can
+override it like any value.
 """
 from __future__ import annotations
 
@@ -21,6 +27,9 @@ from .tir import DIMENSIONAL_KEYS, TireProperties, check_values
 
 PREFIX = 'tir.'
 FORMAT_KEY = 'tir.FORMAT'
+NORMALISATION_KEY = 'aligning_normalisation'
+#: its value where the data file gives none (vd_solvers.tire.magic_formula, module doc)
+DEFAULT_NORMALISATION = 'mf-tyre'
 #: [UNITS] quantity exponents -> SI unit text used in vd
 _SI_OF = {
     (('LENGTH', 1), ('TIME', -1)): 'm/s',
@@ -35,6 +44,7 @@ _SI_OF = {
     (('LENGTH', 1), ('TIME', -2)): 'm/s^2',
     (('FORCE', 1), ('LENGTH', 1), ('ANGLE', -1)): 'N*m/rad',
     (('TIME', -1),): '1/s',
+    (('TIME', 1),): 's',
 }
 
 
@@ -55,6 +65,9 @@ def tire_values(props: TireProperties, source: str) -> dict[str, Value]:
 
 def with_tire(group: GroupData, props: TireProperties, source: str) -> GroupData:
     values = {**group.values, **tire_values(props, source)}
+    if NORMALISATION_KEY not in values:
+        values[NORMALISATION_KEY] = Value(NORMALISATION_KEY, 'text', DEFAULT_NORMALISATION,
+                                          source=f'{group.file} (default)')
     return GroupData(group.group, group.kind, group.variant, group.file, values,
                      group.description)
 
@@ -71,7 +84,11 @@ def tire_properties(group: GroupData) -> TireProperties:
     frozen: Mapping[str, Mapping[str, float | str]] = MappingProxyType(
         {b: MappingProxyType(v) for b, v in sections.items()})
     path = f"{group.file} -> {group.text('file')}"
-    errors = check_values(frozen, path)
+    file_format = group.text(FORMAT_KEY)
+    errors = check_values(frozen, path, file_format=file_format)
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
-    return TireProperties(path=path, file_format=group.text(FORMAT_KEY), sections=frozen)
+    normalisation = (group.text(NORMALISATION_KEY) if NORMALISATION_KEY in group.values
+                     else DEFAULT_NORMALISATION)
+    return TireProperties(path=path, file_format=file_format, sections=frozen,
+                          aligning_normalisation=normalisation)

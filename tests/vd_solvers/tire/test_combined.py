@@ -9,9 +9,15 @@ overturning moment and the effective rolling radius), evaluated here term by ter
 ``math`` from the coefficients in the file: one wheel at a time, no code shared with the
 implementation. Properties (friction-ellipse reduction, pure = combined at zero other
 slip, mirroring) complete it.
+
+In the combined aligning moment E_t is evaluated at the pure-slip alpha_t (Pacejka 4.E44,
+used unchanged by 4.E73), not at the equivalent angle; Mx and My normalise Fy and Fx by
+FNOMIN (Pacejka 4.E69, 4.E70; MF-Tyre); the trail and the Fx arm are normalised by
+FNOMIN ('mf-tyre', MF-Tyre as reproduced by MFeval) or Fz0' ('book', Pacejka 4.E42, 4.E76).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -28,7 +34,8 @@ SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
 RTOL = 1e-10
 
 
-def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> dict:
+def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: float,
+              normalisation: str = 'mf-tyre') -> dict:
     """PAC2002 combined-slip forces and moments of one wheel, written out by hand."""
 
     def c(key: str) -> float:
@@ -43,7 +50,9 @@ def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: fl
         return float(props.sections['SCALING_COEFFICIENTS'].get(key, 1.0))
 
     r0 = props.number('DIMENSION', 'UNLOADED_RADIUS')
-    fz0 = props.number('VERTICAL', 'FNOMIN') * lam('LFZO')
+    fnomin = props.number('VERTICAL', 'FNOMIN')
+    fz0 = fnomin * lam('LFZO')
+    fzn = fnomin if normalisation == 'mf-tyre' else fz0
     dfz = (fz - fz0) / fz0
     # pure longitudinal (4.E9-4.E18)
     gx = gamma * lam('LGAX')
@@ -99,12 +108,12 @@ def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: fl
         * (1 + c('QBZ4') * gz + c('QBZ5') * abs(gz)) * lam('LKY') / lam('LMUY')
     ct = c('QCZ1')
     dt = fz * (c('QDZ1') + c('QDZ2') * dfz) * (1 + c('QDZ3') * gz + c('QDZ4') * gz ** 2) \
-        * (r0 / fz0) * lam('LTR')
+        * (r0 / fzn) * lam('LTR')
     kyk_ratio = kxk / kya  # K_x / K_y of the pure-slip curves
     at_eq = math.atan(math.sqrt(math.tan(at) ** 2 + (kyk_ratio * kappa) ** 2)) \
         * (1.0 if at >= 0 else -1.0)
     et = min((c('QEZ1') + c('QEZ2') * dfz + c('QEZ3') * dfz ** 2)
-             * (1 + (c('QEZ4') + c('QEZ5') * gz) * (2 / math.pi) * math.atan(bt * ct * at_eq)),
+             * (1 + (c('QEZ4') + c('QEZ5') * gz) * (2 / math.pi) * math.atan(bt * ct * at)),
              1.0)
     t = dt * math.cos(ct * math.atan(bt * at_eq - et * (bt * at_eq - math.atan(bt * at_eq)))) \
         * math.cos(alpha)
@@ -115,26 +124,28 @@ def reference(props, fz: float, kappa: float, alpha: float, gamma: float, vx: fl
     dr = fz * r0 * ((c('QDZ6') + c('QDZ7') * dfz) * lam('LRES')
                     + (c('QDZ8') + c('QDZ9') * dfz) * gz) * lam('LMUY')
     mzr = dr * math.cos(math.atan(br * ar_eq)) * math.cos(alpha)
-    s = r0 * (c('SSZ1') + c('SSZ2') * fy / fz0 + (c('SSZ3') + c('SSZ4') * dfz) * gz) * lam('LS')
+    s = r0 * (c('SSZ1') + c('SSZ2') * fy / fzn + (c('SSZ3') + c('SSZ4') * dfz) * gz) * lam('LS')
     mz = -t * (fy - svyk) + mzr + s * fx
-    mx = fz * r0 * (c('QSX1') * lam('LVMX') - c('QSX2') * gamma + c('QSX3') * fy / fz0) \
+    mx = fz * r0 * (c('QSX1') * lam('LVMX') - c('QSX2') * gamma + c('QSX3') * fy / fnomin) \
         * lam('LMX')
     vref = props.number('MODEL', 'LONGVL')
-    my = -math.copysign(1.0, vx) * fz * r0 * (c('QSY1') + c('QSY2') * fx / fz0
+    my = -math.copysign(1.0, vx) * fz * r0 * (c('QSY1') + c('QSY2') * fx / fnomin
                                              + c('QSY3') * abs(vx / vref)
                                              + c('QSY4') * (vx / vref) ** 4) * lam('LMY')
     return {'fx': fx, 'fy': fy, 'mz': mz, 'mx': mx, 'my': my}
 
 
+@pytest.mark.parametrize('normalisation', ['mf-tyre', 'book'])
 @pytest.mark.parametrize('path', [HMMWV, SEDAN])
 @pytest.mark.parametrize(('kappa', 'alpha', 'gamma'), [
     (0.05, 0.06, 0.02), (-0.08, 0.1, -0.03), (0.2, -0.04, 0.0), (-0.01, -0.15, 0.05)])
-def test_combined_slip_matches_the_pac2002_equations(path, kappa, alpha, gamma) -> None:
-    props = read_tir(path)
+def test_combined_slip_matches_the_pac2002_equations(path, kappa, alpha, gamma,
+                                                     normalisation) -> None:
+    props = dataclasses.replace(read_tir(path), aligning_normalisation=normalisation)
     tire = MagicFormula(props)
     fz = 1.2 * props.fnomin
     got = tire.steady_state(fz, kappa, alpha, gamma, 15.0)
-    want = reference(props, fz, kappa, alpha, gamma, 15.0)
+    want = reference(props, fz, kappa, alpha, gamma, 15.0, normalisation)
     for key, value in want.items():
         npt.assert_allclose(float(getattr(got, key)), value, rtol=RTOL, atol=1e-9, err_msg=key)
 

@@ -10,6 +10,7 @@ finite differences, numerical maxima and symmetry properties.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 import re
@@ -394,13 +395,14 @@ def test_mirroring_a_symmetric_tire_changes_nothing() -> None:
 # --- bad input ------------------------------------------------------------------------------
 
 
-def test_mf61_file_is_refused() -> None:
-    props = parse_tir_text(tir_text(SYMMETRIC_LATERAL, model='FITTYP = 61'), 'mf61.tir')
+def test_an_unknown_format_is_refused(sedan: TireProperties) -> None:
+    props = dataclasses.replace(sedan, file_format='MF70', path='mf70.tir')
     with pytest.raises(SolverError) as info:
         MagicFormula(props)
     assert (
         str(info.value)
-        == 'mf61.tir: MagicFormula evaluates PAC2002 / MF 5.2 files, this one is MF61'
+        == 'mf70.tir: MagicFormula evaluates PAC2002, MF 5.2, 6.1 and 6.2 files, '
+        'this one is MF70'
     )
 
 
@@ -450,10 +452,15 @@ def test_non_positive_lfzo_is_refused() -> None:
 
 
 def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
-    """t(alpha = 0) written out with math, one equation a line."""
+    """
+    t(alpha = 0) written out with math, one equation a line.
+
+    Dt is normalised by FNOMIN (MF-Tyre) or Fz0' (Pacejka 4.E42) as the properties say.
+    """
     q = lambda name: props.number('ALIGNING_COEFFICIENTS', name, 0.0)  # noqa: E731
     lam = lambda name: props.number('SCALING_COEFFICIENTS', name, 1.0)  # noqa: E731
     fz0 = props.fnomin * lam('LFZO')
+    fzn = props.fnomin if props.aligning_normalisation == 'mf-tyre' else fz0
     dfz = (fz - fz0) / fz0
     gz = gamma * lam('LGAZ')
     sht = q('QHZ1') + q('QHZ2') * dfz + (q('QHZ3') + q('QHZ4') * dfz) * gz
@@ -464,7 +471,7 @@ def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
     bt *= lam('LKY') / lam('LMUY')
     ct = q('QCZ1')
     dt = fz * (q('QDZ1') + q('QDZ2') * dfz) * (1 + q('QDZ3') * gz + q('QDZ4') * gz**2)
-    dt *= props.unloaded_radius / fz0 * lam('LTR')
+    dt *= props.unloaded_radius / fzn * lam('LTR')
     et = (q('QEZ1') + q('QEZ2') * dfz + q('QEZ3') * dfz**2)
     et *= 1 + (q('QEZ4') + q('QEZ5') * gz) * (2 / math.pi) * math.atan(bt * ct * alpha_t)
     et = min(et, 1.0)
@@ -472,12 +479,14 @@ def _trail_by_hand(props: TireProperties, fz: float, gamma: float) -> float:
     return dt * math.cos(ct * math.atan(x - et * (x - math.atan(x)))) * math.cos(0.0)
 
 
+@pytest.mark.parametrize('normalisation', ['mf-tyre', 'book'])
 @pytest.mark.parametrize('path', [SEDAN, HMMWV])
 @pytest.mark.parametrize(
     'fz, gamma', [(2000.0, 0.0), (4850.0, 0.0), (7000.0, 0.03), (4000.0, -0.02)]
 )
-def test_pneumatic_trail_is_pac2002_by_hand(path: Path, fz: float, gamma: float) -> None:
-    props = read_tir(path)
+def test_pneumatic_trail_is_pac2002_by_hand(path: Path, fz: float, gamma: float,
+                                            normalisation: str) -> None:
+    props = dataclasses.replace(read_tir(path), aligning_normalisation=normalisation)
     expected = _trail_by_hand(props, fz, gamma)
     npt.assert_allclose(MagicFormula(props).pneumatic_trail(fz, gamma), expected, rtol=RTOL)
 

@@ -31,7 +31,7 @@ from vd_solvers.vehicle.model import VehicleModel
 
 STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 DEG = math.pi / 180.0
-A_GIVEN = 26.7  # deg, the sedan baseline's A from its SIS runs (test below)
+A_GIVEN = 26.5  # deg, the sedan baseline's A from its SIS runs (test below)
 REDUCED = [f'a_reference={A_GIVEN} deg', f'max_amplitude={2.0 * A_GIVEN + 0.05:.2f} deg']
 
 

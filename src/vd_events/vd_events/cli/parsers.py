@@ -197,6 +197,21 @@ def _workbench(sub) -> None:
     xlsx.set_defaults(**handler('workbench:cmd_export'))
 
 
+def _tire(sub) -> None:
+    tire = sub.add_parser('tire', help="a .tir file's key data and its Fx, Fy, Mz curves")
+    tire.add_argument('file', help='TeimOrbit .tir property file (PAC2002, MF 5.2, 6.1, 6.2)')
+    tire.add_argument('--out', default='out', help='folder of the PNG (default: out)')
+    tire.add_argument('--side', choices=('LEFT', 'RIGHT'), help='evaluate the tire mounted '
+                      'on this side (default: as measured, TYRESIDE)')
+    tire.add_argument('--pressure', help='inflation pressure with its unit, e.g. "2.4 bar" '
+                      "(default: the file's INFLPRES / IP)")
+    tire.add_argument('--aligning-normalisation', choices=('mf-tyre', 'book'),
+                      default='mf-tyre', help='load the trail and the Fx arm of Mz are '
+                      'normalised by: FNOMIN (mf-tyre) or FNOMIN LFZO (book)')
+    _json(tire)
+    tire.set_defaults(**handler('tire:cmd_tire'))
+
+
 def _bench(sub) -> None:
     bench = sub.add_parser('bench', help='the benchmark suite')
     _json(bench)
@@ -209,7 +224,7 @@ def build_parser() -> argparse.ArgumentParser:
                                      'on one shared vehicle data set')
     sub = parser.add_subparsers(dest='command', required=True)
     for add in (_data, _run, _study, _launch, _capability, _sweeps, _bench, _measured,
-                _workbench):
+                _workbench, _tire):
         add(sub)
     return parser
 
