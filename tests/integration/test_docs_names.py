@@ -39,6 +39,10 @@ BUILTIN = ('/rosout', '/parameter_events', 'describe_parameters', 'get_parameter
            'set_parameters_atomically', 'get_type_description')
 
 
+#: parameters rclpy declares on every node
+RCLPY_PARAMETERS = {'use_sim_time', 'start_type_description_service'}
+
+
 def _text() -> str:
     return '\n'.join(p.read_text(encoding='utf-8') for p in DOCS)
 
@@ -57,6 +61,7 @@ def graph(ros_domain, tmp_path_factory):
 
     from vd_data_server.nodes.data_server import DataServer
     from vd_events.bags.recorder import Recorder
+    from vd_events.nodes.event_runner import EventRunner
     from vd_events.nodes.rig_bridge import RigBridge
     from vd_solvers.nodes.analytical import AnalyticalSolver
     from vd_solvers.nodes.kc import KCSolver
@@ -66,7 +71,7 @@ def graph(ros_domain, tmp_path_factory):
     (tmp / 'rig.yaml').write_text(RIG_MAP)
     nodes = [DataServer(parameter_overrides=[Parameter('watch_period', value=0.0)]),
              AnalyticalSolver(), KCSolver(), KCSolver(node_name='kc_solver_2'),
-             VehicleSolver(), Recorder(bag=str(tmp / 'bag')),
+             VehicleSolver(), Recorder(bag=str(tmp / 'bag')), EventRunner(),
              RigBridge(parameter_overrides=[Parameter('map', value=str(tmp / 'rig.yaml')),
                                             Parameter('bag', value=str(tmp / 'rig'))])]
     probe = Node('docs_probe')
@@ -135,7 +140,7 @@ def test_every_name_of_the_graph_is_documented(graph):
 def test_documented_parameters_are_the_nodes_parameters(graph):
     """Every row of the parameter table names parameters its node declares, and vice versa."""
     _, nodes = graph
-    declared = {n.get_name(): set(n.list_parameters([], 1).names) - {'use_sim_time'}
+    declared = {n.get_name(): set(n.list_parameters([], 1).names) - RCLPY_PARAMETERS
                 for n in nodes}
     section = API.read_text(encoding='utf-8').split('### Parameters', 1)[1].split('\n## ', 1)[0]
     documented: dict[str, set[str]] = {}
