@@ -125,8 +125,13 @@ def lateral_acceleration_gain(speed: float) -> tuple[float, float]:
 
 
 def simulate(duration: float, steering: Callable[[np.ndarray], np.ndarray],
-             speed: Callable[[np.ndarray], np.ndarray]) -> Truth:
-    """Integrate the bicycle model with its roll mode; sample the truth at 100 Hz."""
+             speed: Callable[[np.ndarray], np.ndarray], steady_start: bool = False) -> Truth:
+    """
+    Integrate the bicycle model with its roll mode; sample the truth at 100 Hz.
+
+    ``steady_start``: start in the steady state of the first steering angle and speed
+    (v_y, r = -A^-1 B delta; roll = its gradient times v r), else straight and level.
+    """
     c = CAR
     tf = np.arange(0.0, duration + 0.5 / FINE, 1.0 / FINE)
     swa = steering(tf)
@@ -152,6 +157,10 @@ def simulate(duration: float, steering: Callable[[np.ndarray], np.ndarray],
     r_dot = np.zeros(tf.size)
     phi_dd = np.zeros(tf.size)
     x = np.zeros(4)
+    if steady_start:
+        a0, b0 = state_space(float(u[0]))
+        x[:2] = -np.linalg.solve(a0, b0 * delta[0])
+        x[2] = c['roll_gradient'] * float(u[0]) * x[1]
     for i in range(tf.size):
         states[i] = x
         d, ay[i], r_dot[i] = rhs(i, x)
@@ -382,7 +391,7 @@ def circle_truth(radius: float = 40.0, a_start: float = 0.5, a_end: float = 4.5,
         return a_start + (a_end - a_start) * np.clip(t / duration, 0.0, 1.0)
 
     return simulate(duration, lambda t: c['ratio'] * (wheelbase / radius + k * accel(t)),
-                    lambda t: np.sqrt(accel(t) * radius))
+                    lambda t: np.sqrt(accel(t) * radius), steady_start=True)
 
 
 def understeer_gradient() -> float:
