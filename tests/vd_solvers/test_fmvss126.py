@@ -328,6 +328,7 @@ def test_without_a_responsiveness_is_not_graded():
     assert not g.responsiveness_applies and g.responsive is None
     verdict = f.grade_procedure([g], None)
     assert {c.name: c.runs for c in verdict.criteria}['lateral_displacement'] == 0
+    assert g.stable_1_00 and g.stable_1_75 and not verdict.passed
 
 
 def _sis_log(direction: int = 1, kmh: float = 80.0, rate: float = 13.5 * DEG):

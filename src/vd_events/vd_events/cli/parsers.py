@@ -201,6 +201,27 @@ def _measured(sub) -> None:
     _json(rep)
     rep.set_defaults(**handler('measured:cmd_replay'))
 
+    grade = sub.add_parser('grade', help='grade measured logs and simulated runs by their '
+                           'standard: FMVSS 126 / UN R140 sine with dwell, ISO 7401 step '
+                           'steer, ISO 4138 constant radius')
+    grade.add_argument('inputs', nargs='+', metavar='FILE|BAG',
+                       help='vehicle logs (.vbo, CSV with --map) or bags (vd import, vd run)')
+    grade.add_argument('--map', help='column map YAML of the log files')
+    grade.add_argument('--sis', nargs='+', default=[], metavar='FILE|BAG',
+                       help='slowly-increasing-steer runs of the same set: A (S7.6)')
+    grade.add_argument('--a-reference', type=float, metavar='DEG',
+                       help='A in deg, when no slowly-increasing-steer run is given')
+    grade.add_argument('--gvwr', type=float, metavar='KG', help='gross vehicle weight rating '
+                       '(the displacement limit, S5.2.3; default: <= 3500 kg)')
+    grade.add_argument('--steering-ratio', type=float, metavar='R', help='overall steering '
+                       'ratio (ISO 4138 understeer gradient; simulations carry their own)')
+    grade.add_argument('--wheelbase', type=float, metavar='M', help='wheelbase, m (ISO 4138: '
+                       'the Ackermann angle of the radius actually driven)')
+    grade.add_argument('--out', default='out/grade', help='report folder (grade.html)')
+    _log_checks(grade)
+    _json(grade)
+    grade.set_defaults(**handler('grade:cmd_grade'))
+
 
 def _workbench(sub) -> None:
     gui = sub.add_parser('gui', help='the master-file workbench in a browser (127.0.0.1)')

@@ -45,7 +45,8 @@ Implemented as the rule states it (49 CFR 571.126 S5.2, S7.6, S7.9, S7.11; GTR 8
   steer with extra lobes fails it). An invalid run is never graded as passed.
 * **Procedure** (:func:`grade_procedure`): valid when every run (and every SIS run that
   gave A) is valid; the criteria are graded on the valid runs; the vehicle passes when
-  the procedure is valid and every graded run meets every criterion that applies to it.
+  the procedure is valid, A is known and every graded run meets every criterion that
+  applies to it.
   The deciding run and criterion: the first invalid run and its reason
   (``entry_speed``, ``steering_profile``; ``sis_speed``, ``sis_steering_rate`` for an SIS
   run), else the first failing run (series order, lowest amplitude first), or, when all
@@ -580,7 +581,8 @@ def grade_procedure(runs: Sequence[SwdGrade], a_reference: float | None,
     bad_sis = [k for k, g_ in enumerate(sis) if not g_.valid]
     bad_runs = [k for k, g_ in enumerate(runs) if not g_.valid]
     valid = not bad_sis and not bad_runs
-    passed = valid and all(c.passed for c in criteria)
+    # without A responsiveness is graded on no run: the vehicle cannot be said to pass
+    passed = valid and a_reference is not None and all(c.passed for c in criteria)
     if bad_sis:
         return ProcedureGrade(a_reference=a_reference, runs=tuple(runs),
                               criteria=tuple(criteria), valid=False, passed=False,
