@@ -15,8 +15,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import vbox_logs as vb
 
+import vbox_logs as vb
+from vd_events.bags.outcomes import write_outcomes
 from vd_events.cli.main import main
 from vd_solvers.results import Channel, EventOutcome, Metric
 
@@ -45,7 +46,7 @@ def grade(capsys, *argv: str) -> tuple[int, dict | str]:
 
 
 def expected_a() -> float:
-    """A in deg: i_s (0.3 g - G'(0) k) / G(0) of the linear model, to 0.1 deg (S7.6.1)."""
+    """Return A in deg: i_s (0.3 g - G'(0) k) / G(0) of the linear model, to 0.1 deg (S7.6.1)."""
     g0, g1 = vb.lateral_acceleration_gain(80.0 / 3.6)
     k = 13.5 * DEG / vb.CAR['ratio']
     return round(vb.CAR['ratio'] * (0.3 * vb.G - g1 * k) / g0 / DEG, 1)
@@ -195,9 +196,7 @@ def test_circle_log_graded_by_iso_4138(capsys, tmp_path: Path) -> None:
 
 
 def _simulated_procedure(tmp_path: Path) -> Path:
-    """A bag with a simulated procedure in the vehicle solver's layout (series channels)."""
-    from vd_events.bags.outcomes import write_outcomes
-
+    """Write a bag with a simulated procedure in the vehicle solver's layout (series)."""
     a_ref = expected_a() * DEG
     runs = [vb.swd_truth(amplitude=amp, direction=d, start=1.5, duration=6.0)
             for d, amp in ((1, 1.5 * a_ref), (-1, 1.5 * a_ref))]

@@ -18,8 +18,10 @@ from numpy.testing import assert_allclose
 import pytest
 
 import vbox_logs as vb
+from vd_events.cli.main import main
 from vd_events.errors import InputError
 from vd_events.measured.columns import load_map
+from vd_events.measured.compare import load_outcomes
 from vd_events.measured.importer import ImportOptions, read_measurement
 from vd_events.measured.vbo import read_vbo
 
@@ -196,8 +198,6 @@ def test_steering_of_the_wrong_sign_is_refused(tmp_path: Path, swd) -> None:
 
 def _refused(capsys, tmp_path: Path, *argv: str) -> str:
     """Run ``vd ARGV``; assert exit 2, nothing on stdout, nothing written; the message."""
-    from vd_events.cli.main import main
-
     before = sorted(p.name for p in tmp_path.iterdir())
     rc = main(list(argv))
     out, err = capsys.readouterr()
@@ -248,8 +248,6 @@ def test_a_window_beyond_the_log_and_no_manoeuvre_are_refused(capsys, tmp_path: 
 
 def test_import_reports_what_it_checked(capsys, tmp_path: Path, swd) -> None:
     """At the terminal: the channel choice, the sample rate, the gap, the repairs."""
-    from vd_events.cli.main import main
-
     path, _, _ = _log(tmp_path, swd, gap=(9.0, 2.0), glitches=[(5.0, 'Steering_Angle', 8116.0)])
     cmap = vb.write_map(tmp_path / 'map.yaml', 'sine_with_dwell')
     rc = main(['import', str(path), '--map', str(cmap), '--bag', str(tmp_path / 'bag'),
@@ -260,8 +258,6 @@ def test_import_reports_what_it_checked(capsys, tmp_path: Path, swd) -> None:
     assert "sample rate 100 Hz: the logger's interval 0.01 s" in out
     assert 'gap: 2.01 s without samples from t = 8.99 s to 11.00 s' in out
     assert 'glitch repaired: steering_wheel_angle 8116 deg at t = 5.00 s' in out
-    from vd_events.measured.compare import load_outcomes
-
     (log,) = load_outcomes(tmp_path / 'bag')
     assert log.event == 'sine_with_dwell'
     assert log.metrics['sample_rate'].value == pytest.approx(100.0)

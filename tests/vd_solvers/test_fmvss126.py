@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 
+import vbox_logs as vb
 from vd_solvers.standards import fmvss126 as f
 
 DEG = math.pi / 180.0
@@ -332,8 +333,6 @@ def test_without_a_responsiveness_is_not_graded():
 
 
 def _sis_log(direction: int = 1, kmh: float = 80.0, rate: float = 13.5 * DEG):
-    import vbox_logs as vb
-
     truth = vb.sis_truth(direction=direction, kmh=kmh, rate=rate)
     return truth, (truth.time, truth.steering_wheel_angle, truth.lateral_acceleration,
                    truth.speed)
@@ -347,8 +346,6 @@ def test_a_of_a_slowly_increasing_steer_run_from_the_closed_form_ramp_response()
     a_y = G(0) k t + G'(0) k (closed form from its state space), so the steering-wheel
     angle at 0.3 g is i_s (0.3 g - G'(0) k) / G(0), to the nearest 0.1 deg.
     """
-    import vbox_logs as vb
-
     g0, g1 = vb.lateral_acceleration_gain(80.0 / 3.6)
     k = 13.5 * DEG / vb.CAR['ratio']
     exact = vb.CAR['ratio'] * (0.3 * vb.G - g1 * k) / g0
