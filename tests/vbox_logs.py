@@ -31,6 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
+from vd_solvers.results import Channel, EventOutcome, Metric
+
 G = 9.80665
 DEG = math.pi / 180.0
 RATE = 100.0  # Hz, the logger
@@ -394,6 +396,38 @@ def circle_truth(radius: float = 40.0, a_start: float = 0.5, a_end: float = 4.5,
                     lambda t: np.sqrt(accel(t) * radius), steady_start=True)
 
 
+def swd_procedure(runs: Sequence[tuple[int, float]], a_reference: float,
+                  entry_kmh: Sequence[float] | None = None, start: float = 1.5):
+    """
+    Return a simulated sine-with-dwell procedure in the vehicle solver's layout.
+
+    ``runs``: (direction, amplitude) of each run, simulated by this module's model;
+    channels ``series_<signal>_<run>`` at 50 Hz over ``series_time``, ``run_amplitude``,
+    ``run_direction``, ``run_entry_speed``, the first run's signals as the main channels,
+    metric ``a_reference`` (an EventOutcome of model ``vehicle``).
+    """
+    truths = [swd_truth(amplitude=amp, direction=d, start=start, duration=start + 5.0)
+              for d, amp in runs]
+    pick = slice(None, None, 2)
+    units = {'steering_wheel_angle': 'rad', 'yaw_rate': 'rad/s',
+             'lateral_acceleration': 'm/s^2', 'roll': 'rad'}
+    channels = {'time': Channel('s', truths[0].time),
+                'series_time': Channel('s', truths[0].time[pick]),
+                'run_amplitude': Channel('rad', np.array([a for _, a in runs])),
+                'run_direction': Channel('-', np.array([float(d) for d, _ in runs])),
+                'run_entry_speed': Channel('m/s', np.array(entry_kmh or [80.0] * len(runs))
+                                           / 3.6)}
+    for k, truth in enumerate(truths):
+        for name, unit in units.items():
+            channels[f'series_{name}_{k + 1:02d}'] = Channel(unit, getattr(truth, name)[pick])
+    for name, unit in units.items():
+        channels[name] = Channel(unit, getattr(truths[0], name))
+    return EventOutcome(event='sine_with_dwell', configuration='baseline', model='vehicle',
+                        fidelity='rigid', axle='', data_hash='0' * 64,
+                        metrics={'a_reference': Metric(a_reference, 'rad'),
+                                 'gvwr': Metric(1800.0, 'kg')}, channels=channels)
+
+
 def understeer_gradient() -> float:
     """K of the test car, rad/(m/s^2) (Gillespie eq. 6.15: W_f/C_f - W_r/C_r over g)."""
     c = CAR
@@ -401,5 +435,6 @@ def understeer_gradient() -> float:
 
 
 __all__ = ['Truth', 'Log', 'simulate', 'write', 'write_map', 'swd_truth', 'sis_truth',
+           'swd_procedure',
            'step_truth', 'circle_truth', 'imu_lateral_acceleration', 'CAR', 'IMU_POSITION',
            'lateral_acceleration_gain', 'understeer_gradient', 'G', 'DEG', 'MODULE', 'MAP']

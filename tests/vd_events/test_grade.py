@@ -19,7 +19,6 @@ import pytest
 import vbox_logs as vb
 from vd_events.bags.outcomes import write_outcomes
 from vd_events.cli.main import main
-from vd_solvers.results import Channel, EventOutcome, Metric
 
 DEG = math.pi / 180.0
 POSITION = ','.join(f'{v:g}' for v in vb.IMU_POSITION)
@@ -196,26 +195,9 @@ def test_circle_log_graded_by_iso_4138(capsys, tmp_path: Path) -> None:
 
 
 def _simulated_procedure(tmp_path: Path) -> Path:
-    """Write a bag with a simulated procedure in the vehicle solver's layout (series)."""
+    """Write a bag with a simulated procedure: two runs at 1.5A, the second entered fast."""
     a_ref = expected_a() * DEG
-    runs = [vb.swd_truth(amplitude=amp, direction=d, start=1.5, duration=6.0)
-            for d, amp in ((1, 1.5 * a_ref), (-1, 1.5 * a_ref))]
-    pick = slice(None, None, 2)  # 50 Hz, as the solver keeps its series
-    channels = {'time': Channel('s', runs[0].time), 'series_time': Channel('s',
-                                                                          runs[0].time[pick])}
-    for k, run in enumerate(runs):
-        for name, unit in (('steering_wheel_angle', 'rad'), ('yaw_rate', 'rad/s'),
-                           ('lateral_acceleration', 'm/s^2'), ('roll', 'rad')):
-            channels[f'series_{name}_{k + 1:02d}'] = Channel(unit, getattr(run, name)[pick])
-    channels['run_amplitude'] = Channel('rad', np.full(2, 1.5 * a_ref))
-    channels['run_direction'] = Channel('-', np.array([1.0, -1.0]))
-    channels['run_entry_speed'] = Channel('m/s', np.array([80.0, 83.5]) / 3.6)
-    for name in ('steering_wheel_angle', 'yaw_rate', 'lateral_acceleration'):
-        channels[name] = Channel(channels[f'series_{name}_01'].unit, getattr(runs[0], name))
-    sim = EventOutcome(event='sine_with_dwell', configuration='baseline', model='vehicle',
-                       fidelity='rigid', axle='', data_hash='0' * 64,
-                       metrics={'a_reference': Metric(a_ref, 'rad'),
-                                'gvwr': Metric(1800.0, 'kg')}, channels=channels)
+    sim = vb.swd_procedure([(1, 1.5 * a_ref), (-1, 1.5 * a_ref)], a_ref, [80.0, 83.5])
     return write_outcomes(tmp_path / 'sim', [(sim, 1_700_000_000_000_000_000)],
                           {'vd.kind': 'test'})
 

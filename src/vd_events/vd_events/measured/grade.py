@@ -86,7 +86,9 @@ class RunGrade:
             return self.name
         o = self.outcome
         if o.model in MEASURED:
-            return f'{Path(self.source).name} (log)'
+            logged = next((n[len('source: '):] for n in o.notes if n.startswith('source: ')),
+                          self.source)
+            return f'{Path(logged).name} (log)'
         return f'{o.configuration} ({o.model}{", " + o.fidelity if o.fidelity else ""})'
 
     def to_json(self) -> dict:

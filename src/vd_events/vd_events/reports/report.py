@@ -60,7 +60,8 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     body += [sections.capability(t) for t in tables]
     for (event, axle, family), members in groups(runs).items():
         if event == 'sine_with_dwell':
-            body.append(sine_with_dwell_section(members, out, family))
+            sis = [r for r in runs if r.event == 'slowly_increasing_steer' and r.model == 'test']
+            body.append(sine_with_dwell_section(members, out, family, sis))
             continue
         section = sections.event_section(event, axle, family, members)
         section.images = images(event_figures(event, axle, family, members, out))
