@@ -22,7 +22,9 @@ from vd_events.measured.columns import load_map
 from vd_events.measured.compare import REPLAY_NOTE, compare, compare_bags, load_outcomes, pair
 from vd_events.measured.importer import ImportOptions, import_files, read_measurement, to_outcome
 from vd_events.measured.replay import replay_bag
-from vd_events.reports.runs import VEHICLE_PLOTS, Run, curve
+from vd_events.reports.grade import with_grades
+from vd_events.reports.report import build_pages
+from vd_events.reports.runs import VEHICLE_PLOTS, Run, curve, load_runs
 from vd_events.reports.sine_with_dwell import figure_curves, measured_grades
 from vd_solvers.results import Channel, EventOutcome
 
@@ -177,3 +179,26 @@ def test_a_replay_bag_compares_each_replay_with_its_own_log(tmp_path: Path) -> N
              for c in result['_comparisons']]
     assert len(pairs) == 2 and {p[1] for p in pairs} == logs
     assert all(a == b for a, b in pairs)
+
+
+def test_reports_draw_and_grade_the_logs_beside_the_simulations(tmp_path: Path) -> None:
+    """report.html and study.html: the SWD log in the figures' section, the step graded."""
+    swd_path, _, _ = vb.write(tmp_path / 'swd.vbo', vb.swd_truth(amplitude=180.0 * DEG))
+    step_path, _, _ = vb.write(tmp_path / 'step.vbo', vb.step_truth(start=2.0))
+    logs = tmp_path / 'logs'
+    import_files([swd_path], vb.write_map(tmp_path / 'swd.yaml', 'sine_with_dwell'),
+                 logs / 'swd', ImportOptions(imu_position=vb.IMU_POSITION))
+    import_files([step_path], vb.write_map(tmp_path / 'step.yaml', 'step_steer'),
+                 logs / 'step', ImportOptions(imu_position=vb.IMU_POSITION))
+    sim = write_outcomes(tmp_path / 'sim', [(vb.swd_procedure([(1, 180.0 * DEG)], 26.9 * DEG),
+                                             STAMP)], {'vd.kind': 'test'})
+    pages = build_pages([sim, logs / 'swd', logs / 'step'], tmp_path / 'report')
+    for page in pages.values():
+        text = Path(page).read_text()
+        assert 'Runs — measured logs' in text and 'swd.vbo (log)' in text
+        assert 'yaw_rate_response_time_90' in text  # the step log graded by ISO 7401
+    (step,) = with_grades(load_runs([logs / 'step'])[0])
+    c, u = vb.CAR, 100.0 / 3.6
+    gain = u / (c['a'] + c['b'] + vb.understeer_gradient() * u ** 2) / c['ratio']
+    assert step.metrics['yaw_rate_gain'].value == pytest.approx(gain, rel=0.02)
+    assert step.metrics['valid'].value == 1.0

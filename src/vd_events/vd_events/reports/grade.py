@@ -11,13 +11,27 @@ validity checks and the notes. The grading is :mod:`vd_events.measured.grade`.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+import dataclasses
+import math
 from pathlib import Path
 
-from vd_events.measured.grade import GradeResult, Procedure, RunGrade, shown_metric
+from vd_events.errors import InputError
+from vd_events.measured.grade import (
+    GradeOptions,
+    GradeResult,
+    Procedure,
+    RunGrade,
+    grade_circle_run,
+    grade_step_run,
+    shown_metric,
+)
 from vd_events.reports.figures import new_figure, save_figure
 from vd_events.reports.html import Image, Section, Table, write_page
+from vd_events.reports.runs import Run
 from vd_events.reports.sections import verdict_cell
 from vd_solvers.constants import DEG
+from vd_solvers.results import Metric
 
 #: verdict -> colour of its cell (True green, False red, None grey)
 GOOD = {'PASS': True, 'VALID': True, 'FAIL': False, 'INVALID': False, 'INCOMPLETE': None}
@@ -76,6 +90,40 @@ def procedure_section(proc: Procedure) -> Section:
                    notes=proc.notes)
 
 
+def with_grades(runs: Sequence[Run]) -> list[Run]:
+    """
+    Return the runs, the measured step steers and constant radius turns graded.
+
+    Their ISO 7401 / ISO 4138 metrics join the log's, under the names the simulations
+    give the same metrics, so the event's table shows them side by side; a log that cannot
+    be graded says why in its notes.
+    """
+    out = []
+    for run in runs:
+        if run.model != 'test' or run.event not in ('step_steer', 'constant_radius_turn'):
+            out.append(run)
+            continue
+        source = str(run.bag)
+        try:
+            graded = (grade_step_run(source, run.outcome) if run.event == 'step_steer' else
+                      grade_circle_run(source, run.outcome, GradeOptions()))
+        except InputError as err:
+            outcome = dataclasses.replace(run.outcome, notes=(
+                *run.outcome.notes, f'not graded: {err}'))
+            out.append(dataclasses.replace(run, outcome=outcome))
+            continue
+        metrics = dict(run.outcome.metrics)
+        metrics.update({name: Metric(value, unit, graded.standard)
+                        for name, (value, unit) in graded.metrics.items()
+                        if value is not None and math.isfinite(value)})
+        metrics['valid'] = Metric(1.0 if graded.verdict == 'VALID' else 0.0, '-',
+                                  graded.standard)
+        outcome = dataclasses.replace(run.outcome, metrics=metrics, notes=(
+            *run.outcome.notes, *(f'{graded.standard}: {c}' for c in graded.checks)))
+        out.append(dataclasses.replace(run, outcome=outcome))
+    return out
+
+
 def write_grade_page(result: GradeResult, out: Path) -> Path:
     """Write ``out/grade.html`` and its figures; return the page."""
     out.mkdir(parents=True, exist_ok=True)
@@ -96,4 +144,4 @@ def write_grade_page(result: GradeResult, out: Path) -> Path:
                              f'{len(result.procedures)} sine-with-dwell procedure(s).'])
 
 
-__all__ = ['write_grade_page', 'run_section', 'procedure_section']
+__all__ = ['write_grade_page', 'run_section', 'procedure_section', 'with_grades']

@@ -192,9 +192,15 @@ def _verdicts(runs: Sequence, procedure: Procedure | None = None) -> Table:
                   'r(COS+1.75) ≤ 20 %', 'Y(BOS+1.07)', 'overall', 'deciding run'], rows)
 
 
+#: the per-run table a simulated procedure carries (vd_solvers/vehicle/sine_with_dwell.py)
+RUN_TABLE = ('run_amplitude', 'run_direction', 'run_peak_yaw_rate', 'run_yaw_rate_ratio_1_00',
+             'run_yaw_rate_ratio_1_75', 'run_lateral_displacement',
+             'run_peak_lateral_acceleration', 'run_peak_roll', 'run_passed')
+
+
 def _run_table(run) -> Section | None:
     ch = run.channels
-    if 'run_amplitude' not in ch:
+    if not all(name in ch for name in RUN_TABLE):
         return None
     rows = []
     for k in range(len(ch['run_amplitude'])):
