@@ -60,7 +60,8 @@ def cmd_import(args: argparse.Namespace) -> int:
 #: the notes of an import that say what the checks found and chose
 CHECK_NOTES = ('sample rate', 'gap:', 'glitch', 'window:', 'sign check', 'yaw_rate',
                'lateral_acceleration', 'speed <-', 'roll <-', 'longitudinal_acceleration <-',
-               '[channel units]', 'no [channel units]')
+               'steering_wheel_angle <-', 'sideslip <-', '[channel units]',
+               'no [channel units]')
 
 
 def checked_notes(notes) -> list[str]:

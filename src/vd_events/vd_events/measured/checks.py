@@ -20,8 +20,10 @@ file line of each sample; :mod:`.importer` runs them and says what they found.
   divided by the speed (a_y = v r in a steady turn); the lateral acceleration and the
   steering-wheel angle against the heading rate; the roll angle against the lateral
   acceleration (a car rolls out of the turn: positive roll, left side up, in a left
-  turn). Correlations over the samples in a turn (|heading rate| above TURN_RATE, speed
-  above MIN_SPEED), per gap-free segment; |correlation| below SIGN_CORRELATION decides
+  turn). The agreement is the uncentred correlation sum(x r) / sqrt(sum(x^2) sum(r^2))
+  over the samples in a turn (|heading rate| above TURN_RATE, speed above MIN_SPEED): +1
+  for the same sign throughout, -1 for the opposite (unlike Pearson's, it does not vanish
+  in a steady turn where both are constant); |agreement| below SIGN_CORRELATION decides
   nothing.
 * **Noise**: the difference-based estimate 1.4826 MAD(diff x) / sqrt(2) (the standard
   deviation of white noise on a signal that changes little from one sample to the next).
@@ -216,7 +218,7 @@ def heading_rate(t: np.ndarray, yaw: np.ndarray, interval: float) -> np.ndarray:
 class Agreement:
     """How a channel agrees in sign with a reference over the samples in a turn."""
 
-    correlation: float  # Pearson, NaN when not enough turning
+    correlation: float  # uncentred (module doc), NaN when not enough turning
     samples: int
 
     @property
@@ -243,9 +245,10 @@ def agreement(x: np.ndarray, reference: np.ndarray, mask: np.ndarray) -> Agreeme
     if n < MIN_TURN_SAMPLES:
         return Agreement(float('nan'), n)
     a, b = x[mask], reference[mask]
-    if np.std(a) == 0.0 or np.std(b) == 0.0:
+    norm = math.sqrt(float(np.sum(a * a)) * float(np.sum(b * b)))
+    if norm == 0.0:
         return Agreement(float('nan'), 0)
-    return Agreement(float(np.corrcoef(a, b)[0, 1]), n)
+    return Agreement(float(np.sum(a * b)) / norm, n)
 
 
 __all__ = ['Gap', 'Glitch', 'Agreement', 'Findings', 'sample_interval', 'find_gaps', 'segments',

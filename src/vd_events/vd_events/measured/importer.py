@@ -241,7 +241,7 @@ def _check_signs(path: Path, m: Measured, options: ImportOptions,
         if 'lateral_acceleration' in ch and speed is not None:
             ay_v = np.where(moving, ch['lateral_acceleration'] / np.maximum(speed, 1.0), 0.0)
             by_ay = checks.agreement(r, ay_v, moving & (np.abs(ay_v) > checks.TURN_RATE))
-        said = '; '.join(f'{what} ({a.describe()})' for what, a in
+        said = ' and '.join(f'{what} ({a.describe()})' for what, a in
                          (('the heading rate', by_heading),
                           ('the lateral acceleration / speed', by_ay)) if a is not None)
         opposes = by_heading.opposes if by_heading is not None and by_heading.decided else (
