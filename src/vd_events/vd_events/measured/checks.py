@@ -136,9 +136,9 @@ def find_glitches(channel: str, column: str, t: np.ndarray, x: np.ndarray, unit:
     bad = np.zeros(x.size, dtype=bool)
     reason = [''] * x.size
     out_of_range = np.abs(x) > limit
-    for i in np.flatnonzero(out_of_range):
-        bad[i] = True
-        reason[i] = f'outside +/-{shown(limit, unit)}'
+    for k in map(int, np.flatnonzero(out_of_range)):
+        bad[k] = True
+        reason[k] = f'outside +/-{shown(limit, unit)}'
     dt = np.diff(t)
     jump = np.diff(x)
     fast = np.abs(jump) > rate * dt
@@ -146,7 +146,7 @@ def find_glitches(channel: str, column: str, t: np.ndarray, x: np.ndarray, unit:
         first = i + 1  # a run starts after the jump out
         if bad[first]:
             continue
-        for last in range(first, min(first + MAX_GLITCH_RUN, x.size - 1)):
+        for last in range(first, min(first + MAX_GLITCH_RUN, int(x.size) - 1)):
             back = x[last + 1] - x[last]
             if (abs(back) > rate * (t[last + 1] - t[last]) and back * jump[i] < 0
                     and abs(x[last + 1] - x[i]) <= rate * (t[last + 1] - t[i])):
