@@ -264,3 +264,13 @@ def test_import_reports_what_it_checked(capsys, tmp_path: Path, swd) -> None:
     assert log.metrics['gaps'].value == 1.0
     assert log.metrics['gap_time'].value == pytest.approx(2.01)
     assert log.metrics['glitches_repaired'].value == 1.0
+
+
+def test_log_options_on_a_rig_measurement_are_refused(capsys, tmp_path: Path) -> None:
+    samples = Path(__file__).resolve().parents[2] / 'src' / 'vd_events' / 'samples'
+    data = samples / 'kc_spmm_bounce_front.csv'
+    assert _refused(capsys, tmp_path, 'import', str(data), '--map',
+                    str(samples / 'kc_spmm_bounce_front.map.yaml'), '--bag',
+                    str(tmp_path / 'bag'), '--event', 'step_steer') == (
+        f'{data}: a K&C rig measurement has no time axis: --repair, --yaw-sign, --from/--to, '
+        '--window, --imu-position and --event are for vehicle logs')

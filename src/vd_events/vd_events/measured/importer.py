@@ -124,9 +124,10 @@ def read_measurement(path: Path, cmap: ColumnMap | None,
     if kind == 'vehicle':
         event = options.event or (cmap.event if cmap is not None else 'vehicle_test')
         measured = check_log(path, measured, options, event)
-    elif options != ImportOptions(event=options.event):
+    elif options != ImportOptions():
         raise InputError(path, 'a K&C rig measurement has no time axis: --repair, --yaw-sign, '
-                         '--from/--to, --window and --imu-position are for vehicle logs')
+                         '--from/--to, --window, --imu-position and --event are for vehicle '
+                         'logs')
     return measured, kind
 
 
