@@ -289,9 +289,10 @@ def compare(sim: EventOutcome, test: EventOutcome,
         if filter_both:
             y_test, left_test = _filtered(xt, y_test, name)
             y_sim_sorted, left_sim = _filtered(xs_sorted, y_sim_sorted, name)
-            if left_test or left_sim:
-                notes.append(f'{name}: {left_test} test and {left_sim} simulation samples in '
-                             f'stretches shorter than {MIN_FILTERED} samples, not low-passed')
+            unfiltered = (f'{left_test} test and {left_sim} simulation samples in stretches '
+                          f'shorter than {MIN_FILTERED} samples are not low-passed')
+            if (left_test or left_sim) and unfiltered not in notes:
+                notes.append(unfiltered)
         y_sim = np.interp(xt[inside], xs_sorted, y_sim_sorted)
         diff = y_sim - y_test[inside]
         sim_x[name] = y_sim
