@@ -19,6 +19,7 @@ import pytest
 import vbox_logs as vb
 from vd_events.bags.outcomes import write_outcomes
 from vd_events.cli.main import main
+from vd_solvers.results import Channel, EventOutcome
 
 DEG = math.pi / 180.0
 POSITION = ','.join(f'{v:g}' for v in vb.IMU_POSITION)
@@ -256,3 +257,24 @@ def test_sis_inputs_that_are_not_files(capsys, logs: Path, tmp_path: Path) -> No
     out, err = capsys.readouterr()
     assert (rc, err.strip()) == (2, f'{empty}: a folder that is not a finished bag (no '
                                     'metadata.yaml)')
+
+
+def test_a_replay_is_graded_as_a_single_run(capsys, tmp_path: Path) -> None:
+    """A simulated run without a series (a replay of a log): graded as a log is."""
+    truth = vb.swd_truth(amplitude=180.0 * DEG)
+    replay = EventOutcome(
+        event='sine_with_dwell', configuration='baseline', model='bicycle', fidelity='rigid',
+        axle='', data_hash='3' * 64, metrics={},
+        channels={k: Channel(u, getattr(truth, k)) for k, u in (
+            ('time', 's'), ('steering_wheel_angle', 'rad'), ('yaw_rate', 'rad/s'),
+            ('lateral_acceleration', 'm/s^2'), ('speed', 'm/s'))})
+    bag = write_outcomes(tmp_path / 'replay', [(replay, 1_700_000_000_000_000_000)],
+                         {'vd.kind': 'test'})
+    rc, out = grade(capsys, str(bag), '--a-reference', f'{expected_a():.1f}',
+                    '--out', str(tmp_path / 'grade'))
+    assert rc == 0 and isinstance(out, dict)
+    (proc,) = out['procedures']
+    (run,) = out['runs']
+    assert proc['label'] == 'baseline (bicycle) runs' and proc['verdict'] == 'PASS'
+    assert run['metrics']['lateral_displacement']['value'] == pytest.approx(
+        _lateral_displacement(truth), rel=0.02)

@@ -12,7 +12,8 @@ or a simulation in a bag -- the same processing for both:
   against A from the slowly-increasing-steer logs of the same set (``--sis``, or results
   of event ``slowly_increasing_steer`` among the inputs), or A given (``--a-reference``);
   without A, responsiveness is not graded and the procedure is not passed. A simulated
-  procedure is re-graded run by run from its series, against its own A.
+  procedure is re-graded run by run from its series, against its own A; a simulated single
+  run (a replay of a log) is graded as a log is, its model's runs forming a procedure.
 * ``slowly_increasing_steer`` (S7.6): A of each run, with its validity.
 * ``step_steer`` (ISO 7401, :mod:`~vd_solvers.standards.iso7401`) and
   ``constant_radius_turn`` (ISO 4138, :mod:`~vd_solvers.standards.iso4138`): metrics,
@@ -418,10 +419,13 @@ def grade(inputs: Sequence[tuple[str, EventOutcome]],
         a_ref = fmvss126.a_from_sis([r.sis for r in sis_runs if r.sis is not None])
         a_source = (f'{len(sis_runs)} slowly-increasing-steer run(s) of the set (S7.6.1: each '
                     'to 0.1 deg, averaged, to 0.1 deg)')
-    measured_swd = []
+    # single runs by who ran them: the logs together, each simulated model (a replay) apart
+    single: dict[str, list[RunGrade]] = {}
     for source, o in inputs:
-        if o.event == 'sine_with_dwell' and o.model in MEASURED:
-            measured_swd.append(grade_swd_run(source, o, a_ref, options.gvwr))
+        if o.event == 'sine_with_dwell' and (o.model in MEASURED or not series_runs(o)):
+            group = 'measured runs' if o.model in MEASURED else \
+                f'{o.configuration} ({o.model}) runs'
+            single.setdefault(group, []).append(grade_swd_run(source, o, a_ref, options.gvwr))
         elif o.event == 'sine_with_dwell':
             proc = _simulated_procedure(source, o)
             procedures.append(proc)
@@ -430,7 +434,7 @@ def grade(inputs: Sequence[tuple[str, EventOutcome]],
             runs.append(grade_step_run(source, o))
         elif o.event == 'constant_radius_turn':
             runs.append(grade_circle_run(source, o, options))
-    if measured_swd:
+    for group, members in single.items():
         notes = []
         if a_ref is None:
             a_source = 'not known'
@@ -442,8 +446,8 @@ def grade(inputs: Sequence[tuple[str, EventOutcome]],
         if options.gvwr is None:
             notes.append('GVWR not given (--gvwr): the 1.83 m displacement limit of GVWR <= '
                          '3500 kg applies')
-        runs += measured_swd
-        procedures.append(_procedure('measured runs', measured_swd, a_ref, a_source,
+        runs += members
+        procedures.append(_procedure(group, members, a_ref, a_source,
                                      [r.sis for r in sis_runs if r.sis is not None], notes))
     return GradeResult(runs=runs, procedures=procedures)
 
