@@ -125,8 +125,7 @@ def test_vbo_without_channel_units(tmp_path: Path) -> None:
     path.write_text(text.replace('[channel units]\n°/s\ndeg\n\n', ''), encoding='cp1252')
     m = read_vbo(path, None)
     assert_allclose(m.channels['yaw_rate'], math.radians(10.0))
-    assert "'Yaw Rate': no unit in the file, Racelogic's documented deg/s assumed" in \
-        m.meta['notes']
+    assert "'Yaw Rate': no unit in the file, Racelogic's documented deg/s assumed" in m.notes
     cmap = tmp_path / 'map.yaml'
     cmap.write_text('kind: vehicle\ncolumns:\n  Steering Angle: {channel: steering_wheel_angle}\n')
     with pytest.raises(InputError) as err:

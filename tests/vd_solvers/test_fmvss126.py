@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 
+import vbox_logs as vb
 from vd_solvers.standards import fmvss126 as f
 
 DEG = math.pi / 180.0
@@ -107,11 +108,13 @@ def test_responsiveness_applies_from_5a():
 
 
 def test_a_from_linear_sis_runs_is_rounded_to_a_tenth_of_a_degree():
+    """S7.6.1: each run's A to the nearest 0.1 deg, the absolute values averaged, to 0.1."""
     gain = 0.4  # m/s^2 of lateral acceleration per degree of steering-wheel angle
     steer = np.linspace(0.0, 40.0 * DEG, 400)
     runs = [(steer, steer / DEG * gain), (-steer, -steer / DEG * gain * 1.02)]
-    expected = np.mean([0.3 * 9.80665 / gain, 0.3 * 9.80665 / (gain * 1.02)])
-    assert f.amplitude_from_sis(runs) == pytest.approx(round(expected, 1) * DEG, abs=1e-12)
+    each = [round(0.3 * 9.80665 / gain, 1), round(0.3 * 9.80665 / (gain * 1.02), 1)]
+    assert f.amplitude_from_sis(runs) == pytest.approx(round(np.mean(each), 1) * DEG,
+                                                        abs=1e-12)
 
 
 @pytest.mark.parametrize('a_deg, first, last, count', [
@@ -128,7 +131,10 @@ def test_amplitude_series(a_deg, first, last, count):
 @pytest.mark.parametrize('t, x, message', [
     (np.arange(10.0), np.zeros(10), 'need at least 30 samples of equal-length time and signal'),
     (np.r_[np.arange(20.0), np.arange(20.0)], np.zeros(40),
-     'time must be strictly increasing with a uniform step'),
+     'time does not increase at t = 0.000 s (sample 21: 19.000 s, then 0.000 s)'),
+    (np.r_[np.arange(0.0, 2.0, 0.01), np.arange(4.0, 6.0, 0.01)], np.zeros(400),
+     'time step not uniform: 2.01 s from t = 1.990 s to 4.000 s where the step is 0.01 s (a '
+     'gap in the record; 1 such step(s))'),
     (np.arange(0, 10, 0.1), np.zeros(100), 'sample rate 10.0 Hz is too low for a 10 Hz filter'),
 ])
 def test_bad_signals_are_refused(t, x, message):
@@ -152,7 +158,7 @@ def test_no_steer_is_refused():
     assert str(err.value) == 'the steering-wheel rate never exceeds 75 deg/s for 200 ms'
 
 
-def _run(a_deg, direction=1, decay=0.8, hold=0.3, speed=None, a_ref=20.0):
+def _run(a_deg, direction=1, decay=0.8, hold=0.3, speed=None, a_ref: float | None = 20.0):
     """
     Grade a run whose yaw rate decays after the steer.
 
@@ -169,7 +175,8 @@ def _run(a_deg, direction=1, decay=0.8, hold=0.3, speed=None, a_ref=20.0):
     after = -hold * big_p * np.exp(-(T - cos) / decay)
     yaw = np.where(T < t2, rise, np.where(T < cos, fall, after))
     return f.grade_run(T, steer, direction * yaw, 10.0 * direction * yaw,
-                       a_reference=a_ref * DEG, speed=speed, commanded_amplitude=a)
+                       a_reference=None if a_ref is None else a_ref * DEG, speed=speed,
+                       commanded_amplitude=a)
 
 
 def test_the_procedure_fails_on_the_first_failing_run_and_names_it():
@@ -264,3 +271,98 @@ def test_the_grading_is_the_solver_s_one_implementation():
     from vd_solvers.standards import fmvss126 as core
 
     assert f.grade_run is core.grade_run and f.grade_procedure is core.grade_procedure
+
+
+def test_the_steering_rate_is_averaged_over_a_tenth_of_a_second():
+    """
+    S7.11.4: the derivative, then a 0.1 s running average.
+
+    Of a ramp that starts at t0 the averaged rate rises linearly from 0 at t0 - 0.05 s to
+    the ramp's rate at t0 + 0.05 s: half the rate at t0, within one sample of the 50-sample
+    window.
+    """
+    rate = 100.0 * DEG
+    steer = rate * np.clip(T - 2.0, 0.0, None)
+    averaged = f.steering_rate(T, steer)
+    i0 = int(round(2.0 * FS))
+    assert averaged[i0] == pytest.approx(0.5 * rate, abs=rate / 50)
+    assert averaged[i0 + 50] == pytest.approx(rate, rel=1e-9)  # 0.1 s after: the full rate
+    assert averaged[i0 - 50] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_an_invalid_entry_speed_is_never_graded_as_passed():
+    """83.5 km/h at BOS: the run and the procedure are invalid, and the reason is named."""
+    fast = _run(30.0, speed=np.full_like(T, 83.5 / 3.6))
+    ok = _run(30.0, speed=np.full_like(T, 80.0 / 3.6))
+    assert fast.stable_1_00 and fast.stable_1_75 and fast.responsive is None
+    assert not fast.passed and fast.invalid_reasons == ('entry_speed',)
+    verdict = f.grade_procedure([ok, fast], 20.0 * DEG)
+    assert not verdict.passed and not verdict.valid
+    assert (verdict.deciding_run, verdict.deciding_criterion) == (1, 'entry_speed')
+    # the criteria are graded on the valid run only
+    assert {c.name: c.runs for c in verdict.criteria}['yaw_rate_ratio_1_00'] == 1
+
+
+def test_a_steer_that_is_not_the_rule_s_sine_is_invalid():
+    """0.5 Hz instead of 0.7 Hz: half-period 1.0 s against 0.714 s (S7.9.1)."""
+    steer = f.sine_with_dwell(T, 100.0 * DEG, 1, START, 0.5, DWELL)
+    yaw = 0.3 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, 0.5, DWELL)
+    g = f.grade_run(T, steer, yaw, 8.0 * yaw, a_reference=20.0 * DEG)
+    assert g.half_period == pytest.approx(1.0, abs=0.01)
+    assert g.invalid_reasons == ('steering_profile',) and not g.passed
+    good = f.grade_run(T, f.sine_with_dwell(T, 100.0 * DEG, 1, START, FREQ, DWELL),
+                       0.3 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, FREQ, DWELL),
+                       2.4 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, FREQ, DWELL),
+                       a_reference=20.0 * DEG)
+    assert good.half_period == pytest.approx(0.5 / FREQ, abs=0.005) and good.profile_valid
+
+
+def test_a_reversed_yaw_rate_is_refused_not_graded_on_the_wrong_lobe():
+    steer = f.sine_with_dwell(T, 100.0 * DEG, 1, START, FREQ, DWELL)
+    yaw = 0.3 * f.sine_with_dwell(T - 0.1, 1.0, 1, START, FREQ, DWELL)
+    with pytest.raises(f.ProcessingError, match='the yaw rate turns against the first steer'):
+        f.grade_run(T, steer, -yaw, 8.0 * yaw, a_reference=20.0 * DEG)
+
+
+def test_without_a_responsiveness_is_not_graded():
+    g = _run(150.0, a_ref=None)
+    assert not g.responsiveness_applies and g.responsive is None
+    verdict = f.grade_procedure([g], None)
+    assert {c.name: c.runs for c in verdict.criteria}['lateral_displacement'] == 0
+    assert g.stable_1_00 and g.stable_1_75 and not verdict.passed
+
+
+def _sis_log(direction: int = 1, kmh: float = 80.0, rate: float = 13.5 * DEG):
+    truth = vb.sis_truth(direction=direction, kmh=kmh, rate=rate)
+    return truth, (truth.time, truth.steering_wheel_angle, truth.lateral_acceleration,
+                   truth.speed)
+
+
+def test_a_of_a_slowly_increasing_steer_run_from_the_closed_form_ramp_response():
+    """
+    A of a linear bicycle model's SIS run (S7.6).
+
+    Once the ramp delta = k t has run a while, the linear model answers
+    a_y = G(0) k t + G'(0) k (closed form from its state space), so the steering-wheel
+    angle at 0.3 g is i_s (0.3 g - G'(0) k) / G(0), to the nearest 0.1 deg.
+    """
+    g0, g1 = vb.lateral_acceleration_gain(80.0 / 3.6)
+    k = 13.5 * DEG / vb.CAR['ratio']
+    exact = vb.CAR['ratio'] * (0.3 * vb.G - g1 * k) / g0
+    for direction in (1, -1):
+        _, signals = _sis_log(direction)
+        g = f.grade_sis(*signals)
+        assert g.a_value == pytest.approx(round(exact / DEG, 1) * DEG, abs=1e-9)
+        assert g.direction == direction and g.valid
+        assert g.steering_rate == pytest.approx(13.5 * DEG, rel=1e-3)
+
+
+@pytest.mark.parametrize('kwargs, reason', [({'kmh': 83.0}, 'sis_speed'),
+                                            ({'rate': 16.0 * DEG}, 'sis_steering_rate')])
+def test_an_invalid_sis_run_makes_the_procedure_invalid(kwargs, reason):
+    _, signals = _sis_log(**kwargs)
+    sis = f.grade_sis(*signals)
+    assert sis.invalid_reasons == (reason,)
+    verdict = f.grade_procedure([_run(30.0)], f.a_from_sis([sis]), [sis])
+    assert not verdict.valid and not verdict.passed
+    assert (verdict.deciding_criterion, verdict.deciding_sis_run) == (reason, 0)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from vd_events.cli.parsers import XLSX
 from vd_events.cli.workbench import import_xlsx
-from vd_events.errors import UsageError
+from vd_events.errors import InputError, UsageError
 from vd_events.measured.compare import (
     Comparison,
     compare_bags,
@@ -18,7 +18,7 @@ from vd_events.measured.compare import (
     load_tolerances,
     shown,
 )
-from vd_events.measured.importer import import_files
+from vd_events.measured.importer import ImportOptions, import_files
 from vd_events.measured.replay import replay_bag
 from vd_events.reports.compare import write_compare_page
 
@@ -30,7 +30,8 @@ def cmd_import(args: argparse.Namespace) -> int:
     The two forms share the verb (ARCHITECTURE §5); the first FILE says which it is.
     """
     if args.files[0] == XLSX:
-        if len(args.files) != 2 or not args.out or args.bag or args.map:
+        if len(args.files) != 2 or not args.out or args.bag or args.map or \
+                import_options(args) != ImportOptions():
             raise UsageError('vd import xlsx takes one workbook and --out MASTER (no --bag or '
                              '--map): vd import xlsx WORKBOOK --out MASTER')
         return import_xlsx(Path(args.files[1]), Path(args.out))
@@ -38,8 +39,9 @@ def cmd_import(args: argparse.Namespace) -> int:
         raise UsageError('vd import of measured data takes --bag DIR (and no --out): vd import '
                          'FILE... [--map COLUMNS.yaml] --bag DIR; a master workbook: vd import '
                          'xlsx WORKBOOK --out MASTER')
+    options = import_options(args)
     path, outcomes = import_files([Path(f) for f in args.files],
-                                  Path(args.map) if args.map else None, Path(args.bag))
+                                  Path(args.map) if args.map else None, Path(args.bag), options)
     if args.json:
         print(json.dumps({'bag': str(path), 'results': [
             {'event': o.event, 'model': o.model, 'axle': o.axle, 'configuration': o.configuration,
@@ -49,8 +51,39 @@ def cmd_import(args: argparse.Namespace) -> int:
         for o in outcomes:
             print(f'  {o.event:24s} {o.model:5s} {o.axle or "-":6s} {o.n_steps:6d} samples, '
                   f"channels: {', '.join(sorted(o.channels))}")
+            for note in checked_notes(o.notes):
+                print(f'    {note}')
         print(f'bag: {path}')
     return 0
+
+
+#: the notes of an import that say what the checks found and chose
+CHECK_NOTES = ('sample rate', 'gap:', 'glitch', 'window:', 'sign check', 'yaw_rate',
+               'lateral_acceleration', 'speed <-', 'roll <-', 'longitudinal_acceleration <-',
+               'steering_wheel_angle <-', 'sideslip <-', '[channel units]',
+               'no [channel units]')
+
+
+def checked_notes(notes) -> list[str]:
+    """Return the notes of an imported log that a test engineer reads at the terminal."""
+    return [n for n in notes if n.startswith(CHECK_NOTES)]
+
+
+def import_options(args: argparse.Namespace) -> ImportOptions:
+    """Return the log-reading options of ``vd import`` and ``vd grade`` (InputError names one)."""
+    position = None
+    if args.imu_position:
+        try:
+            values = [float(p) for p in args.imu_position.split(',')]
+        except ValueError:
+            values = []
+        if len(values) != 3:
+            raise InputError('--imu-position', f'X,Y,Z in m (three numbers), found '
+                             f'{args.imu_position!r}')
+        position = (values[0], values[1], values[2])
+    return ImportOptions(repair=tuple(args.repair), yaw_sign=args.yaw_sign, start=args.start,
+                         end=args.end, window=args.window, imu_position=position,
+                         event=args.event)
 
 
 def cmd_compare(args: argparse.Namespace) -> int:
@@ -97,4 +130,4 @@ def print_comparisons(comparisons: Sequence[Comparison]) -> None:
                   f'{e.verdict}')
 
 
-__all__ = ['cmd_import', 'cmd_compare', 'cmd_replay']
+__all__ = ['cmd_import', 'cmd_compare', 'cmd_replay', 'import_options', 'checked_notes']

@@ -139,6 +139,31 @@ def _sweeps(sub) -> None:
         cmd.set_defaults(**handler(f'sweep:cmd_{name}'))
 
 
+def _log_checks(parser: argparse.ArgumentParser) -> None:
+    """Add the options of reading a vehicle log (vd import, vd grade; docs/testdata.md)."""
+    parser.add_argument('--repair', action='append', default=[], metavar='WHAT',
+                        help="'glitches': replace one-sample logger glitches linearly between "
+                        'their neighbours (said in the notes); without it a glitch is refused')
+    parser.add_argument('--yaw-sign', default='check', metavar='HOW',
+                        help='check (default: refuse a yaw rate that opposes the GPS heading '
+                        'rate), auto (reverse it when it does, with a note), reversed (the '
+                        'logger writes positive clockwise)')
+    parser.add_argument('--from', dest='start', type=float, metavar='S',
+                        help='import from this time, s from the first sample')
+    parser.add_argument('--to', dest='end', type=float, metavar='S',
+                        help='import up to this time, s from the first sample')
+    parser.add_argument('--window', default='', metavar='auto',
+                        help="'auto': only the manoeuvre, found by its steering (the event's "
+                        'rule), inside one gap-free stretch')
+    parser.add_argument('--imu-position', metavar='X,Y,Z',
+                        help='the IMU from the CoG in m, body axes (x forward, y left, z up): '
+                        'its lateral acceleration is moved to the CoG (and roll-corrected '
+                        'with a logged roll angle)')
+    parser.add_argument('--event', default=None, help='the manoeuvre of the log(s) '
+                        '(overrides the column map): sine_with_dwell, slowly_increasing_steer, '
+                        'step_steer, constant_radius_turn, vehicle_test')
+
+
 def _measured(sub) -> None:
     imp = sub.add_parser('import', help='rig / vehicle-test data (CSV, VBOX .vbo) into a bag '
                          '(vd import FILE... --bag DIR), or a master workbook into a master '
@@ -150,6 +175,7 @@ def _measured(sub) -> None:
     imp.add_argument('--bag', help='bag directory to write (must not exist; measured data)')
     imp.add_argument('--out', help='master file to write (xlsx: its folder decides the data '
                      'root, as for any master file; a previous file is kept as .bak)')
+    _log_checks(imp)
     _json(imp)
     imp.set_defaults(**handler('measured:cmd_import'))
 
@@ -174,6 +200,27 @@ def _measured(sub) -> None:
     rep.add_argument('--out', default='out/replay', help='report folder')
     _json(rep)
     rep.set_defaults(**handler('measured:cmd_replay'))
+
+    grade = sub.add_parser('grade', help='grade measured logs and simulated runs by their '
+                           'standard: FMVSS 126 / UN R140 sine with dwell, ISO 7401 step '
+                           'steer, ISO 4138 constant radius')
+    grade.add_argument('inputs', nargs='+', metavar='FILE|BAG',
+                       help='vehicle logs (.vbo, CSV with --map) or bags (vd import, vd run)')
+    grade.add_argument('--map', help='column map YAML of the log files')
+    grade.add_argument('--sis', nargs='+', default=[], metavar='FILE|BAG',
+                       help='slowly-increasing-steer runs of the same set: A (S7.6)')
+    grade.add_argument('--a-reference', type=float, metavar='DEG',
+                       help='A in deg, when no slowly-increasing-steer run is given')
+    grade.add_argument('--gvwr', type=float, metavar='KG', help='gross vehicle weight rating '
+                       '(the displacement limit, S5.2.3; default: <= 3500 kg)')
+    grade.add_argument('--steering-ratio', type=float, metavar='R', help='overall steering '
+                       'ratio (ISO 4138 understeer gradient; simulations carry their own)')
+    grade.add_argument('--wheelbase', type=float, metavar='M', help='wheelbase, m (ISO 4138: '
+                       'the Ackermann angle of the radius actually driven)')
+    grade.add_argument('--out', default='out/grade', help='report folder (grade.html)')
+    _log_checks(grade)
+    _json(grade)
+    grade.set_defaults(**handler('grade:cmd_grade'))
 
 
 def _workbench(sub) -> None:

@@ -63,7 +63,8 @@ KC_SWEEP: Mapping[str, str] = {
     'lateral_force': 'applied_force', 'longitudinal_force': 'applied_force',
     'aligning_torque': 'applied_moment', 'steering': 'steering_wheel_angle',
 }
-VEHICLE_EVENTS = ('step_steer', 'constant_radius_turn', 'sine_with_dwell', 'vehicle_test')
+VEHICLE_EVENTS = ('step_steer', 'constant_radius_turn', 'sine_with_dwell',
+                  'slowly_increasing_steer', 'vehicle_test')
 DELIMITERS: Mapping[str, str | None] = {',': ',', ';': ';', 'tab': '\t', 'whitespace': None}
 MAP_KEYS = ('kind', 'event', 'axle', 'delimiter', 'header_line', 'units_line', 'data_line',
             'rig', 'logger', 'vehicle', 'configuration', 'date', 'columns', 'ignore', 'comment')
@@ -294,4 +295,4 @@ def normalise(name: str) -> str:
 
 
 __all__ = ['ColumnMap', 'ColumnSpec', 'InputError', 'load_map', 'parse_map', 'unit_factor',
-           'si_unit', 'known_channels', 'KC_SWEEP', 'VEHICLE_UNITS', 'normalise']
+           'si_unit', 'known_channels', 'KC_SWEEP', 'VEHICLE_UNITS', 'VEHICLE_EVENTS', 'normalise']

@@ -18,10 +18,17 @@ every channel both have, on the **test's points**:
   straight line through the window's measured points), so rig noise on a coarse sweep
   is not counted as model error.
 * Vehicle (test model ``test``): the simulation is interpolated linearly at the log's
-  times over the common time span. Where both signals are uniformly sampled at 20 Hz or
-  more, both are low-passed first with the 12-pole phaseless Butterworth of the
-  sine-with-dwell processing (``fmvss126.lowpass``, 6 Hz for responses, 10 Hz for
-  the steering-wheel angle), so sensor noise does not count as model error.
+  times over the common time span. A simulation of a sine with dwell or a step steer
+  (not a replay, which runs on the log's own time) is first put on the log's time axis by
+  the manoeuvre (:mod:`.align`: BOS, the 50 % steering-wheel instant; for a simulated
+  sine-with-dwell procedure its run nearest the log's amplitude and direction), and the
+  notes state the shift. Where both are sampled at 20 Hz or more, both are low-passed
+  first with the 12-pole phaseless Butterworth of the sine-with-dwell processing
+  (``fmvss126.lowpass``, 6 Hz for responses, 10 Hz for the steering-wheel angle), each
+  gap-free stretch on its own (the notes name the gaps), so sensor noise does not count
+  as model error.
+* Pairing (:func:`pair`): a replay (its note REPLAY_NOTE names the log's SHA-256) is
+  compared with its own log only; any other simulation with every log of its event.
 
 Per channel: RMS of (sim - test), max |sim - test|, bias (mean of sim - test), each in
 the channel's SI unit, and the test signal's RMS for scale. A channel passes when every
@@ -41,6 +48,8 @@ import yaml
 
 from vd_events.bags.bag import read_bag
 from vd_events.errors import InputError
+from vd_events.measured.align import aligned
+from vd_events.measured.checks import segments
 from vd_events.measured.columns import KC_SWEEP, si_unit, unit_factor
 from vd_solvers.constants import DEG
 from vd_solvers.conversions import outcome_from_msg
@@ -70,6 +79,10 @@ TOLERANCES: Mapping[str, Mapping[str, float]] = {
 GRADIENT_TOLERANCE = 0.10  # relative error of a slope at design
 #: a simulation's note naming the channels it took from the test (a replay's inputs)
 INPUTS_NOTE = 'inputs taken from the log: '
+#: a replay's note naming the log it replays (its source's SHA-256)
+REPLAY_NOTE = 'replay of the log with sha256: '
+#: fewest samples of a stretch the low-pass filters
+MIN_FILTERED = 30
 #: how a unit is shown in tables (the values stay SI in JSON)
 DISPLAY = {'rad': ('deg', 1.0 / DEG), 'rad/s': ('deg/s', 1.0 / DEG), 'm': ('mm', 1e3)}
 
@@ -184,18 +197,27 @@ def slope_uncertainty(x: np.ndarray, y: np.ndarray, half_width: float) -> float:
     return math.sqrt(residual / (xs.size - 2) / spread) if spread > 0.0 else 0.0
 
 
-def _uniform(t: np.ndarray) -> bool:
-    dt = np.diff(t)
-    return bool(dt.size and np.all(dt > 0) and np.ptp(dt) <= 1e-6 * dt.mean() + 1e-12)
+def replay_source(sim: EventOutcome) -> str | None:
+    """Return the SHA-256 of the log a replay replays (None: not a replay)."""
+    for note in sim.notes:
+        if note.startswith(REPLAY_NOTE):
+            return note[len(REPLAY_NOTE):].strip()
+    return None
 
 
-def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> np.ndarray:
-
+def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> tuple[np.ndarray, int]:
+    """``x`` low-passed per gap-free stretch; and how many samples were left unfiltered."""
     cutoff = STEER_CUTOFF if channel in STEERING_CHANNELS else RESPONSE_CUTOFF
-    try:
-        return lowpass(t, x, cutoff)
-    except ProcessingError:
-        return x
+    out = x.copy()
+    left = 0
+    for s in segments(t):
+        try:
+            if s.stop - s.start < MIN_FILTERED:
+                raise ProcessingError('short')
+            out[s] = lowpass(t[s], x[s], cutoff)
+        except ProcessingError:
+            left += s.stop - s.start
+    return out, left
 
 
 def compare(sim: EventOutcome, test: EventOutcome,
@@ -209,11 +231,14 @@ def compare(sim: EventOutcome, test: EventOutcome,
     compared.
     """
     overrides = overrides or {}
+    align_notes: list[str] = []
+    if test.model == 'test' and replay_source(sim) is None:
+        sim, align_notes = aligned(sim, test)
     inputs = tuple(inputs) + tuple(c.strip() for n in sim.notes if n.startswith(INPUTS_NOTE)
                                    for c in n[len(INPUTS_NOTE):].split(','))
     kc = test.model == 'rig'
     axis = KC_SWEEP.get(test.event, 'wheel_travel_left') if kc else 'time'
-    notes: list[str] = []
+    notes: list[str] = list(align_notes)
     for who, o in (('simulation', sim), ('test', test)):
         if axis not in o.channels:
             raise InputError(who, f"{o.event}: no '{axis}' channel to compare on")
@@ -230,11 +255,18 @@ def compare(sim: EventOutcome, test: EventOutcome,
         notes.append(f'{np.count_nonzero(~inside)} of {xt.size} test points lie outside '
                      f'the simulated {axis} range and are left out')
     notes.append(f"simulation interpolated linearly at the test's {axis} values")
-    filter_both = (not kc and _uniform(xt[inside]) and _uniform(xs_sorted)
-                   and 1.0 / np.mean(np.diff(xt)) >= 20.0)
+    filter_both = (not kc and xt.size > 1 and xs_sorted.size > 1
+                   and 1.0 / np.median(np.diff(xt)) >= 20.0
+                   and 1.0 / np.median(np.diff(xs_sorted)) >= 20.0)
     if filter_both:
+        stretches = [len(segments(xt)), len(segments(xs_sorted))]
+        gaps = ('' if stretches == [1, 1] else
+                f' (each gap-free stretch on its own: {stretches[0]} in the test, '
+                f'{stretches[1]} in the simulation)')
         notes.append('both low-passed first: 12-pole phaseless Butterworth (fmvss126), '
-                     '6 Hz responses, 10 Hz steering-wheel angle')
+                     f'6 Hz responses, 10 Hz steering-wheel angle{gaps}')
+    elif not kc:
+        notes.append('not low-passed: one of the two is sampled below 20 Hz')
     if inputs:
         notes.append(f"inputs of the simulation, taken from the test: "
                      f"{', '.join(dict.fromkeys(inputs))} (not compared)")
@@ -255,8 +287,12 @@ def compare(sim: EventOutcome, test: EventOutcome,
             notes.append(f'{name}: not finite in one of the two; not compared')
             continue
         if filter_both:
-            y_test = _filtered(xt, y_test, name)
-            y_sim_sorted = _filtered(xs_sorted, y_sim_sorted, name)
+            y_test, left_test = _filtered(xt, y_test, name)
+            y_sim_sorted, left_sim = _filtered(xs_sorted, y_sim_sorted, name)
+            unfiltered = (f'{left_test} test and {left_sim} simulation samples in stretches '
+                          f'shorter than {MIN_FILTERED} samples are not low-passed')
+            if (left_test or left_sim) and unfiltered not in notes:
+                notes.append(unfiltered)
         y_sim = np.interp(xt[inside], xs_sorted, y_sim_sorted)
         diff = y_sim - y_test[inside]
         sim_x[name] = y_sim
@@ -289,9 +325,14 @@ def load_outcomes(bag: Path) -> list[EventOutcome]:
 
 def pair(sims: Sequence[EventOutcome], tests: Sequence[EventOutcome]
          ) -> list[tuple[EventOutcome, EventOutcome]]:
-    """Every (simulation, test) of the same event and axle."""
+    """
+    Every (simulation, test) of the same event and axle.
+
+    A replay goes with the log it replays only (by the log's SHA-256, REPLAY_NOTE).
+    """
     return [(s, t) for t in tests for s in sims
-            if s.event == t.event and s.axle == t.axle and s.model not in ('rig', 'test')]
+            if s.event == t.event and s.axle == t.axle and s.model not in ('rig', 'test')
+            and replay_source(s) in (None, t.data_hash)]
 
 
 def load_tolerances(path: Path | None) -> dict[str, dict[str, float]]:
@@ -361,4 +402,5 @@ def gradient_shown(value: float | None, unit: str) -> str:
 
 
 __all__ = ['compare', 'compare_bags', 'Comparison', 'ChannelError', 'load_outcomes', 'pair',
+           'replay_source', 'REPLAY_NOTE', 'INPUTS_NOTE',
            'TOLERANCES', 'shown', 'gradient_shown', 'DISPLAY', 'load_tolerances']

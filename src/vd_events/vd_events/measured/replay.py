@@ -7,8 +7,10 @@ The log's steering and speed drive the bicycle and the full-vehicle models of a
 configuration (open-loop validation).
 
 The replayed runs are EventOutcomes of the log's event (models ``bicycle`` and
-``vehicle``), written to their own bag like any simulation, and compared with the log by
-:mod:`.compare` (yaw rate, lateral acceleration, sideslip where logged). The bicycle model
+``vehicle``), written to their own bag like any simulation, and compared with the log
+they replay by :mod:`.compare` (yaw rate, lateral acceleration, sideslip where logged):
+each run names its log's SHA-256 (``compare.REPLAY_NOTE``), so a study report pairs it
+with that log only, never with the other logs of the same event. The bicycle model
 takes the steering ratio of the full vehicle's K&C steering map of the same configuration
 and its axle properties from the K&C results of the same data hash, as ``vd run`` does.
 """
@@ -24,7 +26,7 @@ from vd_data_server.study import load_study
 from vd_events.bags.bag import check_bag_path
 from vd_events.bags.outcomes import write_outcomes
 from vd_events.errors import InputError
-from vd_events.measured.compare import INPUTS_NOTE, compare, load_outcomes
+from vd_events.measured.compare import INPUTS_NOTE, REPLAY_NOTE, compare, load_outcomes
 from vd_solvers import __version__
 from vd_solvers.analytical.from_config import static_wheel_loads, vehicle_params
 from vd_solvers.analytical.kc_link import try_kc_inputs
@@ -112,10 +114,11 @@ def replay_bag(test_bag: Path, models: Sequence[str], config_name: str | None,
         raise InputError(master, f"configuration '{name}' does not exist (available: "
                          f"{', '.join(study.configuration_names)})")
     config = study.configurations[name]
-    runs = [dataclasses.replace(run, notes=(*run.notes, INPUTS_NOTE + ', '.join(INPUTS)))
-            for test in tests for run in replay_outcomes(config, test, models)]
-    comparisons = [compare(run, test) for test in tests for run in runs
-                   if run.event == test.event]
+    pairs = [(dataclasses.replace(run, notes=(*run.notes, INPUTS_NOTE + ', '.join(INPUTS),
+                                              REPLAY_NOTE + test.data_hash)), test)
+             for test in tests for run in replay_outcomes(config, test, models)]
+    runs = [run for run, _ in pairs]
+    comparisons = [compare(run, test) for run, test in pairs]
     now = int(dt.datetime.now(dt.timezone.utc).timestamp()) * 1_000_000_000
     path = write_outcomes(bag, [(r, now) for r in runs], {
         'vd.kind': 'replay of a vehicle log', 'vd.configuration': name,

@@ -10,12 +10,13 @@ column names, optionally a line of units, then one row per sample. The column ma
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from vd_events.errors import InputError
+from vd_events.measured.checks import Findings
 from vd_events.measured.columns import ColumnMap, finite_number, si_unit, unit_factor
 
 
@@ -29,6 +30,10 @@ class Measured:
     columns: dict[str, str]  # channel -> the file's column name
     skipped: tuple[str, ...]  # columns of the file not imported
     meta: dict[str, str]  # what the file says about itself (logger, date, ...)
+    lines: tuple[int, ...] = ()  # the file line of each sample
+    notes: tuple[str, ...] = ()  # what the reader and the checks say, one finding each
+    positions: dict[str, int] = field(default_factory=dict)  # channel -> file column (1-based)
+    findings: Findings | None = None  # what the import's checks found
 
 
 def read_text(path: Path) -> str:
@@ -128,7 +133,10 @@ def read_table(path: Path, cmap: ColumnMap) -> Measured:
                     units={c: si_unit(cmap.kind, c) or '' for c in channels},
                     source_units=source_units,
                     columns={spec.channel: name for name, spec in cmap.columns.items()},
-                    skipped=tuple(n for n in header if n in cmap.ignore), meta={})
+                    skipped=tuple(n for n in header if n in cmap.ignore), meta={},
+                    lines=tuple(numbers),
+                    positions={spec.channel: index[name] + 1
+                               for name, spec in cmap.columns.items()})
 
 
 def _name_of(cmap: ColumnMap, channel: str) -> str:

@@ -32,8 +32,18 @@ Into vd channels (REP 105 ``odom``: x east, y north, from the first fix; ISO 885
 x, y from latitude and longitude on the local tangent plane at the first sample (WGS84
 radii of curvature); yaw = 90 deg - heading, unwrapped; speed, accelerations and yaw rate
 as they are, in SI; time in s from the first sample (the UTC start is the bag's stamp).
-Other channels (steering angle, slip angle, roll) come in through a column map
-(:mod:`.columns`) that names them, their unit if the file has none, and their sign.
+Loggers add ``*_raw`` copies of the GPS channels (``latitude_raw``, ``velocity_raw``
+...): standard channels too, with the units of their twins and no ``[channel units]`` line.
+
+**Channel choice by quality** (:data:`CANDIDATES`): where a log has several channels of
+one quantity, the best sensor is taken and the notes say which and why, with the noise
+of each (:func:`.checks.noise`): the IMU's yaw rate (``YawRate``, ``Yaw Rate``) over the
+slip module's (``Yaw_Rate``); the IMU's lateral acceleration (``Y_Accel``, measured at the
+IMU, corrected by the import when the roll angle and the IMU position are known) over the
+logger's GPS-derived ``lat accel``; the slip module's roll angle. Other channels (steering
+angle, slip angle, CAN channels) come in through a column map (:mod:`.columns`) that names
+them, their unit if the file has none, and their sign; a mapped channel replaces the
+choice.
 """
 from __future__ import annotations
 
@@ -47,6 +57,7 @@ import re
 import numpy as np
 
 from vd_events.errors import InputError
+from vd_events.measured.checks import noise, shown
 from vd_events.measured.columns import ColumnMap, finite_number, normalise, si_unit, unit_factor
 from vd_events.measured.table import Measured, check_increasing, read_text
 
@@ -69,18 +80,27 @@ STANDARD_UNITS: Mapping[str, str] = {
 #: module channels whose unit Racelogic documents, used when the file gives none (noted)
 DOCUMENTED_UNITS: Mapping[str, str] = {
     'yaw rate': 'deg/s', 'yaw_rate': 'deg/s', 'slip angle': 'deg', 'roll angle': 'deg',
-    'pitch angle': 'deg', 'roll_imu': 'deg', 'pitch_imu': 'deg',
+    'pitch angle': 'deg', 'roll_imu': 'deg', 'pitch_imu': 'deg', 'yawrate': 'deg/s',
+    'roll_angle': 'deg', 'y_accel': 'g',
 }
-#: the channels vd takes from a .vbo without a column map: name -> (channel, sign)
-DEFAULT_CHANNELS: Mapping[str, tuple[str, float]] = {
-    'velocity': ('speed', 1.0), 'velocity kmh': ('speed', 1.0),
-    'velocity knots': ('speed', 1.0), 'velocity mph': ('speed', 1.0),
-    'long accel': ('longitudinal_acceleration', 1.0),
-    'longitudinal acceleration': ('longitudinal_acceleration', 1.0),
-    'lat accel': ('lateral_acceleration', 1.0),
-    'lateral acceleration': ('lateral_acceleration', 1.0),
-    'yaw rate': ('yaw_rate', 1.0), 'yaw_rate': ('yaw_rate', 1.0),
+RAW_SUFFIX = '_raw'
+#: the channels vd takes from a .vbo without a column map, best first:
+#: channel -> ((normalised name, sensor), ...)
+CANDIDATES: Mapping[str, tuple[tuple[str, str], ...]] = {
+    'speed': (('velocity kmh', 'GPS'), ('velocity', 'GPS'), ('velocity knots', 'GPS'),
+              ('velocity mph', 'GPS')),
+    'longitudinal_acceleration': (('long accel', 'GPS'),
+                                  ('longitudinal acceleration', 'GPS')),
+    'lateral_acceleration': (('y_accel', 'IMU'), ('lat accel', 'GPS'),
+                             ('lateral acceleration', 'GPS')),
+    'yaw_rate': (('yawrate', 'IMU'), ('yaw rate', 'IMU'), ('yaw_rate', 'slip module')),
+    'roll': (('roll_angle', 'slip module'), ('roll angle', 'slip module'),
+             ('roll_imu', 'IMU')),
 }
+#: why one sensor is taken over another
+WHY = {'IMU': "the IMU's is the better sensor where both are logged",
+       'GPS': "the logger's own channel"}
+_LOG_RATE = re.compile(r'log rate\s*\(hz\)\s*:\s*([0-9.]+)', re.IGNORECASE)
 _SECTION = re.compile(r'^\s*\[([^\]]+)\]\s*$')
 _CREATED = re.compile(r'file created on\s+(\d{1,2})/(\d{1,2})/(\d{4})\s*(?:@|at)?\s*'
                       r'(\d{1,2}):(\d{2})(?::(\d{2}))?', re.IGNORECASE)
@@ -99,6 +119,15 @@ class VboFile:
     lines: list[int]  # file line of each data row
     comments: list[str]
     notes: list[str]
+
+    @property
+    def log_rate(self) -> float | None:
+        """The rate the comments state ('Log Rate (Hz) : 100.00'), Hz."""
+        for c in self.comments:
+            m = _LOG_RATE.search(c)
+            if m:
+                return float(m.group(1))
+        return None
 
 
 def parse_vbo(path: Path) -> VboFile:
@@ -162,10 +191,19 @@ def parse_vbo(path: Path) -> VboFile:
                    data=np.array(rows), lines=numbers, comments=comments, notes=notes)
 
 
+def standard_unit(key: str) -> str | None:
+    """Return the unit of a standard channel or of its ``*_raw`` twin (None: not standard)."""
+    if key in STANDARD_UNITS:
+        return STANDARD_UNITS[key]
+    if key.endswith(RAW_SUFFIX):
+        return STANDARD_UNITS.get(key[:-len(RAW_SUFFIX)])
+    return None
+
+
 def _units(path: Path, names: list[str], section, notes: list[str]) -> dict[str, str | None]:
     """Normalised channel name -> unit (standard table, [channel units], or None)."""
     units: dict[str, str | None] = {}
-    others = [normalise(n) for n in names if normalise(n) not in STANDARD_UNITS]
+    others = [normalise(n) for n in names if standard_unit(normalise(n)) is None]
     given = [t.strip() for _, t in section[1]] if section else []
     while len(given) > len(others) and not given[-1]:
         given.pop()  # the blank line that ends the section
@@ -176,13 +214,14 @@ def _units(path: Path, names: list[str], section, notes: list[str]) -> dict[str,
         given = [''] * len(others)
     elif len(given) != len(others):
         notes.append(f'[channel units] has {len(given)} lines for {len(others)} '
-                     'non-standard channels: their units are not taken from the file')
+                     f"non-standard channels ({', '.join(others)}): their units are not "
+                     'taken from the file')
         given = [''] * len(others)
     lookup = dict(zip(others, given))
     for name in names:
         key = normalise(name)
-        if key in STANDARD_UNITS:
-            units[key] = STANDARD_UNITS[key]
+        if standard_unit(key) is not None:
+            units[key] = standard_unit(key)
         elif lookup.get(key):
             units[key] = lookup[key]
         elif key in DOCUMENTED_UNITS:
@@ -233,6 +272,8 @@ def read_vbo(path: Path, cmap: ColumnMap | None) -> Measured:
     channels: dict[str, np.ndarray] = {'time': t - t[0]}
     source_units = {'time': 'UTC HHMMSS.SS'}
     columns = {'time': vbo.names[col_time]}
+    positions = {'time': col_time + 1}
+    notes = list(vbo.notes)
     if 'latitude' in index and 'longitude' in index:
         lat = vbo.data[:, index['latitude']] / 60.0
         lon_east = -vbo.data[:, index['longitude']] / 60.0  # the file's longitude is +west
@@ -244,10 +285,8 @@ def read_vbo(path: Path, cmap: ColumnMap | None) -> Measured:
         channels['yaw'] = np.unwrap(math.pi / 2.0 - heading)
         source_units['yaw'] = 'deg clockwise from north'
         columns['yaw'] = vbo.names[index['heading']]
-    wanted: dict[str, tuple[int, str, str | None, float]] = {}
-    for key, (channel, sign) in DEFAULT_CHANNELS.items():
-        if key in index and channel not in wanted:
-            wanted[channel] = (index[key], vbo.names[index[key]], None, sign)
+        positions['yaw'] = index['heading'] + 1
+    mapped: dict[str, tuple[int, str | None, float]] = {}
     if cmap is not None:
         for name, spec in cmap.columns.items():
             key = normalise(name)
@@ -258,43 +297,82 @@ def read_vbo(path: Path, cmap: ColumnMap | None) -> Measured:
             if spec.channel in ('time', 'x', 'y', 'yaw'):
                 raise InputError(cmap.path, f"columns.{name}: '{spec.channel}' comes from the "
                                  "log's time, latitude/longitude and heading; it cannot be mapped")
-            wanted[spec.channel] = (col, vbo.names[col], spec.unit, spec.sign)
-    for channel, (col, name, mapped, sign) in wanted.items():
-        target = si_unit('vehicle', channel) or ''
-        in_file = vbo.units.get(normalise(name))
-        unit = mapped if mapped is not None else in_file
-        if unit is None:
-            raise InputError(path, f"no unit for this channel in the file: give 'unit' in "
-                             f'a column map (--map; {channel} is in {target})',
-                             column=col + 1, name=name)
-        if mapped is not None and in_file and normalise(name) not in DOCUMENTED_UNITS:
-            try:
-                same = unit_factor(in_file, target) == unit_factor(mapped, target)
-            except ValueError:
-                same = False
-            if not same:
-                raise InputError(path, f"unit mismatch: the file says '{in_file}', the "
-                                 f"column map says '{mapped}'", column=col + 1, name=name)
-        try:
-            factor, offset = unit_factor(unit, target)
-        except ValueError as err:
-            raise InputError(path, f'unit mismatch: {err} (the unit of {channel})',
-                             column=col + 1, name=name) from None
-        channels[channel] = sign * (vbo.data[:, col] * factor + offset)
-        source_units[channel] = unit + (' (sign reversed)' if sign < 0 else '')
-        columns[channel] = name
+            mapped[spec.channel] = (col, spec.unit, spec.sign)
+    for channel, (col, unit, sign) in mapped.items():
+        channels[channel], source_units[channel] = _convert(path, vbo, col, channel, unit,
+                                                            sign)
+        columns[channel], positions[channel] = vbo.names[col], col + 1
+        notes.append(f"{channel} <- '{vbo.names[col]}' (column map)")
+    for channel, candidates in CANDIDATES.items():
+        if channel in mapped:
+            continue
+        found = [(index[key], sensor) for key, sensor in candidates if key in index]
+        if not found:
+            continue
+        converted = [(col, sensor, *_convert(path, vbo, col, channel, None, 1.0))
+                     for col, sensor in found]
+        col, sensor, values, unit = converted[0]
+        channels[channel], source_units[channel] = values, unit
+        columns[channel], positions[channel] = vbo.names[col], col + 1
+        notes.append(_choice_note(channel, vbo.names, converted))
     used = set(columns.values())
     start = ''
     if vbo.created is not None:
         midnight = vbo.created.replace(hour=0, minute=0, second=0)
         start = (midnight + dt.timedelta(seconds=float(t[0]))).isoformat()
     meta = {'logger': ' / '.join(vbo.comments[:2]) or 'VBOX', 'start_utc': start,
-            'file_created': vbo.created.isoformat() if vbo.created else ''}
+            'file_created': vbo.created.isoformat() if vbo.created else '',
+            'log_rate': f'{vbo.log_rate:g}' if vbo.log_rate else ''}
     return Measured(channels=channels, units={c: si_unit('vehicle', c) or '' for c in channels},
                     source_units=source_units, columns=columns,
                     skipped=tuple(n for n in vbo.names if n not in used and
                                   normalise(n) not in ('latitude', 'longitude')),
-                    meta={**meta, 'notes': '; '.join(vbo.notes)})
+                    meta=meta, lines=tuple(vbo.lines), notes=tuple(notes),
+                    positions=positions)
 
 
-__all__ = ['parse_vbo', 'read_vbo', 'hhmmss_seconds', 'local_plane', 'VboFile']
+def _convert(path: Path, vbo: VboFile, col: int, channel: str, mapped: str | None,
+             sign: float) -> tuple[np.ndarray, str]:
+    """One column in the channel's SI unit (the map's unit, else the file's), with its sign."""
+    name = vbo.names[col]
+    target = si_unit('vehicle', channel) or ''
+    in_file = vbo.units.get(normalise(name))
+    unit = mapped if mapped is not None else in_file
+    if unit is None:
+        raise InputError(path, f"no unit for this channel in the file: give 'unit' in "
+                         f'a column map (--map; {channel} is in {target})',
+                         column=col + 1, name=name)
+    if mapped is not None and in_file and normalise(name) not in DOCUMENTED_UNITS:
+        try:
+            same = unit_factor(in_file, target) == unit_factor(mapped, target)
+        except ValueError:
+            same = False
+        if not same:
+            raise InputError(path, f"unit mismatch: the file says '{in_file}', the "
+                             f"column map says '{mapped}'", column=col + 1, name=name)
+    try:
+        factor, offset = unit_factor(unit, target)
+    except ValueError as err:
+        raise InputError(path, f'unit mismatch: {err} (the unit of {channel})',
+                         column=col + 1, name=name) from None
+    return (sign * (vbo.data[:, col] * factor + offset),
+            unit + (' (sign reversed)' if sign < 0 else ''))
+
+
+def _choice_note(channel: str, names: list[str], converted) -> str:
+    """Which of the candidates was taken and why, with the noise of each."""
+    unit = si_unit('vehicle', channel) or ''
+
+    def label(col: int, sensor: str, values: np.ndarray) -> str:
+        return f"{sensor} '{names[col]}' (noise {shown(noise(values), unit, 2)})"
+
+    col, sensor, values, _ = converted[0]
+    text = f'{channel} <- {label(col, sensor, values)}'
+    others = [label(c, s, v) for c, s, v, _ in converted[1:]]
+    if others:
+        text += f", preferred over the {', '.join(others)}: {WHY.get(sensor, 'listed first')}"
+    return text
+
+
+__all__ = ['parse_vbo', 'read_vbo', 'hhmmss_seconds', 'local_plane', 'VboFile', 'CANDIDATES',
+           'standard_unit']

@@ -17,6 +17,7 @@ from pathlib import Path
 from vd_events.errors import BagError
 from vd_events.reports import sections
 from vd_events.reports.figures import LINE_STYLES, new_figure, save_figure
+from vd_events.reports.grade import with_grades
 from vd_events.reports.html import Section, images, write_page
 from vd_events.reports.runs import (
     Run,
@@ -52,6 +53,7 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     """Write ``out/report.html`` and its PNGs; returns the HTML path."""
     check_bags(bags)
     runs, status = load_runs(bags)
+    runs = with_grades(runs)
     tables = load_capability(bags)
     if not runs and not tables:
         raise BagError('no event results in ' + ', '.join(str(b) for b in bags))
@@ -60,7 +62,8 @@ def build_report(bags: Sequence[Path], out: Path) -> Path:
     body += [sections.capability(t) for t in tables]
     for (event, axle, family), members in groups(runs).items():
         if event == 'sine_with_dwell':
-            body.append(sine_with_dwell_section(members, out, family))
+            sis = [r for r in runs if r.event == 'slowly_increasing_steer' and r.model == 'test']
+            body.append(sine_with_dwell_section(members, out, family, sis))
             continue
         section = sections.event_section(event, axle, family, members)
         section.images = images(event_figures(event, axle, family, members, out))

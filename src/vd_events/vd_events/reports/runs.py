@@ -20,6 +20,7 @@ import numpy as np
 
 from vd_events.bags.bag import read_bag
 from vd_events.errors import BagError
+from vd_events.measured.align import reference_time
 from vd_events.reports.display import display
 from vd_events.studies.capability import TOPIC as CAPABILITY_TOPIC
 from vd_events.studies.capability import Table as CapabilityTable
@@ -28,6 +29,7 @@ from vd_solvers.constants import DEG, STANDARD_GRAVITY
 from vd_solvers.conversions import outcome_from_msg
 from vd_solvers.families import MEASURED_MODEL_FAMILY
 from vd_solvers.results import EventOutcome
+from vd_solvers.standards.fmvss126 import ProcessingError
 
 #: plot scale factors from SI to the axes' units
 TO_DEG = 1.0 / DEG
@@ -42,6 +44,9 @@ class Axis:
     label: str
     scale: float = 1.0
     relative: bool = False  # plot the change from the step nearest the design (x = 0)
+    #: the event whose manoeuvre instant is the origin (time axes of simulations and logs
+    #: aligned: measured.align.reference_time); '' for none
+    aligned: str = ''
 
 
 #: event -> plots (x axis, y axis) of the analytical models; channels a run lacks are skipped
@@ -113,6 +118,8 @@ KC_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
     ),
 }
 _TIME = Axis('time', 'time [s]')
+#: a step steer's time from its 50 % steering-wheel instant (ISO 7401), simulations and logs
+_FROM_STEP = Axis('time', 'time from the 50 % steering-wheel instant [s]', aligned='step_steer')
 _AY = Axis('lateral_acceleration', 'lateral acceleration [m/s²]')
 #: full-vehicle plots; over time: the thesis' Figs. 4.4.1-4.4.3 (lateral acceleration,
 #: roll and steering angle over time, configurations overlaid)
@@ -126,10 +133,10 @@ VEHICLE_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
         (_AY, Axis('sideslip', 'sideslip angle [deg]', TO_DEG)),
     ),
     'step_steer': (
-        (_TIME, Axis('yaw_rate', 'yaw rate [deg/s]', TO_DEG)),
-        (_TIME, _AY),
-        (_TIME, Axis('roll', 'roll angle [deg]', TO_DEG)),
-        (_TIME, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', TO_DEG)),
+        (_FROM_STEP, Axis('yaw_rate', 'yaw rate [deg/s]', TO_DEG)),
+        (_FROM_STEP, _AY),
+        (_FROM_STEP, Axis('roll', 'roll angle [deg]', TO_DEG)),
+        (_FROM_STEP, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', TO_DEG)),
     ),
     # a vehicle-test log and its replays (vd import / vd replay)
     'vehicle_test': tuple((_TIME, Axis(c, label, scale)) for c, label, scale in (
@@ -226,7 +233,8 @@ def plots_for(event: str, family: str, runs: Sequence[Run]) -> list[tuple[Axis, 
     pairs = table.get(event) or _generic_plots(runs[0])
     out = []
     for xa, ya in pairs:
-        usable = [r for r in runs if xa.channel in r.channels and ya.channel in r.channels]
+        usable = [r for r in runs if xa.channel in r.channels and ya.channel in r.channels
+                  and (not xa.aligned or origin(r, xa.aligned) is not None)]
         if usable:
             out.append((xa, ya, usable))
     return out
@@ -240,9 +248,22 @@ def _generic_plots(run: Run) -> Sequence[tuple[Axis, Axis]]:
     return tuple((x, Axis(n, f'{n} [{run.units[n]}]')) for n in names[1:7])
 
 
+def origin(run: Run, event: str) -> float | None:
+    """Return the manoeuvre instant of ``run`` (measured.align.reference_time), None if none."""
+    ch = run.channels
+    if 'time' not in ch or 'steering_wheel_angle' not in ch:
+        return None
+    try:
+        return reference_time(event, ch['time'], ch['steering_wheel_angle'])
+    except ProcessingError:
+        return None
+
+
 def curve(run: Run, xa: Axis, ya: Axis) -> tuple[np.ndarray, np.ndarray]:
     """Return the (x, y) a plot draws of ``run``, scaled to the axes' units."""
     x, y = run.channels[xa.channel], run.channels[ya.channel]
+    if xa.aligned:
+        x = x - (origin(run, xa.aligned) or 0.0)
     if ya.relative:
         y = y - y[int(np.argmin(np.abs(x)))]
     return x * xa.scale, y * ya.scale
@@ -264,5 +285,5 @@ def shown_unit(runs: Sequence[Run], name: str) -> str:
 
 
 __all__ = ['Axis', 'Run', 'PLOTS', 'KC_PLOTS', 'VEHICLE_PLOTS', 'check_bags', 'load_runs',
-           'load_capability', 'family_of', 'groups', 'plots_for', 'curve', 'shown',
+           'load_capability', 'family_of', 'groups', 'plots_for', 'curve', 'origin', 'shown',
            'shown_unit']

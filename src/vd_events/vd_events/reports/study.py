@@ -36,7 +36,9 @@ from vd_events.errors import InputError
 from vd_events.measured.compare import compare, load_outcomes, pair
 from vd_events.reports import sections
 from vd_events.reports.compare import comparison_sections
-from vd_events.reports.html import Section, write_page
+from vd_events.reports.figures import data_uri
+from vd_events.reports.grade import with_grades
+from vd_events.reports.html import Image, Section, write_page
 from vd_events.reports.runs import (
     Axis,
     Run,
@@ -47,6 +49,7 @@ from vd_events.reports.runs import (
     load_runs,
     plots_for,
 )
+from vd_events.reports.sine_with_dwell import sine_with_dwell_section
 from vd_solvers import __version__
 
 #: the models of measured results (drawn as markers, compared with the simulations)
@@ -68,9 +71,15 @@ def _figure(xa: Axis, ya: Axis, runs: Sequence[Run]) -> markupsafe.Markup:
     return markupsafe.Markup(fig.to_html(full_html=False, include_plotlyjs=False))
 
 
-def _event_sections(runs: Sequence[Run]) -> list[Section]:
+def _event_sections(runs: Sequence[Run], folder: Path) -> list[Section]:
     out = []
     for (event, axle, family), members in groups(runs).items():
+        if event == 'sine_with_dwell':
+            sis = [r for r in runs if r.event == 'slowly_increasing_steer' and r.model == 'test']
+            section = sine_with_dwell_section(members, folder, family, sis)
+            section.images = [Image(data_uri(folder / i.src), i.alt) for i in section.images]
+            out.append(section)
+            continue
         section = sections.event_section(event, axle, family, members)
         section.figures = [_figure(xa, ya, usable)
                            for xa, ya, usable in plots_for(event, family, members)]
@@ -102,7 +111,8 @@ def build_study_report(bags: Sequence[Path], out: Path) -> Path:
     check_bags(bags)
     out.mkdir(parents=True, exist_ok=True)
     runs, status = load_runs(bags)
-    body = [sections.overview(status), *_event_sections(runs), sections.kc_table(runs),
+    runs = with_grades(runs)
+    body = [sections.overview(status), *_event_sections(runs, out), sections.kc_table(runs),
             *(sections.capability(t) for t in load_capability(bags)),
             sections.pass_fail(runs), _comparisons(bags, out),
             sections.bag_provenance(bags, out)]
