@@ -79,8 +79,9 @@ def test_distributed_constant_radius_turn_on_the_hmmwv(capsys, tmp_path, sample_
     bag = tmp_path / 'crt'
     master = sample_root / 'studies' / 'hmmwv.yaml'
     rc, out, err = _vd(capsys, 'run', 'constant_radius_turn', '--model', 'vehicle',
-                       '--master', str(master), '--param', 'speed_rate=1 m/s^2',
-                       '--param', 'max_duration=8 s', '--distributed', '--bag', str(bag),
+                       '--master', str(master), '--param', 'start_lateral_acceleration=1 m/s^2',
+                       '--param', 'max_lateral_acceleration=2 m/s^2', '--distributed',
+                       '--bag', str(bag),
                        '--json')
     assert rc == 0, err
     result = json.loads(out)

@@ -20,6 +20,8 @@ import pytest
 
 from vd_solvers.analytical import bicycle, two_track
 from vd_solvers.analytical.budget import (
+    RANGE_TERMS,
+    SHIFT_TERMS,
     TERMS,
     effective_axle_cornering_stiffness,
     understeer_budget,
@@ -65,11 +67,11 @@ def with_compliance(p: VehicleParams, axle: str, **values: float) -> VehiclePara
     return replace(p, **{f'compliance_{axle}': AxleCompliance(**values)})
 
 
-def only_term(p: VehicleParams, name: str) -> float:
+def only_term(p: VehicleParams, name: str, also: tuple[str, ...] = ()) -> float:
     """Return the one nonzero compliance term, checking that all others are exactly zero."""
     budget = understeer_budget(p)
     for term in budget.terms:
-        if term.name not in ('tire', name):
+        if term.name not in ('tire', name, *also):
             assert term.value == 0.0, term.name
     return budget.term(name).value
 
@@ -110,7 +112,57 @@ def test_aligning_torque_term(rigid_car: VehicleParams, axle: str, sign: float) 
     )
     load = p.axle_load_front if axle == 'front' else p.axle_load_rear
     expected = sign * c_mz * trail * load / 2.0  # rad per g
-    assert only_term(p, 'aligning_torque') * p.g == pytest.approx(expected, rel=1e-12)
+    # the same trail puts the axle's force behind it: the aligning_moment term
+    assert only_term(p, 'aligning_torque', also=('aligning_moment',)) * p.g == pytest.approx(
+        expected, rel=1e-12)
+
+
+def _single_track_with_moments(p: VehicleParams, moment: float) -> float:
+    """
+    Return K of a single track whose yaw balance holds the tires' aligning moments.
+
+    Written out: F_f + F_r = m a_y, a F_f - b F_r - t_f F_f - t_r F_r + moment a_y = 0,
+    the bare axles' slips F / C, K = d(alpha_f - alpha_r) / d a_y.
+    """
+    t_f, t_r = p.compliance_front.pneumatic_trail, p.compliance_rear.pneumatic_trail
+    a, b = p.cog_to_front_axle, p.cog_to_rear_axle
+    matrix = np.array([[1.0, 1.0], [a - t_f, -(b + t_r)]])
+    f_front, f_rear = np.linalg.solve(matrix, [p.mass, -moment])
+    c_f, c_r = 2.0 * wheel_stiffness(p, 'front'), 2.0 * wheel_stiffness(p, 'rear')
+    return f_front / c_f - f_rear / c_r
+
+
+def test_aligning_moment_term(rigid_car: VehicleParams) -> None:
+    """The tires' aligning moments -t F_y in the single track's yaw balance, written out."""
+    p = replace(rigid_car, compliance_front=AxleCompliance(pneumatic_trail=0.04),
+                compliance_rear=AxleCompliance(pneumatic_trail=0.03))
+    expected = _single_track_with_moments(p, 0.0) - _single_track_with_moments(rigid_car, 0.0)
+    assert expected > 0.0  # the forces act behind the axles: more front force, understeer
+    assert only_term(p, 'aligning_moment') == pytest.approx(expected, rel=1e-9)
+    change = bicycle.understeer_gradient(p) - bicycle.understeer_gradient(rigid_car)
+    assert change == pytest.approx(expected, rel=1e-9)
+
+
+def test_rolling_resistance_term(rigid_car: VehicleParams) -> None:
+    """
+    The outer wheels' larger rolling resistance turns the car out of the turn.
+
+    Yaw moment -sum t_i rho_rr,i dF_zi per m/s^2 with the load transfer of eq. 4
+    written out for a car without unsprung masses.
+    """
+    rho_rr = 0.012
+    p = replace(rigid_car, compliance_front=AxleCompliance(rolling_resistance=rho_rr),
+                compliance_rear=AxleCompliance(rolling_resistance=rho_rr))
+    phi = roll_gradient_eq3(p)
+    sprung_f = p.mass * p.cog_to_rear_axle / p.wheelbase
+    transfer_f = ((sprung_f * p.roll_centre_height_front + p.roll_stiffness_front * phi)
+                  / p.track_front)
+    transfer_r = ((p.mass - sprung_f) * p.roll_centre_height_rear
+                  + p.roll_stiffness_rear * phi) / p.track_rear
+    moment = -rho_rr * (p.track_front * transfer_f + p.track_rear * transfer_r)
+    expected = _single_track_with_moments(p, moment) - _single_track_with_moments(p, 0.0)
+    assert expected > 0.0
+    assert only_term(p, 'rolling_resistance') == pytest.approx(expected, rel=1e-9)
 
 
 @pytest.mark.parametrize('axle, sign', [('front', 1.0), ('rear', -1.0)])
@@ -153,6 +205,7 @@ def all_terms(p: VehicleParams) -> VehicleParams:
         aligning_torque_compliance_steer=3e-3 / DEG,
         pneumatic_trail=0.03,
         camber_stiffness=4000.0,
+        rolling_resistance=0.01,
     )
     rear = AxleCompliance(
         lateral_compliance_steer=0.09 / DEG / 1e3,
@@ -162,6 +215,7 @@ def all_terms(p: VehicleParams) -> VehicleParams:
         aligning_torque_compliance_steer=0.26e-3 / DEG,
         pneumatic_trail=0.03,
         camber_stiffness=3500.0,
+        rolling_resistance=0.01,
     )
     return replace(p, compliance_front=front, compliance_rear=rear)
 
@@ -169,7 +223,8 @@ def all_terms(p: VehicleParams) -> VehicleParams:
 def test_terms_sum_to_the_bicycle_understeer_gradient(passenger_car: VehicleParams) -> None:
     p = all_terms(passenger_car)
     budget = understeer_budget(p)
-    assert all(t.value != 0.0 for t in budget.terms if t.name != 'load_transfer')
+    # the range terms come from the two-track model, not given here
+    assert all((t.value == 0.0) == (t.name in RANGE_TERMS) for t in budget.terms)
     total = sum(deg_per_g(t.value, p) for t in budget.terms)
     assert total == pytest.approx(deg_per_g(bicycle.understeer_gradient(p), p), abs=1e-9)
     assert deg_per_g(budget.total, p) == pytest.approx(total, abs=1e-12)
@@ -188,10 +243,13 @@ def test_effective_stiffness_reproduces_each_axle_slip(passenger_car: VehiclePar
 
 def test_two_track_linear_gradient_equals_the_budget(passenger_car: VehicleParams) -> None:
     # the two-track model applies steer and camber thrust per wheel and solves the
-    # tires itself: its linear-range slope must be the budget's total
+    # tires itself: its linear-range slope must be the budget's total but for the
+    # shift terms, which its equal-slip axles do not hold (the wheel-by-wheel model does)
     p = all_terms(passenger_car)
+    budget = understeer_budget(p)
     k_two_track = two_track.understeer_gradient_linear(p)
-    assert k_two_track == pytest.approx(understeer_budget(p).total, rel=1e-3)
+    shifts = sum(budget.term(name).value for name in SHIFT_TERMS)
+    assert k_two_track == pytest.approx(budget.total - shifts, rel=1e-3)
     point = two_track.steady_state(p, 3.0, RADIUS)
     # in force and moment equilibrium with the camber thrust in the wheel forces
     assert point.axle_force_front + point.axle_force_rear == pytest.approx(p.mass * 3.0, rel=1e-9)
@@ -220,7 +278,7 @@ def test_zero_compliance_gives_the_bare_tire_values_exactly(passenger_car: Vehic
     labelled = replace(
         passenger_car,
         compliance_front=AxleCompliance(sources={'roll_steer': 'K&C'}),
-        compliance_rear=AxleCompliance(pneumatic_trail=0.03),
+        compliance_rear=AxleCompliance(camber_stiffness=4000.0),
     )
     for p in (passenger_car, labelled):
         c_f = 2.0 * float(p.tire_front.cornering_stiffness(p.axle_load_front / 2.0))

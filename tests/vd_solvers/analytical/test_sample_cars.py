@@ -19,7 +19,7 @@ import pytest
 from conftest import SAMPLE_DATA
 from vd_data_server.study import load_study
 from vd_data_server.units import UREG
-from vd_solvers.analytical.budget import TERMS
+from vd_solvers.analytical.budget import RANGE_TERMS, TERMS
 from vd_solvers.analytical.events import run_event
 from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.kc import cache
@@ -60,8 +60,12 @@ def test_sedan_understeers_like_a_saloon(sedan_bicycle) -> None:
 
 def test_sedan_budget_sums_to_its_understeer_gradient_and_names_its_sources(sedan_bicycle) -> None:
     m = sedan_bicycle.metrics
+    linear = sum(m[f'understeer_budget_{t}'].value for t in TERMS if t not in RANGE_TERMS)
+    assert linear == pytest.approx(m['understeer_gradient'].value, abs=1e-12)
     total = sum(m[f'understeer_budget_{t}'].value for t in TERMS)
-    assert total == pytest.approx(m['understeer_gradient'].value, abs=1e-12)
+    assert total == pytest.approx(m['understeer_budget_total'].value, abs=1e-12)
+    for term in RANGE_TERMS:  # from the two-track model over the linear range
+        assert m[f'understeer_budget_{term}'].source.startswith('two-track wheel by wheel')
     data_hash = STUDIES['sedan'].configurations['baseline'].data_hash
     for term in ('roll_steer', 'lateral_compliance_steer', 'aligning_torque', 'camber'):
         source = m[f'understeer_budget_{term}'].source

@@ -8,6 +8,7 @@ from dataclasses import replace
 import math
 
 import numpy as np
+import numpy.testing as npt
 import pytest
 
 from vd_solvers.analytical import bicycle, two_track
@@ -386,3 +387,61 @@ def test_trends_vanish_with_load_insensitive_tires(make_car: CarFactory, variant
         assert limit.lateral_acceleration == pytest.approx(
             insensitive.mu0 * car.g, abs=2 * two_track.LIMIT_TOLERANCE
         )
+
+
+def test_tire_vertical_compliance_rolls_the_axles_on_their_tires(make_car) -> None:
+    """
+    Check the roll with compliant tires against the three balances solved here.
+
+    Unknowns: body roll phi and each axle's roll on its tires psi_i (K_ti = C_z t_i^2 / 2).
+    Each axle's tires carry its load transfer, K_ti psi_i = M_geo,i + K_phi,i (phi - psi_i);
+    the body balances m_s h1 (a_y + g phi) = sum K_phi,i (phi - psi_i). A 250 kN/m tire on
+    this car adds a quarter to the rigid-tire roll gradient (the sedan's: 2.87 -> 3.69
+    deg/g); the load transfer still balances the overturning moment.
+    """
+    c_z = 250e3
+    rigid = make_car()
+    p = replace(rigid, tire_vertical_stiffness_front=c_z, tire_vertical_stiffness_rear=c_z)
+    geo = two_track.roll_geometry(p)
+    a_y = 1.0
+    m_geo = [geo.sprung_mass_front * p.roll_centre_height_front
+             + p.unsprung_mass_front * p.unsprung_cog_height_front,
+             geo.sprung_mass_rear * p.roll_centre_height_rear
+             + p.unsprung_mass_rear * p.unsprung_cog_height_rear]
+    k_phi = [p.roll_stiffness_front, p.roll_stiffness_rear]
+    k_t = [c_z * p.track_front**2 / 2.0, c_z * p.track_rear**2 / 2.0]
+    net = geo.sprung_mass * p.g * geo.roll_arm
+    # rows: body, front tires, rear tires; columns: phi, psi_f, psi_r
+    matrix = np.array([[sum(k_phi) - net, -k_phi[0], -k_phi[1]],
+                       [-k_phi[0], k_t[0] + k_phi[0], 0.0],
+                       [-k_phi[1], 0.0, k_t[1] + k_phi[1]]])
+    phi, psi_f, psi_r = np.linalg.solve(
+        matrix, [geo.sprung_mass * geo.roll_arm * a_y, m_geo[0] * a_y, m_geo[1] * a_y])
+    assert geo.roll_gradient == pytest.approx(phi, rel=1e-12)
+    roll, transfer, tilt = two_track.roll_state(p, a_y)
+    assert roll == pytest.approx(phi, rel=1e-12)
+    npt.assert_allclose(tilt, [psi_f, psi_r], rtol=1e-12)
+    npt.assert_allclose(transfer, [k_t[0] * psi_f / p.track_front, k_t[1] * psi_r / p.track_rear],
+                        rtol=1e-12)
+    rigid_roll = two_track.roll_geometry(rigid).roll_gradient
+    assert 1.1 * rigid_roll < phi < 1.5 * rigid_roll
+    overturning = (p.mass * a_y * p.cog_height + net * phi)
+    assert transfer @ [p.track_front, p.track_rear] == pytest.approx(overturning, rel=1e-12)
+
+
+def test_the_spinning_wheels_gyroscopic_moment_rolls_the_body(make_car) -> None:
+    """
+    Check the gyroscopic roll moment: sum over the wheels of I_spin omega r.
+
+    In a steady turn each wheel's spin momentum I_spin V / R (R its rolling radius) turns
+    at the yaw rate V / R_turn: a roll moment (I_spin / R) a_y per wheel on the body,
+    outward. Rigid tires: eq. 3 with m_s h1 a_y + sum (I_spin / R) a_y.
+    """
+    per_wheel = 1.2 / 0.31  # kg*m^2 over m
+    rigid = make_car()
+    p = replace(rigid, wheel_gyroscopic_front=per_wheel, wheel_gyroscopic_rear=per_wheel)
+    geo = two_track.roll_geometry(p)
+    net = p.roll_stiffness - geo.sprung_mass * p.g * geo.roll_arm
+    expected = (geo.sprung_mass * geo.roll_arm + 4.0 * per_wheel) / net
+    assert geo.roll_gradient == pytest.approx(expected, rel=1e-12)
+    assert geo.roll_gradient > two_track.roll_geometry(rigid).roll_gradient

@@ -13,6 +13,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.drivers import (
     DRIVERS,
     CirclePathFollower,
+    CurvatureController,
     Observation,
     OpenLoopSteering,
     ReplaySteering,
@@ -27,7 +28,8 @@ def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
 
 def test_registry_names_every_driver():
     assert DRIVERS == {'open_loop': OpenLoopSteering, 'replay': ReplaySteering,
-                       'path_follower': CirclePathFollower, 'speed': SpeedController}
+                       'path_follower': CirclePathFollower, 'curvature': CurvatureController,
+                       'speed': SpeedController}
 
 
 def test_open_loop_table_interpolates_and_holds_its_ends():
@@ -73,6 +75,39 @@ def test_path_follower_steers_back_towards_the_circle_and_respects_the_lock():
     assert inside.steering_wheel_angle(_obs(y=1.0), 0.01) < base
     tight = CirclePathFollower(radius=40.0, wheelbase=2.8, steering_ratio=16.0, max_angle=0.5)
     assert tight.steering_wheel_angle(_obs(y=-20.0), 0.01) == 0.5
+
+
+def _turning(controller, yaw_rate: float, speed: float, steps: int, first: int = 0,
+             h: float = 0.01):
+    """Feed the controller observations of a vehicle yawing at ``yaw_rate``."""
+    swa = 0.0
+    for k in range(first, first + steps):
+        swa = controller.steering_wheel_angle(_obs(t=k * h, yaw=yaw_rate * k * h, speed=speed), h)
+    return swa
+
+
+def test_curvature_controller_holds_the_ackermann_angle_on_the_circle():
+    """At r / V = 1 / R there is no error: the steering-wheel angle is i_s L / R, and stays."""
+    ctrl = CurvatureController(radius=40.0, wheelbase=2.8, steering_ratio=16.0, max_angle=10.0)
+    assert _turning(ctrl, 10.0 / 40.0, 10.0, 500) == pytest.approx(16.0 * 2.8 / 40.0,
+                                                                   rel=1e-9)
+
+
+def test_curvature_controller_integrates_the_missing_curvature_and_stops_at_the_lock():
+    """
+    A vehicle that turns less than the circle asks for more steering, growing in time.
+
+    The integral grows by i_s L (1/R - r/V) per integral time; at the lock it stops
+    growing and the controller says so.
+    """
+    ctrl = CurvatureController(radius=40.0, wheelbase=2.8, steering_ratio=16.0, max_angle=10.0)
+    early = _turning(ctrl, 0.9 * 10.0 / 40.0, 10.0, 100)
+    later = _turning(ctrl, 0.9 * 10.0 / 40.0, 10.0, 100, first=100)
+    assert 16.0 * 2.8 / 40.0 < early < later
+    tight = CurvatureController(radius=40.0, wheelbase=2.8, steering_ratio=16.0,
+                                max_angle=1.2)
+    assert _turning(tight, 0.0, 10.0, 2000) == 1.2
+    assert tight.at_lock
 
 
 def test_speed_controller_feeds_forward_the_reference_slope():

@@ -21,9 +21,10 @@ import math
 import numpy as np
 
 from vd_data_server.model import Configuration
-from vd_solvers.analytical import bicycle, two_track
+from vd_solvers.analytical import bicycle, cornering, two_track
 from vd_solvers.analytical.budget import TERMS, understeer_budget
-from vd_solvers.analytical.from_config import vehicle_params
+from vd_solvers.analytical.cornering import CorneringVehicle
+from vd_solvers.analytical.from_config import cornering_vehicle, vehicle_params
 from vd_solvers.analytical.kc_link import try_kc_inputs
 from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.constants import STANDARD_GRAVITY as G
@@ -32,7 +33,11 @@ from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 from vd_solvers.vehicle_data import static_wheel_loads
 
+#: the budget's range terms from the two-track model, or None
+Ranges = Mapping[str, tuple[float, str]] | None
 MODELS = ('bicycle', 'two_track')
+#: lateral acceleration of the two-track's yaw-rate gain at the gain speed, m/s^2
+GAIN_LATERAL_ACCELERATION = 1.0
 
 _SWEEP = {
     'radius': Param('length', 100.0, 'circle radius (ISO 4138 constant-radius method)',
@@ -76,20 +81,24 @@ def run_event(config: Configuration, event: str, model: str,
         kc = try_kc_inputs(config, static_wheel_loads(config))
     except SolverError as err:
         raise SolverError(f'{label}: K&C results: {err}') from err
+    wheels: CorneringVehicle | None = None
     if isinstance(kc, str):
         p = vehicle_params(config)
         kc_notes = [f'bare tire and design targets: {kc}']
     else:
         p = vehicle_params(config, kc.suspension, kc.compliance)
+        wheels = cornering_vehicle(config, p)
         kc_notes = [f'roll stiffness, roll centres and compliance from the K&C model '
                     f'(data hash {config.data_hash})']
     try:
+        ranges = (cornering.range_terms(wheels, values.get('radius', _SWEEP['radius'].default))
+                  if wheels is not None else None)
         if event == 'step_steer':
-            metrics, channels, notes = _step_steer(p, values)
+            metrics, channels, notes = _step_steer(p, values, ranges)
         elif model == 'bicycle':
-            metrics, channels, notes = _bicycle_sweep(p, values)
+            metrics, channels, notes = _bicycle_sweep(p, values, ranges)
         else:
-            metrics, channels, notes = _two_track_sweep(p, values)
+            metrics, channels, notes = _two_track_sweep(p, values, ranges, wheels)
     except SolverError as err:
         raise SolverError(f'{label}: {err}') from err
     notes = [*notes, *kc_notes, *(f'{k}: {v}' for k, v in sorted(p.sources.items()))]
@@ -98,13 +107,14 @@ def run_event(config: Configuration, event: str, model: str,
                         notes=tuple(notes))
 
 
-def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
+def budget_metrics(p: VehicleParams, ranges: Ranges = None) -> dict[str, Metric]:
     """
     Return the understeer budget metrics.
 
-    ``understeer_budget_<term>`` in rad/(m/s^2), each with its source, and the total.
+    ``understeer_budget_<term>`` in rad/(m/s^2), each with its source, and the total;
+    ``ranges``: the range terms of :func:`.cornering.range_terms` (absent: zero, said so).
     """
-    budget = understeer_budget(p)
+    budget = understeer_budget(p, ranges)
     metrics = {}
     for term in budget.terms:
         metrics[f'understeer_budget_{term.name}'] = Metric(term.value, 'rad/(m/s^2)', term.source)
@@ -113,7 +123,8 @@ def budget_metrics(p: VehicleParams) -> dict[str, Metric]:
     return metrics
 
 
-def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]:
+def _common_bicycle_metrics(p: VehicleParams, speed: float,
+                            ranges: Ranges = None) -> dict[str, Metric]:
     k = bicycle.understeer_gradient(p)
     c_f, c_r = bicycle.axle_cornering_stiffness(p)
     e_f, e_r = bicycle.effective_cornering_stiffness(p)
@@ -126,7 +137,7 @@ def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]
         'cornering_stiffness_rear_axle': Metric(c_r, 'N/rad', p.sources.get('tire_rear', '')),
         'effective_cornering_stiffness_front_axle': Metric(e_f, 'N/rad', k_source),
         'effective_cornering_stiffness_rear_axle': Metric(e_r, 'N/rad', k_source),
-        **budget_metrics(p),
+        **budget_metrics(p, ranges),
         'mass': Metric(p.mass, 'kg', p.sources.get('mass', '')),
         'cog_to_front_axle': Metric(p.cog_to_front_axle, 'm'),
         'cog_height': Metric(p.cog_height, 'm'),
@@ -152,7 +163,7 @@ def _common_bicycle_metrics(p: VehicleParams, speed: float) -> dict[str, Metric]
     return metrics
 
 
-def _bicycle_sweep(p: VehicleParams, v: Mapping[str, float]):
+def _bicycle_sweep(p: VehicleParams, v: Mapping[str, float], ranges: Ranges = None):
     radius = v['radius']
     a_y = np.linspace(0.0, v['max_lateral_acceleration'], int(v['steps']))
     speed = np.sqrt(a_y * radius)
@@ -168,14 +179,15 @@ def _bicycle_sweep(p: VehicleParams, v: Mapping[str, float]):
     }
     channels['slip_angle_difference'] = Channel(
         'rad', channels['slip_angle_front'].values - channels['slip_angle_rear'].values)
-    metrics = _common_bicycle_metrics(p, v['speed'])
+    metrics = _common_bicycle_metrics(p, v['speed'], ranges)
     metrics['radius'] = Metric(radius, 'm')
     notes = ["linear single-track model (thesis eqs. 1-2): no limit; swept to "
              f"{v['max_lateral_acceleration']:.3g} m/s^2"]
     return metrics, channels, notes
 
 
-def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
+def _two_track_sweep(p: VehicleParams, v: Mapping[str, float], ranges: Ranges = None,
+                     wheels: CorneringVehicle | None = None):
     radius = v['radius']
     diagram = two_track.handling_diagram(p, radius, int(v['steps']))
     geometry = two_track.roll_geometry(p)
@@ -211,8 +223,22 @@ def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
         'roll_centre_height_rear': Metric(p.roll_centre_height_rear, 'm',
                                           p.sources.get('roll_centre_height_rear', '')),
         'radius': Metric(radius, 'm'),
-        **budget_metrics(p),
+        **budget_metrics(p, ranges),
     }
+    if wheels is not None:
+        grads = cornering.gradients(wheels, radius)
+        span = f'{cornering.LINEAR_RANGE[0]:g}..{cornering.LINEAR_RANGE[1]:g} m/s^2'
+        source = f'two-track wheel by wheel (cornering.py), {span} on {radius:g} m'
+        gain_radius = v['speed']**2 / GAIN_LATERAL_ACCELERATION
+        point = cornering.steady_state(wheels, GAIN_LATERAL_ACCELERATION, gain_radius)
+        metrics.update({
+            'understeer_gradient': Metric(grads.understeer, 'rad/(m/s^2)', source),
+            'sideslip_gradient': Metric(grads.sideslip, 'rad/(m/s^2)', source),
+            'yaw_rate_gain': Metric((v['speed'] / gain_radius)
+                                    / (point.steering_wheel_angle / wheels.steering.ratio),
+                                    '1/s', f'{source}; at {GAIN_LATERAL_ACCELERATION:g} m/s^2 '
+                                    'per rad of steering-wheel angle over the ratio'),
+        })
     notes = [f'limit: {limit.behaviour} at {limit.lateral_acceleration:.3f} m/s^2 '
              f'({limit.lateral_acceleration / G:.3f} g), {limit.limiting_axle} axle, '
              f'{limit.cause}; the model has no steady state beyond it']
@@ -224,7 +250,7 @@ def _two_track_sweep(p: VehicleParams, v: Mapping[str, float]):
     return metrics, channels, notes
 
 
-def _step_steer(p: VehicleParams, v: Mapping[str, float]):
+def _step_steer(p: VehicleParams, v: Mapping[str, float], ranges: Ranges = None):
     speed = v['speed']
     response = bicycle.bicycle_response(p, speed)
     steer = v['lateral_acceleration'] / response.lateral_acceleration_gain
@@ -239,7 +265,7 @@ def _step_steer(p: VehicleParams, v: Mapping[str, float]):
         'lateral_acceleration': Channel('m/s^2', step.lateral_acceleration),
         'lateral_velocity': Channel('m/s', step.lateral_velocity),
     }
-    metrics = _common_bicycle_metrics(p, speed)
+    metrics = _common_bicycle_metrics(p, speed, ranges)
     metrics.update({
         'steer_step': Metric(steer, 'rad'),
         'steady_state_yaw_rate': Metric(r_ss, 'rad/s'),

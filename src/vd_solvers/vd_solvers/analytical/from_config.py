@@ -11,7 +11,10 @@ derived here, and every value says where it came from (``VehicleParams.sources``
   theorem (``vd_solvers/vehicle_data.py``, shared by every rung);
 * tracks and wheelbase: geometry group; unsprung COG height: wheel-centre height;
 * per-axle tire (thesis eqs. 6-9): fitted to the .tir Magic Formula over
-  FIT_RANGE times the static wheel load of that axle (``tire/fit.py``);
+  FIT_RANGE times the static wheel load of that axle (``tire/fit.py``); the tire's
+  vertical stiffness (.tir VERTICAL_STIFFNESS) for the axles' roll on their tires;
+  the wheels' spin inertia over their rolling radius for their gyroscopic roll moment
+  (SPIN_INERTIA_FACTOR m_corner R0^2, the full vehicle's);
 * roll stiffness and roll-centre heights: the design targets of the targets
   group, unless K&C results of the same configuration are passed in
   (``suspension``), which then win and are labelled as such;
@@ -23,11 +26,15 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numpy as np
+
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.budget import BARE_TIRE
+from vd_solvers.analytical.cornering import CorneringVehicle
 from vd_solvers.analytical.kc_link import AxleSuspension
-from vd_solvers.analytical.params import AxleCompliance, VehicleParams
+from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR, AxleCompliance, VehicleParams
+from vd_solvers.kc.steering_map import steering_map
 from vd_solvers.tire.fit import fit_simple_tire
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.tire.simple import SimpleTire
@@ -53,12 +60,26 @@ def vehicle_params(config: Configuration,
     fz_front, fz_rear = static_wheel_loads(config)
     tire_front, src_tf = _fit(config, 'front_tire', fz_front)
     tire_rear, src_tr = _fit(config, 'rear_tire', fz_rear)
+    mf_f, mf_r = (MagicFormula(tire_properties(config.group(g)))
+                  for g in ('front_tire', 'rear_tire'))
+    c_zf, c_zr = mf_f.vertical_stiffness, mf_r.vertical_stiffness
+    gyro = [SPIN_INERTIA_FACTOR * mass.scalar(f'unsprung_mass_{axle}') * mf.unloaded_radius**2
+            / float(mf.radii(fz)[1])
+            for axle, mf, fz in (('front', mf_f, fz_front), ('rear', mf_r, fz_rear))]
     mass_src = f'{mass.file} (sprung) + unsprung masses at the wheel centres'
     sources = {
         'mass': mass_src, 'cog_to_front_axle': mass_src, 'cog_height': mass_src,
         'yaw_inertia': f'{mass.file} sprung_inertia.izz + parallel-axis unsprung terms',
         'wheelbase': geo.file, 'track_front': geo.file, 'track_rear': geo.file,
         'tire_front': src_tf, 'tire_rear': src_tr,
+        'tire_vertical_stiffness_front': (f"{config.group('front_tire').text('file')} "
+                                          'VERTICAL_STIFFNESS'),
+        'tire_vertical_stiffness_rear': (f"{config.group('rear_tire').text('file')} "
+                                         'VERTICAL_STIFFNESS'),
+        'wheel_gyroscopic_front': (f'{SPIN_INERTIA_FACTOR} unsprung_mass_front R0^2 over the '
+                                   'effective rolling radius (the data have no wheel inertia)'),
+        'wheel_gyroscopic_rear': (f'{SPIN_INERTIA_FACTOR} unsprung_mass_rear R0^2 over the '
+                                  'effective rolling radius (the data have no wheel inertia)'),
         'unsprung_mass_front': mass.file, 'unsprung_mass_rear': mass.file,
         'unsprung_cog_height_front': 'front_hardpoints wheel_centre z',
         'unsprung_cog_height_rear': 'rear_hardpoints wheel_centre z',
@@ -91,7 +112,9 @@ def vehicle_params(config: Configuration,
         roll_stiffness_rear=roll['roll_stiffness_rear'],
         roll_centre_height_front=roll['roll_centre_height_front'],
         roll_centre_height_rear=roll['roll_centre_height_rear'],
-        compliance_front=comp['compliance_front'], compliance_rear=comp['compliance_rear'])
+        compliance_front=comp['compliance_front'], compliance_rear=comp['compliance_rear'],
+        tire_vertical_stiffness_front=c_zf, tire_vertical_stiffness_rear=c_zr,
+        wheel_gyroscopic_front=gyro[0], wheel_gyroscopic_rear=gyro[1])
 
 
 def _fit(config: Configuration, group: str, fz_static: float) -> tuple[SimpleTire, str]:
@@ -100,3 +123,23 @@ def _fit(config: Configuration, group: str, fz_static: float) -> tuple[SimpleTir
     tire = fit_simple_tire(MagicFormula(props), (low, high))
     return tire, (f"{config.group(group).text('file')} Magic Formula fitted over "
                   f"{low:.0f}..{high:.0f} N")
+
+
+def cornering_vehicle(config: Configuration, p: VehicleParams,
+                      drive_front: float = 0.5) -> CorneringVehicle:
+    """
+    Return the wheel-by-wheel steady-state model of ``config`` (:mod:`.cornering`).
+
+    ``p`` from :func:`vehicle_params` (with the K&C results); the Magic Formula of each
+    axle's .tir, the alignment groups' toe and camber, the K&C steering map.
+    """
+    tires = tuple(MagicFormula(tire_properties(config.group(f'{axle}_tire')))
+                  for axle in ('front', 'rear'))
+    toe, camber = [], []
+    for axle in ('front', 'rear'):
+        align = config.group(f'{axle}_alignment')
+        toe += [align.scalar('toe')] * 2
+        camber += [align.scalar('camber')] * 2
+    return CorneringVehicle(params=p, tires=(tires[0], tires[1]), toe=np.array(toe),
+                            camber=np.array(camber), steering=steering_map(config),
+                            drive_front=drive_front)

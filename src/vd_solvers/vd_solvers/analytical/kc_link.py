@@ -19,10 +19,11 @@ parameters, so the numbers equal those of ``vd run EVENT --axle AXLE``):
 
 (event, derived metric of docs/kc.md), and from the axle's .tir file at the
 static wheel load: the pneumatic trail at zero slip
-(:meth:`MagicFormula.pneumatic_trail`) and the camber stiffness (the
+(:meth:`MagicFormula.pneumatic_trail`), the camber stiffness (the
 derivative of the lateral force with respect to the lean of the wheel top
-towards +y, at zero slip). The K&C metrics are SI (rad/N, rad/rad, N*m/rad),
-as the analytical parameters.
+towards +y, at zero slip) and the rolling resistance -M_y / (F_z R_l) of the
+free-rolling tire (the speed-independent part, at ROLLING_SPEED). The K&C
+metrics are SI (rad/N, rad/rad, N*m/rad), as the analytical parameters.
 """
 from __future__ import annotations
 
@@ -41,6 +42,8 @@ from vd_solvers.tire.magic_formula import MagicFormula
 KC_EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force', 'aligning_torque')
 #: step of the central difference of the lateral force in camber, rad
 CAMBER_STEP = 1e-6
+#: speed of the rolling-resistance evaluation, m/s: low, so QSY3/QSY4 (speed) drop out
+ROLLING_SPEED = 1e-3
 
 
 @dataclass(frozen=True)
@@ -70,6 +73,13 @@ def camber_stiffness(mf: MagicFormula, fz: float) -> float:
     """
     h = CAMBER_STEP
     return float((mf.fy(fz, 0.0, -h) - mf.fy(fz, 0.0, h)) / (2.0 * h))
+
+
+def rolling_resistance(mf: MagicFormula, fz: float) -> float:
+    """Free-rolling -F_x / F_z: the rolling-resistance moment over the loaded radius, -."""
+    my = float(mf.steady_state(fz, 0.0, 0.0, 0.0, ROLLING_SPEED).my)
+    loaded, _ = mf.radii(fz)
+    return -my / (fz * float(loaded))
 
 
 def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInputs:
@@ -104,6 +114,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
             aligning_torque_compliance_steer=m['aligning_torque_compliance_steer'][0],
             pneumatic_trail=float(mf.pneumatic_trail(fz)),
             camber_stiffness=camber_stiffness(mf, fz),
+            rolling_resistance=rolling_resistance(mf, fz),
             sources={
                 'lateral_compliance_steer': kc('lateral_compliance_steer', 'lateral_force'),
                 'lateral_compliance_camber': kc('lateral_compliance_camber', 'lateral_force'),
@@ -113,6 +124,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
                                                        'aligning_torque'),
                 'pneumatic_trail': f'{tir} pneumatic trail at {fz:.0f} N, zero slip',
                 'camber_stiffness': f'{tir} camber stiffness at {fz:.0f} N, zero slip',
+                'rolling_resistance': f'{tir} rolling resistance at {fz:.0f} N',
             })
     return KCInputs(suspension, compliance)
 
@@ -133,5 +145,5 @@ def try_kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> K
     return kc_inputs(config, static_loads)
 
 
-__all__ = ['KC_EVENTS', 'AxleSuspension', 'KCInputs', 'camber_stiffness', 'kc_inputs',
-           'try_kc_inputs']
+__all__ = ['KC_EVENTS', 'AxleSuspension', 'KCInputs', 'camber_stiffness', 'rolling_resistance',
+           'kc_inputs', 'try_kc_inputs']

@@ -30,6 +30,10 @@ from vd_solvers.tire.simple import SimpleTire
 if TYPE_CHECKING:
     from _typeshed import DataclassInstance
 
+#: the data have no wheel spin inertia: every rung takes I_spin = SPIN_INERTIA_FACTOR
+#: m_corner R0^2 (wheel and tire, about 60 % of the corner mass, as a ring-and-disc mix)
+SPIN_INERTIA_FACTOR = 0.3
+
 # The axle force peak search (two_track.py) needs a Magic Formula with a
 # genuine maximum: 1 < C < 2 makes sin(C * arctan(.)) rise to 1 and fall
 # back without changing sign, and E < 1 keeps the arctan argument monotonic.
@@ -64,6 +68,9 @@ class AxleCompliance:
         pneumatic_trail: of the tire at the static wheel load and zero slip, m.
         camber_stiffness: lateral force towards the side the wheel top leans,
             per rad of lean, at the static wheel load, N/rad.
+        rolling_resistance: longitudinal force of the free-rolling tire per
+            unit load, -F_x/F_z (the .tir's rolling-resistance moment over the
+            loaded radius at the static wheel load), -.
         sources: provenance per attribute name (not part of equality).
 
     """
@@ -75,6 +82,7 @@ class AxleCompliance:
     aligning_torque_compliance_steer: float = 0.0
     pneumatic_trail: float = 0.0
     camber_stiffness: float = 0.0
+    rolling_resistance: float = 0.0
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
@@ -120,6 +128,16 @@ class VehicleParams:
         g: acceleration of gravity, m/s^2.
         compliance_front: compliance steer/camber of the front axle.
         compliance_rear: compliance steer/camber of the rear axle.
+        tire_vertical_stiffness_front: vertical stiffness of one front tire,
+            N/m; 0 (the default, the thesis' model) takes the tires as rigid.
+            The axle then rolls on its tires by 2 dF_z / (C_z t) besides the
+            suspension's roll (see ``two_track.roll_geometry``).
+        tire_vertical_stiffness_rear: of one rear tire, N/m.
+        wheel_gyroscopic_front: spin inertia over rolling radius of one front
+            wheel, I_spin / R, kg*m; 0 (the default, the thesis') leaves out the
+            spinning wheels' gyroscopic roll moment, sum I_spin omega r =
+            sum (I_spin / R) a_y in a steady turn (see two_track.roll_geometry).
+        wheel_gyroscopic_rear: of one rear wheel, kg*m.
         sources: provenance per field name, e.g. ``{"mass": "vehicle.xlsx
             Overview!C4"}``; filled by the vehicle-data adapter.
 
@@ -145,6 +163,10 @@ class VehicleParams:
     g: float = STANDARD_GRAVITY
     compliance_front: AxleCompliance = field(default_factory=AxleCompliance)
     compliance_rear: AxleCompliance = field(default_factory=AxleCompliance)
+    tire_vertical_stiffness_front: float = 0.0
+    tire_vertical_stiffness_rear: float = 0.0
+    wheel_gyroscopic_front: float = 0.0
+    wheel_gyroscopic_rear: float = 0.0
     # Provenance is not physics: two parameter sets with the same numbers
     # compare equal whatever their sources say.
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
@@ -168,6 +190,10 @@ class VehicleParams:
             'unsprung_mass_rear',
             'unsprung_cog_height_front',
             'unsprung_cog_height_rear',
+            'tire_vertical_stiffness_front',
+            'tire_vertical_stiffness_rear',
+            'wheel_gyroscopic_front',
+            'wheel_gyroscopic_rear',
         ):
             _require(getattr(self, name) >= 0.0, name, 'must not be negative', getattr(self, name))
         # The sprung body must keep mass and lie between the axles, otherwise

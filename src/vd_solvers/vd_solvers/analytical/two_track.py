@@ -18,6 +18,20 @@ For a lateral acceleration a_y on a circle of radius R (V^2/R = a_y):
   M_f, M_r: the sprung mass split by its weight distribution; h_f, h_r:
   roll-centre heights; m_u, h_u: unsprung mass and its COG height;
 * wheel loads (eq. 5): F_z = N/2 -/+ dF_z on the inner/outer wheel;
+* the tires' vertical compliance (``tire_vertical_stiffness_*``, the .tir's; 0, the
+  thesis' rigid tires, by default): each axle rolls on its tires by
+  psi_i = dF_zi t_i / K_ti, K_ti = C_z t_i^2 / 2, so its suspension rolls by phi - psi_i
+  only. With r_i = K_phi_i / (K_phi_i + K_ti) the load transfer becomes
+  dF_zi t_i = (M_geo,i + K_phi_i phi)(1 - r_i) and the body's balance
+  m_s h1 (a_y + g phi) = sum K_phi_i (phi - psi_i) gives::
+
+      phi = (m_s h1 + sum r_i M_geo,i / a_y) a_y / (sum K_phi_i (1 - r_i) - m_s g h1)
+
+  (M_geo,i = M_i a_y h_i + m_ui a_y h_ui, eq. 4's geometric part): the springs and the
+  tires in series, and the geometric load transfer rolling the axles on their tires;
+* the spinning wheels' gyroscopic moment (``wheel_gyroscopic_*`` = I_spin / R per
+  wheel; 0 by default): each wheel's spin momentum I_spin V / R turned at the yaw rate
+  V / R_turn rolls the body outward by sum (I_spin / R) a_y, added to m_s h1 a_y;
 * load-dependent friction, cornering stiffness and lateral force per wheel
   (eqs. 6-9, :class:`~vd_solvers.tire.simple.SimpleTire`).
 
@@ -214,21 +228,45 @@ def roll_geometry(p: VehicleParams) -> RollGeometry:
         p.roll_centre_height_rear - p.roll_centre_height_front
     ) * sprung_x / length
     roll_arm = sprung_height - axis_height
-    net_stiffness = p.roll_stiffness - sprung * p.g * roll_arm
+    stiffness = sum(_roll_stiffness(p, axle) * (1.0 - _tire_share(p, axle)) for axle in AXLES)
+    net_stiffness = stiffness - sprung * p.g * roll_arm
     if net_stiffness <= 0.0:
         raise SolverError(
-            f'roll instability: roll stiffness {p.roll_stiffness:.6g} N*m/rad does not exceed '
+            f'roll instability: roll stiffness {stiffness:.6g} N*m/rad does not exceed '
             f'm_s g h1 = {sprung * p.g * roll_arm:.6g} N*m/rad (h1 = {roll_arm:.4g} m)'
         )
+    front, rear = sprung * (length - sprung_x) / length, sprung * sprung_x / length
+    # the geometric load transfer per m/s^2 rolls the axles on their tires, and the
+    # spinning wheels' gyroscopic moment (I_spin omega r = I_spin / R a_y) rolls the body
+    gyroscopic = 2.0 * (p.wheel_gyroscopic_front + p.wheel_gyroscopic_rear)
+    tilt = gyroscopic + (_tire_share(p, 'front') * (front * p.roll_centre_height_front
+                                       + p.unsprung_mass_front * p.unsprung_cog_height_front)
+            + _tire_share(p, 'rear') * (rear * p.roll_centre_height_rear
+                                        + p.unsprung_mass_rear * p.unsprung_cog_height_rear))
     return RollGeometry(
         sprung_mass=sprung,
-        sprung_mass_front=sprung * (length - sprung_x) / length,
-        sprung_mass_rear=sprung * sprung_x / length,
+        sprung_mass_front=front,
+        sprung_mass_rear=rear,
         sprung_cog_height=sprung_height,
         roll_axis_height=axis_height,
         roll_arm=roll_arm,
-        roll_gradient=sprung * roll_arm / net_stiffness,
+        roll_gradient=(sprung * roll_arm + tilt) / net_stiffness,
     )
+
+
+def _tire_stiffness(p: VehicleParams, axle: Axle) -> float:
+    """Roll stiffness of the axle's two tires, C_z t^2 / 2, N*m/rad (0: rigid tires)."""
+    c_z = p.tire_vertical_stiffness_front if axle == 'front' else p.tire_vertical_stiffness_rear
+    return c_z * _track(p, axle) ** 2 / 2.0
+
+
+def _tire_share(p: VehicleParams, axle: Axle) -> float:
+    """Share r = K_phi / (K_phi + K_t) of the axle's roll its tires take (0 if rigid)."""
+    k_t = _tire_stiffness(p, axle)
+    if k_t == 0.0:
+        return 0.0
+    k_phi = _roll_stiffness(p, axle)
+    return k_phi / (k_phi + k_t)
 
 
 def roll_angle(p: VehicleParams, lateral_acceleration: ArrayLike) -> np.ndarray:
@@ -284,7 +322,7 @@ def _linear_transfer(p: VehicleParams, geometry: RollGeometry, axle: Axle,
     a_y = np.asarray(a_y, dtype=float)
     phi = geometry.roll_gradient * a_y
     return ((_geometric_moment(p, geometry, axle, a_y) + _roll_stiffness(p, axle) * phi)
-            / _track(p, axle))
+            * (1.0 - _tire_share(p, axle)) / _track(p, axle))
 
 
 def _geometric_moment(p: VehicleParams, geometry: RollGeometry, axle: Axle,
@@ -330,14 +368,18 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
         if not np.any(case):
             continue
         moment = caps[axle] * _track(p, axle) - _geometric_moment(p, geometry, axle, a)
-        k_other = _roll_stiffness(p, other)
+        share = _tire_share(p, other)
+        k_other = _roll_stiffness(p, other) * (1.0 - share)
+        geometric_other = _geometric_moment(p, geometry, other, a)
         with np.errstate(divide='ignore', invalid='ignore'):
             phi_lift = np.where(k_other > net,
-                                (geometry.sprung_mass * geometry.roll_arm * a - moment)
-                                / (k_other - net),
+                                (geometry.sprung_mass * geometry.roll_arm * a - moment
+                                 + share * geometric_other
+                                 + 2.0 * (p.wheel_gyroscopic_front + p.wheel_gyroscopic_rear)
+                                 * a) / (k_other - net),
                                 np.nan)
-        other_transfer = ((_geometric_moment(p, geometry, other, a) + k_other * phi_lift)
-                          / _track(p, other))
+        other_transfer = ((geometric_other + _roll_stiffness(p, other) * phi_lift)
+                          * (1.0 - share) / _track(p, other))
         over = ~(other_transfer < caps[other])  # nan (no roll stiffness left) counts as over
         phi = np.where(case, np.where(over, np.nan, phi_lift), phi)
         capped = np.where(over, np.nan, caps[axle])
@@ -347,6 +389,23 @@ def _roll_state(p: VehicleParams, lateral_acceleration: ArrayLike) -> tuple[np.n
         else:
             rear, front = np.where(case, capped, rear), np.where(case, other_value, front)
     return sign * phi, sign * front, sign * rear
+
+
+def roll_state(p: VehicleParams, lateral_acceleration: float
+               ) -> tuple[float, np.ndarray, np.ndarray]:
+    """
+    Return the body roll (rad), load transfer (front, rear; N) and the axles' roll on their tires.
+
+    At one lateral acceleration (m/s^2), signed like a_y; the tire roll of an axle is
+    psi = dF_z t / K_t (rad, 0 with rigid tires). Beyond an inner wheel's lift as
+    :func:`load_transfer`.
+    """
+    phi, front, rear = (float(v) for v in _roll_state(p, lateral_acceleration))
+    transfer = np.array([front, rear])
+    tilt = np.array([transfer[k] * _track(p, axle) / _tire_stiffness(p, axle)
+                     if _tire_stiffness(p, axle) > 0.0 else 0.0
+                     for k, axle in enumerate(AXLES)])
+    return phi, transfer, tilt
 
 
 def axle_lateral_force(tire: SimpleTire, loads: ArrayLike, alpha: ArrayLike) -> np.ndarray:

@@ -131,6 +131,52 @@ class CirclePathFollower:
 
 
 @dataclass
+class CurvatureController:
+    """
+    Steer to hold the path curvature r / V at 1 / ``radius`` (ISO 4138 steady state).
+
+    Road-wheel angle = the Ackermann angle L / R plus a proportional-integral action on
+    the curvature error e = L (1 / R - r / V) (rad; r from the yaw angle's change over the
+    step): ``gain`` e + integral of e over ``integral_time``. The integral supplies the
+    understeer angle K a_y the vehicle needs, so in a steady state the path curvature is
+    exactly 1 / R wherever the circle's centre has drifted to during the transients: the
+    steady-state quantities of ISO 4138 depend on the radius, not on the circle's place.
+    Output through the steering ratio, after a first-order lag ``lag`` (the driver's
+    neuromuscular lag), limited to ``max_angle``; ``at_lock`` says whether the limit holds
+    the steering (the integral stops growing there).
+    """
+
+    radius: float
+    wheelbase: float
+    steering_ratio: float
+    max_angle: float
+    gain: float = 0.5
+    integral_time: float = 1.0
+    lag: float = 0.1
+    _integral: float = field(default=0.0, init=False)
+    _output: float | None = field(default=None, init=False)
+    _yaw: float | None = field(default=None, init=False)
+    at_lock: bool = field(default=False, init=False)
+
+    def steering_wheel_angle(self, obs: Observation, h: float) -> float:
+        if self._yaw is None or h <= 0.0:
+            rate = obs.speed / self.radius
+        else:
+            rate = math.remainder(obs.yaw - self._yaw, 2.0 * math.pi) / h
+        self._yaw = obs.yaw
+        error = self.wheelbase * (1.0 / self.radius - rate / max(obs.speed, 1e-3))
+        if not self.at_lock:
+            self._integral += error * h / self.integral_time
+        wanted = (self.wheelbase / self.radius + self.gain * error + self._integral
+                  ) * self.steering_ratio
+        if self._output is None:
+            self._output = wanted
+        self._output += (wanted - self._output) * (1.0 - math.exp(-h / self.lag))
+        self.at_lock = abs(self._output) >= self.max_angle
+        return float(np.clip(self._output, -self.max_angle, self.max_angle))
+
+
+@dataclass
 class SpeedController:
     """
     PI speed controller on drive/brake torque with feed-forward of the reference slope.
@@ -173,8 +219,10 @@ DRIVERS: Mapping[str, type] = {
     'open_loop': OpenLoopSteering,
     'replay': ReplaySteering,
     'path_follower': CirclePathFollower,
+    'curvature': CurvatureController,
     'speed': SpeedController,
 }
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
+           'CurvatureController',
            'SpeedController', 'wheel_torques', 'DRIVERS']

@@ -8,15 +8,8 @@ Full-vehicle events: constant radius turn (ISO 4138), step steer (ISO 7401), sin
 drives the manoeuvre with the drivers of :mod:`.drivers` and returns an
 :class:`EventOutcome` with SI channels over time and the metrics of the standard.
 
-constant_radius_turn (ISO 4138:2021, constant-radius method): a path follower with
-preview holds a left circle of ``radius``; the speed starts at the value giving
-``start_lateral_acceleration`` and rises by ``speed_rate`` (quasi-steady) until the
-radius can no longer be held (``radius_tolerance`` exceeded at the CoG, or sideslip
-beyond MAX_SIDESLIP) or ``max_duration``. Gradients are least-squares slopes over the
-linear range LINEAR_RANGE of lateral acceleration: understeer gradient
-K = d(delta_sw / i_s - L r / v)/d(a_y), with the Ackermann angle of the path actually
-driven (r / v, which the path follower keeps within the tolerance of 1 / R), roll and
-sideslip gradients.
+constant_radius_turn (ISO 4138:2021, constant-radius method, steady state): see
+:mod:`.constant_radius`.
 
 step_steer (ISO 7401:2011, step input): straight at ``speed``, then a steering-wheel
 ramp of ``ramp_time`` to the angle giving ``lateral_acceleration`` in the steady
@@ -32,7 +25,6 @@ sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-import math
 
 import numpy as np
 
@@ -40,24 +32,19 @@ from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle
 from vd_solvers.analytical.from_config import vehicle_params
 from vd_solvers.constants import DEG
-from vd_solvers.constants import STANDARD_GRAVITY as G
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
-from .drivers import CirclePathFollower, OpenLoopSteering, SpeedController
+from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
+from .constant_radius import PARAMS as CRT_PARAMS
+from .drivers import OpenLoopSteering, SpeedController
 from .maps import WHEELS
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
 from .sine_with_dwell import PARAMS as SWD_PARAMS
 from .sine_with_dwell import run_procedure
 
-#: lateral-acceleration range of the linear gradients, m/s^2
-LINEAR_RANGE = (1.0, 3.0)
-#: sideslip beyond which the vehicle no longer holds the circle (spin), rad
-MAX_SIDESLIP = math.radians(15.0)
-#: seconds the path follower settles at the start speed before the ramp
-SETTLE_TIME = 3.0
 #: steady-state averaging window at the end of a step steer, s
 STEADY_WINDOW = 1.0
 #: steering-wheel angle of the step scaled until the steady a_y is within this of the aim
@@ -65,29 +52,10 @@ STEP_AIM_TOLERANCE = 0.02
 STEP_AIM_ITERATIONS = 3
 #: time of the steer step (after a straight run), s
 STEP_TIME = 1.0
-#: integration step of the quasi-steady constant radius turn, s: the implicit wheel spin
-#: keeps 8 ms stable, and the slow manoeuvre needs no finer one (gradients within 0.5 %
-#: of a 5 ms run, measured on the sample sedan)
-TURN_STEP = 0.008
-
+#: sampling period of the step steer's channels, s
+RECORD_PERIOD = 0.01
 EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
-    'constant_radius_turn': {
-        'radius': Param('length', 40.0, 'circle radius (ISO 4138 constant radius)', minimum=10.0,
-                        maximum=500.0),
-        'start_lateral_acceleration': Param('acceleration', 0.5, 'lateral acceleration at the '
-                                            'start speed', minimum=0.1, maximum=5.0),
-        'speed_rate': Param('acceleration', 0.25, 'rate of the slow speed increase '
-                            '(quasi-steady)', minimum=0.01, maximum=2.0),
-        'radius_tolerance': Param('length', 1.0, 'radial deviation of the CoG at which the '
-                                  'radius counts as no longer held', minimum=0.05),
-        'max_duration': Param('time', 90.0, 'longest simulated time', minimum=5.0,
-                              maximum=600.0),
-        'drive_front': Param('dimensionless', 0.5,
-                             'front share of the drive torque (0 rear, 1 front)',
-                             minimum=0.0, maximum=1.0),
-        'brake_front': Param('dimensionless', 0.65, 'front share of the brake torque', minimum=0.0,
-                             maximum=1.0),
-    },
+    'constant_radius_turn': CRT_PARAMS,
     'step_steer': {
         'speed': Param('velocity', 100.0 / 3.6, 'constant speed', minimum=5.0, maximum=70.0),
         'lateral_acceleration': Param('acceleration', 4.0, 'steady lateral acceleration the '
@@ -96,6 +64,8 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
         'ramp_time': Param('time', 0.1, 'steering-wheel ramp time (ISO 7401: <= 0.15 s)',
                            minimum=0.01, maximum=1.0),
         'duration': Param('time', 6.0, 'simulated time', minimum=3.0, maximum=60.0),
+        'time_step': Param('time', STEP, 'integration step (the overshoot converges at first '
+                           'order in it)', minimum=5e-4, maximum=STEP),
         'drive_front': Param('dimensionless', 0.5,
                              'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
@@ -129,10 +99,12 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
             if config.name in str(err):
                 raise
             raise SolverError(f'{label}: {err}') from err
+    elif event == 'constant_radius_turn':
+        metrics, channels, notes = run_constant_radius(model, values, progress, _channels)
     else:
-        run = _constant_radius if event == 'constant_radius_turn' else _step_steer
-        metrics, channels, notes = run(model, values, progress)
-    step = TURN_STEP if event == 'constant_radius_turn' else STEP
+        metrics, channels, notes = _step_steer(model, values, progress)
+    step = (TURN_STEP if event == 'constant_radius_turn' else
+            values.get('time_step', STEP))
     notes = [*notes, f'integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; '
              'transient slip integrated exactly per step, wheel spin linearly implicit',
              *(f'{k}: {v}' for k, v in sorted(model.maps.provenance.items()))]
@@ -163,78 +135,6 @@ def _channels(model: VehicleModel, trace: Trace) -> dict[str, Channel]:
     return out
 
 
-def _slope(x: np.ndarray, y: np.ndarray, window: tuple[float, float]) -> float:
-    mask = (x >= window[0]) & (x <= window[1])
-    if mask.sum() < 3:
-        return float('nan')
-    return float(np.polyfit(x[mask], y[mask], 1)[0])
-
-
-def _constant_radius(model: VehicleModel, v: Mapping[str, float], progress):
-    radius = v['radius']
-    speed0 = math.sqrt(v['start_lateral_acceleration'] * radius)
-    rate = v['speed_rate']
-    wheelbase = model.config.group('geometry').scalar('wheelbase')
-    maps = model.maps
-    follower = CirclePathFollower(radius=radius, wheelbase=wheelbase,
-                                  steering_ratio=maps.steering_ratio,
-                                  max_angle=float(min(-maps.steer_swa[0], maps.steer_swa[-1])))
-    speed = _speed_controller(model, lambda t: speed0 + rate * max(t - SETTLE_TIME, 0.0))
-    cog_x = float(model.config.group('mass').point('sprung_cog')[0])
-    tolerance = v['radius_tolerance']
-
-    def stop(row: dict[str, float]) -> str:
-        if row['time'] < SETTLE_TIME:
-            return ''
-        c, s = math.cos(row['yaw']), math.sin(row['yaw'])
-        error = follower.radial_error(row['x'] + cog_x * c, row['y'] + cog_x * s)
-        if abs(row['sideslip']) > MAX_SIDESLIP:
-            return 'sideslip'
-        if abs(error) > tolerance:
-            return 'radius'
-        return ''
-
-    trace = simulate(model, follower, speed, v['max_duration'], event='constant_radius_turn',
-                     initial_speed=speed0, initial_yaw_rate=speed0 / radius, record_every=6,
-                     h=TURN_STEP,
-                     drive_front=v['drive_front'], brake_front=v['brake_front'], stop=stop,
-                     progress=progress)
-    channels = _channels(model, trace)
-    ch = {k: c.values for k, c in channels.items()}
-    held = ch['time'] >= SETTLE_TIME
-    a_y = ch['lateral_acceleration']
-    ratio = maps.steering_ratio
-    # ISO 4138: steer angle less the Ackermann angle of the path actually driven, L r / v
-    ackermann = wheelbase * ch['yaw_rate'] / np.maximum(ch['speed'], 1e-9)
-    k_us = _slope(a_y[held], ch['steering_wheel_angle'][held] / ratio - ackermann[held],
-                  LINEAR_RANGE)
-    roll = _slope(a_y[held], ch['roll'][held], LINEAR_RANGE)
-    beta = _slope(a_y[held], ch['sideslip'][held], LINEAR_RANGE)
-    a_max = float(np.max(a_y[held]))
-    if trace.stop_reason == 'sideslip':
-        behaviour = 'oversteer: sideslip beyond 15 deg, the vehicle spins out of the circle'
-    elif trace.stop_reason == 'radius':
-        end = ch['yaw_rate'][-1] * radius / max(ch['speed'][-1], 1e-9)
-        behaviour = ('understeer: the vehicle drifts out of the circle' if end < 1.0 else
-                     'oversteer: the vehicle turns inside the circle')
-    else:
-        behaviour = f"radius held to the end ({v['max_duration']:g} s)"
-    metrics = {
-        'understeer_gradient': Metric(k_us, 'rad/(m/s^2)'),
-        'roll_gradient': Metric(roll, 'rad/(m/s^2)'),
-        'sideslip_gradient': Metric(beta, 'rad/(m/s^2)'),
-        'max_lateral_acceleration': Metric(a_max, 'm/s^2'),
-        'limit_is_oversteer': Metric(1.0 if behaviour.startswith('oversteer') else 0.0, '-'),
-        'radius': Metric(radius, 'm'),
-        'steering_ratio': Metric(ratio, '-', maps.provenance['steering']),
-        'simulated_time': Metric(float(ch['time'][-1]), 's'),
-    }
-    notes = [f'limit: {behaviour} at {a_max:.2f} m/s^2 ({a_max / G:.3f} g)',
-             f'linear range for the gradients: {LINEAR_RANGE[0]:g}..{LINEAR_RANGE[1]:g} m/s^2',
-             'left-hand circle; path follower with preview and integral action']
-    return metrics, channels, notes
-
-
 def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
     speed = v['speed']
     target = v['lateral_acceleration']
@@ -255,7 +155,8 @@ def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
                                     angles=[0.0, 0.0, swa, swa])
         trace = simulate(model, steering, _speed_controller(model, lambda t: speed),
                          v['duration'], event='step_steer', initial_speed=speed,
-                         record_every=2, drive_front=v['drive_front'],
+                         record_every=max(1, round(RECORD_PERIOD / v['time_step'])),
+                         h=v['time_step'], drive_front=v['drive_front'],
                          brake_front=v['brake_front'], progress=progress)
         ch = trace.channels()
         steady = ch['time'] >= ch['time'][-1] - STEADY_WINDOW

@@ -11,9 +11,18 @@ fidelity (``kc.cache.kc_result``: computed on demand, cached by hash), and says 
   wheel force of spring, bump/rebound stops and bushings, toe, camber and the damper's
   motion ratio -d(damper length)/dz;
 * ``opposite_wheel_travel`` with and without the anti-roll bar: the bar's wheel force vs
-  half the travel difference (z_left - z_right)/2;
+  half the travel difference (z_left - z_right)/2; and the roll correction of toe and
+  camber: the opposite-travel event's toe and camber less the parallel-travel map's at
+  the same travel, vs the half travel difference. A wheel's toe is then the parallel map
+  at its own travel plus that correction, which is zero in heave and makes pure roll
+  reproduce the K&C roll steer and roll camber: what the bar's load and the bushings do
+  to the wheels in roll (the sample sedan's front: bump steer -0.122 rad/m per wheel in
+  parallel travel, +0.004 in opposite travel with the bar);
 * ``lateral_force``: compliance steer and camber per newton of lateral force, and the
   force-based jacking coefficient d(pad force)/dFy (the force roll centre);
+* ``aligning_torque``: compliance steer per N*m of moment about +z at the contact point
+  (the exact rate at design, the number the K&C metric
+  ``aligning_torque_compliance_steer`` and the understeer budget use);
 * ``longitudinal_force``: compliance steer per newton (braking and traction sides) and
   the jacking coefficients d(pad force)/dFx of both sides (anti-dive/-lift/-squat);
 * ``steering`` (front): road-wheel steer angle of each wheel vs steering-wheel angle
@@ -38,7 +47,8 @@ from vd_data_server.model import Configuration
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.cache import NO_BAR, kc_model, kc_result
-from vd_solvers.kc.metrics import FORCE_WINDOW, slope_at
+from vd_solvers.kc.metrics import FORCE_WINDOW, rate, slope_at
+from vd_solvers.kc.steering_map import steering_map
 
 #: wheels in the order of every per-wheel array
 WHEELS = ('front_left', 'front_right', 'rear_left', 'rear_right')
@@ -60,8 +70,12 @@ class SuspensionMaps:
     arb0: np.ndarray  # (4,) m, first grid point of the half travel difference
     arb_step: np.ndarray  # (4,) m
     arb_table: np.ndarray  # (4, GRID_POINTS) N, bar force on the wheel (upward positive is -)
+    roll0: np.ndarray  # (4,) m, first grid point of the half travel difference
+    roll_step: np.ndarray  # (4,) m
+    roll_table: np.ndarray  # (2, 4, GRID_POINTS) rad, toe and camber correction in roll
     compliance_steer_y: np.ndarray  # (4,) rad/N, toe change per N of lateral force (+y)
     compliance_camber_y: np.ndarray  # (4,) rad/N
+    compliance_steer_mz: np.ndarray  # (4,) rad/(N*m), toe change per N*m about +z
     compliance_steer_x: np.ndarray  # (2, 4) rad/N, [braking, traction] toe per N of Fx
     jacking_y: np.ndarray  # (4,) -, d(pad force)/dFy
     jacking_x: np.ndarray  # (2, 4) -, [braking, traction] d(pad force)/dFx
@@ -90,6 +104,16 @@ class SuspensionMaps:
         cols = np.arange(4)
         lo = self.arb_table[cols, i]
         return lo + frac * (self.arb_table[cols, i + 1] - lo)
+
+    def roll(self, z: np.ndarray) -> np.ndarray:
+        """(2, 4) toe and camber correction in roll at wheel travels ``z`` (module doc)."""
+        half = 0.5 * np.array([z[0] - z[1], z[1] - z[0], z[2] - z[3], z[3] - z[2]])
+        u = (half - self.roll0) / self.roll_step
+        i = np.clip(np.floor(u).astype(int), 0, GRID_POINTS - 2)
+        frac = u - i
+        cols = np.arange(4)
+        lo = self.roll_table[:, cols, i]
+        return lo + frac * (self.roll_table[:, cols, i + 1] - lo)
 
     def road_wheel_angles(self, swa: float) -> tuple[float, float]:
         """Steer angles (rad, + left) of FL and FR at steering-wheel angle ``swa`` (rad)."""
@@ -120,7 +144,8 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
     prov: dict[str, str] = {}
     t0, ts, table = np.zeros(4), np.zeros(4), np.zeros((len(TRAVEL_ROWS), 4, GRID_POINTS))
     a0, as_, arb = np.zeros(4), np.ones(4), np.zeros((4, GRID_POINTS))
-    c_sy, c_cy, j_y = np.zeros(4), np.zeros(4), np.zeros(4)
+    r0, rs, roll = np.zeros(4), np.ones(4), np.zeros((2, 4, GRID_POINTS))
+    c_sy, c_cy, j_y, c_mz = np.zeros(4), np.zeros(4), np.zeros(4), np.zeros(4)
     c_sx, j_x = np.zeros((2, 4)), np.zeros((2, 4))
     dampers_x, dampers_y = [], []
     for k, axle in enumerate(('front', 'rear')):
@@ -146,8 +171,20 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
         dampers_y.append(np.asarray(inp.damper.curve.y, dtype=float))
         damper_file = config.group(f'{axle}_damper').file
         prov['damper'] = prov.get('damper', '') + f'{axle}: {damper_file}; '
+        opp = kc_result(config, axle, 'opposite_wheel_travel', fidelity, steps=KC_STEPS)
+        for s in range(2):
+            zo = opp.channels['wheel_travel']
+            half_o = 0.5 * (zo[:, s] - zo[:, 1 - s])
+            w = 2 * k + s
+            for row, key in enumerate(('toe', 'camber')):
+                parallel = np.interp(zo[:, s], t0[w] + ts[w] * np.arange(GRID_POINTS),
+                                     table[TRAVEL_ROWS.index(key), w])
+                r0[w], rs[w], roll[row, w] = _uniform(half_o, opp.channels[key][:, s] - parallel,
+                                                      f'{label} opposite_wheel_travel')
+        for key in ('roll_toe', 'roll_camber'):
+            prov[key] = prov.get(key, '') + (
+                f'{axle}: K&C opposite_wheel_travel - parallel_wheel_travel ({tag}); ')
         if inp.stabilizer is not None:
-            opp = kc_result(config, axle, 'opposite_wheel_travel', fidelity, steps=KC_STEPS)
             bare = kc_result(config, axle, NO_BAR, fidelity, steps=KC_STEPS)
             for s in range(2):
                 zo, zb = opp.channels['wheel_travel'], bare.channels['wheel_travel']
@@ -176,31 +213,26 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
             for side, sign in enumerate((-1.0, 1.0)):
                 c_sx[side, w] = _one_sided(fx, lon.channels['toe'][:, s], sign)
                 j_x[side, w] = _one_sided(fx, lon.channels['pad_force'][:, s], sign)
+        align = kc_result(config, axle, 'aligning_torque', fidelity, steps=KC_STEPS)
+        c_mz[2 * k:2 * k + 2] = rate(align, 'toe') / rate(align, 'contact_moment')[0, 2]
+        prov['compliance_steer_aligning'] = prov.get('compliance_steer_aligning', '') + (
+            f'{axle}: K&C aligning_torque ({tag}); ')
         for key in ('compliance_steer_lateral', 'compliance_camber_lateral',
                     'jacking_lateral'):
             prov[key] = prov.get(key, '') + f'{axle}: K&C lateral_force ({tag}); '
         for key in ('compliance_steer_longitudinal', 'jacking_longitudinal'):
             prov[key] = prov.get(key, '') + f'{axle}: K&C longitudinal_force ({tag}); '
-    if 'steering' not in config.groups:
-        raise SolverError(f"configuration '{config.name}': the full vehicle needs a steering "
-                          'group')
-    steer = kc_result(config, 'front', 'steering', fidelity, steps=KC_STEPS)
-    swa = steer.channels['steering_wheel_angle']
-    order = np.argsort(swa)
-    swa = swa[order]
-    angles = steer.channels['steer_angle'][order]
-    centre = int(np.argmin(np.abs(swa)))
-    angles = angles - angles[centre]
-    mean = angles.mean(axis=1)
-    near = slice(max(centre - 2, 0), centre + 3)
-    ratio = float(np.polyfit(mean[near], swa[near], 1)[0])
-    prov['steering'] = f'front: K&C steering ({tag}), ratio {ratio:.1f} at the centre'
+    steer = steering_map(config, fidelity, KC_STEPS)
+    prov['steering'] = steer.source
     return SuspensionMaps(
         travel0=t0, travel_step=ts, travel_table=table, arb0=a0, arb_step=as_, arb_table=arb,
-        compliance_steer_y=c_sy, compliance_camber_y=c_cy, compliance_steer_x=c_sx,
+        roll0=r0, roll_step=rs, roll_table=roll,
+        compliance_steer_y=c_sy, compliance_camber_y=c_cy, compliance_steer_mz=c_mz,
+        compliance_steer_x=c_sx,
         jacking_y=j_y, jacking_x=j_x, damper_x=(dampers_x[0], dampers_x[1]),
-        damper_y=(dampers_y[0], dampers_y[1]), steer_swa=swa, steer_angle=angles,
-        steering_ratio=ratio, provenance={k: v.strip().rstrip(';') for k, v in prov.items()})
+        damper_y=(dampers_y[0], dampers_y[1]), steer_swa=steer.swa,
+        steer_angle=steer.angles, steering_ratio=steer.ratio,
+        provenance={k: v.strip().rstrip(';') for k, v in prov.items()})
 
 
 __all__ = ['SuspensionMaps', 'suspension_maps', 'WHEELS', 'TRAVEL_ROWS', 'KC_STEPS']

@@ -20,17 +20,27 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
 
 * suspension, on each travel joint: -(wheel force map + anti-roll bar + damper
   motion_ratio * F_damper(motion_ratio * dz/dt)) - jacking (K&C d(pad force)/dF times the
-  tire force in body axes: force roll centre, anti-dive/-lift/-squat);
+  force the links carry, the tire force in body axes less the unsprung mass's lateral
+  inertia: force roll centre, anti-dive/-lift/-squat) - the unsprung mass's own
+  overturning moment, m_u a_y h_wc / t on each wheel (a_y from the previous step's tire
+  forces): the prismatic carriers would otherwise hand that moment to the body;
 * tire, at the contact point below the wheel centre on a flat road z = 0: Fz = C_z
-  deflection + tire damping (>= 0); slip from the wheel-centre velocity in the wheel's
-  heading (body yaw + steering-map angle + toe map + compliance steer from the previous
-  step's forces), inclination = camber map (+ compliance camber) to the body plus body
-  roll; first-order transient slip with the .tir relaxation lengths,
+  deflection + tire damping (>= 0). The wheel's frame follows its steer and camber: the
+  spin axis is the body y axis turned by the camber map (+ its roll correction and the
+  compliance camber) about the wheel's heading and by the steering-map angle + toe map
+  (+ its roll correction, see :mod:`.maps`) + compliance steer (lateral,
+  longitudinal and aligning-moment compliance, from the previous step's forces) about
+  the body z axis, then carried by the body's attitude. The wheel's heading on the road
+  is the line where its plane meets the road (spin axis x road normal), its inclination
+  the spin axis' angle to the road; slip from the wheel-centre velocity in that heading;
+  first-order transient slip with the .tir relaxation lengths,
   ``sigma dalpha'/dt + V alpha' = V alpha`` (V = max(|V_x|, VX_FLOOR)), integrated
   exactly over a step;
   combined-slip Magic Formula forces and moments. The contact wrench is mapped to the
-  generalised forces with the carrier's Jacobian (body, travel), and its moment about
-  the spin axis drives the wheel.
+  generalised forces with the carrier's Jacobian (body, travel); the contact force's
+  moment about the wheel's own spin axis and the rolling-resistance moment drive the
+  wheel (I dw/dt = T - R F_x + M_y), so a free-rolling wheel settles where its
+  longitudinal force balances the rolling resistance, whatever its steer.
 * driveline and brakes: wheel torques from the speed driver, split by
   :func:`.drivers.wheel_torques` (front/rear share, open differentials).
 
@@ -43,8 +53,10 @@ non-finite state is a SolverError naming configuration, event and time.
 
 Not modelled (documented in docs/models.md): steering-system inertia and compliance
 beyond the K&C compliance steer, wheel-centre fore-aft and lateral motion with travel
-(their effect enters through the jacking coefficients), gyroscopic steer moments, road
-unevenness.
+(their effect enters through the jacking coefficients), gyroscopic steer moments (the
+wheel's spin inertia is carried about the body y axis: a torque about the spin axis
+reaches the body as one about y, an error of that torque times the steer angle, zero
+for a free-rolling wheel in a steady state), road unevenness.
 """
 from __future__ import annotations
 
@@ -56,6 +68,7 @@ import pinocchio as pin
 
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
+from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
@@ -67,9 +80,6 @@ from .maps import WHEELS, SuspensionMaps, suspension_maps
 STEP = 0.005
 #: slip-velocity floor of the slip definitions, m/s (the .tir VXLOW when it is larger)
 VX_FLOOR = 1.0
-#: the data have no wheel spin inertia: I_spin = SPIN_INERTIA_FACTOR m_corner R0^2
-#: (wheel and tire, about 60 % of the corner mass, as a ring-and-disc mix)
-SPIN_INERTIA_FACTOR = 0.3
 #: side sign per wheel: +1 left, -1 right
 SIDE = np.array([1.0, -1.0, 1.0, -1.0])
 FRONT = np.array([True, True, False, False])
@@ -154,6 +164,10 @@ class VehicleModel:
                        + [mass.scalar('unsprung_mass_rear')] * 2)
         self.unsprung = m_u
         self.spin_inertia = SPIN_INERTIA_FACTOR * m_u * self.r0**2
+        # pad-force change per N of one corner's unsprung lateral inertia: the axle's two
+        # corners' overturning moment (wheel-centre height) over its track, on each wheel,
+        # outer wheel loaded: 2 h / t = h / |y|
+        self._unsprung_arm = -SIDE * self.wheel_centres[:, 2] / np.abs(self.wheel_centres[:, 1])
         self.sprung_mass = mass.scalar('sprung_mass')
         self.gravity = STANDARD_GRAVITY if options.gravity else 0.0
         self.model = self._build(mass)
@@ -263,25 +277,33 @@ class VehicleModel:
         maps = self.maps
         table = maps.travel(z)
         # --- tire kinematics
-        yaw = np.arctan2(rot[1, 0], rot[0, 0])
-        roll = np.arcsin(np.clip(rot[2, 1], -1.0, 1.0))
         steer = np.zeros(4)
         steer[0], steer[1] = maps.road_wheel_angles(swa)
         if previous is not None:
-            # body-axis tire forces of the previous step for the compliances
+            # body-axis tire forces and the aligning moments of the previous step for the
+            # compliances
             fy_b = previous.fx * np.sin(previous.steer) + previous.fy * np.cos(previous.steer)
             fx_b = previous.fx * np.cos(previous.steer) - previous.fy * np.sin(previous.steer)
+            mz_prev = previous.mz
         else:
-            fy_b = fx_b = np.zeros(4)
+            fy_b = fx_b = mz_prev = np.zeros(4)
         side = np.where(fx_b < 0.0, 0, 1)
         cols = np.arange(4)
-        toe = (table[1] + maps.compliance_steer_y * fy_b
-               + maps.compliance_steer_x[side, cols] * fx_b)
-        camber = table[2] + maps.compliance_camber_y * fy_b
+        roll = maps.roll(z)
+        toe = (table[1] + roll[0] + maps.compliance_steer_y * fy_b
+               + maps.compliance_steer_x[side, cols] * fx_b + maps.compliance_steer_mz * mz_prev)
+        camber = table[2] + roll[1] + maps.compliance_camber_y * fy_b
         steer = steer - SIDE * toe
-        gamma = -SIDE * camber + roll
-        heading = yaw + steer
-        ch, sh = np.cos(heading), np.sin(heading)
+        # the wheel's spin axis: body y turned by the inclination to the body (+ top to the
+        # right, the .tir convention) about the wheel's heading, then by the steer about z
+        lean = -SIDE * camber
+        cos_l = np.cos(lean)
+        axis = np.stack([-np.sin(steer) * cos_l, np.cos(steer) * cos_l, np.sin(lean)],
+                        axis=1) @ rot.T  # world
+        gamma = np.arcsin(np.clip(axis[:, 2], -1.0, 1.0))
+        # heading on the road: spin axis x road normal
+        level = np.hypot(axis[:, 0], axis[:, 1])
+        ch, sh = axis[:, 1] / level, -axis[:, 0] / level
         vx = v_world[:, 0] * ch + v_world[:, 1] * sh
         vy = -v_world[:, 0] * sh + v_world[:, 1] * ch
         height = p_world[:, 2]
@@ -328,7 +350,13 @@ class VehicleModel:
         # so dw = h T_eff / I with T_eff below. The explicit form is unstable for
         # h > V / (sigma omega_n^2) (omega_n of the spin/slip mode): 1.7 ms at 10 m/s.
         k_x = self._slip_stiffness_static * fz / self._static
-        spin_torque = moment_b[:, 1] + wheel_torque
+        # the wheel-spin equation I dw/dt = T - R F_x + M_y: the contact force's moment
+        # about the wheel's own spin axis plus the rolling-resistance moment M_y; the
+        # aligning and overturning moments are about road axes and reach the body through
+        # the bearing (M_z's share along a cambered axis would roll a car at rest)
+        lever_moment = np.stack([height * force[:, 1], -height * force[:, 0],
+                                 np.zeros(4)], axis=1)
+        spin_torque = (lever_moment * axis).sum(axis=1) + f.my + wheel_torque
         lag = (1.0 - decay_k) * r_e * k_x
         tau[7::2] = (spin_torque - lag * (kappa - k_t)) * self.spin_inertia / (
             self.spin_inertia + h * lag * r_e / denom)
@@ -341,7 +369,16 @@ class VehicleModel:
                 np.interp(ratio[2:] * zdot[2:], maps.damper_x[1], maps.damper_y[1])])
             suspension = suspension + ratio * damper
         side_now = np.where(force_b[:, 0] < 0.0, 0, 1)
-        jacking = maps.jacking_y * force_b[:, 1] + maps.jacking_x[side_now, cols] * force_b[:, 0]
+        # The carriers slide along the body's z axis only, so an unsprung mass's lateral
+        # inertia reaches the body at its wheel centre. In the car it is the links that
+        # carry the tire force less that inertia (the force roll centre's jacking acts on
+        # that share) while the unsprung mass's own overturning moment loads its tires
+        # (the unsprung term of the load transfer): the lateral acceleration of the
+        # previous step's tire forces restores both.
+        inertia = self.unsprung * fy_b.sum() / self.total_mass
+        jacking = (maps.jacking_y * (force_b[:, 1] - inertia)
+                   + maps.jacking_x[side_now, cols] * force_b[:, 0]
+                   + self._unsprung_arm * inertia)
         tau[6::2] -= suspension + (jacking if self.options.road else 0.0)
         return tau, wheel, update
 
