@@ -183,3 +183,18 @@ def test_kc_roll_properties_feed_the_two_track_model_and_are_labelled(sedan):
         assert height == pytest.approx(direct['roll_centre_height_kinematic'][0], rel=1e-12)
     targets = vehicle_params(config)
     assert targets.sources['roll_stiffness_front'].startswith('design target sedan/targets/')
+
+
+def test_the_tire_vertical_stiffness_follows_the_configurations_pressure():
+    """C_z = VERTICAL_STIFFNESS (1 + PFZ1 dpi) at the configuration's pressure (MF 6.x, 4.E68)."""
+    from conftest import SAMPLE_DATA
+
+    study = load_study(SAMPLE_DATA / 'studies' / 'sedan_mf62.yaml')
+    # tires/MF62_255_55R20.tir: VERTICAL_STIFFNESS 322913 N/m, PFZ1 0.8156607, NOMPRES 260000 Pa;
+    # the study's mf62_low_pressure sets INFLPRES to 2.1 bar
+    nominal = suspension_input(study.configurations['mf62'], 'front')
+    low = suspension_input(study.configurations['mf62_low_pressure'], 'front')
+    assert nominal.tire_vertical_stiffness == pytest.approx(322913.0, rel=1e-12)
+    dpi = (210000.0 - 260000.0) / 260000.0
+    assert low.tire_vertical_stiffness == pytest.approx(322913.0 * (1.0 + 0.8156607 * dpi),
+                                                        rel=1e-9)

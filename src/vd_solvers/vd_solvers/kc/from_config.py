@@ -8,7 +8,8 @@ Every value comes from the configuration's groups of that axle
 ``_rebound_stop``, ``_bushings``, ``_stabilizer``, ``_alignment``, ``_tire``,
 ``steering`` on the front axle) plus the static corner load from the mass data.
 The tire's loaded radius is the design wheel-centre height (hard points at
-design ride height); its vertical stiffness is the .tir's VERTICAL_STIFFNESS.
+design ride height); its vertical stiffness is the Magic Formula's at the configuration's
+inflation pressure (VERTICAL_STIFFNESS (1 + PFZ1 dpi), the tangent at FNOMIN).
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ import yaml
 
 from vd_data_server.model import Configuration, GroupData
 from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
+from vd_data_server.tire_group import tire_properties
 from vd_data_server.units import si_factor
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
@@ -27,6 +29,7 @@ from vd_solvers.flex import section as sec
 from vd_solvers.flex.component import ShapePoint
 from vd_solvers.flex.imported import from_dmig, from_plain
 from vd_solvers.results import FIDELITIES, Channel, EventOutcome, Metric
+from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 from .channels import UNITS, bushing_unit
@@ -141,7 +144,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
     return SuspensionInput(
         template=hp.text('template'), axle=corner, hardpoints=points, spring=spring,
         tire_radius=points['wheel_centre'][2],
-        tire_vertical_stiffness=tire.scalar('tir.VERTICAL.VERTICAL_STIFFNESS'),
+        tire_vertical_stiffness=MagicFormula(tire_properties(tire)).vertical_stiffness,
         corner_load=front_load if axle == 'front' else rear_load,
         damper=damper, bump_stop=stops['bump_stop'], rebound_stop=stops['rebound_stop'],
         bushings=bushings, stabilizer=stabilizer, steering=steering,
