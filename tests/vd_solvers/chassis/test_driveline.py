@@ -1,0 +1,68 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+Driveline: torque map, ratios, axle split and differentials against hand calculations.
+
+Conservation: a differential's wheel torques add up to its input whatever the speeds;
+an open one splits equally; a limited-slip one carries at most its locking torque from
+the faster wheel to the slower one; a locked (viscous) one by c times the speed difference.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vd_solvers.chassis.driveline import Differential, Driveline, Engine
+
+ENGINE = Engine(np.array([80.0, 300.0, 600.0, 700.0]), np.array([150.0, 250.0, 220.0, 180.0]))
+
+
+def test_engine_map():
+    assert ENGINE.torque(190.0, 1.0) == pytest.approx(150.0 + 100.0 * 110.0 / 220.0)
+    assert ENGINE.torque(190.0, 0.4) == pytest.approx(0.4 * 200.0)
+    assert ENGINE.torque(750.0, 1.0) == 0.0  # beyond the redline
+    assert ENGINE.torque(50.0, 1.0) == 0.0  # below idle
+
+
+@pytest.mark.parametrize('diff', [Differential('open'), Differential('limited_slip', 400.0),
+                                  Differential('locked', lock_damping=800.0)])
+@pytest.mark.parametrize('speeds', [(50.0, 50.0), (52.0, 48.0), (30.0, 70.0)])
+def test_differentials_conserve_torque(diff, speeds):
+    left, right = diff.split(1000.0, *speeds)
+    assert left + right == pytest.approx(1000.0, abs=1e-9)
+    if diff.kind == 'open' or speeds[0] == speeds[1]:
+        assert left == pytest.approx(right)
+    else:
+        slower_left = speeds[0] < speeds[1]
+        assert (left > right) == slower_left  # the slower wheel gets more
+    if diff.kind == 'limited_slip':
+        assert abs(left - right) <= 400.0 + 1e-9
+    if diff.kind == 'locked':
+        assert right - left == pytest.approx(800.0 * (speeds[0] - speeds[1]))
+
+
+def test_limited_slip_locks_fully_on_a_spinning_wheel():
+    left, right = Differential('limited_slip', 400.0).split(1000.0, 10.0, 60.0)
+    assert left - right == pytest.approx(400.0, rel=1e-6)
+
+
+def test_wheel_torques_through_gears_and_split():
+    line = Driveline(ENGINE, gears=(3.5, 2.0, 1.3), final_drive=4.0, efficiency=0.9,
+                     front_share=0.4)
+    wheels = (30.0, 30.0, 30.0, 30.0)
+    # second gear: engine at 2 x 4 x 30 = 240 rad/s, 150 + 100 * 160 / 220 N m
+    assert line.engine_speed(2, wheels) == pytest.approx(240.0)
+    total = (150.0 + 100.0 * 160.0 / 220.0) * 8.0 * 0.9
+    torques = line.wheel_torques(1.0, 2, wheels)
+    assert torques == pytest.approx((0.2 * total, 0.2 * total, 0.3 * total, 0.3 * total))
+    with pytest.raises(ValueError, match='gear 4 does not exist'):
+        line.ratio(4)
+
+
+def test_bad_drivelines_are_refused():
+    with pytest.raises(ValueError, match="unknown differential 'torsen'"):
+        Differential('torsen')
+    with pytest.raises(ValueError, match='increasing'):
+        Engine(np.array([100.0, 50.0]), np.array([10.0, 10.0]))
+    with pytest.raises(ValueError, match='front drive share'):
+        Driveline(ENGINE, (1.0,), 3.0, front_share=1.2)
