@@ -10,12 +10,15 @@ acceleration as the simulation; a transient is aligned on its manoeuvre's start.
 """
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from vd_events.bags.outcomes import write_outcomes
+from vd_events.cli.main import main
 from vd_events.errors import InputError
 from vd_events.measured.compare import REPLAY_NOTE
 from vd_events.measured.correlate import DEFAULT_BANDS, correlate, load_bands
@@ -206,3 +209,46 @@ def test_bad_band_files_are_refused(tmp_path: Path, text: str, message: str) -> 
     path.write_text(text)
     with pytest.raises(InputError, match=message):
         load_bands(path)
+
+
+def _bags(tmp_path: Path, offset: np.ndarray, runs: tuple[str, ...]) -> list[str]:
+    out = []
+    for run in runs:
+        sim, test = _replay_pair(offset, run)
+        for kind, o in (('sim', sim), ('test', test)):
+            out.append(str(write_outcomes(tmp_path / f'{kind}_{run}', [(o, 1_700_000_000 * 10**9)],
+                                          {'vd.kind': kind})))
+    return out
+
+
+def test_cli_correlates_bags_and_writes_the_page(tmp_path: Path, capsys) -> None:
+    width = 1.0 * DEG + 0.1 * 20.0 * DEG  # the test bands' yaw-rate half-width
+    offset = np.zeros(60)
+    offset[30] = 1.5 * width
+    bags = _bags(tmp_path, offset, ('a', 'b'))
+    (tmp_path / 'bands.yaml').write_text(BANDS.format(shift=0.0))
+    code = main(['correlate', *bags, '--bands', str(tmp_path / 'bands.yaml'), '--out',
+                 str(tmp_path / 'page'), '--json'])
+    assert code == 0
+    answer = json.loads(capsys.readouterr().out)
+    assert answer['method'] == 'iso22140' and answer['verdict'] == 'FAIL'
+    assert answer['bands']['version'] == 7
+    (m,) = answer['manoeuvres']
+    assert m['test_runs'] == ['a.vbo', 'b.vbo'] and m['forced'] is False
+    assert m['channel_verdicts'] == {'yaw_rate': 'FAIL'}
+    assert all(c['inside'] == 59 and c['points'] == 60 for c in m['channels'])
+    page = Path(answer['report'])
+    assert page.is_file() and (page.parent / 'correlate_0_0.png').is_file()
+    assert 'yaw_rate' in page.read_text()
+
+
+def test_cli_refuses_a_single_run_with_exit_2(tmp_path: Path, capsys) -> None:
+    bags = _bags(tmp_path, np.zeros(60), ('a',))
+    assert main(['correlate', *bags, '--out', str(tmp_path / 'page')]) == 2
+    err = capsys.readouterr().err
+    assert '1 test run (a.vbo)' in err and '--force' in err
+    assert not (tmp_path / 'page').exists()
+    assert main(['correlate', bags[0], '--out', str(tmp_path / 'page')]) == 2
+    assert 'no vehicle log among the inputs' in capsys.readouterr().err
+    assert main(['correlate', *bags, '--force', '--out', str(tmp_path / 'page')]) == 0
+    assert 'PASS (forced: 1 test run; the method asks for 2)' in capsys.readouterr().out
