@@ -409,6 +409,13 @@ def correlate_pair(sim: EventOutcome, test: EventOutcome, spec: MethodBands
         y_test = signal(test, t_test, name, band.unit)[keep]
         xs = x_sim[order]
         x = x_test[keep]
+        # a model without a value at a point (a steady state not solved there) leaves it out
+        known = np.isfinite(y_sim) & np.isfinite(xs)
+        xs, y_sim = xs[known], y_sim[known]
+        if xs.size < 2:
+            continue
+        usable = np.isfinite(y_test) & (x >= xs[0]) & (x <= xs[-1])
+        x, y_test = x[usable], y_test[usable]
         centre = np.interp(x, xs, y_sim)
         scale: np.ndarray | float = (np.abs(centre) if spec.abscissa != 'time'
                                      else float(np.max(np.abs(centre))))
