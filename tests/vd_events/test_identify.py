@@ -25,6 +25,7 @@ from vd_data_server.errors import DataError
 from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
 from vd_events.bags.outcomes import write_outcomes
+from vd_events.cli.main import main
 from vd_events.errors import InputError
 from vd_events.measured.identify import (
     SETTLE,
@@ -197,3 +198,12 @@ def test_bad_plans_are_refused(tmp_path: Path, sedan_master: Path, change: dict,
     path.write_text(yaml.safe_dump(plan))
     with pytest.raises(DataError, match=message):
         load_identify_plan(path)
+
+
+def test_cli_refuses_a_bad_plan_with_exit_2(tmp_path: Path, sedan_master: Path, capsys) -> None:
+    path = _plan(tmp_path, sedan_master, ['x'], output={'configuration': 'sport'})
+    before = sedan_master.read_bytes()
+    assert main(['identify', str(path), '--out', str(tmp_path / 'out')]) == 2
+    err = capsys.readouterr().err
+    assert "configuration 'sport' already exists" in err and 'never overwritten' in err
+    assert sedan_master.read_bytes() == before and not (tmp_path / 'out').exists()

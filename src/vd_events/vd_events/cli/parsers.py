@@ -239,6 +239,20 @@ def _measured(sub) -> None:
     _json(cor)
     cor.set_defaults(**handler('correlate:cmd_correlate'))
 
+    ident = sub.add_parser('identify', help='fit parameters of a configuration to measured '
+                           'logs (least squares on replays); write it as a new configuration')
+    ident.add_argument('plan', metavar='PLAN.yaml', help='identification plan '
+                       '(docs/testdata.md)')
+    ident.add_argument('--out', default='out/identify', help='report folder '
+                       '(<plan name>/identify.html)')
+    ident.add_argument('--write-master', metavar='FILE', help="master file the configuration "
+                       "is added to (default: the plan's output.write_master, else its master; "
+                       'a new file is a copy of the plan\'s master)')
+    ident.add_argument('--dry-run', action='store_true', help='fit and report, write no '
+                       'configuration')
+    _json(ident)
+    ident.set_defaults(**handler('identify:cmd_identify'))
+
 
 def _workbench(sub) -> None:
     gui = sub.add_parser('gui', help='the master-file workbench in a browser (127.0.0.1)')

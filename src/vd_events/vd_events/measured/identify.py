@@ -9,8 +9,9 @@ A plan (docs/testdata.md)::
     master: ../studies/sedan.yaml      # optional, relative to the plan; default: the sample
     configuration: baseline            # the base configuration
     model: bicycle                     # bicycle | two_track | vehicle
-    logs: [logs/run1, logs/run2]       # imported bags (vd import), or log files read and
-    map: logs/logger.map.yaml          #   checked as vd import reads them (map of the files)
+    logs: [logs/run1, {path: run2.vbo, map: vbox.map.yaml}]  # imported bags (vd import), or
+    map: logs/logger.map.yaml          #   log files read and checked as vd import reads them
+                                       #   (with their own column map or the plan's)
     validate: [logs/run3]              # optional: predicted, not fitted (cross-validation)
     method: iso22140                   # optional: the correlation of the prediction
     parameters:                        # any override key, with its range (the bounds)
@@ -140,9 +141,8 @@ class IdentifyPlan:
     master: Path
     configuration: str
     model: str
-    logs: tuple[Path, ...]
-    validate: tuple[Path, ...]
-    map: Path | None
+    logs: tuple[tuple[Path, Path | None], ...]  # (log, its column map)
+    validate: tuple[tuple[Path, Path | None], ...]
     method: str | None
     force: bool
     parameters: tuple[Factor, ...]
@@ -153,12 +153,29 @@ class IdentifyPlan:
     description: str = ''
 
 
-def _paths(raw: Any, plan: Path, key: str, *, required: bool) -> tuple[Path, ...]:
+def _paths(raw: Any, plan: Path, key: str, map_path: Path | None, *, required: bool
+           ) -> tuple[tuple[Path, Path | None], ...]:
+    """Each log (a path, or ``{path, map}``) with its column map, relative to the plan."""
     if raw is None and not required:
         return ()
-    if not isinstance(raw, list) or not raw or not all(isinstance(p, str) for p in raw):
+    if not isinstance(raw, list) or not raw:
         raise DataError('expected a list of log files or bags', file=str(plan), key=key)
-    return tuple(Path(p) if Path(p).is_absolute() else plan.parent / p for p in raw)
+    out = []
+    for i, item in enumerate(raw):
+        own = map_path
+        if isinstance(item, Mapping) and set(item) <= {'path', 'map'} and 'path' in item:
+            own = _relative(plan, item['map']) if item.get('map') else map_path
+            item = item['path']
+        if not isinstance(item, str) or not item:
+            raise DataError('expected a log file or bag path, or {path, map}', file=str(plan),
+                            key=f'{key}[{i}]')
+        out.append((_relative(plan, item), own))
+    return tuple(out)
+
+
+def _relative(plan: Path, text: Any) -> Path:
+    path = Path(str(text))
+    return path if path.is_absolute() else plan.parent / path
 
 
 def load_identify_plan(path: Path, study=None) -> IdentifyPlan:
@@ -214,15 +231,12 @@ def load_identify_plan(path: Path, study=None) -> IdentifyPlan:
     if not isinstance(budget, int) or isinstance(budget, bool) or budget < 2:
         raise DataError(f'expected an integer >= 2, found {budget!r}', file=file,
                         key='max_evaluations')
-    map_path = None
-    if raw.get('map') is not None:
-        map_path = Path(str(raw['map']))
-        map_path = map_path if map_path.is_absolute() else path.parent / map_path
+    map_path = _relative(path, raw['map']) if raw.get('map') is not None else None
     return IdentifyPlan(
         path=path, name=name, master=master, configuration=base, model=model,
-        logs=_paths(raw.get('logs'), path, 'logs', required=True),
-        validate=_paths(raw.get('validate'), path, 'validate', required=False),
-        map=map_path, method=method, force=bool(raw.get('force', False)),
+        logs=_paths(raw.get('logs'), path, 'logs', map_path, required=True),
+        validate=_paths(raw.get('validate'), path, 'validate', map_path, required=False),
+        method=method, force=bool(raw.get('force', False)),
         parameters=parameters, channels=channels,
         output_configuration=str(output.get('configuration') or f'{base}_{name}'),
         write_master=target, max_evaluations=budget,
@@ -270,7 +284,7 @@ def sha256(path: Path) -> str:
     return digest.hexdigest()
 
 
-def load_logs(paths: Sequence[Path], map_path: Path | None, where: str | Path
+def load_logs(paths: Sequence[tuple[Path, Path | None]], where: str | Path
               ) -> list[tuple[Path, EventOutcome]]:
     """
     Every vehicle log of ``paths``, read and checked as ``vd import`` does.
@@ -280,7 +294,7 @@ def load_logs(paths: Sequence[Path], map_path: Path | None, where: str | Path
     """
     out: list[tuple[Path, EventOutcome]] = []
     refused = []
-    for path in paths:
+    for path, map_path in paths:
         try:
             found = [o for _, o in load_inputs([path], map_path, ImportOptions())
                      if o.model == 'test']
@@ -539,8 +553,8 @@ def identify(plan: IdentifyPlan, study=None, log: Callable[[str], None] | None =
     """
     study = study if study is not None else load_study(plan.master)
     check_output(plan, study)
-    logs = load_logs(plan.logs, plan.map, plan.path)
-    validation = load_logs(plan.validate, plan.map, plan.path) if plan.validate else []
+    logs = load_logs(plan.logs, plan.path)
+    validation = load_logs(plan.validate, plan.path) if plan.validate else []
     started = time.perf_counter()
     if predictor is None or predictor.model != plan.model:
         predictor = Predictor(study.configurations[plan.configuration], plan.model)
@@ -673,7 +687,7 @@ def write_identified(result: Identification) -> Path:
         target.parent.mkdir(parents=True, exist_ok=True)
         doc['study']['data_root'] = os.path.relpath(root.resolve(), target.parent.resolve())
         write_master(target, doc)
-    values = ', '.join(f'{f.name} = {format_number(v)} +- {format_number(e)} {f.unit}'.strip()
+    values = ', '.join(f'{f.name} = {v:.6g} +- {e:.2g} {f.unit}'.strip()
                        for f, v, e in zip(plan.parameters, result.fitted,
                                           result.standard_errors))
     description = (f'vd identify {plan.name} ({plan.model}): {plan.configuration} with {values}'
