@@ -247,7 +247,7 @@ def _measured(sub) -> None:
                        '(<plan name>/identify.html)')
     ident.add_argument('--write-master', metavar='FILE', help="master file the configuration "
                        "is added to (default: the plan's output.write_master, else its master; "
-                       'a new file is a copy of the plan\'s master)')
+                       "a new file is a copy of the plan's master)")
     ident.add_argument('--dry-run', action='store_true', help='fit and report, write no '
                        'configuration')
     _json(ident)
