@@ -449,7 +449,7 @@ class Identification:
     #: set (identification, validation) -> per log: channel -> RMS (before, after), SI
     rms: dict[str, list[dict[str, tuple[float, float]]]]
     evaluations: int
-    seconds: float
+    seconds: float  # the fit: least squares and the Jacobian at the solution
     message: str
     logs: list[tuple[Path, EventOutcome]]
     validation: list[tuple[Path, EventOutcome]] = field(default_factory=list)
@@ -555,9 +555,9 @@ def identify(plan: IdentifyPlan, study=None, log: Callable[[str], None] | None =
     check_output(plan, study)
     logs = load_logs(plan.logs, plan.path)
     validation = load_logs(plan.validate, plan.path) if plan.validate else []
-    started = time.perf_counter()
     if predictor is None or predictor.model != plan.model:
         predictor = Predictor(study.configurations[plan.configuration], plan.model)
+    started = time.perf_counter()
     fun = Residuals(predictor, [o for _, o in logs], plan.channels, plan.parameters)
     low = np.array([f.low for f in plan.parameters])
     high = np.array([f.high for f in plan.parameters])
