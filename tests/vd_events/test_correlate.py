@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import vbox_logs as vb
 from vd_events.bags.outcomes import write_outcomes
 from vd_events.cli.main import main
 from vd_events.errors import InputError
@@ -252,3 +253,32 @@ def test_cli_refuses_a_single_run_with_exit_2(tmp_path: Path, capsys) -> None:
     assert 'no vehicle log among the inputs' in capsys.readouterr().err
     assert main(['correlate', *bags, '--force', '--out', str(tmp_path / 'page')]) == 0
     assert 'PASS (forced: 1 test run; the method asks for 2)' in capsys.readouterr().out
+
+
+def test_sine_with_dwell_aligned_on_bos_over_the_methods_window() -> None:
+    """ISO 19365 with the shipped bands: the same run 1.5 s later in the logs, on BOS."""
+    t = np.arange(0.0, 10.0, 0.01)
+
+    def run(start: float, model: str, data_hash: str) -> EventOutcome:
+        steer = vb.sine_with_dwell(150.0 * DEG, 1, start)(t)
+        lagged = vb.sine_with_dwell(150.0 * DEG, 1, start + 0.1)(t)
+        return _outcome('sine_with_dwell', model, data_hash,
+                        notes=(f'source: {data_hash}.vbo',), time=t,
+                        steering_wheel_angle=steer, yaw_rate=lagged / 6.0,
+                        lateral_acceleration=lagged * 2.0)
+
+    sim = run(1.0, 'vehicle', 'cfg')
+    (m,) = correlate([sim], [run(2.5, 'test', 'r1'), run(2.5, 'test', 'r2')],
+                     'iso19365').manoeuvres
+    assert m.verdict == 'PASS'
+    assert any('simulation time +1.500 s' in n for n in m.notes)
+    bos = 2.5  # the steer leaves zero at its start
+    for c in m.channels:
+        assert c.x[0] == pytest.approx(bos - 0.5, abs=0.02)
+        assert c.x[-1] == pytest.approx(bos + 3.5, abs=0.02)
+    # not aligned (the log's steer 0.3 s later than its responses): outside the bands
+    late = run(2.5, 'test', 'r3')
+    shifted = dict(late.channels)
+    shifted['steering_wheel_angle'] = Channel('rad', vb.sine_with_dwell(150.0 * DEG, 1, 2.8)(t))
+    late = EventOutcome(**{**late.__dict__, 'channels': shifted})
+    assert correlate([sim], [late, run(2.5, 'test', 'r4')], 'iso19365').verdict == 'FAIL'

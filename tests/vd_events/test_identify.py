@@ -34,6 +34,7 @@ from vd_events.measured.identify import (
     load_identify_plan,
     write_identified,
 )
+from vd_events.reports.identify import write_identify_page
 from vd_solvers.results import Channel, EventOutcome
 
 DEG = math.pi / 180.0
@@ -128,6 +129,10 @@ def test_recovers_known_parameters_writes_them_and_cross_validates(
         group, _, key = f.key.partition('.')
         assert config.groups[group].values[key].number() == pytest.approx(value, rel=1e-9)
     assert _log(predictor, 1).data_hash in config.description
+    page = write_identify_page(result, tmp_path / 'page')
+    text = page.read_text()
+    assert 'front_scale' in text and 'validation after' in text and 'baseline_fitted' in text
+    assert (tmp_path / 'page' / 'correlation' / 'correlate.html').is_file()
     with pytest.raises(DataError, match="'baseline_fitted' already exists"):
         identify(plan, predictor=predictor)
 

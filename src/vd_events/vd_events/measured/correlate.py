@@ -371,7 +371,9 @@ def correlate_pair(sim: EventOutcome, test: EventOutcome, spec: MethodBands
 
     def signal(o: EventOutcome, t: np.ndarray, name: str, unit: str) -> np.ndarray:
         y = _si(o, name, unit)
-        return lowpassed(t, y, name)[0] if filtering else y
+        # a model without a value at some points (a steady state not solved there) is
+        # taken as it is: a filter would spread the gaps
+        return lowpassed(t, y, name)[0] if filtering and np.all(np.isfinite(y)) else y
 
     keep = np.ones(t_test.size, dtype=bool)
     if spec.abscissa == 'time':
