@@ -156,7 +156,7 @@ def test_front_and_rear_scales_from_one_speed_steady_state_are_not_identifiable_
     speed = np.full(n, 20.0)
     ay = np.linspace(1.0, 5.0, n)
     log = EventOutcome('constant_radius_turn', 'car', 'test', 'measured', '', 'c' * 64, {}, {
-        'time': Channel('s', np.arange(n) * 0.5), 'speed': Channel('m/s', speed),
+        'time': Channel('s', np.arange(n) * 0.01), 'speed': Channel('m/s', speed),
         'yaw_rate': Channel('rad/s', ay / speed),
         'lateral_acceleration': Channel('m/s^2', ay)})
     truth = steady.predict(steady.configuration({k: f'{v}' for k, v in TRUTH.items()}), log)
@@ -166,12 +166,16 @@ def test_front_and_rear_scales_from_one_speed_steady_state_are_not_identifiable_
                        {**log.channels, 'steering_wheel_angle': Channel('rad', swa)},
                        notes=('source: circle.csv',))
     path = _plan(tmp_path, sedan_master, [_bag(tmp_path, log, 'circle')], model='two_track',
-                 channels={'steering_wheel_angle': {'scale': '0.3 deg'}})
+                 channels={'steering_wheel_angle': {'scale': '0.3 deg'}}, force=True)
     result = identify(load_identify_plan(path), predictor=steady)
     assert not result.identifiable
     ((a, b, corr),) = result.pairs
     assert {a, b} == {'front_scale', 'rear_scale'} and abs(corr) > 0.95
     assert result.condition > 100.0
+    # the steady-state model's prediction, correlated by ISO 19364 over lateral acceleration
+    after = result.correlations['identification after']
+    assert after.method.method == 'iso19364' and after.verdict == 'PASS'
+    assert {c.channel for c in after.manoeuvres[0].channels} == {'steering_wheel_angle'}
 
 
 def test_logs_that_failed_the_import_checks_are_refused_by_name(
