@@ -60,7 +60,7 @@ fi
 
 # 3. colcon build of the workspace (interfaces + python packages)
 src_hash=$( (find src -type f \( -name '*.msg' -o -name '*.srv' -o -name '*.action' -o -name 'CMakeLists.txt' \
-    -o -name 'package.xml' -o -name 'setup.py' -o -name 'setup.cfg' -o -path '*/plans/*' \
+    -o -name 'package.xml' -o -name 'setup.py' -o -name 'setup.cfg' -o -path '*/plans/*' -o -path '*/samples/*' \
     -o -path '*/launch/*' \) -print0 | sort -z | xargs -0 cat; \
     find src/vd_data_server/data -type f | sort; cat colcon.meta) | sha256sum | cut -c1-16)
 if [ "$(cat "$ROOT/install/.vd-build" 2>/dev/null)" != "$src_hash" ]; then

@@ -34,6 +34,7 @@ from vd_data_server.ros.names import CONFIGURATION, DEFAULT_NAMESPACE
 from vd_data_server.ros.qos import CONFIGURATIONS
 from vd_data_server.study import load_study
 from vd_events.bags.bag import BagWriter
+from vd_events.bench.identify import bench_identify
 from vd_events.bench.sweep import bench_sweep
 from vd_events.orchestration.lockstep import bench_lockstep
 from vd_events.orchestration.runner import (
@@ -93,6 +94,7 @@ def run_bench() -> dict[str, Any]:
     results['bag_write'] = _bench_bag()
 
     results['sweep'] = bench_sweep(master)
+    results['identify'] = bench_identify()
     return results
 
 
@@ -318,6 +320,12 @@ def print_bench(results: dict[str, Any]) -> None:
         rows.append((f"FMVSS 126 procedure, {name} ({r['runs']} runs, "
                      f"A {r['a_reference_deg']:.1f} deg)",
                      f"{r['wall_s']:.0f} s, {'PASS' if r['passed'] else 'FAIL'}", ''))
+    ident = results.get('identify')
+    if ident:
+        rows.append((f"vd identify, sample plan ({ident['model']}, {ident['parameters']} "
+                     f"parameters, {ident['residuals']} residuals)",
+                     f"{ident['total_s']:.1f} s ({ident['evaluations']} evaluations, fit "
+                     f"{ident['fit_s']:.1f} s)", ''))
     for row in rows:
         table.add_row(*row)
     console().print(table)

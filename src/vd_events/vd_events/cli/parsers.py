@@ -222,6 +222,37 @@ def _measured(sub) -> None:
     _json(grade)
     grade.set_defaults(**handler('grade:cmd_grade'))
 
+    cor = sub.add_parser('correlate', help='correlate the model with repeated test runs by '
+                         'ISO 19364 (steady-state circular), ISO 19365 (sine with dwell) or '
+                         'ISO 22140 (lateral transient): tolerance bands and verdicts')
+    cor.add_argument('inputs', nargs='+', metavar='BAG',
+                     help='the simulation bags, then the test bags (vd import), in any order; '
+                     'vehicle logs (.vbo, CSV with --map) are read as vd import reads them')
+    cor.add_argument('--method', choices=('iso19364', 'iso19365', 'iso22140'),
+                     help="validation method (default: the test runs' event's)")
+    cor.add_argument('--bands', metavar='FILE', help='tolerance-band file (default: the '
+                     'shipped, versioned one; docs/testdata.md)')
+    cor.add_argument('--force', action='store_true', help='correlate a manoeuvre with fewer '
+                     'test runs than the method asks for (the verdict says so)')
+    cor.add_argument('--map', help='column map YAML of the log files')
+    cor.add_argument('--out', default='out/correlate', help='report folder (correlate.html)')
+    _json(cor)
+    cor.set_defaults(**handler('correlate:cmd_correlate'))
+
+    ident = sub.add_parser('identify', help='fit parameters of a configuration to measured '
+                           'logs (least squares on replays); write it as a new configuration')
+    ident.add_argument('plan', metavar='PLAN.yaml', help='identification plan '
+                       '(docs/testdata.md)')
+    ident.add_argument('--out', default='out/identify', help='report folder '
+                       '(<plan name>/identify.html)')
+    ident.add_argument('--write-master', metavar='FILE', help="master file the configuration "
+                       "is added to (default: the plan's output.write_master, else its master; "
+                       "a new file is a copy of the plan's master)")
+    ident.add_argument('--dry-run', action='store_true', help='fit and report, write no '
+                       'configuration')
+    _json(ident)
+    ident.set_defaults(**handler('identify:cmd_identify'))
+
 
 def _workbench(sub) -> None:
     gui = sub.add_parser('gui', help='the master-file workbench in a browser (127.0.0.1)')

@@ -205,7 +205,7 @@ def replay_source(sim: EventOutcome) -> str | None:
     return None
 
 
-def _filtered(t: np.ndarray, x: np.ndarray, channel: str) -> tuple[np.ndarray, int]:
+def lowpassed(t: np.ndarray, x: np.ndarray, channel: str) -> tuple[np.ndarray, int]:
     """``x`` low-passed per gap-free stretch; and how many samples were left unfiltered."""
     cutoff = STEER_CUTOFF if channel in STEERING_CHANNELS else RESPONSE_CUTOFF
     out = x.copy()
@@ -287,8 +287,8 @@ def compare(sim: EventOutcome, test: EventOutcome,
             notes.append(f'{name}: not finite in one of the two; not compared')
             continue
         if filter_both:
-            y_test, left_test = _filtered(xt, y_test, name)
-            y_sim_sorted, left_sim = _filtered(xs_sorted, y_sim_sorted, name)
+            y_test, left_test = lowpassed(xt, y_test, name)
+            y_sim_sorted, left_sim = lowpassed(xs_sorted, y_sim_sorted, name)
             unfiltered = (f'{left_test} test and {left_sim} simulation samples in stretches '
                           f'shorter than {MIN_FILTERED} samples are not low-passed')
             if (left_test or left_sim) and unfiltered not in notes:
@@ -401,6 +401,7 @@ def gradient_shown(value: float | None, unit: str) -> str:
     return f'{value * top_scale:.4g} {top_name}/{bottom}'
 
 
-__all__ = ['compare', 'compare_bags', 'Comparison', 'ChannelError', 'load_outcomes', 'pair',
+__all__ = ['compare', 'compare_bags', 'lowpassed', 'MIN_FILTERED', 'Comparison',
+           'ChannelError', 'load_outcomes', 'pair',
            'replay_source', 'REPLAY_NOTE', 'INPUTS_NOTE',
            'TOLERANCES', 'shown', 'gradient_shown', 'DISPLAY', 'load_tolerances']

@@ -187,7 +187,7 @@ def _radians(unit) -> int:
         'radian', 0))
 
 
-def _quantity(text: Any, unit: str, *, file: str, key: str) -> float:
+def read_quantity(text: Any, unit: str, *, file: str, key: str) -> float:
     """Read a plan number: bare (in ``unit``) or ``"171 mm"`` (converted to ``unit``)."""
     if isinstance(text, bool) or not isinstance(text, (int, float, str)):
         raise DataError(f'expected a number, found {text!r}', file=file, key=key)
@@ -246,7 +246,7 @@ def load_plan(path: Path, study=None, *, optimize: bool = False) -> SweepPlan:
     if design != '' and design not in DESIGNS:
         raise DataError(f"unknown design {design!r} (designs: {', '.join(DESIGNS)})",
                         file=file, key='design')
-    factors = _factors(raw.get('factors'), base, design, file)
+    factors = parse_factors(raw.get('factors'), base, design, file)
     samples, seed = _samples(raw, design, factors, file)
     runs = _runs(raw.get('runs'), file)
     responses = _responses(raw.get('responses'), runs, file)
@@ -309,11 +309,13 @@ def base_value(config: Configuration, key: str, *, file: str, where: str) -> tup
     return float(value.si), quantity  # type: ignore[arg-type]
 
 
-def _factors(raw: Any, base: Configuration, design: str, file: str) -> tuple[Factor, ...]:
+def parse_factors(raw: Any, base: Configuration, design: str, file: str,
+                  section: str = 'factors') -> tuple[Factor, ...]:
+    """Read a plan's factors (``section``: factors, or the parameters of vd identify)."""
     out = []
     keys_seen: set[str] = set()
-    for name, spec in _mapping(raw, file, 'factors', 'factors').items():
-        where = f'factors.{name}'
+    for name, spec in _mapping(raw, file, section, section).items():
+        where = f'{section}.{name}'
         if not _NAME.match(str(name)):
             raise DataError('factor names are letters, digits and _ (a letter first)',
                             file=file, key=where)
@@ -349,13 +351,13 @@ def _levels(spec: Mapping, name: str, key: str, unit: str, base: float, design: 
     has_range, has_values = 'range' in spec, 'values' in spec
     if has_range == has_values:
         raise DataError('give exactly one of: range, values', file=file, key=where)
-    start = (_quantity(spec['start'], unit, file=file, key=f'{where}.start')
+    start = (read_quantity(spec['start'], unit, file=file, key=f'{where}.start')
              if 'start' in spec else None)
     if has_values:
         raw = spec['values']
         if not isinstance(raw, list) or not raw:
             raise DataError('empty list of values', file=file, key=f'{where}.values')
-        values = tuple(_quantity(v, unit, file=file, key=f'{where}.values[{i}]')
+        values = tuple(read_quantity(v, unit, file=file, key=f'{where}.values[{i}]')
                        for i, v in enumerate(raw))
         if len(set(values)) != len(values):
             raise DataError('the values repeat a level', file=file, key=f'{where}.values')
@@ -374,7 +376,7 @@ def _levels(spec: Mapping, name: str, key: str, unit: str, base: float, design: 
     raw = spec['range']
     if not isinstance(raw, list) or len(raw) != 2:
         raise DataError('expected [low, high]', file=file, key=f'{where}.range')
-    low, high = (_quantity(v, unit, file=file, key=f'{where}.range[{i}]')
+    low, high = (read_quantity(v, unit, file=file, key=f'{where}.range[{i}]')
                  for i, v in enumerate(raw))
     if not low < high:
         raise DataError(f'empty range [{format_number(low)}, {format_number(high)}] (low must be '
@@ -483,7 +485,7 @@ def _responses(raw: Any, runs: Sequence[RunSpec], file: str) -> tuple[Response, 
         target = None
         if spec.get('target') is not None:
             target = _target(spec['target'], unit, file, f'{where}.target')
-        bounds = {k: _quantity(spec[k], unit, file=file, key=f'{where}.{k}')
+        bounds = {k: read_quantity(spec[k], unit, file=file, key=f'{where}.{k}')
                   for k in ('minimum', 'maximum') if spec.get(k) is not None}
         if len(bounds) == 2 and not bounds['minimum'] < bounds['maximum']:
             raise DataError('empty range: minimum must be below maximum', file=file,
@@ -516,8 +518,8 @@ def _target(raw: Any, unit: str, file: str, key: str) -> Target:
     if not match:
         raise DataError(f"expected 'VALUE UNIT +- TOLERANCE UNIT', found {raw!r}", file=file,
                         key=key)
-    value = _quantity(match.group('value'), unit, file=file, key=key)
-    tol = (_quantity(match.group('tol'), unit, file=file, key=key)
+    value = read_quantity(match.group('value'), unit, file=file, key=key)
+    tol = (read_quantity(match.group('tol'), unit, file=file, key=key)
            if match.group('tol') else 0.0)
     if tol < 0:
         raise DataError(f'the tolerance must not be negative, found {raw!r}', file=file, key=key)
@@ -592,5 +594,6 @@ def points(plan: SweepPlan) -> list[tuple[float, ...]]:
 
 
 __all__ = ['SweepPlan', 'Factor', 'RunSpec', 'Response', 'Target', 'OptimizeSpec',
-           'load_plan', 'points', 'convert', 'format_number', 'DESIGNS', 'MAX_LEVELS',
+           'load_plan', 'points', 'convert', 'format_number', 'parse_factors', 'read_quantity',
+           'base_value', 'DESIGNS', 'MAX_LEVELS',
            'MAX_POINTS']

@@ -259,11 +259,17 @@ def steady_state(p: VehicleParams, radius: float, speed: float) -> SteadyStateRe
     )
 
 
-def state_space(p: VehicleParams, speed: float) -> StateSpace:
-    """State matrices of the linear single track at forward ``speed`` > 0, m/s."""
+def state_space(p: VehicleParams, speed: float,
+                cornering: tuple[float, float] | None = None) -> StateSpace:
+    """
+    State matrices of the linear single track at forward ``speed`` > 0, m/s.
+
+    ``cornering``: :func:`effective_cornering_stiffness` of ``p`` when the caller has it
+    (it does not depend on the speed; a replay asks for the matrices at every step).
+    """
     if not speed > 0.0:
         raise ValueError(f'speed must be positive for the transient model, got {speed!r}')
-    c_front, c_rear = effective_cornering_stiffness(p)
+    c_front, c_rear = cornering if cornering is not None else effective_cornering_stiffness(p)
     m, izz, u = p.mass, p.yaw_inertia, speed
     a, b = p.cog_to_front_axle, p.cog_to_rear_axle
     # Force and moment derivatives with respect to v and r (Milliken ch. 5).

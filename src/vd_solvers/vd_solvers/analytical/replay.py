@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from vd_solvers.analytical.bicycle import state_space
+from vd_solvers.analytical.bicycle import effective_cornering_stiffness, state_space
 from vd_solvers.analytical.params import VehicleParams
 from vd_solvers.errors import SolverError
 
@@ -35,8 +35,10 @@ def replay_bicycle(p: VehicleParams, steering_ratio: float, time: np.ndarray,
         raise SolverError(f'bicycle replay: the speed falls to {u_log[slow[0]]:.2f} m/s at '
                           f't = {t[slow[0]]:.2f} s (the linear model needs > {MIN_SPEED:g} m/s)')
 
+    cornering = effective_cornering_stiffness(p)
+
     def rhs(s: float, x: np.ndarray) -> np.ndarray:
-        ss = state_space(p, float(np.interp(s, t, u_log)))
+        ss = state_space(p, float(np.interp(s, t, u_log)), cornering)
         return ss.a @ x + ss.b[:, 0] * float(np.interp(s, t, delta_log))
 
     sol = solve_ivp(rhs, (0.0, float(t[-1])), np.zeros(2), t_eval=t,
@@ -46,7 +48,7 @@ def replay_bicycle(p: VehicleParams, steering_ratio: float, time: np.ndarray,
     v, r = sol.y
     a_y = np.empty_like(t)
     for i, (u, d) in enumerate(zip(u_log, delta_log)):
-        ss = state_space(p, float(u))
+        ss = state_space(p, float(u), cornering)
         a_y[i] = float((ss.c[1] @ sol.y[:, i]) + ss.d[1, 0] * d)
     return {'time': t, 'yaw_rate': r, 'lateral_acceleration': a_y,
             'sideslip': np.arctan2(v, u_log), 'lateral_velocity': v, 'speed': u_log,
