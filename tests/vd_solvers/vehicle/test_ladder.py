@@ -26,7 +26,7 @@ DOCS = Path(__file__).resolve().parents[3] / 'docs' / 'ladder.md'
 HMMWV_GAP = ('the HMMWV understeer gradient, a small difference of two large axle slips '
              '(9.4 deg/g each), is 8 % (two-track) and 12 % (budget) below the full '
              "vehicle's; the roll gradients agree within 4 %, so the difference is not in "
-             'the load transfer alone (docs/ladder.md, issue 21 closing note)')
+             'the load transfer alone (docs/ladder.md)')
 
 
 def _cases(hmmwv_gap: bool, strict: bool = True):
@@ -65,7 +65,7 @@ def test_two_track_and_full_vehicle_roll_gradients_and_yaw_rate_gains_agree(ladd
                                                            rel=0.05)
 
 
-# the HMMWV's budget sits at the 10 % edge (10.1 and 10.2 %): not strict
+# the HMMWV's budget: 12 % below the full vehicle (docs/ladder.md), near the 10 % edge: not strict
 @pytest.mark.parametrize('study, name', _cases(hmmwv_gap=True, strict=False))
 def test_the_bicycle_budget_agrees_with_the_full_vehicle(ladders, study, name):
     result = ladders(study, name)
