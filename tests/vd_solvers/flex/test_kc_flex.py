@@ -339,3 +339,38 @@ def test_flexible_subframe_carries_the_arm_pivots(studies):
     assert np.abs(a.channels['contact_point'] - b.channels['contact_point']).max() < 1e-6
     names = KCModel(only).system.part_names
     assert 'subframe.left@lca_front.right' in names
+
+
+def _roll(inp, amplitude=0.02):
+    r = KCModel(inp).run('opposite_wheel_travel', steps=11, amplitude=amplitude)
+    return derived_metrics({'opposite_wheel_travel': r},
+                           inp.tire_vertical_stiffness)['roll_stiffness'][0]
+
+
+@pytest.mark.parametrize('axle', ['front', 'rear'])
+def test_rigid_limit_keeps_the_stabilizers_bar(studies, axle):
+    """
+    Check that the flexible model at its rigid limit has the rigid model's bar.
+
+    Components 1e5 times stiffer and the bar's arms 1e3 times, its torsion part as it is:
+    the roll stiffness is the rigid model's (torsion spring G J / L between rigid arms)
+    within 0.1 %, the bar included. A flexible bar of another diameter would show: a
+    22 mm beam bar on the 24 mm stabilizer (the sample data before the flexible bar took
+    the stabilizer's section) gives a bar roll stiffness (22/24)^4 of the rigid one.
+    """
+    from vd_solvers.kc.from_config import rigid_limit
+
+    config = studies['sedan'].configurations['baseline']
+    rigid = suspension_input(config, 'front' if axle == 'front' else 'rear', 'rigid')
+    limit = rigid_limit(suspension_input(config, axle, 'flexible'))
+    k_rigid, k_limit = _roll(rigid), _roll(limit)
+    assert k_limit == pytest.approx(k_rigid, rel=1e-3)
+    if axle == 'rear':
+        return
+    bare = _roll(replace(rigid, stabilizer=None))
+    bar = limit.flexible['anti_roll_bar']
+    thin = replace(limit, flexible={**limit.flexible, 'anti_roll_bar': replace(
+        bar, section=sec.Section(*(getattr(sec.solid_round(0.022, 0.3), k) for k in
+                                   ('area', 'iy', 'iz', 'j'))))})
+    assert _roll(thin) - bare == pytest.approx((22 / 24) ** 4 * (k_rigid - bare), rel=0.01)
+
