@@ -100,3 +100,32 @@ def test_parts_heavier_than_the_corner_are_refused_at_check_time(sample_root, se
         'unsprung_mass_front ')
     assert message.endswith('kg of sedan/mass/X.yaml (the corner holds them): lower them or '
                             'raise the unsprung mass')
+
+
+def test_a_bar_given_by_its_stiffness_needs_a_flex_section_of_that_stiffness(sample_root,
+                                                                           sedan_master):
+    """
+    A stabilizer given only by its torsional stiffness: the flex section must give it.
+
+    The 24 mm bar over the 800 mm between the pivots: G J / L = 79.3e9 * pi * 0.024^4 / 32
+    / 0.8 = 3228.7 N*m/rad (Roark, Table 10.7 case 1); a file that states 4000 N*m/rad and a
+    24 mm flex section contradicts itself, one that states 3229 agrees.
+    """
+    stab = sample_root / 'sedan/front_stabilizer/X.yaml'
+    replace_once(stab, '  bar_radius: 12.0\n  torsion_length: 800\n  shear_modulus: 79300 N/mm^2',
+                 '  torsional_stiffness: 4000 N*m/rad')
+    assert refused(sample_root, sedan_master) == (
+        f"{FRONT_FLEX}: components.anti_roll_bar.section: the bar's section is needed: "
+        'sedan/front_stabilizer/X.yaml gives only its torsional_stiffness, not bar_radius')
+    flex = sample_root / FRONT_FLEX
+    replace_once(flex, '  sections:\n',
+                 '  sections:\n    bar: {shape: solid_round, diameter: 24}\n')
+    replace_once(flex, BAR_LINE, BAR_LINE.replace('material: bar_steel',
+                                                  'material: bar_steel, section: bar'))
+    assert refused(sample_root, sedan_master) == (
+        f"{FRONT_FLEX}: components.anti_roll_bar.section: section 'bar' and material "
+        "'bar_steel' give the bar G J / L = 3228.7 N*m/rad over the 800 mm between the "
+        'arb_pivot hard points, sedan/front_stabilizer/X.yaml torsional_stiffness is 4000 '
+        'N*m/rad: one bar, one stiffness; make them agree')
+    replace_once(stab, '4000 N*m/rad', '3229 N*m/rad')
+    load_study(sedan_master)
