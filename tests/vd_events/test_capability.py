@@ -17,7 +17,14 @@ import sys
 import numpy as np
 import pytest
 
-from vd_events.studies.capability import QUANTITIES, RELATIVE, compare
+from vd_events.studies.capability import (
+    LIMIT_FRACTION,
+    QUANTITIES,
+    RELATIVE,
+    build_table,
+    compare,
+    rigid_limit_cells,
+)
 from vd_solvers.results import Channel, EventOutcome, Metric
 from vdtest import HANG_GUARD
 
@@ -93,6 +100,35 @@ def test_metrics_are_judged_relative_to_the_rigid_value():
     assert (cell.rigid_value, cell.flexible_value, cell.verdict) == (1.0e6, 0.9e6, 'Flexible')
 
 
+def _with_stiffness(outcome, value):
+    return EventOutcome(**{**outcome.__dict__,
+                           'metrics': {'lateral_stiffness': Metric(value, 'N/m')}})
+
+
+def test_the_rigid_limit_check_holds_a_tenth_of_the_verdict_tolerance():
+    """
+    Check the rigid-limit cells: a tenth of the verdict tolerance, and the table's line.
+
+    The verdict tolerance of a 1e6 N/m stiffness is 5 % (5e4 N/m): the rigid-limit check
+    accepts 0.4 % (4e3 N/m) and refuses 0.6 % (6e3 N/m) -- a model that misses the rigid
+    one by more would let the data, not the flexibility, decide verdicts.
+    """
+    rigid = _outcome()
+    (ok,) = rigid_limit_cells([(rigid, _with_stiffness(rigid, 1.004e6))])
+    (bad,) = rigid_limit_cells([(rigid, _with_stiffness(rigid, 0.994e6))])
+    assert LIMIT_FRACTION == 0.1
+    assert ok.tolerance == pytest.approx(5e3) and ok.verdict == 'Rigid'
+    assert bad.max_difference == pytest.approx(6e3) and bad.verdict == 'Flexible'
+    table = build_table([(rigid, rigid)], ['upright'], limit=[ok])
+    assert table.notes[0].startswith('rigid limit: the flexible model with its components '
+                                     '1e+05 times stiffer')
+    assert table.notes[0].endswith('reproduces all 1 rigid metrics within 10% of their '
+                                   'verdict tolerance (worst lateral_stiffness, '
+                                   'lateral_force: 8.00% of it): both models see the same '
+                                   'data')
+    assert table.to_json()['rigid_limit'][0]['verdict'] == 'Rigid'
+
+
 def _vd(*args, timeout=HANG_GUARD):
     return subprocess.run([sys.executable, '-m', 'vd_events.cli.main', *args], capture_output=True,
                           text=True, timeout=timeout, cwd=REPO)
@@ -113,6 +149,11 @@ def test_vd_capability_end_to_end(tmp_path):
     assert len(table['cells']) == 5 * len(QUANTITIES)
     assert {c['verdict'] for c in table['cells']} <= {'Rigid', 'Flexible'}
     assert 'trailing_link' in table['flexible_components']
+    # before any verdict, the flexible model at its rigid limit reproduced the rigid one
+    assert table['notes'][0].startswith('rigid limit: ')
+    assert 'both models see the same data' in table['notes'][0]
+    assert {c['event'] for c in table['rigid_limit']} == events
+    assert all(c['verdict'] == 'Rigid' for c in table['rigid_limit'])
     messages = list(read_bag(out / 'capability_baseline'))
     (msg,) = [m.msg for m in messages if m.topic == '/vd/capability/table']
     assert [c.verdict for c in msg.cells] == [c['verdict'] for c in table['cells']]

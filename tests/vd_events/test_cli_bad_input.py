@@ -255,3 +255,17 @@ def test_tire_coefficients_that_overflow_together_fail_the_check(capsys, sample_
     check(capsys, sample_root, sedan_master, '\n'.join(
         f'sedan/{axle}_tire/X.yaml -> {TIRE}: the Magic Formula gives a non-finite Fx within '
         '0.1..3 x the nominal load: coefficients out of range' for axle in ('front', 'rear')))
+
+
+def test_vd_data_check_refuses_two_descriptions_of_one_bar(capsys, sample_root, sedan_master):
+    """A 22 mm flexible twin of the 24 mm front bar: both files, keys and values named."""
+    flex = sample_root / 'sedan/front_flex/X.yaml'
+    replace_once(flex, '  sections:\n',
+                 '  sections:\n    bar: {shape: solid_round, diameter: 22}\n')
+    replace_once(flex, 'anti_roll_bar: {material: bar_steel,',
+                 'anti_roll_bar: {material: bar_steel, section: bar,')
+    check(capsys, sample_root, sedan_master,
+          "sedan/front_flex/X.yaml: components.anti_roll_bar.section: section 'bar' (diameter "
+          '22 mm) contradicts sedan/front_stabilizer/X.yaml bar_radius 12 mm (a solid bar of '
+          'diameter 24 mm): one bar, one description; leave the section out (the flexible bar '
+          "takes the stabilizer's) or make them agree")

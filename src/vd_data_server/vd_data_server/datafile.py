@@ -278,7 +278,9 @@ def _check_flex(values: Mapping[str, Value], col: Collector, data: Any) -> None:
         if imported and beam:
             col.add(base, "give either 'imported' or a beam frame (material and section), "
                     "not both")
-        elif not imported and len(beam) < 2:
+        elif not imported and len(beam) < 2 and not (comp == schema.BAR_COMPONENT
+                                                     and beam == ['material']):
+            # the bar's section may come from its stabilizer group (shared.py)
             col.add(base, "a beam frame needs both 'material' and 'section' (or give "
                     "'imported')")
         for key, known, what in (('material', materials, 'materials'),

@@ -39,6 +39,7 @@ from .errors import DataError, DataErrors
 from .model import Configuration, GroupData, Value
 from .plausibility import check_point
 from .shape import PLAIN_NAME, Collector, check
+from .shared import check_shared_facts
 from .tir import read_tir
 from .tire_group import tire_properties, with_tire
 from .yamlio import load_file
@@ -277,6 +278,7 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
         groups = apply_overrides(groups, extra_overrides, file=extra_source, where='')
     check_geometry(groups, file=master.display, configuration=name)
     check_flexible(groups, spec.flexible_components, file=master.display, configuration=name)
+    check_shared_facts(groups)
     for data in groups.values():
         if data.kind == 'tire':
             tire_properties(data)  # the coefficients after overrides, as a solver reads them
@@ -444,6 +446,7 @@ def with_overrides(config: Configuration, overrides: Mapping[str, Any],
         return config
     groups = apply_overrides(config.groups, overrides, file=source, where='')
     check_geometry(groups, file=source, configuration=config.name)
+    check_shared_facts(groups)
     for group in groups.values():
         if group.kind == 'tire':
             tire_properties(group)

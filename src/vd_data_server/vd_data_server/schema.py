@@ -311,7 +311,8 @@ KINDS: Mapping[str, Section] = {
         }), 'cross-sections by name'),
         'components': MapOf(Section({
             'material': Text('material name (beam frame)', required=False),
-            'section': Text('section name (beam frame)', required=False),
+            'section': Text('section name (beam frame; left out for the anti_roll_bar, it is the '
+                            "stabilizer's bar)", required=False),
             'arm_section': Text('anti_roll_bar only: section of the two arms (default: '
                                 'section)', required=False),
             'elements_per_member': Scalar('dimensionless', 'beam elements per straight '

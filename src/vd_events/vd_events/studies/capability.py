@@ -28,7 +28,7 @@ Criterion (documented in docs/capability.md; every tolerance configurable):
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
 import time
@@ -45,6 +45,7 @@ from vd_events.orchestration.runner import RunRequest, run_embedded, validate
 from vd_interfaces.msg import CapabilityCell, CapabilityTable
 from vd_solvers.constants import DEG
 from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
+from vd_solvers.kc.from_config import RIGID_LIMIT_BAR_SCALE, RIGID_LIMIT_SCALE, run_kc_event
 from vd_solvers.results import EventOutcome
 
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
@@ -75,6 +76,11 @@ METRICS: Mapping[str, Mapping[str, float]] = {
     'steering': {'steering_ratio': 0.1, 'ackermann': 1.0},
 }
 METRIC_RELATIVE = 0.05
+#: the rigid-limit check (see :func:`rigid_limit_cells`): the flexible model at its rigid
+#: limit must reproduce every rigid metric within this fraction of the metric's verdict
+#: tolerance, so that whatever still differs between the two models' data cannot decide
+#: a verdict
+LIMIT_FRACTION = 0.1
 EVENTS = ('parallel_wheel_travel', 'opposite_wheel_travel', 'lateral_force',
           'longitudinal_force', 'aligning_torque', 'steering')
 STOPS = ('bump_stop_force_left', 'bump_stop_force_right', 'rebound_stop_force_left',
@@ -110,6 +116,7 @@ class Table:
     cells: tuple[Cell, ...]
     metrics: tuple[Cell, ...]
     notes: tuple[str, ...] = field(default_factory=tuple)
+    rigid_limit: tuple[Cell, ...] = ()
 
     def to_json(self) -> dict:
         def cell(c: Cell) -> dict:
@@ -119,7 +126,8 @@ class Table:
         return {'configuration': self.configuration, 'data_hash': self.data_hash,
                 'axle': self.axle, 'flexible_components': list(self.components),
                 'cells': [cell(c) for c in self.cells],
-                'metrics': [cell(c) for c in self.metrics], 'notes': list(self.notes)}
+                'metrics': [cell(c) for c in self.metrics], 'notes': list(self.notes),
+                'rigid_limit': [cell(c) for c in self.rigid_limit]}
 
 
 #: the swept channel of each event, whose zero is the design step
@@ -194,9 +202,51 @@ def compare(rigid: EventOutcome, flexible: EventOutcome,
     return cells, metric_cells
 
 
+def rigid_limit_cells(pairs: Sequence[tuple[EventOutcome, EventOutcome]]) -> list[Cell]:
+    """
+    Compare the rigid model with the flexible one at its rigid limit, metric by metric.
+
+    ``pairs``: (rigid, flexible at the rigid limit) per event. A cell is Rigid when the
+    two agree within ``LIMIT_FRACTION`` of the metric's verdict tolerance: both models
+    then see the same data. The per-step curves are not part of the check: at the ends of
+    a large travel the rigid bar's torsion law (sin of the twist) and the beam's
+    (small-angle, co-rotated) part by a few percent, a difference of model, not of data.
+    """
+    out = []
+    for rigid, limit in pairs:
+        for c in compare(rigid, limit)[1]:
+            tol = LIMIT_FRACTION * c.tolerance
+            out.append(replace(c, tolerance=tol,
+                               verdict='Rigid' if c.max_difference <= tol else 'Flexible'))
+    return out
+
+
+def rigid_limit_line(cells: Sequence[Cell]) -> str:
+    """Return the table's line on the rigid-limit check."""
+    worst = max(cells, key=lambda c: c.max_difference / c.tolerance if c.tolerance else 0.0)
+    failed = [c for c in cells if c.verdict != 'Rigid']
+    head = ('rigid limit: the flexible model with its components '
+            f"{RIGID_LIMIT_SCALE:.0e} times stiffer (the bar's arms {RIGID_LIMIT_BAR_SCALE:.0e}, "
+            'its torsion part as it is) ')
+    share = f'{worst.max_difference / worst.tolerance * LIMIT_FRACTION:.2%}'
+    if failed:
+        return head + (f'does NOT reproduce the rigid model: {len(failed)} of {len(cells)} '
+                       f'metrics differ by more than {LIMIT_FRACTION:.0%} of their verdict '
+                       f'tolerance, worst {worst.quantity} ({worst.event}): {share} of it')
+    return head + (f'reproduces all {len(cells)} rigid metrics within {LIMIT_FRACTION:.0%} of '
+                   f'their verdict tolerance (worst {worst.quantity}, {worst.event}: {share} '
+                   'of it): both models see the same data')
+
+
 def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: Sequence[str],
-                tolerances: Mapping[str, float] | None = None) -> Table:
-    """Build the table of one axle from (rigid, flexible) outcome pairs."""
+                tolerances: Mapping[str, float] | None = None,
+                limit: Sequence[Cell] = ()) -> Table:
+    """
+    Build the table of one axle from (rigid, flexible) outcome pairs.
+
+    ``limit``: the rigid-limit cells of the axle (:func:`rigid_limit_cells`), stated in
+    the table's first note.
+    """
     first = pairs[0][0]
     cells: list[Cell] = []
     metrics: list[Cell] = []
@@ -204,13 +254,14 @@ def build_table(pairs: Sequence[tuple[EventOutcome, EventOutcome]], components: 
         c, m = compare(rigid, flexible, tolerances)
         cells += c
         metrics += m
-    notes = (f"Rigid: worst |change flexible - change rigid| over the steps without a stop "
+    notes = ((rigid_limit_line(limit),) if limit else ()) + (
+             f"Rigid: worst |change flexible - change rigid| over the steps without a stop "
              f"engaged <= max(absolute tolerance, {RELATIVE:.0%} of the quantity's range in "
              f"the event); wheel load tolerance {LOAD_FRACTION:.0%} of the design wheel load; "
              f"* = flexible needed where a bump or rebound stop is engaged; metrics Rigid "
              f"within {METRIC_RELATIVE:.0%}",)
     return Table(first.configuration, first.data_hash, first.axle, tuple(components),
-                 tuple(cells), tuple(metrics), notes)
+                 tuple(cells), tuple(metrics), notes, tuple(limit))
 
 
 def to_msg(table: Table, stamp=None):
@@ -291,8 +342,18 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
     for axle in axles:
         mine = [r for r in results if r.request.axle == axle]
         pairs = [(a.outcome, b.outcome) for a, b in zip(mine[0::2], mine[1::2])]
+        # Before any verdict: the flexible model at its rigid limit must be the rigid model.
+        limit = rigid_limit_cells([
+            (rigid, run_kc_event(config, rigid.event, axle, tuple(parameters),
+                                 fidelity='flexible', at_rigid_limit=True))
+            for rigid, _ in pairs if rigid is not None])
+        if any(c.verdict != 'Rigid' for c in limit):
+            raise RunError(f"configuration '{configuration}', {axle} axle: "
+                           + rigid_limit_line(limit) + '; the rigid and flexible data '
+                           'describe different parts: no verdicts')
         chosen = [c for c in config.flexible_components if c in defined[axle]]
-        tables.append(build_table(pairs, chosen or defined[axle], tolerances))  # type: ignore[arg-type]
+        tables.append(build_table(pairs, chosen or defined[axle],  # type: ignore[arg-type]
+                                  tolerances, limit))
     writer = BagWriter(bag, {'vd.configuration': configuration,
                              'vd.data_hash': tables[0].data_hash,
                              'vd.master_file': str(master), 'vd.model': 'kc',

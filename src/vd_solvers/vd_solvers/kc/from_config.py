@@ -14,13 +14,14 @@ inflation pressure (VERTICAL_STIFFNESS (1 + PFZ1 dpi), the tangent at FNOMIN).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
 import math
 
 import numpy as np
 import yaml
 
 from vd_data_server.model import Configuration, GroupData
-from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
+from vd_data_server.schema import ARB_POINTS, BAR_COMPONENT, BUSHING_DIRECTIONS
 from vd_data_server.tire_group import tire_properties
 from vd_data_server.units import si_factor
 from vd_solvers.errors import SolverError
@@ -123,7 +124,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
     masses: dict[str, float] = {'wheel': unsprung}
     flexible: dict[str, FlexSpec] = {}
     flex_g = _optional(config, f'{axle}_flex')
-    specs = flex_specs(flex_g) if flex_g is not None else {}
+    specs = flex_specs(flex_g, stab_g) if flex_g is not None else {}
     for name, (_, rigid_mass) in specs.items():
         if rigid_mass and name not in ('anti_roll_bar', 'subframe'):
             masses[name] = rigid_mass
@@ -152,8 +153,69 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
         flexible=flexible)
 
 
-def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
-    """Every component of a flex group: its FlexSpec and its rigid-model mass (kg)."""
+#: E and G scale of the flexible model's rigid limit. 1e6 pushes the KKT matrix's pivot
+#: range (bushings at 1e5 N/m beside components at 1e14 N/m) past the solver's
+#: singularity guard (SINGULAR_PIVOT_RATIO, which protects against locked mechanisms);
+#: 1e5 already shrinks every component deflection 100 000-fold.
+RIGID_LIMIT_SCALE = 1e5
+#: the same for the anti-roll bar's arms and bending, whose torsion part keeps its G J:
+#: at 1e5 its axial stiffness would be 1e10 times its torsion rate, which the rigid-mode
+#: test of a condensed component (RIGID_MODE_RATIO) would take for a mechanism
+RIGID_LIMIT_BAR_SCALE = 1e3
+
+
+def _euler_bernoulli(section: sec.Section, torsion: float = 1.0) -> sec.Section:
+    """``section`` without shear strain, its torsion constant ``torsion`` times larger."""
+    return sec.Section(section.area, section.iy, section.iz, section.j * torsion,
+                       shape=section.shape)
+
+
+def rigid_limit(inp: SuspensionInput, scale: float = RIGID_LIMIT_SCALE) -> SuspensionInput:
+    """
+    Return the flexible ``inp`` at its rigid limit: what the rigid model describes.
+
+    Every beam component's E and G are ``scale`` times larger and its shear strain is
+    dropped (Euler-Bernoulli), so it deforms ``scale`` times less. The anti-roll bar is
+    elastic in the rigid model too -- a torsion spring between rigid arms -- so its
+    torsion part keeps its G J while its arms and its bending become
+    ``RIGID_LIMIT_BAR_SCALE`` times stiffer: the limit is the rigid model's bar, G J / L
+    between the pivots. An imported component's stiffness is scaled whole. Masses are
+    left as they are (FE masses).
+    """
+    out = {}
+    for name, spec in inp.flexible.items():
+        if spec.imported is not None:
+            out[name] = replace(spec, imported=replace(spec.imported,
+                                                       stiffness=spec.imported.stiffness * scale))
+            continue
+        assert spec.material is not None and spec.section is not None
+        m = spec.material
+        if name == BAR_COMPONENT:
+            arm = spec.arm_section or spec.section
+            bar = min(scale, RIGID_LIMIT_BAR_SCALE)
+            out[name] = replace(
+                spec, material=sec.Material(m.youngs_modulus * bar, m.shear_modulus,
+                                            m.density),
+                section=_euler_bernoulli(spec.section),
+                arm_section=_euler_bernoulli(arm, bar))
+        else:
+            out[name] = replace(spec, material=sec.Material(m.youngs_modulus * scale,
+                                                            m.shear_modulus * scale, m.density),
+                                section=_euler_bernoulli(spec.section),
+                                arm_section=None)
+    return replace(inp, flexible=out)
+
+
+def flex_specs(group: GroupData, stabilizer: GroupData | None = None
+               ) -> dict[str, tuple[FlexSpec, float]]:
+    """
+    Every component of a flex group: its FlexSpec and its rigid-model mass (kg).
+
+    The anti-roll bar is the part the ``stabilizer`` group describes: a bar given by
+    ``bar_radius`` is a solid round section of that diameter (unless the flex group
+    names a section, which the data check holds to the same diameter) of the
+    stabilizer's shear modulus; Young's modulus and density come from the flex material.
+    """
     materials = {}
     for name in sorted({k.split('.')[1] for k in group.values if k.startswith('materials.')}):
         base = f'materials.{name}'
@@ -195,6 +257,13 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
             spec = FlexSpec(imported=_imported(group, comp, base), source=source)
         else:
             material = materials[group.text(f'{base}.material')]
+            shared = (comp == BAR_COMPONENT and stabilizer is not None
+                      and stabilizer.has('bar_radius'))
+            if shared:
+                assert stabilizer is not None
+                material = sec.Material(material.youngs_modulus,
+                                        stabilizer.scalar('shear_modulus'), material.density)
+                source += f', bar diameter and shear modulus of {stabilizer.file}'
             nu = material.poissons_ratio
             shapes = tuple(
                 ShapePoint(group.text(f'{base}.shape_points.{sp}.from'),
@@ -206,7 +275,12 @@ def flex_specs(group: GroupData) -> dict[str, tuple[FlexSpec, float]]:
                                   if k.startswith(f'{base}.shape_points.')}))
             arm = (section(group.text(f'{base}.arm_section'), nu)
                    if group.has(f'{base}.arm_section') else None)
-            spec = FlexSpec(material, section(group.text(f'{base}.section'), nu), shapes,
+            if shared and not group.has(f'{base}.section'):
+                assert stabilizer is not None
+                main = sec.solid_round(2.0 * stabilizer.scalar('bar_radius'), nu)
+            else:
+                main = section(group.text(f'{base}.section'), nu)
+            spec = FlexSpec(material, main, shapes,
                             int(group.scalar(f'{base}.elements_per_member')), arm,
                             source=source)
         out[comp] = (spec, rigid_mass)
@@ -267,12 +341,13 @@ def _event_kwargs(values: Mapping[str, float]) -> dict[str, float]:
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
                  progress: Callable[[float, str], None] | None = None,
-                 fidelity: str = 'rigid') -> EventOutcome:
+                 fidelity: str = 'rigid', at_rigid_limit: bool = False) -> EventOutcome:
     """
     One K&C event on one axle, with the derived metrics that event supports.
 
     ``progress(fraction, stage)`` is called per solved step (it may raise to cancel);
-    ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`).
+    ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`);
+    ``at_rigid_limit``: the flexible model at its rigid limit (:func:`rigid_limit`).
     """
     label = f"configuration '{config.name}', event '{event}', axle '{axle}'"
     if event not in EVENT_PARAMS:
@@ -283,6 +358,8 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     values = parse_params(event, EVENT_PARAMS[event], params)
     try:
         inp = suspension_input(config, axle, fidelity)
+        if at_rigid_limit:
+            inp = rigid_limit(inp)
     except SolverError as err:
         raise SolverError(f'{label}: {err}') from None
     if event == 'steering' and inp.steering is None:
@@ -303,7 +380,12 @@ def run_kc_event(config: Configuration, event: str, axle: str,
         results['opposite_wheel_travel_no_bar'] = bare.run(
             event, on_step(1, 'solving without the anti-roll bar'),
             **_event_kwargs(values))
-    return _outcome(config, event, axle, inp, model, results, fidelity)
+    outcome = _outcome(config, event, axle, inp, model, results, fidelity)
+    if not at_rigid_limit:
+        return outcome
+    return replace(outcome, notes=tuple(outcome.notes) + (
+        f"at the rigid limit: components {RIGID_LIMIT_SCALE:g} times stiffer, the bar's "
+        'torsion part as it is',))
 
 
 def _outcome(config, event, axle, inp, model, results, fidelity='rigid') -> EventOutcome:
@@ -380,4 +462,5 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
 
 
 __all__ = ['EVENT_PARAMS', 'EVENTS', 'run_kc_event', 'run_suite', 'suspension_input',
-           'bar_stiffness', 'flatten_channels']
+           'bar_stiffness', 'flatten_channels', 'rigid_limit', 'RIGID_LIMIT_SCALE',
+           'RIGID_LIMIT_BAR_SCALE']
