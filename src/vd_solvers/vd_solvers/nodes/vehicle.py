@@ -34,7 +34,7 @@ from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
 from vd_data_server.paths import default_master
 from vd_data_server.ros.node_main import make_executor, run_node
-from vd_data_server.ros.qos import STATES
+from vd_data_server.ros.qos import STATES, TF
 from vd_data_server.study import load_study
 from vd_interfaces.msg import VehicleState
 from vd_solvers.errors import SolverError
@@ -78,7 +78,7 @@ class VehicleSolver(SolverNode):
         super().__init__('vehicle_solver', FAMILY, _run, **kwargs)
         self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
         # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
-        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, TF)
         self.publishers_by_topic.update({ODOMETRY_TOPIC: self.odom_pub, TF_TOPIC: self.tf_pub})
         self.declare_parameter('mode', 'events', ParameterDescriptor(
             description='events | lockstep | free', read_only=True))
