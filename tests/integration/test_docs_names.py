@@ -102,12 +102,18 @@ def test_every_quoted_name_exists(graph):
     from rosidl_runtime_py.utilities import get_message
 
     from vd_events.studies.capability import TOPIC as CAPABILITY_TOPIC
-    from vd_solvers.nodes.lockstep import COMMAND_TOPIC, STATUS_TOPIC
+    from vd_solvers.nodes.lockstep import (
+        ACKERMANN_TOPIC,
+        COMMAND_TOPIC,
+        STATUS_TOPIC,
+        TWIST_TOPIC,
+    )
 
     names, _ = graph
     live = names['topics'] | names['services'] | names['actions']
     # names of a mode not started here, checked against their one definition
-    defined = {f'/vd/{COMMAND_TOPIC}', f'/vd/{STATUS_TOPIC}', '/clock', CAPABILITY_TOPIC}
+    defined = {f'/vd/{COMMAND_TOPIC}', f'/vd/{STATUS_TOPIC}', f'/vd/{ACKERMANN_TOPIC}',
+               f'/vd/{TWIST_TOPIC}', '/clock', CAPABILITY_TOPIC}
     types = {'/vd/kc/state': 'vd_interfaces/msg/KcState',
              '/vd/steady_state/state': 'vd_interfaces/msg/AnalyticalState',
              '/vd/vehicle/state': 'vd_interfaces/msg/VehicleState'}

@@ -8,8 +8,19 @@ Lock-step co-simulation of the full vehicle on the ROS graph.
 At each step k (simulation time t_k = k h) the session publishes ``/clock`` (t_k) and the
 state at t_k: ``/vd/vehicle/state`` (VehicleState with the four wheels and tires),
 ``/vd/vehicle/odom`` (nav_msgs/Odometry, odom -> base_link) and ``/tf``, all stamped t_k.
-It then waits for a ``vd_interfaces/VehicleCommand`` on ``/vd/vehicle/command`` stamped
-t_k, applies it over [t_k, t_k + h] and publishes step k + 1. Nothing is extrapolated:
+It then waits for the command of step k, applies it over [t_k, t_k + h] and publishes
+step k + 1. A command is one of
+
+* ``vd_interfaces/VehicleCommand`` on ``/vd/vehicle/command`` (steering-wheel angle,
+  wheel torques), applied as it is;
+* ``ackermann_msgs/AckermannDriveStamped`` on ``/vd/ackermann_cmd`` (tire angle, speed,
+  acceleration) or ``geometry_msgs/Twist`` on ``/vd/cmd_vel`` (speed, yaw rate), turned
+  into the step's steering-wheel angle and torques by the actuator model
+  (:mod:`vd_solvers.vehicle.actuators`).
+
+A VehicleCommand or a stamped Ackermann command must be stamped t_k; a Twist (which has
+no stamp) and an Ackermann command stamped 0 apply to the step the session waits for,
+the step named by ``/clock``. Nothing is extrapolated:
 
 * a command stamped **before** t_k (an answer to an earlier step, e.g. the repeat
   below) is dropped and counted;
@@ -32,8 +43,9 @@ from __future__ import annotations
 import math
 import time
 
+from ackermann_msgs.msg import AckermannDriveStamped
 from builtin_interfaces.msg import Time
-from geometry_msgs.msg import TransformStamped
+from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
@@ -45,11 +57,15 @@ from vd_data_server.ros.qos import CLOCK, COMMANDS, STATUS
 from vd_interfaces.msg import VehicleCommand, VehicleState, VehicleWheel
 from vd_solvers.conversions import WHEEL_FIELDS, set_quaternion
 from vd_solvers.errors import SolverError
+from vd_solvers.vehicle.actuators import Actuators, Setpoint, check_setpoint, twist_setpoint
 from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_command
 from vd_solvers.vehicle.maps import WHEELS
 
 #: relative: in the node's namespace (/vd/vehicle/command by default)
 COMMAND_TOPIC = 'vehicle/command'
+#: the standard drive commands, relative (/vd/ackermann_cmd, /vd/cmd_vel by default)
+ACKERMANN_TOPIC = 'ackermann_cmd'
+TWIST_TOPIC = 'cmd_vel'
 #: VehicleState fields filled from the Stepper state
 STATE_FIELDS = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
                 'lateral_acceleration', 'longitudinal_acceleration', 'steering_wheel_angle',
@@ -80,10 +96,11 @@ class LockstepSession:
 
     def __init__(self, node: Node, stepper: Stepper, *, mode: str, duration: float,
                  command_timeout: float, start_timeout: float, real_time_factor: float,
-                 configuration: str, state_pub, odom_pub, tf_pub,
+                 configuration: str, state_pub, odom_pub, tf_pub, actuators: Actuators,
                  frame_prefix: str = '') -> None:
         self.node = node
         self.stepper = stepper
+        self.actuators = actuators
         self.mode = mode
         self.h_ns = int(round(stepper.h * 1e9))
         self.duration = duration
@@ -99,7 +116,11 @@ class LockstepSession:
         self.timings = {'model': 0.0, 'publish': 0.0}
         self.status = 'running'
         self.held = Command()
+        self.held_setpoint: Setpoint | None = None  # free mode: the newest setpoint, if any
         self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command, COMMANDS)
+        self.node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
+                                      self._on_ackermann, COMMANDS)
+        self.node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS)
         self._state_msg = VehicleState(event='lockstep', configuration=configuration,
                                        model='vehicle')
         self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
@@ -131,33 +152,71 @@ class LockstepSession:
     # --- lock-step --------------------------------------------------------------------
 
     def _on_command(self, msg: VehicleCommand) -> None:
+        self._take(stamp_ns(msg.header.stamp), command=msg)
+
+    def _on_ackermann(self, msg: AckermannDriveStamped) -> None:
+        stamp = stamp_ns(msg.header.stamp)
+        self._take(stamp or None, setpoint=msg.drive)
+
+    def _on_twist(self, msg: Twist) -> None:
+        self._take(None, setpoint=msg)
+
+    def _setpoint(self, msg) -> Setpoint:
+        """Return the setpoint of an AckermannDrive or a Twist (CommandError if unusable)."""
+        if isinstance(msg, Twist):
+            return twist_setpoint(float(msg.linear.x), float(msg.angular.z),
+                                  self.actuators.p.wheelbase)
+        setpoint = Setpoint(steering_angle=float(msg.steering_angle), speed=float(msg.speed),
+                            acceleration=abs(float(msg.acceleration)),
+                            steering_angle_velocity=abs(float(msg.steering_angle_velocity)))
+        check_setpoint(setpoint)
+        return setpoint
+
+    def _take(self, stamp: int | None, *, command=None, setpoint=None) -> None:
+        """
+        Take a command (VehicleCommand) or a setpoint (AckermannDrive, Twist).
+
+        ``stamp`` None: for the step the session waits for (module doc).
+        """
         if not self.active:
             return
         if self.mode == 'free':
             try:
-                command = command_from_msg(msg)
-                check_command(command, self.stepper.max_angle)
-                self.held = command
+                if setpoint is not None:
+                    self.held_setpoint = self._setpoint(setpoint)
+                else:
+                    held = command_from_msg(command)
+                    check_command(held, self.stepper.max_angle)
+                    self.held, self.held_setpoint = held, None
             except CommandError as err:
                 self.node.get_logger().error(f'command refused, the previous one is held: {err}')
             return
-        stamp = stamp_ns(msg.header.stamp)
         now = self.now_ns
-        if stamp < now:
+        if stamp is not None and stamp < now:
             self.stale += 1
             return
-        if stamp > now:
+        if stamp is not None and stamp > now:
             self._stop(f'command stamped {stamp * 1e-9:.6f} s for the step at '
                        f'{now * 1e-9:.6f} s: ahead of the simulation clock')
             return
         c0 = time.perf_counter()
         try:
-            self.stepper.advance(command_from_msg(msg))
+            if setpoint is not None:
+                self._advance_to(self._setpoint(setpoint))
+            else:
+                applied = command_from_msg(command)
+                self.stepper.advance(applied)
+                self.actuators.follow(applied)
         except (CommandError, SolverError) as err:
             self._stop(f'command for t = {now * 1e-9:.6f} s refused: {err}')
             return
         self.timings['model'] += time.perf_counter() - c0
         self._after_step()
+
+    def _advance_to(self, setpoint: Setpoint) -> None:
+        """Advance one step with the actuators' command for ``setpoint``."""
+        speed = self.stepper.state()['speed']
+        self.stepper.advance(self.actuators.command(setpoint, speed, self.stepper.h))
 
     def _after_step(self) -> None:
         if self.duration > 0.0 and self.now_ns >= int(round(self.duration * 1e9)):
@@ -185,7 +244,10 @@ class LockstepSession:
         if not self.active:
             return
         try:
-            self.stepper.advance(self.held)
+            if self.held_setpoint is not None:
+                self._advance_to(self.held_setpoint)
+            else:
+                self.stepper.advance(self.held)
         except (CommandError, SolverError) as err:
             self._stop(str(err))
             return
@@ -265,5 +327,5 @@ def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
     return msg
 
 
-__all__ = ['LockstepSession', 'COMMAND_TOPIC', 'STATUS_TOPIC', 'command_from_msg', 'odometry',
-           'stamp_ns', 'to_stamp']
+__all__ = ['LockstepSession', 'ACKERMANN_TOPIC', 'COMMAND_TOPIC', 'TWIST_TOPIC', 'STATUS_TOPIC',
+           'command_from_msg', 'odometry', 'stamp_ns', 'to_stamp']

@@ -42,6 +42,7 @@ from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
 from vd_solvers.nodes.lockstep import LockstepSession
 from vd_solvers.nodes.solver import SolverNode
 from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.actuators import Actuators, parameters_of
 from vd_solvers.vehicle.cosim import Stepper
 from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel
@@ -61,7 +62,14 @@ LOCKSTEP_PARAMS = {
     'real_time_factor': (1.0, 'free mode: simulated seconds per wall second'),
     'drive_front': (0.5, 'front share of the drive torque'),
     'brake_front': (0.65, 'front share of the brake torque'),
+    # the actuator model of the Ackermann and Twist inputs (vd_solvers.vehicle.actuators)
+    'steering_lag': (0.05, 'time constant of the steering actuator, s'),
+    'torque_lag': (0.05, 'time constant of the drive and brake torque, s'),
+    'speed_gain': (1.5, 'speed controller: proportional gain, (m/s^2) per (m/s)'),
+    'speed_integral': (0.3, 'speed controller: integral gain, (m/s^2) per m'),
 }
+#: the parameters that go to the actuator model
+ACTUATOR_PARAMS = ('steering_lag', 'torque_lag', 'speed_gain', 'speed_integral')
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
@@ -121,6 +129,8 @@ class VehicleSolver(SolverNode):
         model = VehicleModel(study.configurations[name], p['fidelity'])
         stepper = Stepper(model, float(p['step']), float(p['initial_speed']),
                           float(p['drive_front']), float(p['brake_front']))
+        actuators = Actuators(parameters_of(model, **{k: p[k] for k in ACTUATOR_PARAMS}),
+                              speed=float(p['initial_speed']))
         self.get_logger().info(f"{self.mode} co-simulation of '{name}': step "
                                f"{stepper.h * 1e3:g} ms")
         return LockstepSession(self, stepper, mode=self.mode, duration=float(p['duration']),
@@ -128,7 +138,8 @@ class VehicleSolver(SolverNode):
                                start_timeout=p['start_timeout'],
                                real_time_factor=p['real_time_factor'], configuration=name,
                                state_pub=self.sample_pub, odom_pub=self.odom_pub,
-                               tf_pub=self.tf_pub, frame_prefix=self.frame_prefix)
+                               tf_pub=self.tf_pub, actuators=actuators,
+                               frame_prefix=self.frame_prefix)
 
 
 def main(args=None) -> None:

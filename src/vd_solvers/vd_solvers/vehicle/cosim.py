@@ -65,6 +65,11 @@ def check_command(command: Command, max_angle: float) -> None:
             raise CommandError(f'{name} must be >= 0 N*m, got {getattr(command, name):.4g}')
 
 
+def steering_lock(model: VehicleModel) -> float:
+    """Return the steering-wheel angle at the end of the rack travel, rad (the map's ends)."""
+    return float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
+
+
 class Stepper:
     """The vehicle state advanced one step at a time (module doc). Not thread-safe."""
 
@@ -75,7 +80,7 @@ class Stepper:
         self.model = model
         self.h = h
         self.drive_front, self.brake_front = drive_front, brake_front
-        self.max_angle = float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
+        self.max_angle = steering_lock(model)
         self.q, self.v = model.initial_state(initial_speed)
         self.slip = np.zeros((2, 4))
         self.previous: WheelState | None = None
@@ -147,5 +152,5 @@ class Stepper:
                                     w.steer, w.mz)))
 
 
-__all__ = ['Command', 'CommandError', 'Stepper', 'check_command', 'STEERING_ANGLE',
-           'STEERING_TORQUE']
+__all__ = ['Command', 'CommandError', 'Stepper', 'check_command', 'steering_lock',
+           'STEERING_ANGLE', 'STEERING_TORQUE']
