@@ -109,7 +109,7 @@ class LockstepSession:
         self.configuration = configuration
         self.frame_prefix = frame_prefix  # outside /vd: car2/odom -> car2/base_link
         self.state_pub, self.odom_pub, self.tf_pub = state_pub, odom_pub, tf_pub
-        self.clock_pub = node.create_publisher(Clock, '/clock', CLOCK)
+        self.clock_pub = node.create_publisher(Clock, claim_clock(node), CLOCK)
         self.status_pub = node.create_publisher(String, STATUS_TOPIC, STATUS)
         self.stale = 0  # commands dropped as answers to an earlier step
         #: seconds spent in the model step and in building + publishing the messages
@@ -292,6 +292,38 @@ class LockstepSession:
         self._publish_status(self.status)
 
 
+def clock_owners(node: Node, topic: str) -> list[str]:
+    """Return the full names of the other nodes publishing on ``topic`` (as discovered)."""
+    own = (node.get_name(), node.get_namespace())
+    return sorted({f"{i.node_namespace.rstrip('/')}/{i.node_name}"
+                   for i in node.get_publishers_info_by_topic(topic)
+                   if (i.node_name, i.node_namespace) != own})
+
+
+def claim_clock(node: Node) -> str:
+    """
+    Return the resolved clock topic of ``node``'s session, or ValueError if it is owned.
+
+    One ``/clock`` owner per ROS domain: two sessions publishing one clock would send
+    every ``use_sim_time`` node back and forth in time. A session started where another
+    node already publishes the (remapped) clock refuses, naming that node and its
+    namespace; a session with a clock of its own (``--ros-args -r /clock:=/car2/clock``,
+    ``lockstep.launch.py clock_topic:=/car2/clock``) runs beside it.
+    """
+    topic = node.resolve_topic_name('/clock')
+    owners = clock_owners(node, topic)
+    if owners:
+        namespaces = ', '.join(sorted({o.rsplit('/', 1)[0] or '/' for o in owners}))
+        here = node.get_namespace().rstrip('/')
+        raise ValueError(
+            f'{topic} is already published by {", ".join(owners)} (namespace {namespaces}): '
+            f'one {topic} owner per ROS domain. Give this session a clock of its own '
+            f'(--ros-args -r /clock:={here}/clock, or lockstep.launch.py '
+            f'clock_topic:={here}/clock, and the same remapping for its controller) or '
+            'another ROS_DOMAIN_ID')
+    return topic
+
+
 def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '') -> Odometry:
     """
     Return the nav_msgs/Odometry of a Stepper state (filled into ``msg`` if given).
@@ -328,4 +360,5 @@ def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
 
 
 __all__ = ['LockstepSession', 'ACKERMANN_TOPIC', 'COMMAND_TOPIC', 'TWIST_TOPIC', 'STATUS_TOPIC',
-           'command_from_msg', 'odometry', 'stamp_ns', 'to_stamp']
+           'claim_clock', 'clock_owners', 'command_from_msg', 'odometry', 'stamp_ns',
+           'to_stamp']

@@ -93,7 +93,11 @@ class VehicleSolver(SolverNode):
         self.mode = self.get_parameter('mode').value
         self.lockstep = None
         if self.mode != 'events':
-            self.lockstep = self._start_lockstep()
+            try:
+                self.lockstep = self._start_lockstep()
+            except BaseException:
+                self.destroy_node()  # an unusable session leaves no node behind
+                raise
 
     def _start_lockstep(self):
         """Build the vehicle and start the co-simulation session (ValueError if unusable)."""
