@@ -17,7 +17,7 @@ setup(
         ('share/' + package_name + '/plans', glob('plans/*.yaml')),
         ('share/' + package_name + '/samples', glob('samples/*')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.*')),
-        ('share/' + package_name + '/launch', ['launch/lockstep.launch.py']),
+        ('share/' + package_name + '/launch', glob('launch/*.rviz') + glob('launch/*.json')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

@@ -49,16 +49,19 @@ from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
-from vd_data_server.ros.qos import CLOCK, COMMANDS, STATUS
+from vd_data_server.ros.qos import CLOCK, COMMANDS, STATES, STATUS, TF_STATIC
 from vd_interfaces.msg import VehicleCommand, VehicleState, VehicleWheel
 from vd_solvers.conversions import WHEEL_FIELDS, set_quaternion
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.actuators import Actuators, Setpoint, check_setpoint, twist_setpoint
 from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_command
+from vd_solvers.vehicle.description import Description, joint_positions
+from vd_solvers.vehicle.description import transform as joint_transform
 from vd_solvers.vehicle.maps import WHEELS
 
 #: relative: in the node's namespace (/vd/vehicle/command by default)
@@ -71,6 +74,11 @@ STATE_FIELDS = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', '
                 'lateral_acceleration', 'longitudinal_acceleration', 'steering_wheel_angle',
                 'wheel_torque')
 STATUS_TOPIC = 'vehicle/lockstep_status'
+#: the robot description of the vehicle (URDF, latched) and its joints, relative
+ROBOT_DESCRIPTION_TOPIC = 'robot_description'
+JOINT_STATES_TOPIC = 'joint_states'
+#: tf2's static frames (global, as /tf)
+TF_STATIC_TOPIC = '/tf_static'
 #: wall seconds between repeats of a step's messages while its command is awaited
 REPEAT_PERIOD = 0.25
 def stamp_ns(stamp) -> int:
@@ -97,7 +105,7 @@ class LockstepSession:
     def __init__(self, node: Node, stepper: Stepper, *, mode: str, duration: float,
                  command_timeout: float, start_timeout: float, real_time_factor: float,
                  configuration: str, state_pub, odom_pub, tf_pub, actuators: Actuators,
-                 frame_prefix: str = '') -> None:
+                 description: Description | None = None, frame_prefix: str = '') -> None:
         self.node = node
         self.stepper = stepper
         self.actuators = actuators
@@ -129,7 +137,10 @@ class LockstepSession:
             setattr(self._state_msg, wheel, m)
         self._wheel_msgs = [getattr(self._state_msg, wheel) for wheel in WHEELS]
         self._odom_msg = Odometry()
-        self._tf_msg = None
+        self._tf_msg = TFMessage(transforms=[TransformStamped()])
+        self.description = description
+        if description is not None:
+            self._describe(description)
         self._published_at = time.monotonic()
         self._waiting_since = self._published_at
         self.started = time.monotonic()
@@ -139,6 +150,30 @@ class LockstepSession:
             self.timer = node.create_timer(stepper.h / real_time_factor, self._free_step)
         else:
             self.timer = node.create_timer(REPEAT_PERIOD, self._watchdog)
+
+    def _describe(self, description: Description) -> None:
+        """Publish the robot description and the static frames; prepare the joint states."""
+        prefix = self.frame_prefix
+        self.description_pub = self.node.create_publisher(String, ROBOT_DESCRIPTION_TOPIC,
+                                                          TF_STATIC)
+        self.description_pub.publish(String(data=description.urdf()))
+        static = TFMessage()
+        for joint in description.fixed:
+            t = TransformStamped()
+            t.header.frame_id, t.child_frame_id = prefix + joint.parent, prefix + joint.child
+            (t.transform.translation.x, t.transform.translation.y,
+             t.transform.translation.z), (t.transform.rotation.x, t.transform.rotation.y,
+                                          t.transform.rotation.z,
+                                          t.transform.rotation.w) = joint_transform(joint, 0.0)
+            static.transforms.append(t)
+        self.static_pub = self.node.create_publisher(TFMessage, TF_STATIC_TOPIC, TF_STATIC)
+        self.static_pub.publish(static)
+        self.joint_pub = self.node.create_publisher(JointState, JOINT_STATES_TOPIC, STATES)
+        self._joint_msg = JointState(name=[j.name for j in description.moving])
+        for joint in description.moving:
+            t = TransformStamped()
+            t.header.frame_id, t.child_frame_id = prefix + joint.parent, prefix + joint.child
+            self._tf_msg.transforms.append(t)
 
     @property
     def now_ns(self) -> int:
@@ -236,7 +271,7 @@ class LockstepSession:
                        f'{limit:g} s')
             return
         if time.monotonic() - self._published_at >= REPEAT_PERIOD:
-            self._publish()
+            self._publish(repeat=True)
 
     # --- free running -----------------------------------------------------------------
 
@@ -255,7 +290,12 @@ class LockstepSession:
 
     # --- output -----------------------------------------------------------------------
 
-    def _publish(self) -> None:
+    def _publish(self, repeat: bool = False) -> None:
+        """
+        Publish the current step; a ``repeat`` (while its command is awaited) leaves /tf out.
+
+        tf2 refuses a transform stamped like one it holds (TF_REPEATED_DATA).
+        """
         c0 = time.perf_counter()
         stamp = to_stamp(self.now_ns)
         self.clock_pub.publish(Clock(clock=stamp))
@@ -273,8 +313,21 @@ class LockstepSession:
         odom = odometry(s, stamp, self._odom_msg, self.frame_prefix)
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)
-        self._tf_msg = transform(odom, self._tf_msg)
-        self.tf_pub.publish(self._tf_msg)
+        tf = transform(odom, self._tf_msg)
+        if self.description is not None:
+            positions = joint_positions(self.description, self.stepper.q, wheels['wheel_steer'])
+            joints = self._joint_msg
+            joints.header.stamp = stamp
+            joints.position = positions
+            self.joint_pub.publish(joints)
+            for t, joint, value in zip(tf.transforms[1:], self.description.moving, positions):
+                t.header.stamp = stamp
+                (t.transform.translation.x, t.transform.translation.y,
+                 t.transform.translation.z), r = joint_transform(joint, value)
+                (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
+                 t.transform.rotation.w) = r
+        if not repeat:
+            self.tf_pub.publish(tf)
         self._published_at = time.monotonic()
         self.timings['publish'] += time.perf_counter() - c0
 

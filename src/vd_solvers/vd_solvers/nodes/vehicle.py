@@ -44,6 +44,7 @@ from vd_solvers.nodes.solver import SolverNode
 from vd_solvers.results import EventOutcome
 from vd_solvers.vehicle.actuators import Actuators, parameters_of
 from vd_solvers.vehicle.cosim import Stepper
+from vd_solvers.vehicle.description import describe_model
 from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel
 
@@ -143,6 +144,7 @@ class VehicleSolver(SolverNode):
                                real_time_factor=p['real_time_factor'], configuration=name,
                                state_pub=self.sample_pub, odom_pub=self.odom_pub,
                                tf_pub=self.tf_pub, actuators=actuators,
+                               description=describe_model(model),
                                frame_prefix=self.frame_prefix)
 
 
