@@ -45,18 +45,19 @@ import time
 
 from ackermann_msgs.msg import AckermannDriveStamped
 from builtin_interfaces.msg import Time
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
+from std_srvs.srv import Trigger
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
 from vd_data_server.ros.qos import CLOCK, COMMANDS, STATES, STATUS, TF_STATIC
 from vd_interfaces.msg import VehicleCommand, VehicleState, VehicleWheel
-from vd_solvers.conversions import WHEEL_FIELDS, set_quaternion
+from vd_solvers.conversions import WHEEL_FIELDS, covariance_unknown, set_quaternion
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.actuators import Actuators, Setpoint, check_setpoint, twist_setpoint
 from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_command
@@ -77,6 +78,9 @@ STATUS_TOPIC = 'vehicle/lockstep_status'
 #: the robot description of the vehicle (URDF, latched) and its joints, relative
 ROBOT_DESCRIPTION_TOPIC = 'robot_description'
 JOINT_STATES_TOPIC = 'joint_states'
+#: start the session again (std_srvs/Trigger) / at a pose (RViz's 2D Pose Estimate), relative
+RESET_SERVICE = 'vehicle/reset'
+INITIAL_POSE_TOPIC = 'initialpose'
 #: tf2's static frames (global, as /tf)
 TF_STATIC_TOPIC = '/tf_static'
 #: wall seconds between repeats of a step's messages while its command is awaited
@@ -129,6 +133,9 @@ class LockstepSession:
         self.node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
                                       self._on_ackermann, COMMANDS)
         self.node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS)
+        self.node.create_service(Trigger, RESET_SERVICE, self._on_reset)
+        self.node.create_subscription(PoseWithCovarianceStamped, INITIAL_POSE_TOPIC,
+                                      self._on_initial_pose, COMMANDS)
         self._state_msg = VehicleState(event='lockstep', configuration=configuration,
                                        model='vehicle')
         self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
@@ -136,7 +143,7 @@ class LockstepSession:
         for wheel, m in zip(WHEELS, self._wheel_msgs):
             setattr(self._state_msg, wheel, m)
         self._wheel_msgs = [getattr(self._state_msg, wheel) for wheel in WHEELS]
-        self._odom_msg = Odometry()
+        self._odom_msg = covariance_unknown(Odometry())
         self._tf_msg = TFMessage(transforms=[TransformStamped()])
         self.description = description
         if description is not None:
@@ -150,6 +157,45 @@ class LockstepSession:
             self.timer = node.create_timer(stepper.h / real_time_factor, self._free_step)
         else:
             self.timer = node.create_timer(REPEAT_PERIOD, self._watchdog)
+
+    # --- reset -------------------------------------------------------------------------
+
+    def reset(self, x: float = 0.0, y: float = 0.0, yaw: float = 0.0) -> str:
+        """
+        Start the session again at t = 0 from the initial state, placed at x, y, yaw.
+
+        The vehicle (its maps) is kept: a reset costs a step, not the model build.
+        Return what was done (SolverError if the pose is unusable: nothing changes).
+        """
+        old = self.stepper
+        stepper = Stepper(old.model, old.h, old.initial_speed, old.drive_front,
+                          old.brake_front)
+        stepper.place(x, y, yaw)
+        ran = old.step
+        self.stepper = stepper
+        self.actuators = Actuators(self.actuators.p, speed=old.initial_speed)
+        self.held, self.held_setpoint = Command(), None
+        self.stale = 0
+        self.status = 'running'
+        self._publish_status(self.status)
+        self._publish()
+        self._waiting_since = self._published_at
+        text = (f'reset to t = 0 at x = {x:g} m, y = {y:g} m, yaw = {yaw:g} rad ({ran} steps '
+                'run before)')
+        self.node.get_logger().info(f'lock-step {text}')
+        return text
+
+    def _on_reset(self, request, response):
+        response.success, response.message = True, self.reset()
+        return response
+
+    def _on_initial_pose(self, msg: PoseWithCovarianceStamped) -> None:
+        p, o = msg.pose.pose.position, msg.pose.pose.orientation
+        yaw = math.atan2(2.0 * (o.w * o.z + o.x * o.y), 1.0 - 2.0 * (o.y * o.y + o.z * o.z))
+        try:
+            self.reset(float(p.x), float(p.y), yaw)
+        except SolverError as err:
+            self.node.get_logger().error(f'initial pose refused: {err}')
 
     def _describe(self, description: Description) -> None:
         """Publish the robot description and the static frames; prepare the joint states."""
@@ -310,7 +356,7 @@ class LockstepSession:
         for w, wheel in enumerate(self._wheel_msgs):
             for f, (c, _) in WHEEL_FIELDS.items():  # a field the step lacks stays NaN
                 setattr(wheel, f, float(wheels[c][w]) if c in wheels else math.nan)
-        odom = odometry(s, stamp, self._odom_msg, self.frame_prefix)
+        odom = odometry(s, stamp, self._odom_msg, self.frame_prefix, z=float(self.stepper.q[2]))
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)
         tf = transform(odom, self._tf_msg)
@@ -377,18 +423,23 @@ def claim_clock(node: Node) -> str:
     return topic
 
 
-def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '') -> Odometry:
+def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '',
+             z: float = 0.0) -> Odometry:
     """
     Return the nav_msgs/Odometry of a Stepper state (filled into ``msg`` if given).
 
-    Frames ``odom`` -> ``base_link`` (REP 105), with ``prefix`` outside ``/vd``.
+    Frames ``odom`` -> ``base_link`` (REP 105), with ``prefix`` outside ``/vd``; ``z`` the
+    height of the body frame's origin (the model's free-flyer position: 0 at design,
+    negative as the body sinks). The covariance is marked unknown (REP 145).
     """
-    msg = msg if msg is not None else Odometry()
+    if msg is None:
+        msg = covariance_unknown(Odometry())
     msg.header.stamp = stamp
     msg.header.frame_id = prefix + ODOM_FRAME
     msg.child_frame_id = prefix + BODY_FRAME
     msg.pose.pose.position.x = float(state['x'])
     msg.pose.pose.position.y = float(state['y'])
+    msg.pose.pose.position.z = z
     set_quaternion(msg.pose.pose.orientation,
                    *(float(state[k]) for k in ('roll', 'pitch', 'yaw')))
     # twist in the child frame (REP 105): the CoG's horizontal velocity in yaw axes
@@ -407,7 +458,7 @@ def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
     t.header = odom.header
     t.child_frame_id = odom.child_frame_id
     p = odom.pose.pose.position
-    t.transform.translation.x, t.transform.translation.y = p.x, p.y
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = p.x, p.y, p.z
     t.transform.rotation = odom.pose.pose.orientation
     return msg
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
+import pinocchio as pin
 
 from vd_solvers.errors import SolverError
 
@@ -80,6 +81,7 @@ class Stepper:
         self.model = model
         self.h = h
         self.drive_front, self.brake_front = drive_front, brake_front
+        self.initial_speed = initial_speed
         self.max_angle = steering_lock(model)
         self.q, self.v = model.initial_state(initial_speed)
         self.slip = np.zeros((2, 4))
@@ -93,6 +95,25 @@ class Stepper:
         # the wheel quantities at the initial state, for the first published state
         _, self.wheel, _ = self.model.forces(self.q, self.v, 0.0, np.zeros(4), self.slip,
                                              None, h)
+
+    def place(self, x: float, y: float, yaw: float) -> None:
+        """
+        Put the vehicle at ``x``, ``y`` (m) heading ``yaw`` (rad) in the world; step 0 only.
+
+        Roll and pitch, heights and the body-frame velocities stay (the state of a vehicle
+        on a flat road does not depend on where it stands).
+        """
+        if self.step != 0:
+            raise SolverError('the vehicle can be placed only before its first step')
+        for name, value in (('x', x), ('y', y), ('yaw', yaw)):
+            if not math.isfinite(value):
+                raise SolverError(f'initial pose: {name} is not finite ({value})')
+        roll, pitch, _ = pin.rpy.matrixToRpy(pin.Quaternion(self.q[3:7]).matrix())
+        q = self.q.copy()
+        q[0], q[1] = x, y
+        q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw)).coeffs()
+        self.q = q
+        self._state = None
 
     @property
     def time(self) -> float:
