@@ -145,6 +145,7 @@ class LockstepSession:
         self._wheel_msgs = [getattr(self._state_msg, wheel) for wheel in WHEELS]
         self._odom_msg = covariance_unknown(Odometry())
         self._tf_msg = TFMessage(transforms=[TransformStamped()])
+        self._tf_readers = 0  # /tf subscriptions matched when /tf was last published
         self.description = description
         if description is not None:
             self._describe(description)
@@ -340,7 +341,8 @@ class LockstepSession:
         """
         Publish the current step; a ``repeat`` (while its command is awaited) leaves /tf out.
 
-        tf2 refuses a transform stamped like one it holds (TF_REPEATED_DATA).
+        tf2 refuses a transform stamped like one it holds (TF_REPEATED_DATA): a repeat
+        carries /tf only when a reader joined since it was published (a late joiner).
         """
         c0 = time.perf_counter()
         stamp = to_stamp(self.now_ns)
@@ -372,8 +374,10 @@ class LockstepSession:
                  t.transform.translation.z), r = joint_transform(joint, value)
                 (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
                  t.transform.rotation.w) = r
-        if not repeat:
+        readers = self.tf_pub.get_subscription_count()
+        if not repeat or readers > self._tf_readers:
             self.tf_pub.publish(tf)
+            self._tf_readers = readers
         self._published_at = time.monotonic()
         self.timings['publish'] += time.perf_counter() - c0
 
