@@ -231,6 +231,11 @@ class LockstepSession:
     def active(self) -> bool:
         return self.status == 'running'
 
+    @property
+    def running(self) -> bool:
+        """Active, and rclpy not shut down (a SIGINT ends the context under a timer)."""
+        return self.active and self.node.context.ok()
+
     # --- lock-step --------------------------------------------------------------------
 
     def _on_command(self, msg: VehicleCommand) -> None:
@@ -260,7 +265,7 @@ class LockstepSession:
 
         ``stamp`` None: for the step the session waits for (module doc).
         """
-        if not self.active:
+        if not self.running:
             return
         if self.mode == 'free':
             try:
@@ -309,7 +314,7 @@ class LockstepSession:
         self._waiting_since = self._published_at
 
     def _watchdog(self) -> None:
-        if not self.active:
+        if not self.running:
             return
         waited = time.monotonic() - self._waiting_since
         limit = self.start_timeout if self.stepper.step == 0 else self.command_timeout
@@ -323,7 +328,7 @@ class LockstepSession:
     # --- free running -----------------------------------------------------------------
 
     def _free_step(self) -> None:
-        if not self.active:
+        if not self.running:
             return
         try:
             if self.held_setpoint is not None:
