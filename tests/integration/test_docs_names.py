@@ -105,7 +105,12 @@ def test_every_quoted_name_exists(graph):
     from vd_solvers.nodes.lockstep import (
         ACKERMANN_TOPIC,
         COMMAND_TOPIC,
+        INITIAL_POSE_TOPIC,
+        JOINT_STATES_TOPIC,
+        RESET_SERVICE,
+        ROBOT_DESCRIPTION_TOPIC,
         STATUS_TOPIC,
+        TF_STATIC_TOPIC,
         TWIST_TOPIC,
     )
 
@@ -113,7 +118,9 @@ def test_every_quoted_name_exists(graph):
     live = names['topics'] | names['services'] | names['actions']
     # names of a mode not started here, checked against their one definition
     defined = {f'/vd/{COMMAND_TOPIC}', f'/vd/{STATUS_TOPIC}', f'/vd/{ACKERMANN_TOPIC}',
-               f'/vd/{TWIST_TOPIC}', '/clock', CAPABILITY_TOPIC}
+               f'/vd/{TWIST_TOPIC}', f'/vd/{INITIAL_POSE_TOPIC}', f'/vd/{RESET_SERVICE}',
+               f'/vd/{ROBOT_DESCRIPTION_TOPIC}', f'/vd/{JOINT_STATES_TOPIC}', TF_STATIC_TOPIC,
+               '/clock', CAPABILITY_TOPIC}
     types = {'/vd/kc/state': 'vd_interfaces/msg/KcState',
              '/vd/steady_state/state': 'vd_interfaces/msg/AnalyticalState',
              '/vd/vehicle/state': 'vd_interfaces/msg/VehicleState'}

@@ -276,7 +276,7 @@ def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
                    'duration:=2.0', 'speed:=10.0', 'radius:=30.0', 'command_timeout:=30.0')
     # odometry is a per-step stream (volatile): a plain echo, subscribed before the
     # session starts (the vehicle builds its maps first), gets a step of the run
-    echo = start(env, 'topic', 'echo', '--once', '/ls/vehicle/odom')
+    echo = start(env, 'topic', 'echo', '--once', '/ls/vehicle/odom', 'nav_msgs/msg/Odometry')
     try:
         wanted = {'/ls/vehicle_solver', '/ls/path_follower'}
         assert wanted <= wait_for_nodes(env, wanted, [launch])
