@@ -168,7 +168,7 @@ def test_documented_parameters_are_the_nodes_parameters(graph):
         have = declared.get(node, declared.get('kc_solver') if node.endswith('_solver') else None)
         assert have is not None, f'documented node {node} is not in the graph'
         assert params <= have, (node, params - have)
-    vehicle = declared['vehicle_solver'] - {'mode', 'frame_prefix'}
+    vehicle = declared['vehicle_solver'] - {'mode', 'autostart', 'frame_prefix'}
     assert vehicle == set(), vehicle  # the lock-step parameters are declared in that mode only
     for node in ('data_server', 'recorder', 'kc_solver', 'analytical_solver'):
         assert declared[node] <= documented.get(node, set()), (node, declared[node])

@@ -82,3 +82,62 @@ def test_reset_and_initial_pose_restart_a_stopped_session(ros_domain, sedan_mast
     # REP 145: not estimated; the body's height is the model's (on its tires, near design)
     assert placed.pose.covariance[0] == -1.0 and placed.twist.covariance[0] == -1.0
     assert placed.pose.pose.position.z != 0.0 and abs(placed.pose.pose.position.z) < 0.1
+
+
+def test_the_vehicle_solver_is_a_managed_node(ros_domain, sedan_master):
+    """Configure = build the vehicle, activate = start, deactivate = hold, cleanup = drop."""
+    from lifecycle_msgs.msg import Transition
+    from lifecycle_msgs.srv import ChangeState, GetState
+    import rclpy
+    from rclpy.parameter import Parameter
+
+    from vd_data_server.ros.qos import COMMANDS
+    from vd_interfaces.msg import VehicleCommand
+    from vd_solvers.nodes.vehicle import VehicleSolver
+
+    solver = VehicleSolver(namespace='/car5', cli_args=['--ros-args', '-r',
+                                                        '/clock:=/car5/clock'],
+                           parameter_overrides=[Parameter('mode', value='lockstep'),
+                                                Parameter('autostart', value=False),
+                                                Parameter('master', value=str(sedan_master)),
+                                                Parameter('start_timeout', value=600.0)])
+    probe = rclpy.create_node('lifecycle_probe')
+    nodes = [solver, probe]
+    try:
+        change = probe.create_client(ChangeState, '/car5/vehicle_solver/change_state')
+        get = probe.create_client(GetState, '/car5/vehicle_solver/get_state')
+        assert wait_for(nodes, lambda: change.service_is_ready() and get.service_is_ready())
+
+        def call(client, request):
+            future = client.call_async(request)
+            assert wait_for(nodes, future.done)
+            return future.result()
+
+        def transition(tid: int) -> bool:
+            return call(change, ChangeState.Request(transition=Transition(id=tid))).success
+
+        def state() -> str:
+            return call(get, GetState.Request()).current_state.label
+
+        assert state() == 'unconfigured' and solver.lockstep is None
+        assert transition(Transition.TRANSITION_CONFIGURE) and state() == 'inactive'
+        assert solver.lockstep is None  # built, not started: no /clock yet
+        assert probe.count_publishers('/car5/clock') == 0
+        assert transition(Transition.TRANSITION_ACTIVATE) and state() == 'active'
+        session = solver.lockstep
+        assert session is not None and session.active
+        pub = probe.create_publisher(VehicleCommand, '/car5/vehicle/command', COMMANDS)
+        assert wait_for(nodes, lambda: pub.get_subscription_count() > 0)
+        pub.publish(VehicleCommand())
+        assert wait_for(nodes, lambda: session.stepper.step == 1)
+        assert transition(Transition.TRANSITION_DEACTIVATE) and state() == 'inactive'
+        assert session.status == 'inactive at t = 0.005000 s'
+        assert transition(Transition.TRANSITION_ACTIVATE)  # the session again, from t = 0
+        assert session.active and session.stepper.step == 0
+        assert transition(Transition.TRANSITION_DEACTIVATE)
+        assert transition(Transition.TRANSITION_CLEANUP) and state() == 'unconfigured'
+        assert solver.lockstep is None
+        assert wait_for(nodes, lambda: probe.count_publishers('/car5/clock') == 0)
+    finally:
+        for node in nodes:
+            node.destroy_node()

@@ -50,8 +50,8 @@ def test_sigint_stops_the_vehicle_solver_cleanly(ros_domain, sedan_master, mode)
 
         probe = rclpy.create_node('sigint_probe')
         try:
-            assert wait_for([probe], lambda: ('vehicle_solver', '/sig') in
-                            probe.get_node_names_and_namespaces())
+            # the odometry publisher: made after the node's own and lifecycle services
+            assert wait_for([probe], lambda: probe.count_publishers('/sig/vehicle/odom') > 0)
         finally:
             probe.destroy_node()
     t0 = time.monotonic()

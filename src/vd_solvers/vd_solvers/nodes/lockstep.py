@@ -48,6 +48,9 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
+from rclpy.publisher import Publisher
+from rclpy.service import Service
+from rclpy.subscription import Subscription
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
@@ -121,21 +124,25 @@ class LockstepSession:
         self.configuration = configuration
         self.frame_prefix = frame_prefix  # outside /vd: car2/odom -> car2/base_link
         self.state_pub, self.odom_pub, self.tf_pub = state_pub, odom_pub, tf_pub
-        self.clock_pub = node.create_publisher(Clock, claim_clock(node), CLOCK)
-        self.status_pub = node.create_publisher(String, STATUS_TOPIC, STATUS)
+        self._entities: list = []  # what the session created on the node (close())
+        self.clock_pub = self._own(node.create_publisher(Clock, claim_clock(node), CLOCK))
+        self.status_pub = self._own(node.create_publisher(String, STATUS_TOPIC, STATUS))
         self.stale = 0  # commands dropped as answers to an earlier step
         #: seconds spent in the model step and in building + publishing the messages
         self.timings = {'model': 0.0, 'publish': 0.0}
         self.status = 'running'
         self.held = Command()
         self.held_setpoint: Setpoint | None = None  # free mode: the newest setpoint, if any
-        self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command, COMMANDS)
-        self.node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
-                                      self._on_ackermann, COMMANDS)
-        self.node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS)
-        self.node.create_service(Trigger, RESET_SERVICE, self._on_reset)
-        self.node.create_subscription(PoseWithCovarianceStamped, INITIAL_POSE_TOPIC,
-                                      self._on_initial_pose, COMMANDS)
+        for entity in (
+                node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command,
+                                         COMMANDS),
+                node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
+                                         self._on_ackermann, COMMANDS),
+                node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS),
+                node.create_service(Trigger, RESET_SERVICE, self._on_reset),
+                node.create_subscription(PoseWithCovarianceStamped, INITIAL_POSE_TOPIC,
+                                         self._on_initial_pose, COMMANDS)):
+            self._own(entity)
         self._state_msg = VehicleState(event='lockstep', configuration=configuration,
                                        model='vehicle')
         self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
@@ -155,9 +162,35 @@ class LockstepSession:
         self._publish_status('running')
         self._publish()
         if mode == 'free':
-            self.timer = node.create_timer(stepper.h / real_time_factor, self._free_step)
+            self.timer = self._own(node.create_timer(stepper.h / real_time_factor,
+                                                     self._free_step))
         else:
-            self.timer = node.create_timer(REPEAT_PERIOD, self._watchdog)
+            self.timer = self._own(node.create_timer(REPEAT_PERIOD, self._watchdog))
+
+    def _own(self, entity):
+        self._entities.append(entity)
+        return entity
+
+    def hold(self) -> None:
+        """Stop stepping (a deactivated node); ``reset`` starts the session again."""
+        if self.active:
+            self.status = f'inactive at t = {self.now_ns * 1e-9:.6f} s'
+            self.node.get_logger().info(f'lock-step {self.status}')
+            self._publish_status(self.status)
+
+    def close(self) -> None:
+        """Remove what the session created from the node (a cleaned-up node)."""
+        self.hold()
+        for entity in reversed(self._entities):
+            if isinstance(entity, Publisher):
+                self.node.destroy_publisher(entity)
+            elif isinstance(entity, Subscription):
+                self.node.destroy_subscription(entity)
+            elif isinstance(entity, Service):
+                self.node.destroy_service(entity)
+            else:
+                self.node.destroy_timer(entity)
+        self._entities.clear()
 
     # --- reset -------------------------------------------------------------------------
 
@@ -201,8 +234,8 @@ class LockstepSession:
     def _describe(self, description: Description) -> None:
         """Publish the robot description and the static frames; prepare the joint states."""
         prefix = self.frame_prefix
-        self.description_pub = self.node.create_publisher(String, ROBOT_DESCRIPTION_TOPIC,
-                                                          TF_STATIC)
+        self.description_pub = self._own(self.node.create_publisher(
+            String, ROBOT_DESCRIPTION_TOPIC, TF_STATIC))
         self.description_pub.publish(String(data=description.urdf()))
         static = TFMessage()
         for joint in description.fixed:
@@ -213,9 +246,11 @@ class LockstepSession:
                                           t.transform.rotation.z,
                                           t.transform.rotation.w) = joint_transform(joint, 0.0)
             static.transforms.append(t)
-        self.static_pub = self.node.create_publisher(TFMessage, TF_STATIC_TOPIC, TF_STATIC)
+        self.static_pub = self._own(self.node.create_publisher(TFMessage, TF_STATIC_TOPIC,
+                                                               TF_STATIC))
         self.static_pub.publish(static)
-        self.joint_pub = self.node.create_publisher(JointState, JOINT_STATES_TOPIC, STATES)
+        self.joint_pub = self._own(self.node.create_publisher(JointState, JOINT_STATES_TOPIC,
+                                                              STATES))
         self._joint_msg = JointState(name=[j.name for j in description.moving])
         for joint in description.moving:
             t = TransformStamped()
