@@ -401,23 +401,31 @@ class LockstepSession:
         odom = odometry(s, stamp, self._odom_msg, self.frame_prefix, z=float(self.stepper.q[2]))
         self.state_pub.publish(msg)
         self.odom_pub.publish(odom)
-        tf = transform(odom, self._tf_msg)
-        if self.description is not None:
-            positions = joint_positions(self.description, self.stepper.q, wheels['wheel_steer'])
-            joints = self._joint_msg
-            joints.header.stamp = stamp
-            joints.position = positions
-            self.joint_pub.publish(joints)
-            for t, joint, value in zip(tf.transforms[1:], self.description.moving, positions):
-                t.header.stamp = stamp
-                (t.transform.translation.x, t.transform.translation.y,
-                 t.transform.translation.z), r = joint_transform(joint, value)
-                (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
-                 t.transform.rotation.w) = r
-        readers = self.tf_pub.get_subscription_count()
-        if not repeat or readers > self._tf_readers:
-            self.tf_pub.publish(tf)
-            self._tf_readers = readers
+        # the joints and wheel frames only for whom listens (building them costs a step's
+        # share); a reader that joins gets the next step, or the repeat below
+        tf_readers = self.tf_pub.get_subscription_count()
+        tf_due = tf_readers > 0 and (not repeat or tf_readers > self._tf_readers)
+        joints_due = self.description is not None and self.joint_pub.get_subscription_count() > 0
+        if tf_due or joints_due:
+            tf = transform(odom, self._tf_msg)
+            positions = (joint_positions(self.description, self.stepper.q,
+                                         wheels['wheel_steer'])
+                         if self.description is not None else [])
+            if joints_due:
+                joints = self._joint_msg
+                joints.header.stamp = stamp
+                joints.position = positions
+                self.joint_pub.publish(joints)
+            if tf_due:
+                for t, joint, value in zip(tf.transforms[1:], self.description.moving
+                                           if self.description is not None else (), positions):
+                    t.header.stamp = stamp
+                    (t.transform.translation.x, t.transform.translation.y,
+                     t.transform.translation.z), r = joint_transform(joint, value)
+                    (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
+                     t.transform.rotation.w) = r
+                self.tf_pub.publish(tf)
+        self._tf_readers = tf_readers
         self._published_at = time.monotonic()
         self.timings['publish'] += time.perf_counter() - c0
 
