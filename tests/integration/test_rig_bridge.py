@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import subprocess
 import time
 
@@ -76,7 +77,7 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path, publis
         deadline = time.monotonic() + HANG_GUARD
         while received[0] == 0 and proc.poll() is None and time.monotonic() < deadline:
             pub.publish(other)
-            spin_until([node], lambda: received[0] > 0, timeout=0.1)
+            spin_until([node], lambda: received[0] > 0, timeout=1.0)
         assert received[0] > 0
         travel = [-0.02, -0.01, 0.0, 0.01, 0.02]
         for k, z in enumerate(travel):
@@ -87,9 +88,9 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path, publis
             pub.publish(msg)
         # a message without a mapped joint is left out, not recorded half
         pub.publish(other)
+        # a warm-up message still in flight may arrive after the count was read
         sent = received[0] + len(travel) + 1
-        assert wait_for([node], lambda: received[0] == sent)
-        unmapped = sent - len(travel)
+        assert wait_for([node], lambda: received[0] >= sent)
         client = node.create_client(Trigger, '/rig_bridge/finish')
         assert wait_for([node], client.service_is_ready)
         future = client.call_async(Trigger.Request())
@@ -106,7 +107,8 @@ def test_joint_states_recorded_as_a_rig_measurement(ros_domain, tmp_path, publis
     assert_allclose(outcome.channels['pad_force_left'].values, [3000, 3001, 3002, 3003, 3004])
     assert_allclose(outcome.channels['toe_left'].values,
                     [-math.radians(0.5 * k) for k in range(5)])
-    assert f'{unmapped} message(s) without every mapped joint left out' in outcome.notes
+    assert any(re.fullmatch(r'[1-9]\d* message\(s\) without every mapped joint left out', n)
+               for n in outcome.notes), outcome.notes
 
 
 def test_rig_bridge_refuses_a_bad_map(ros_domain, tmp_path):
