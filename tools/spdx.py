@@ -15,7 +15,7 @@ import sys
 
 HEADER = ('# Copyright 2026 The vd authors', '# SPDX-License-Identifier: Apache-2.0')
 #: upstream sources kept under their own licence
-UPSTREAM = ('src/tf2_msgs/',)
+UPSTREAM = ('src/tf2_msgs/', 'src/ackermann_msgs/')
 ROOT = Path(__file__).resolve().parents[1]
 
 

@@ -30,6 +30,7 @@ setup(
         *data_tree('data'),
     ],
     install_requires=['setuptools'],
+    extras_require={'test': ['pytest']},
     zip_safe=True,
     maintainer='vd maintainers',
     maintainer_email='maintainers@vd-sim.org',

@@ -165,13 +165,19 @@ def test_bag_metadata_says_jazzy_compressed_chunks_and_the_offered_qos(kc_bag):
               for t in meta['topics_with_message_count']}
     assert set(topics) >= {'/vd/configuration', '/vd/data_status', '/vd/provenance',
                            '/vd/kc/state', '/vd/kc/result', '/tf'}
+    # what the ROS tools expect: data and results latched, per-step streams and /tf
+    # volatile (tf2's broadcaster), so a late subscriber never replays a finished run
+    durability = {'/vd/configuration': 'transient_local', '/vd/data_status': 'transient_local',
+                  '/vd/provenance': 'transient_local', '/vd/kc/result': 'transient_local',
+                  '/vd/kc/state': 'volatile', '/tf': 'volatile'}
     for name, topic in topics.items():
         profiles = topic['offered_qos_profiles']  # one per publisher (three for provenance)
         assert profiles, name
         for qos in profiles:
             assert (qos['reliability'], qos['durability'], qos['history']) == (
-                'reliable', 'transient_local', 'keep_last'), name
+                'reliable', durability[name], 'keep_last'), name
             assert qos['depth'] > 0, name
+    assert topics['/tf']['offered_qos_profiles'][0]['depth'] == 100  # tf2_ros's depth
     # one per solver of the graph (an embedded run starts the solvers its runs need)
     assert len(topics['/vd/provenance']['offered_qos_profiles']) >= 1
     (mcap_file,) = bag.glob('*.mcap')

@@ -102,12 +102,25 @@ def test_every_quoted_name_exists(graph):
     from rosidl_runtime_py.utilities import get_message
 
     from vd_events.studies.capability import TOPIC as CAPABILITY_TOPIC
-    from vd_solvers.nodes.lockstep import COMMAND_TOPIC, STATUS_TOPIC
+    from vd_solvers.nodes.lockstep import (
+        ACKERMANN_TOPIC,
+        COMMAND_TOPIC,
+        INITIAL_POSE_TOPIC,
+        JOINT_STATES_TOPIC,
+        RESET_SERVICE,
+        ROBOT_DESCRIPTION_TOPIC,
+        STATUS_TOPIC,
+        TF_STATIC_TOPIC,
+        TWIST_TOPIC,
+    )
 
     names, _ = graph
     live = names['topics'] | names['services'] | names['actions']
     # names of a mode not started here, checked against their one definition
-    defined = {f'/vd/{COMMAND_TOPIC}', f'/vd/{STATUS_TOPIC}', '/clock', CAPABILITY_TOPIC}
+    defined = {f'/vd/{COMMAND_TOPIC}', f'/vd/{STATUS_TOPIC}', f'/vd/{ACKERMANN_TOPIC}',
+               f'/vd/{TWIST_TOPIC}', f'/vd/{INITIAL_POSE_TOPIC}', f'/vd/{RESET_SERVICE}',
+               f'/vd/{ROBOT_DESCRIPTION_TOPIC}', f'/vd/{JOINT_STATES_TOPIC}', TF_STATIC_TOPIC,
+               '/clock', CAPABILITY_TOPIC}
     types = {'/vd/kc/state': 'vd_interfaces/msg/KcState',
              '/vd/steady_state/state': 'vd_interfaces/msg/AnalyticalState',
              '/vd/vehicle/state': 'vd_interfaces/msg/VehicleState'}
@@ -155,7 +168,7 @@ def test_documented_parameters_are_the_nodes_parameters(graph):
         have = declared.get(node, declared.get('kc_solver') if node.endswith('_solver') else None)
         assert have is not None, f'documented node {node} is not in the graph'
         assert params <= have, (node, params - have)
-    vehicle = declared['vehicle_solver'] - {'mode', 'frame_prefix'}
+    vehicle = declared['vehicle_solver'] - {'mode', 'autostart', 'frame_prefix'}
     assert vehicle == set(), vehicle  # the lock-step parameters are declared in that mode only
     for node in ('data_server', 'recorder', 'kc_solver', 'analytical_solver'):
         assert declared[node] <= documented.get(node, set()), (node, declared[node])

@@ -41,7 +41,8 @@ def test_the_example_controller_drives_a_full_constant_radius_turn(ros_domain, t
     assert len(tf) == len(clock) == len(states) == steps + 1
     assert len(commands) >= steps
     for item in tf:
-        (t,) = item.msg.transforms
+        t, *wheels = item.msg.transforms  # the body, then the wheel frames
+        assert len(wheels) == 10  # travel x 4, steer x 2, spin x 4
         assert item.timestamp == t.header.stamp.sec * 10**9 + t.header.stamp.nanosec
         assert (t.header.frame_id, t.child_frame_id) == ('odom', 'base_link')
     assert [c.timestamp for c in clock] == [k * int(STEP * 1e9) for k in range(steps + 1)]

@@ -9,7 +9,9 @@ Starts ``vehicle_solver`` in ``lockstep`` mode (the sample study's first configu
 it the frames carry the namespace: ``car2/odom``), ``master`` (default: the bundled
 study), ``configuration``, ``mode`` (lockstep | free), ``duration`` (simulated s),
 ``radius``, ``speed``, ``real_time_factor`` (free mode), ``command_timeout`` (wall s the
-vehicle waits for a step's command, default 2; more on a loaded machine).
+vehicle waits for a step's command, default 2; more on a loaded machine), ``clock_topic``
+(default ``/clock``: the simulation clock both nodes use; one owner per ROS domain, so a
+second vehicle in the domain needs its own, e.g. ``clock_topic:=/car2/clock``).
 ``vd launch --lockstep`` starts the same pair where the launch tools are not installed.
 """
 from launch.actions import DeclareLaunchArgument
@@ -25,15 +27,16 @@ def generate_launch_description() -> LaunchDescription:
     """Declare the arguments and the two nodes."""
     args = {'namespace': DEFAULT_NAMESPACE, 'master': '', 'configuration': '',
             'mode': 'lockstep', 'duration': '30.0', 'radius': '40.0', 'speed': '12.0',
-            'real_time_factor': '1.0', 'command_timeout': '2.0'}
+            'real_time_factor': '1.0', 'command_timeout': '2.0', 'clock_topic': '/clock'}
     declared = [DeclareLaunchArgument(k, default_value=v) for k, v in args.items()]
 
     def value(name, kind=float):
         return ParameterValue(LaunchConfiguration(name), value_type=kind)
 
     namespace = LaunchConfiguration('namespace')
+    clock = [('/clock', LaunchConfiguration('clock_topic'))]
     solver = Node(package='vd_solvers', executable='vehicle_solver', output='screen',
-                  namespace=namespace,
+                  namespace=namespace, remappings=clock,
                   parameters=[{'mode': value('mode', str),
                                'master': value('master', str),
                                'configuration': value('configuration', str),
@@ -43,7 +46,7 @@ def generate_launch_description() -> LaunchDescription:
                                'command_timeout': value('command_timeout'),
                                'use_sim_time': False}])
     follower = Node(package='vd_events', executable='path_follower', output='screen',
-                    namespace=namespace,
+                    namespace=namespace, remappings=clock,
                     parameters=[{'radius': value('radius'), 'speed': value('speed'),
                                  'use_sim_time': True}])
     return LaunchDescription([*declared, solver, follower])

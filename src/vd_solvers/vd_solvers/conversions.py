@@ -523,6 +523,23 @@ def outcome_kc_transforms(outcome: EventOutcome, stamp, prefix: str = '') -> lis
     return out
 
 
+#: REP 145's convention for a covariance nobody estimated: -1 in its first element
+UNKNOWN_COVARIANCE = -1.0
+
+
+def covariance_unknown(msg):
+    """
+    Mark the pose and twist covariance of a nav_msgs/Odometry as not estimated; return it.
+
+    The model gives a state, not an estimate with an uncertainty: an all-zero covariance
+    would claim the pose is known exactly, so the first element is -1 (REP 145: "a
+    covariance matrix with -1 in its first element is unknown"), the rest 0.
+    """
+    msg.pose.covariance[0] = UNKNOWN_COVARIANCE
+    msg.twist.covariance[0] = UNKNOWN_COVARIANCE
+    return msg
+
+
 def outcome_odometry(outcome: EventOutcome, stamp) -> list:
     """
     Return a nav_msgs/Odometry per step of a full-vehicle outcome.
@@ -552,5 +569,5 @@ def outcome_odometry(outcome: EventOutcome, stamp) -> list:
         msg.twist.twist.linear.x = speed * math.cos(beta)
         msg.twist.twist.linear.y = speed * math.sin(beta)
         msg.twist.twist.angular.z = float(ch['yaw_rate'][i])
-        out.append(msg)
+        out.append(covariance_unknown(msg))
     return out

@@ -18,7 +18,7 @@ killed (``kill -9``) and is replaced by the next writer of the same bag.
 """
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 import fcntl
 from functools import lru_cache
@@ -158,6 +158,23 @@ def qos_record(profile) -> Qos:
                avoid_ros_namespace_conventions=bool(profile.avoid_ros_namespace_conventions))
 
 
+def offered_profiles(node: Any, topic: str, own: QoSProfile) -> list[QoSProfile]:
+    """
+    Return the QoS profiles the publishers of ``topic`` offer, as ``node`` discovered them.
+
+    History and depth, which discovery does not carry, are taken from ``own`` (the
+    profile vd publishes the topic with, vd_data_server.ros.qos); with no publisher
+    discovered yet, ``[own]``.
+    """
+    out = []
+    for info in node.get_publishers_info_by_topic(topic):
+        q = info.qos_profile
+        if q.history == HistoryPolicy.UNKNOWN or q.depth == 0:
+            q.history, q.depth = own.history, own.depth
+        out.append(q)
+    return out or [own]
+
+
 def offered_qos(path: str | Path) -> dict[str, list]:
     """
     Return topic -> the rclpy QoSProfiles its publishers offered, from a bag's metadata.
@@ -245,16 +262,18 @@ class BagWriter:
     def set_custom_data(self, key: str, value: str) -> None:
         self._writer.set_custom_data(key, value)
 
-    def write(self, topic: str, msg: Any, timestamp_ns: int, qos=()) -> None:
+    def write(self, topic: str, msg: Any, timestamp_ns: int, qos: Sequence[QoSProfile]) -> None:
         """
         Write ``msg`` at log time ``timestamp_ns``.
 
-        ``qos`` (rclpy QoSProfiles) is what the topic's publishers offered, recorded
-        with the topic's first message.
+        ``qos`` (rclpy QoSProfiles, at least one) is what the topic's publishers offered,
+        recorded with the topic's first message: ``ros2 bag play`` publishes with it.
         """
         msgtype = _type_name(msg)
         conn = self._connections.get(topic)
         if conn is None:
+            if not qos:
+                raise ValueError(f'{topic}: a bag topic needs the QoS its publishers offered')
             conn = self._writer.add_connection(
                 topic, msgtype, typestore=typestore(),
                 offered_qos_profiles=[qos_record(q) for q in qos])

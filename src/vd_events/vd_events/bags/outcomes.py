@@ -19,7 +19,7 @@ from pathlib import Path
 from builtin_interfaces.msg import Time
 
 from vd_data_server.ros.names import DEFAULT_NAMESPACE
-from vd_data_server.ros.qos import RESULTS, STATES
+from vd_data_server.ros.qos import profile_of
 from vd_events.bags.bag import BagWriter, log_time
 from vd_interfaces.msg import Provenance
 from vd_solvers import __version__
@@ -58,8 +58,7 @@ def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
     try:
         for topic, msg in messages:
             # the QoS the solvers offer, so a replay latches like the live graph
-            qos = RESULTS if topic.endswith(('/result', '/provenance')) else STATES
-            writer.write(topic, msg, log_time(msg, 0), [qos])
+            writer.write(topic, msg, log_time(msg, 0), [profile_of(topic)])
         return writer.close()
     except BaseException:
         writer.abort()

@@ -30,13 +30,12 @@ import time
 
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
-from rclpy.qos import HistoryPolicy
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
 from vd_data_server.ros import names
-from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
-from vd_events.bags.bag import BagWriter, log_time
+from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES, TF
+from vd_events.bags.bag import BagWriter, log_time, offered_profiles
 from vd_events.errors import BagError
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance
 from vd_solvers.conversions import TIME_AXIS, outcome_from_msg, outcome_messages, start_stamp
@@ -62,7 +61,7 @@ TOPICS = {
 FAMILY_RESULTS = frozenset(family.result_topic for family in FAMILIES.values())
 #: the topics written from each result, with the profile their publishers use
 DERIVED = {**{family.state_topic: STATES for family in FAMILIES.values()},
-           ODOMETRY_TOPIC: STATES, TF_TOPIC: STATES}
+           ODOMETRY_TOPIC: STATES, TF_TOPIC: TF}
 
 
 def _stamp_ns(msg) -> int | None:
@@ -183,13 +182,7 @@ class Recorder(Node):
         own profile (vd_data_server.ros.qos).
         """
         own = TOPICS[topic][1] if topic in TOPICS else DERIVED[topic]
-        out = []
-        for info in self.get_publishers_info_by_topic(self._bag_topics[topic]):
-            q = info.qos_profile
-            if q.history == HistoryPolicy.UNKNOWN or q.depth == 0:
-                q.history, q.depth = own.history, own.depth
-            out.append(q)
-        return out or [own]
+        return offered_profiles(self, self._bag_topics[topic], own)
 
     def _publish_complete(self) -> None:
         """Count the results whose provenance and configuration are written too; say so."""

@@ -31,7 +31,7 @@ from vd_data_server.nodes.data_server import DataServer
 from vd_data_server.overview import console
 from vd_data_server.paths import default_master
 from vd_data_server.ros.names import CONFIGURATION, DEFAULT_NAMESPACE
-from vd_data_server.ros.qos import CONFIGURATIONS
+from vd_data_server.ros.qos import CONFIGURATIONS, STATES
 from vd_data_server.study import load_study
 from vd_events.bags.bag import BagWriter
 from vd_events.bench.identify import bench_identify
@@ -227,7 +227,7 @@ def _bench_bag(n: int = 20000) -> dict[str, float]:
         writer = BagWriter(Path(tmp) / 'bag')
         t0 = time.perf_counter()
         for i in range(n):
-            writer.write('/vd/kc/state', msg, i)
+            writer.write('/vd/kc/state', msg, i, [STATES])
         writer.close()
         elapsed = time.perf_counter() - t0
     return {'messages': n, 'messages_per_s': n / elapsed}

@@ -6,11 +6,15 @@
 Subscribes to ``topic`` (default ``/rig/joint_states``, ``sensor_msgs/JointState``: posts
 and load cells as joints) and maps the joints to vd channels with the column map of
 parameter ``map`` (docs/testdata.md: ``JOINT.position`` / ``.velocity`` / ``.effort``
-keys). The service ``~/finish`` (std_srvs/Trigger) writes what was received as one
-EventOutcome (model ``rig`` or ``test``, fidelity ``measured``) to the bag of parameter
-``bag`` with the messages of a simulation (:mod:`vd_events.bags.outcomes`) and answers its
-path; nothing is written before, and a finish with fewer than two complete samples
-writes nothing and says so. The core is :class:`vd_events.measured.rig.RigRecording`.
+keys). The subscription is best effort and volatile, so it matches every publisher:
+default QoS (``ros2 topic pub``, ``joint_state_broadcaster``), sensor-data QoS and latched
+ones. ``~/received`` (std_msgs/UInt32, latched) counts the messages taken so far, so a rig
+(or a test) sees the bridge is listening. The service ``~/finish`` (std_srvs/Trigger)
+writes what was received as one EventOutcome (model ``rig`` or ``test``, fidelity
+``measured``) to the bag of parameter ``bag`` with the messages of a simulation
+(:mod:`vd_events.bags.outcomes`) and answers its path; nothing is written before, and a
+finish with fewer than two complete samples writes nothing and says so. The core is
+:class:`vd_events.measured.rig.RigRecording`.
 """
 from __future__ import annotations
 
@@ -22,16 +26,17 @@ from rcl_interfaces.msg import ParameterDescriptor
 import rclpy
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
+from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
 from vd_data_server.errors import DataError
 from vd_data_server.ros.node_main import spin_node
+from vd_data_server.ros.qos import LATEST, RIG_INPUT
 from vd_events.bags.bag import check_bag_path
 from vd_events.bags.outcomes import write_outcomes
 from vd_events.errors import BagError
 from vd_events.measured.columns import load_map
 from vd_events.measured.rig import RigRecording
-from vd_solvers.nodes.solver import SAMPLES
 
 DEFAULT_TOPIC = '/rig/joint_states'
 
@@ -53,7 +58,9 @@ class RigBridge(Node):
         topic = self.get_parameter('topic').value
         self.recording = RigRecording(load_map(path), topic)
         self.written: str | None = None
-        self.create_subscription(JointState, topic, self._on_state, SAMPLES)
+        self.received = 0
+        self.received_pub = self.create_publisher(UInt32, '~/received', LATEST)
+        self.create_subscription(JointState, topic, self._on_state, RIG_INPUT)
         self.create_service(Trigger, '~/finish', self._finish)
         self.get_logger().info(f"recording {topic} ({', '.join(self.recording.channels)}) "
                                f'for {self.bag}')
@@ -61,6 +68,8 @@ class RigBridge(Node):
     def _on_state(self, msg: JointState) -> None:
         stamp = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
         self.recording.add(stamp, msg.name, msg.position, msg.velocity, msg.effort)
+        self.received += 1
+        self.received_pub.publish(UInt32(data=self.received))
 
     def finish(self) -> str:
         """Write the bag; return its path (DataError/BagError: nothing written)."""

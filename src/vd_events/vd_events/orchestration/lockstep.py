@@ -30,12 +30,11 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
 
 from tf2_msgs.msg import TFMessage
-from vd_data_server.ros.qos import COMMANDS, STATUS
-from vd_events.bags.bag import BagWriter, check_bag_path
+from vd_data_server.ros.qos import STATES, STATUS, profile_of
+from vd_events.bags.bag import BagWriter, check_bag_path, offered_profiles
 from vd_events.orchestration.path_follower import PathFollower
 from vd_interfaces.msg import VehicleCommand, VehicleState
 from vd_solvers.nodes.lockstep import STATUS_TOPIC
-from vd_solvers.nodes.solver import SAMPLES
 from vd_solvers.nodes.vehicle import VehicleSolver
 
 
@@ -191,6 +190,7 @@ def _record(node, writer, path) -> None:
     """Subscribe ``node`` to RECORDED and write each message at its stamp."""
     types = _types()
     last: dict[str, int] = {}
+    offered: dict[str, list] = {}
 
     def writer_for(topic: str):
         def write(msg) -> None:
@@ -198,14 +198,15 @@ def _record(node, writer, path) -> None:
             if topic != '/vd/vehicle/command' and last.get(topic) == ns:
                 return  # a repeat of the step while its command was awaited
             last[topic] = ns
-            writer.write(topic, msg, ns)
+            if topic not in offered:  # a message came: its publisher is discovered
+                offered[topic] = offered_profiles(node, topic, profile_of(topic))
+            writer.write(topic, msg, ns, offered[topic])
             if topic == '/vd/vehicle/odom':
                 path.append((ns * 1e-9, msg.pose.pose.position.x, msg.pose.pose.position.y))
         return write
 
     for topic in RECORDED:
-        qos = COMMANDS if topic in ('/clock', '/vd/vehicle/command') else SAMPLES
-        node.create_subscription(types[topic], topic, writer_for(topic), qos)
+        node.create_subscription(types[topic], topic, writer_for(topic), profile_of(topic))
 
 
 def _track(node, path) -> None:
@@ -213,7 +214,7 @@ def _track(node, path) -> None:
 
     def keep(msg) -> None:
         path.append((_stamp(msg) * 1e-9, msg.pose.pose.position.x, msg.pose.pose.position.y))
-    node.create_subscription(Odometry, '/vd/vehicle/odom', keep, SAMPLES)
+    node.create_subscription(Odometry, '/vd/vehicle/odom', keep, STATES)
 
 
 __all__ = ['LockstepOutcome', 'run_lockstep', 'RECORDED']

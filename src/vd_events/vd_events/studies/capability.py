@@ -37,7 +37,7 @@ import numpy as np
 
 from vd_data_server.errors import DataError
 from vd_data_server.master import flex_components
-from vd_data_server.ros.qos import RESULTS, STATES
+from vd_data_server.ros.qos import RESULTS, profile_of
 from vd_events.bags.bag import BagWriter, check_bag_path, log_time
 from vd_events.bags.outcomes import outcome_messages
 from vd_events.errors import RunError
@@ -364,8 +364,7 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
             assert result.outcome is not None
             start = stamp_ns(run_stamp(result.outcome, time.time_ns()))
             for topic, msg in outcome_messages(result.outcome, start):
-                writer.write(topic, msg, log_time(msg, 0),
-                             [RESULTS if topic.endswith('/result') else STATES])
+                writer.write(topic, msg, log_time(msg, 0), [profile_of(topic)])
         for table in tables:
             msg = to_msg(table, time_msg(TIME_AXIS.claim(time.time_ns(), 0.0)))
             writer.write(TOPIC, msg, log_time(msg, 0), [RESULTS])

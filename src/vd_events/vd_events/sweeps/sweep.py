@@ -33,6 +33,7 @@ from builtin_interfaces.msg import Time
 import numpy as np
 
 from vd_data_server.errors import DataError
+from vd_data_server.ros.qos import RESULTS
 from vd_events.bags.bag import BagWriter
 from vd_events.errors import BagError, RunError
 from vd_events.orchestration.runner import RunRequest, validate
@@ -221,7 +222,7 @@ def _write_bag(folder: Path, request: RunRequest, outcome: EventOutcome) -> Path
                               'vd.data_hash': request.data_hash})
     try:
         msg = outcome_to_msg(outcome, Time(sec=stamp // 10**9, nanosec=stamp % 10**9))
-        writer.write(f'/vd/{request.family}/result', msg, stamp)
+        writer.write(f'/vd/{request.family}/result', msg, stamp, [RESULTS])
         return writer.close()
     except BaseException:
         writer.abort()

@@ -16,7 +16,7 @@ from __future__ import annotations
 from tf2_msgs.msg import TFMessage
 from vd_data_server.model import Configuration
 from vd_data_server.ros.node_main import spin_node
-from vd_data_server.ros.qos import STATES
+from vd_data_server.ros.qos import TF
 from vd_interfaces.msg import KcState
 from vd_solvers.errors import SolverError
 from vd_solvers.families import TF_TOPIC
@@ -45,7 +45,7 @@ class KCSolver(SolverNode):
     def __init__(self, **kwargs) -> None:
         super().__init__('kc_solver', FAMILY, _run, **kwargs)
         # the wheels move on the rig: base_link -> <axle>_<side>_wheel per step
-        self.publishers_by_topic[TF_TOPIC] = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+        self.publishers_by_topic[TF_TOPIC] = self.create_publisher(TFMessage, TF_TOPIC, TF)
 
 
 def main(args=None) -> None:

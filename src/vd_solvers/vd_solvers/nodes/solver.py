@@ -54,8 +54,6 @@ RunFn = Callable[[Configuration, RunEvent.Goal, Callable[[float, str], None]], E
 FEEDBACK_PERIOD = 0.1
 #: how a goal's overrides are named in messages
 OVERRIDES_SOURCE = 'overrides'
-#: the profiles every subscriber of the solvers' topics uses (the publishers' own)
-SAMPLES = STATES
 
 
 class Cancelled(Exception):

@@ -28,13 +28,14 @@ from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import Executor
 from rclpy.experimental import EventsExecutor
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
 from vd_data_server.paths import default_master
 from vd_data_server.ros.node_main import make_executor, run_node
-from vd_data_server.ros.qos import STATES
+from vd_data_server.ros.qos import STATES, TF
 from vd_data_server.study import load_study
 from vd_interfaces.msg import VehicleState
 from vd_solvers.errors import SolverError
@@ -42,7 +43,9 @@ from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
 from vd_solvers.nodes.lockstep import LockstepSession
 from vd_solvers.nodes.solver import SolverNode
 from vd_solvers.results import EventOutcome
+from vd_solvers.vehicle.actuators import Actuators, parameters_of
 from vd_solvers.vehicle.cosim import Stepper
+from vd_solvers.vehicle.description import describe_model
 from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel
 
@@ -61,7 +64,14 @@ LOCKSTEP_PARAMS = {
     'real_time_factor': (1.0, 'free mode: simulated seconds per wall second'),
     'drive_front': (0.5, 'front share of the drive torque'),
     'brake_front': (0.65, 'front share of the brake torque'),
+    # the actuator model of the Ackermann and Twist inputs (vd_solvers.vehicle.actuators)
+    'steering_lag': (0.05, 'time constant of the steering actuator, s'),
+    'torque_lag': (0.05, 'time constant of the drive and brake torque, s'),
+    'speed_gain': (1.5, 'speed controller: proportional gain, (m/s^2) per (m/s)'),
+    'speed_integral': (0.3, 'speed controller: integral gain, (m/s^2) per m'),
 }
+#: the parameters that go to the actuator model
+ACTUATOR_PARAMS = ('steering_lag', 'torque_lag', 'speed_gain', 'speed_integral')
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
@@ -69,8 +79,17 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
                              progress)
 
 
-class VehicleSolver(SolverNode):
-    """The full-vehicle solver; the body pose also as odometry and TF."""
+class VehicleSolver(SolverNode, LifecycleNode):
+    """
+    The full-vehicle solver; the body pose also as odometry and TF.
+
+    A managed (lifecycle) node. In ``lockstep``/``free`` mode: configure = load the study
+    and build the vehicle (its K&C maps), activate = start the session (again from t = 0
+    if it ran before), deactivate = hold it, cleanup = drop the session and the vehicle.
+    With ``autostart`` (default) the node configures and activates itself at start, as
+    before; a failing configure then ends the construction with its ValueError. In
+    ``events`` mode the transitions change nothing: the action is always served.
+    """
 
     STATE_TYPE = VehicleState
 
@@ -78,25 +97,96 @@ class VehicleSolver(SolverNode):
         super().__init__('vehicle_solver', FAMILY, _run, **kwargs)
         self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
         # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
-        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, STATES)
+        self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, TF)
         self.publishers_by_topic.update({ODOMETRY_TOPIC: self.odom_pub, TF_TOPIC: self.tf_pub})
         self.declare_parameter('mode', 'events', ParameterDescriptor(
             description='events | lockstep | free', read_only=True))
         self.mode = self.get_parameter('mode').value
-        self.lockstep = None
-        if self.mode != 'events':
-            self.lockstep = self._start_lockstep()
+        self.lockstep: LockstepSession | None = None
+        self._vehicle: dict | None = None  # what configure built, for activate
+        self._failure: Exception | None = None  # why the last transition failed
+        autostart = self.declare_parameter('autostart', True, ParameterDescriptor(
+            description='lockstep/free: configure and activate at start', read_only=True)).value
+        if self.mode != 'events' and autostart:
+            try:
+                for trigger in (self.trigger_configure, self.trigger_activate):
+                    trigger()
+                    if self._failure is not None:
+                        raise self._failure
+            except BaseException:
+                self.destroy_node()  # an unusable session leaves no node behind
+                raise
 
-    def _start_lockstep(self):
-        """Build the vehicle and start the co-simulation session (ValueError if unusable)."""
+    # --- lifecycle (docs/ros-api.md) --------------------------------------------------
+
+    def _attempt(self, action) -> TransitionCallbackReturn:
+        self._failure = None
+        try:
+            action()
+        except (ValueError, SolverError, DataError) as err:
+            self._failure = err
+            self.get_logger().error(str(err))
+            return TransitionCallbackReturn.FAILURE
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_configure(self, state) -> TransitionCallbackReturn:
+        if self.mode == 'events':
+            return TransitionCallbackReturn.SUCCESS
+        return self._attempt(self._configure)
+
+    def on_activate(self, state) -> TransitionCallbackReturn:
+        if self.mode == 'events':
+            return super().on_activate(state)
+        result = self._attempt(self._activate)
+        return super().on_activate(state) if result == TransitionCallbackReturn.SUCCESS \
+            else result
+
+    def on_deactivate(self, state) -> TransitionCallbackReturn:
+        if self.lockstep is not None:
+            self.lockstep.hold()
+        return super().on_deactivate(state)
+
+    def on_cleanup(self, state) -> TransitionCallbackReturn:
+        if self.lockstep is not None:
+            self.lockstep.close()
+        self.lockstep, self._vehicle = None, None
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_shutdown(self, state) -> TransitionCallbackReturn:
+        return self.on_cleanup(state)
+
+    def _activate(self) -> None:
+        """Start the session, or start it again from t = 0."""
+        if self.lockstep is not None:
+            self.lockstep.reset()
+            return
+        assert self._vehicle is not None  # configured
+        v = self._vehicle
+        p = v['parameters']
+        stepper = Stepper(v['model'], float(p['step']), float(p['initial_speed']),
+                          float(p['drive_front']), float(p['brake_front']))
+        actuators = Actuators(v['actuators'], speed=float(p['initial_speed']))
+        self.get_logger().info(f"{self.mode} co-simulation of '{v['name']}': step "
+                               f"{stepper.h * 1e3:g} ms")
+        self.lockstep = LockstepSession(
+            self, stepper, mode=self.mode, duration=float(p['duration']),
+            command_timeout=p['command_timeout'], start_timeout=p['start_timeout'],
+            real_time_factor=p['real_time_factor'], configuration=v['name'],
+            state_pub=self.sample_pub, odom_pub=self.odom_pub, tf_pub=self.tf_pub,
+            actuators=actuators, description=v['description'],
+            frame_prefix=self.frame_prefix)
+
+    def _configure(self) -> None:
+        """Load the study and build the vehicle (ValueError if unusable)."""
         if self.mode not in MODES:
             raise ValueError(f"parameter 'mode' must be one of {', '.join(MODES)}, "
                              f'got {self.mode!r}')
         p = {}
         for name, (default, doc) in LOCKSTEP_PARAMS.items():
             numeric = isinstance(default, float)
-            self.declare_parameter(name, default, ParameterDescriptor(
-                description=doc, read_only=True, dynamic_typing=numeric))
+            if not self.has_parameter(name):  # declared by an earlier configure
+                self.declare_parameter(name, default, ParameterDescriptor(
+                    description=doc, read_only=True, dynamic_typing=numeric))
             value = self.get_parameter(name).value
             if numeric:
                 if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -119,16 +209,11 @@ class VehicleSolver(SolverNode):
             raise ValueError(f"configuration '{name}' is not in the study (configurations: "
                              f"{', '.join(study.configuration_names)})")
         model = VehicleModel(study.configurations[name], p['fidelity'])
-        stepper = Stepper(model, float(p['step']), float(p['initial_speed']),
-                          float(p['drive_front']), float(p['brake_front']))
-        self.get_logger().info(f"{self.mode} co-simulation of '{name}': step "
-                               f"{stepper.h * 1e3:g} ms")
-        return LockstepSession(self, stepper, mode=self.mode, duration=float(p['duration']),
-                               command_timeout=p['command_timeout'],
-                               start_timeout=p['start_timeout'],
-                               real_time_factor=p['real_time_factor'], configuration=name,
-                               state_pub=self.sample_pub, odom_pub=self.odom_pub,
-                               tf_pub=self.tf_pub, frame_prefix=self.frame_prefix)
+        Stepper(model, float(p['step']))  # the step size is checked now, not at activate
+        self._vehicle = {
+            'name': name, 'model': model, 'parameters': p,
+            'actuators': parameters_of(model, **{k: p[k] for k in ACTUATOR_PARAMS}),
+            'description': describe_model(model)}
 
 
 def main(args=None) -> None:

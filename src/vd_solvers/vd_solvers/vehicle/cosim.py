@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
+import pinocchio as pin
 
 from vd_solvers.errors import SolverError
 
@@ -65,6 +66,11 @@ def check_command(command: Command, max_angle: float) -> None:
             raise CommandError(f'{name} must be >= 0 N*m, got {getattr(command, name):.4g}')
 
 
+def steering_lock(model: VehicleModel) -> float:
+    """Return the steering-wheel angle at the end of the rack travel, rad (the map's ends)."""
+    return float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
+
+
 class Stepper:
     """The vehicle state advanced one step at a time (module doc). Not thread-safe."""
 
@@ -75,7 +81,8 @@ class Stepper:
         self.model = model
         self.h = h
         self.drive_front, self.brake_front = drive_front, brake_front
-        self.max_angle = float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
+        self.initial_speed = initial_speed
+        self.max_angle = steering_lock(model)
         self.q, self.v = model.initial_state(initial_speed)
         self.slip = np.zeros((2, 4))
         self.previous: WheelState | None = None
@@ -88,6 +95,25 @@ class Stepper:
         # the wheel quantities at the initial state, for the first published state
         _, self.wheel, _ = self.model.forces(self.q, self.v, 0.0, np.zeros(4), self.slip,
                                              None, h)
+
+    def place(self, x: float, y: float, yaw: float) -> None:
+        """
+        Put the vehicle at ``x``, ``y`` (m) heading ``yaw`` (rad) in the world; step 0 only.
+
+        Roll and pitch, heights and the body-frame velocities stay (the state of a vehicle
+        on a flat road does not depend on where it stands).
+        """
+        if self.step != 0:
+            raise SolverError('the vehicle can be placed only before its first step')
+        for name, value in (('x', x), ('y', y), ('yaw', yaw)):
+            if not math.isfinite(value):
+                raise SolverError(f'initial pose: {name} is not finite ({value})')
+        roll, pitch, _ = pin.rpy.matrixToRpy(pin.Quaternion(self.q[3:7]).matrix())
+        q = self.q.copy()
+        q[0], q[1] = x, y
+        q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw)).coeffs()
+        self.q = q
+        self._state = None
 
     @property
     def time(self) -> float:
@@ -147,5 +173,5 @@ class Stepper:
                                     w.steer, w.mz)))
 
 
-__all__ = ['Command', 'CommandError', 'Stepper', 'check_command', 'STEERING_ANGLE',
-           'STEERING_TORQUE']
+__all__ = ['Command', 'CommandError', 'Stepper', 'check_command', 'steering_lock',
+           'STEERING_ANGLE', 'STEERING_TORQUE']
