@@ -28,6 +28,7 @@ ROSDEP_KEYS = {
     'rich': 'python3-rich',
     'matplotlib': 'python3-matplotlib',
     'rosbags': 'python3-rosbags-pip',
+    'pyopencrg': 'python3-pyopencrg-pip',
     'pinocchio': 'pinocchio',
     'vehiclemodels': 'python3-commonroad-vehicle-models-pip',
     'ruamel': 'python3-ruamel.yaml',
