@@ -52,6 +52,15 @@ def test_numbers_and_units_that_broke_the_parser(capsys, sample_root, sedan_mast
           f"{SPRING}: rate: {message} (line {line_no(spring, '  rate:')})")
 
 
+def test_integer_beyond_python_conversion_limit_names_file_and_line(capsys, sample_root,
+                                                                    sedan_master):
+    spring = sample_root / SPRING
+    replace_once(spring, 'rate: 30.0', 'rate: ' + '9' * 5001)
+    check(capsys, sample_root, sedan_master,
+          f'{SPRING}: number too large (5001 digits, the limit is 4000) '
+          f"(line {line_no(spring, '  rate:')}, column 9)")
+
+
 def test_deep_yaml_is_refused_at_the_depth_limit(capsys, sample_root, sedan_master):
     (sample_root / SPRING).write_text('kind: spring\ndata: ' + '[' * 2000 + ']' * 2000 + '\n')
     check(capsys, sample_root, sedan_master,
