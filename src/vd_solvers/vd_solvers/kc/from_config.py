@@ -16,11 +16,11 @@ from collections.abc import Callable, Mapping, Sequence
 import math
 
 import numpy as np
-import yaml
 
 from vd_data_server.model import Configuration, GroupData
 from vd_data_server.schema import ARB_POINTS, BUSHING_DIRECTIONS
 from vd_data_server.units import si_factor
+from vd_data_server.yamlio import loads
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
 from vd_solvers.flex import section as sec
@@ -216,10 +216,10 @@ def _imported(group: GroupData, comp: str, base: str):
     text = group.text(f'{base}.imported.content')
     what = f'{rel} ({group.file} {base}.imported)'
     if group.text(f'{base}.imported.format') == 'plain':
-        try:
-            raw = yaml.safe_load(text)
-        except yaml.YAMLError as err:
-            raise SolverError(f'{what}: not valid YAML ({err.__class__.__name__})') from None
+        raw = loads(text, file=what)
+        if raw is None:
+            raise SolverError(f'{what}: the file is empty (expected units, nodes and '
+                              'stiffness)')
         units = (raw or {}).get('units', {}) if isinstance(raw, dict) else {}
     else:
         raw = None
@@ -261,6 +261,20 @@ def _event_kwargs(values: Mapping[str, float]) -> dict[str, float]:
     return {k: (int(v) if k == 'steps' else v) for k, v in values.items()}
 
 
+def build_kc_model(config: Configuration, axle: str, fidelity: str, label: str) -> KCModel:
+    """
+    Build the K&C model a run of ``config`` solves (``vd data check`` builds the same).
+
+    Everything a K&C run refuses before its first step is refused here: hard points,
+    flexible components, imported stiffness files. Messages start with ``label``.
+    """
+    try:
+        inp = suspension_input(config, axle, fidelity)
+    except SolverError as err:
+        raise SolverError(f'{label}: {err}') from None
+    return KCModel(inp, label)
+
+
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
                  progress: Callable[[float, str], None] | None = None,
@@ -278,13 +292,10 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     if axle not in ('front', 'rear'):
         raise SolverError(f'{label}: K&C events need --axle front or rear')
     values = parse_params(event, EVENT_PARAMS[event], params)
-    try:
-        inp = suspension_input(config, axle, fidelity)
-    except SolverError as err:
-        raise SolverError(f'{label}: {err}') from None
+    model = build_kc_model(config, axle, fidelity, label)
+    inp = model.inp
     if event == 'steering' and inp.steering is None:
         raise SolverError(f'{label}: the {axle} axle has no steering')
-    model = KCModel(inp, label)
     with_bar = event == 'opposite_wheel_travel' and inp.stabilizer is not None
     runs = 2 if with_bar else 1
 
@@ -376,5 +387,5 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     return out
 
 
-__all__ = ['EVENT_PARAMS', 'EVENTS', 'run_kc_event', 'run_suite', 'suspension_input',
-           'bar_stiffness', 'flatten_channels']
+__all__ = ['EVENT_PARAMS', 'EVENTS', 'build_kc_model', 'run_kc_event', 'run_suite',
+           'suspension_input', 'bar_stiffness', 'flatten_channels']
