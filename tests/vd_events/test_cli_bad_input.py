@@ -61,6 +61,19 @@ def test_integer_beyond_python_conversion_limit_names_file_and_line(capsys, samp
           f"(line {line_no(spring, '  rate:')}, column 9)")
 
 
+def test_bare_numbers_without_a_units_block_are_refused(capsys, sample_root, sedan_master):
+    """A spring file that lost its units block is not read as 30 N/m."""
+    spring = sample_root / SPRING
+    replace_once(spring, 'units: {length: mm, force: N}\n', '')
+    check(capsys, sample_root, sedan_master,
+          f"{SPRING}: rate: 30.0 has no unit and the file has no units block (add one, e.g. "
+          "'units: {length: mm, force: N}', or write the unit with the value, e.g. '30.0 N/m') "
+          f"(line {line_no(spring, '  rate:')})\n"
+          f"{SPRING}: preload: 4535 has no unit and the file has no units block (add one, e.g. "
+          "'units: {length: mm, force: N}', or write the unit with the value, e.g. '4535 N') "
+          f"(line {line_no(spring, '  preload:')})")
+
+
 def test_deep_yaml_is_refused_at_the_depth_limit(capsys, sample_root, sedan_master):
     (sample_root / SPRING).write_text('kind: spring\ndata: ' + '[' * 2000 + ']' * 2000 + '\n')
     check(capsys, sample_root, sedan_master,
