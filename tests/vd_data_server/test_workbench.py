@@ -173,3 +173,63 @@ def test_a_change_on_disk_is_pushed(server: WorkbenchServer, sample_root: Path) 
     assert server.workbench.wait_change(pushed['version'], 10.0)['errors'] == [
         f"sedan/front_spring/X.yaml: rate: must be positive, found -31.0 (line "
         f"{line_no(spring, '  rate:')})"]
+
+
+def _serve_without_watching(bench: Workbench) -> WorkbenchServer:
+    """Serve a workbench that reloads only when it edits: it keeps the page it read."""
+    import threading
+
+    server = WorkbenchServer(bench)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def test_an_edit_from_a_stale_page_is_a_conflict(sedan_master: Path, sample_root: Path) -> None:
+    """Two workbenches on one master file: the second's edit is refused, not applied blind."""
+    first = _serve_without_watching(Workbench(sedan_master, edits=True))
+    second = _serve_without_watching(Workbench(sedan_master, edits=True))
+    try:
+        assert call(first, 'POST', '/api/edit', CAMBER)[0] == 200
+        after_first = tree_snapshot(sample_root)
+        toe = {'op': 'override', 'configuration': 'sport', 'key': 'front_alignment.toe',
+               'value': '0.1 deg'}
+        status, answer = call(second, 'POST', '/api/edit', toe)
+        assert (status, answer) == (409, {'ok': False, 'error': (
+            f'{sedan_master}: changed on disk since it was read (another workbench, vd command '
+            'or editor wrote it): this edit is not written; look at the file as it is now and '
+            'edit again')})
+        assert tree_snapshot(sample_root) == after_first
+        status, answer = call(second, 'POST', '/api/edit', toe)  # now from the file as it is
+        assert status == 200
+        text = sedan_master.read_text()
+        assert 'front_alignment.camber: -1.2 deg' in text
+        assert 'front_alignment.toe: 0.1 deg' in text
+    finally:
+        for server in (first, second):
+            server.stop()
+
+
+def test_concurrent_workbenches_lose_no_acknowledged_edit(sedan_master: Path) -> None:
+    """Each edit is answered 200 and kept, or 409 and not written: none vanishes."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from vd_data_server.errors import WorkbenchError
+
+    benches = [Workbench(sedan_master, edits=True) for _ in range(2)]
+
+    def add(n: int) -> str | None:
+        bench = benches[n % 2]
+        name = f'copy_{n}'
+        try:
+            bench.edit({'op': 'add', 'configuration': name, 'source': 'baseline'})
+        except WorkbenchError as err:
+            assert err.status == 409
+            return None
+        return name
+
+    with ThreadPoolExecutor(max_workers=6) as pool:
+        acknowledged = [n for n in pool.map(add, range(18)) if n]
+    assert acknowledged  # the first edit of each workbench meets the file it read
+    kept = set(load_study(sedan_master).configuration_names)
+    assert set(acknowledged) <= kept
+    assert {n for n in kept if n.startswith('copy_')} == set(acknowledged)

@@ -30,7 +30,7 @@ from urllib.parse import parse_qs, urlsplit
 
 from vd_data_server.errors import DataError, WorkbenchError
 from vd_data_server.master import inside
-from vd_data_server.masteredit import Edit, edit_master
+from vd_data_server.masteredit import ConflictError, Edit, Fingerprint, edit_master, fingerprint
 from vd_data_server.overview import study_state
 from vd_data_server.service import DataService
 from vd_data_server.yamlio import read_bytes
@@ -68,6 +68,9 @@ class Workbench:
         self.runs: dict[str, Any] = {}
         self._running = False
         self._stop = threading.Event()
+        # the master file as the page shows it: taken before each load, so an edit made
+        # from an older page than the file is refused (HTTP 409), never lost
+        self._read: Fingerprint | None = self._fingerprint()
         outcome = self.service.load()
         if self.service.study is None:
             raise DataError('\n'.join(outcome.errors) or 'cannot load', file=str(master_file))
@@ -111,12 +114,25 @@ class Workbench:
                                    timeout)
             return self._state if self.version > version else None
 
+    def _fingerprint(self) -> Fingerprint | None:
+        try:
+            return fingerprint(self.master_file)
+        except (DataError, OSError):  # gone or unreadable: the load says why
+            return None
+
+    def _reload(self) -> None:
+        self._read = self._fingerprint()
+        self.service.load()
+        self._rebuild()
+
     def poll(self) -> bool:
         """Reload if a watched file changed; True if the state changed."""
         with self._lock:
+            read = self._fingerprint()
             outcome = self.service.poll()
             if outcome is None:
                 return False
+            self._read = read
             self._rebuild()
             return True
 
@@ -151,9 +167,12 @@ class Workbench:
             raise WorkbenchError(HTTPStatus.BAD_REQUEST, f"'{bad[0]}' must be a text")
         edit = Edit(**fields)
         with self._lock:
-            changed = edit_master(self.master_file, [edit])
-            self.service.load()
-            self._rebuild()
+            try:
+                changed = edit_master(self.master_file, [edit], expected=self._read)
+            except ConflictError as err:
+                self._reload()
+                raise WorkbenchError(HTTPStatus.CONFLICT, str(err)) from None
+            self._reload()
         what = {'variant': f'{edit.group} = {edit.value}',
                 'override': f'{edit.key} = {edit.value}' if edit.value else f'{edit.key} cleared',
                 'flexible': f'flexible = {edit.value or "off"}',
