@@ -135,6 +135,10 @@ def _sweeps(sub) -> None:
                          'already running on ROS_DOMAIN_ID (vd launch --solvers, other hosts) '
                          'instead of starting any')
         cmd.add_argument('--out', help='output folder (default: out/<plan name>)')
+        if name == 'optimize':
+            cmd.add_argument('--write-master', metavar='PATH', help='master file the '
+                             "configuration is written to, anywhere (the plan's "
+                             "optimize.write_master must lie under the study's data root)")
         _json(cmd)
         cmd.set_defaults(**handler(f'sweep:cmd_{name}'))
 
