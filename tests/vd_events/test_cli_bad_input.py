@@ -277,3 +277,27 @@ def test_tire_coefficients_that_overflow_together_fail_the_check(capsys, sample_
     check(capsys, sample_root, sedan_master, '\n'.join(
         f'sedan/{axle}_tire/X.yaml -> {TIRE}: the Magic Formula gives a non-finite Fx within '
         '0.1..3 x the nominal load: coefficients out of range' for axle in ('front', 'rear')))
+
+
+def test_run_in_the_domain_of_a_launch_is_refused(capsys, monkeypatch, sample_root,
+                                                  sedan_master, tmp_path):
+    """`vd launch` claims its ROS domain: a run sent there gets a message, not rclpy errors."""
+    import os
+
+    from vd_events.orchestration.domain import claim_launch_domain
+
+    monkeypatch.setenv('ROS_DOMAIN_ID', '231')
+    launched = claim_launch_domain()  # what a running `vd launch` holds
+    try:
+        monkeypatch.setenv('VD_DOMAIN_ID', '231')
+        check(capsys, sample_root, sedan_master,
+              'VD_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '
+              f'{os.getpid()}); unset VD_DOMAIN_ID or choose another', 'run',
+              'handling_diagram', '--master', str(sedan_master), '--bag', str(tmp_path / 'bag'))
+        assert not list(tmp_path.glob('bag*'))
+        check(capsys, sample_root, sedan_master,
+              'ROS_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '
+              f'{os.getpid()}); set another ROS_DOMAIN_ID for this launch', 'launch',
+              '--master', str(sedan_master))
+    finally:
+        launched.release()
