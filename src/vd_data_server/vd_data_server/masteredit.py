@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+import glob
 import hashlib
 import io
 import os
@@ -37,6 +38,21 @@ from .yamlio import read_bytes
 
 #: suffix of the copy of the previous content kept next to an edited master file
 BACKUP_SUFFIX = '.bak'
+#: suffix of the temporary copy an edit is validated in (``.<name>.<random>.check``)
+CHECK_SUFFIX = '.check'
+
+
+def remove_stale_checks(master: Path) -> list[Path]:
+    """
+    Remove the validation copies of ``master`` a killed editor left; return them.
+
+    Called with the master file locked (:func:`files.locked`): every editor validates
+    under that lock, so no live one is using a copy at that moment.
+    """
+    stale = sorted(master.parent.glob(f'.{glob.escape(master.name)}.*{CHECK_SUFFIX}'))
+    for path in stale:
+        path.unlink(missing_ok=True)
+    return stale
 
 
 @dataclass(frozen=True)
@@ -232,7 +248,7 @@ def validate_text(text: str, master: Path) -> Study:
     name ``master``, exactly as a load of the written file would.
     """
     folder = master.parent
-    fd, tmp = tempfile.mkstemp(prefix=f'.{master.name}.', suffix='.check', dir=folder)
+    fd, tmp = tempfile.mkstemp(prefix=f'.{master.name}.', suffix=CHECK_SUFFIX, dir=folder)
     try:
         with os.fdopen(fd, 'w', encoding='utf-8') as stream:
             stream.write(text)
@@ -298,6 +314,7 @@ def edit_master(path: str | Path, edits: Sequence[Edit], *,
     real = master_path(path)
     display = str(path)
     with locked(real):
+        remove_stale_checks(real)
         read = fingerprint(real)
         if expected is not None and read != expected:
             raise _conflict(display)
@@ -335,11 +352,13 @@ def write_master(path: str | Path, doc: Mapping[str, Any], *, root: Path | None 
     stream = io.StringIO()
     _yaml().dump(doc, stream)
     text = stream.getvalue()
-    validate_text(text, target)
     if not target.exists():
+        validate_text(text, target)
         write_atomically(target, text)
         return text
     with locked(target):
+        remove_stale_checks(target)
+        validate_text(text, target)
         if target.read_text(encoding='utf-8') != text:
             write_atomically(target, text)
     return text
