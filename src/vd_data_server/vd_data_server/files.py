@@ -75,4 +75,25 @@ def locked(path: Path | str) -> Iterator[None]:
         os.close(fd)
 
 
-__all__ = ['atomic_path', 'atomic_write', 'locked']
+def numbered_folder(parent: Path | str) -> Path:
+    """
+    Create and return a new folder ``parent/N``, N one more than the highest number there.
+
+    For default output folders: each call gets a folder of its own (two at once get two
+    numbers: ``mkdir`` fails for the second taker of a number), so a later run never
+    overwrites nor collides with an earlier one.
+    """
+    parent = Path(parent)
+    parent.mkdir(parents=True, exist_ok=True)
+    taken = [int(p.name) for p in parent.iterdir() if p.name.isdigit()]
+    number = max(taken, default=0) + 1
+    while True:
+        folder = parent / f'{number:03d}'
+        try:
+            folder.mkdir()
+            return folder
+        except FileExistsError:
+            number += 1
+
+
+__all__ = ['atomic_path', 'atomic_write', 'locked', 'numbered_folder']
