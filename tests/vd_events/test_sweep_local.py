@@ -305,3 +305,26 @@ def test_a_master_changed_during_the_optimisation_is_not_overwritten(tmp_path, s
     assert str(err.value) == (f'{sedan_master}: changed on disk since the optimisation read '
                               "it: the configuration 'opt' is not written (the history is)")
     assert sedan_master.read_text() == edited
+
+
+@pytest.mark.parametrize(('edit', 'message'), [
+    (('metric: roll_stiffness_bar,', 'metric: roll_stifness_bar,'),
+     "responses.roll_stiffness_bar.metric: run opposite_wheel_travel/front (kc) has no metric "
+     "'roll_stifness_bar' (metrics: max_constraint_residual, max_force_residual, "
+     'rigid_mass.lca, rigid_mass.strut, rigid_mass.tierod, rigid_mass.upright, roll_camber, '
+     'roll_steer, roll_stiffness, roll_stiffness_bar, roll_stiffness_no_bar)'),
+    (('unit: N*m/rad}\n  roll_stiffness_bar', 'unit: N/mm}\n  roll_stiffness_bar'),
+     "responses.roll_stiffness.unit: unit 'N*m/rad' cannot be converted to 'N/mm' (metric "
+     "'roll_stiffness' is in N*m/rad)"),
+])
+def test_a_response_the_runs_do_not_report_stops_the_sweep_after_one_point(
+        tmp_path, sedan_master, edit, message):
+    path = tmp_path / 'bar.yaml'
+    path.write_text(BAR_PLAN.format(master=sedan_master).replace(*edit, 1))
+    plan = load_plan(path)
+    study = load_study(plan.master)
+    local = Local(study)
+    with pytest.raises(DataError) as err:
+        sweep(plan, study, local, tmp_path / 'out', bags=False)
+    assert str(err.value) == f'{path}: {message}'
+    assert local.calls == 1  # the first point only, not the three of the sweep
