@@ -405,6 +405,6 @@ def pareto_front(a: np.ndarray, b: np.ndarray, senses: tuple[str, str]) -> np.nd
     return np.array(sorted(front, key=lambda i: fa[i]), dtype=int)
 
 
-__all__ = ['sweep', 'check_responses', 'evaluate', 'requests_for', 'run_key', 'load_records', 'RunRecord',
-           'SweepResult', 'response_values', 'table_csv', 'src', 'main_effects',
+__all__ = ['sweep', 'check_responses', 'evaluate', 'requests_for', 'run_key', 'load_records',
+           'RunRecord', 'SweepResult', 'response_values', 'table_csv', 'src', 'main_effects',
            'first_order_indices', 'pareto_front', 'columns', 'RUNS_FILE']
