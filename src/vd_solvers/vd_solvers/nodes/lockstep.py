@@ -20,7 +20,10 @@ t_k, applies it over [t_k, t_k + h] and publishes step k + 1. Nothing is extrapo
 * while it waits, the session repeats step k's messages every REPEAT_PERIOD s of wall
   time (a controller that connects late gets the state it must answer); with no valid
   command within ``command_timeout`` s (``start_timeout`` for the first step) it stops
-  with a timeout error.
+  with a timeout error;
+* a second publisher on the command topic (two controllers answering the same steps)
+  stops the session with an error naming the publishing nodes (looked at every
+  REPEAT_PERIOD s).
 
 Mode ``free`` runs without waiting, at ``real_time_factor`` times wall time, applying
 the newest command and holding it until the next one arrives (a refused command is
@@ -99,7 +102,9 @@ class LockstepSession:
         self.timings = {'model': 0.0, 'publish': 0.0}
         self.status = 'running'
         self.held = Command()
-        self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command, COMMANDS)
+        sub = self.node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command,
+                                            COMMANDS)
+        self.command_topic = sub.topic_name
         self._state_msg = VehicleState(event='lockstep', configuration=configuration,
                                        model='vehicle')
         self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
@@ -118,6 +123,7 @@ class LockstepSession:
             self.timer = node.create_timer(stepper.h / real_time_factor, self._free_step)
         else:
             self.timer = node.create_timer(REPEAT_PERIOD, self._watchdog)
+        self.controllers = node.create_timer(REPEAT_PERIOD, self._check_controllers)
 
     @property
     def now_ns(self) -> int:
@@ -178,6 +184,17 @@ class LockstepSession:
             return
         if time.monotonic() - self._published_at >= REPEAT_PERIOD:
             self._publish()
+
+    def _check_controllers(self) -> None:
+        """Stop when a second controller publishes commands: lock-step answers one."""
+        if not self.active:
+            return
+        found = self.node.get_publishers_info_by_topic(self.command_topic)
+        if len(found) > 1:
+            names = sorted({f"{i.node_namespace.rstrip('/')}/{i.node_name}" for i in found})
+            self._stop(f'{len(found)} publishers on {self.command_topic} '
+                       f"({', '.join(names)}): lock-step takes the commands of one "
+                       'controller; stop the others')
 
     # --- free running -----------------------------------------------------------------
 
