@@ -301,3 +301,35 @@ def test_run_in_the_domain_of_a_launch_is_refused(capsys, monkeypatch, sample_ro
               '--master', str(sedan_master))
     finally:
         launched.release()
+
+
+def test_tire_file_whose_units_do_not_match_its_numbers(capsys, sample_root, sedan_master):
+    """LENGTH = 'mm' over dimensions written in metres: a 0.3 mm tire, refused at check."""
+    import re
+
+    tir = sample_root / 'tires' / 'Sedan_Pac02Tire.tir'
+    text = tir.read_text(encoding='latin-1')
+    before = text
+    text = re.sub(r"LENGTH\s*=\s*'meter'", "LENGTH = 'mm'", text, count=1)
+    assert text != before
+    tir.write_text(text, encoding='latin-1')
+    rc, out, err = run(capsys, 'data', 'check', '--master', str(sedan_master))
+    assert (rc, out) == (2, '')
+    assert err.splitlines()[0].endswith(
+        "UNLOADED_RADIUS: line 23: key 'UNLOADED_RADIUS' in block [DIMENSION] must lie within "
+        '0.1..2 m for a road tire, here 0.000344 m (are the [UNITS] right, e.g. LENGTH?), '
+        'found 0.344')
+
+
+def test_coincident_hard_points_fail_the_check(capsys, sample_root, sedan_master):
+    """Two pivots of the lower arm on one point: the K&C model the run builds refuses it."""
+    hard = sample_root / 'sedan/front_hardpoints/X.yaml'
+    replace_once(hard, 'lca_rear:       [-260.0, 187.0, 218.0]',
+                 'lca_rear:       [260.0, 200.0, 199.0]')
+    before = tree_snapshot(sample_root)
+    rc, out, err = run(capsys, 'data', 'check', '--master', str(sedan_master))
+    assert (rc, out) == (2, '')
+    assert err.splitlines()[0] == (
+        "configuration 'baseline', axle 'front', flexible: component 'subframe': hard points "
+        "'lca_front.left' and 'lca_rear.left' coincide (a member needs length)")
+    assert tree_snapshot(sample_root) == before
