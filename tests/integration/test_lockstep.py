@@ -15,6 +15,8 @@ import time
 
 import pytest
 
+from vdtest import HANG_GUARD
+
 pytestmark = [pytest.mark.ros, pytest.mark.slow]
 
 RADIUS, SPEED, STEP = 30.0, 12.0, 0.008
@@ -216,3 +218,25 @@ def test_free_mode_runs_on_its_own_and_holds_the_newest_command(harness):
     assert h.session.status == 'finished at t = 0.500000 s (100 steps)'
     assert h.session.held.steering_wheel_angle == 0.1
     assert h.session.stepper.state()['steering_wheel_angle'] == 0.1
+
+
+def test_a_second_controller_on_the_command_topic_stops_the_session(harness):
+    import rclpy
+
+    from vd_data_server.ros.qos import COMMANDS
+    from vd_interfaces.msg import VehicleCommand
+
+    h = harness()
+    other = rclpy.create_node('second_controller')
+    try:
+        other.create_publisher(VehicleCommand, '/vd/vehicle/command', COMMANDS)
+        h.executor.add_node(other)
+        h.spin_until(lambda: not h.session.active, HANG_GUARD)
+        assert h.session.status == (
+            'error at t = 0.000000 s: 2 publishers on /vd/vehicle/command (/lockstep_test, '
+            '/second_controller): lock-step takes the commands of one controller; stop the '
+            'others')
+        assert h.session.stepper.step == 0
+    finally:
+        h.executor.remove_node(other)
+        other.destroy_node()

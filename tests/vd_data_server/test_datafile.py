@@ -123,13 +123,14 @@ def test_unknown_key_inside_data_names_key_and_line(tmp_path: Path) -> None:
 def test_unknown_nested_key_names_the_full_key_path(tmp_path: Path) -> None:
     lines = refused(tmp_path, 'front_bushings', """\
         kind: bushings
+        units: {}
         data:
           connections:
             lca_front:
               stiffness: {x: 8e6, y: 8e6, z: 1.5e6, rx: 200, ry: 200, rz: 30, rw: 1}
         """)
     assert lines == ['sedan/front_bushings/X.yaml: connections.lca_front.stiffness.rw: unknown '
-                     'key (expected one of: x, y, z, rx, ry, rz) (line 5)']
+                     'key (expected one of: x, y, z, rx, ry, rz) (line 6)']
 
 
 def test_missing_kind_is_refused(tmp_path: Path) -> None:
@@ -352,6 +353,7 @@ def test_points_are_converted_to_metres(tmp_path: Path) -> None:
 def test_bushing_axis_is_normalised(tmp_path: Path) -> None:
     bushings = load(tmp_path, 'front_bushings', """\
         kind: bushings
+        units: {}
         data:
           connections:
             lca_front:

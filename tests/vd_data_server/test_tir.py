@@ -38,6 +38,21 @@ def set_line(text: str, key: str, line: str) -> str:
     return new
 
 
+#: the sedan file's dimensions, m, and the length units the tests write them in
+DIMENSIONS = {'UNLOADED_RADIUS': 0.344, 'WIDTH': 0.245, 'RIM_RADIUS': 0.2286, 'RIM_WIDTH': 0.2159}
+PER_METRE = {"'METER'": 1.0, "'mm'": 1000.0, "'millimeter'": 1000.0, "'centimeter'": 100.0,
+             "'inch'": 1 / 0.0254}
+
+
+def in_length_unit(text: str, unit_line: str) -> str:
+    """Set ``LENGTH`` and write the dimensions in it: the file stays a physical tire."""
+    per_metre = PER_METRE[unit_line.split('=')[1].strip()]
+    text = set_line(text, 'LENGTH', unit_line)
+    for key, metres in DIMENSIONS.items():
+        text = set_line(text, key, f'{key} = {metres * per_metre!r}')
+    return text
+
+
 def drop_line(text: str, key: str) -> str:
     return set_line(text, key, '')
 
@@ -268,7 +283,8 @@ def test_dimensional_values_are_converted_to_si(
     unit_line: str, value_line: str, block: str, key: str, expected: float
 ) -> None:
     quantity = unit_line.split('=')[0].strip()
-    text = set_line(sedan_text(), quantity, unit_line)
+    text = (in_length_unit(sedan_text(), unit_line) if quantity == 'LENGTH'
+            else set_line(sedan_text(), quantity, unit_line))
     text = set_line(text, value_line.split('=')[0].strip(), value_line)
     npt.assert_allclose(parse_tir_text(text, 'x').number(block, key), expected, rtol=RTOL)
 
@@ -291,9 +307,8 @@ def test_pressure_is_converted_to_pascal(unit: str, value: str, expected: float)
 
 
 def test_magic_formula_coefficients_are_not_converted() -> None:
-    text = set_line(set_line(sedan_text(), 'LENGTH', "LENGTH = 'mm'"), 'FORCE', "FORCE = 'kN'")
-    # keep the file physical in mm
-    text = set_line(text, 'UNLOADED_RADIUS', 'UNLOADED_RADIUS = 344')
+    # the file kept physical in mm
+    text = set_line(in_length_unit(sedan_text(), "LENGTH = 'mm'"), 'FORCE', "FORCE = 'kN'")
     props = parse_tir_text(text, 'x')
     npt.assert_allclose(
         (
@@ -303,6 +318,20 @@ def test_magic_formula_coefficients_are_not_converted() -> None:
         (-21.92, 0.81),
         rtol=RTOL,
     )
+
+
+def test_dimensions_in_metres_under_length_mm_are_refused() -> None:
+    """A 0.344 'mm' tire: the [UNITS] do not match the numbers; every dimension says so."""
+    with pytest.raises(DataError) as err:
+        parse_tir_text(set_line(sedan_text(), 'LENGTH', "LENGTH = 'mm'"), 'x')
+    assert str(err.value).splitlines() == [
+        f"x: {key}: line {line}: key '{key}' in block [DIMENSION] must lie within "
+        f'{low:g}..{high:g} m for a road tire, here {metres / 1000:g} m (are the [UNITS] '
+        f'right, e.g. LENGTH?), found {metres:g}'
+        for key, line, low, high, metres in (('UNLOADED_RADIUS', 23, 0.1, 2, 0.344),
+                                             ('WIDTH', 24, 0.05, 1.5, 0.245),
+                                             ('RIM_RADIUS', 26, 0.05, 1.5, 0.2286),
+                                             ('RIM_WIDTH', 27, 0.03, 1.5, 0.2159))]
 
 
 def test_absent_unit_entry_means_si() -> None:

@@ -203,10 +203,20 @@ def test_yaml_1_1_exponent_without_sign_is_read_as_a_number(tmp_path: Path) -> N
     assert_allclose(bushings.scalar('connections.uca_front.stiffness.rx'), 1.0e5, rtol=RTOL)
 
 
-def test_without_a_units_block_values_are_si(tmp_path: Path) -> None:
+def test_an_empty_units_block_means_si(tmp_path: Path) -> None:
     spring = load(tmp_path, 'front_spring', """\
         kind: spring
+        units: {}
         data: {rate: 36900, free_length: 0.306}
+        """)
+    assert_allclose(spring.scalar('rate'), 36900.0, rtol=RTOL)
+    assert_allclose(spring.scalar('free_length'), 0.306, rtol=RTOL)
+
+
+def test_without_a_units_block_values_carry_their_units(tmp_path: Path) -> None:
+    spring = load(tmp_path, 'front_spring', """\
+        kind: spring
+        data: {rate: 36.9 N/mm, free_length: 306 mm}
         """)
     assert_allclose(spring.scalar('rate'), 36900.0, rtol=RTOL)
     assert_allclose(spring.scalar('free_length'), 0.306, rtol=RTOL)

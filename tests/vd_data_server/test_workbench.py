@@ -173,3 +173,130 @@ def test_a_change_on_disk_is_pushed(server: WorkbenchServer, sample_root: Path) 
     assert server.workbench.wait_change(pushed['version'], 10.0)['errors'] == [
         f"sedan/front_spring/X.yaml: rate: must be positive, found -31.0 (line "
         f"{line_no(spring, '  rate:')})"]
+
+
+def _serve_without_watching(bench: Workbench) -> WorkbenchServer:
+    """Serve a workbench that reloads only when it edits: it keeps the page it read."""
+    import threading
+
+    server = WorkbenchServer(bench)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def test_an_edit_from_a_stale_page_is_a_conflict(sedan_master: Path, sample_root: Path) -> None:
+    """Two workbenches on one master file: the second's edit is refused, not applied blind."""
+    first = _serve_without_watching(Workbench(sedan_master, edits=True))
+    second = _serve_without_watching(Workbench(sedan_master, edits=True))
+    try:
+        assert call(first, 'POST', '/api/edit', CAMBER)[0] == 200
+        after_first = tree_snapshot(sample_root)
+        toe = {'op': 'override', 'configuration': 'sport', 'key': 'front_alignment.toe',
+               'value': '0.1 deg'}
+        status, answer = call(second, 'POST', '/api/edit', toe)
+        assert (status, answer) == (409, {'ok': False, 'error': (
+            f'{sedan_master}: changed on disk since it was read (another workbench, vd command '
+            'or editor wrote it): this edit is not written; look at the file as it is now and '
+            'edit again')})
+        assert tree_snapshot(sample_root) == after_first
+        status, answer = call(second, 'POST', '/api/edit', toe)  # now from the file as it is
+        assert status == 200
+        text = sedan_master.read_text()
+        assert 'front_alignment.camber: -1.2 deg' in text
+        assert 'front_alignment.toe: 0.1 deg' in text
+    finally:
+        for server in (first, second):
+            server.stop()
+
+
+def test_concurrent_workbenches_lose_no_acknowledged_edit(sedan_master: Path) -> None:
+    """Each edit is answered 200 and kept, or 409 and not written: none vanishes."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from vd_data_server.errors import WorkbenchError
+
+    benches = [Workbench(sedan_master, edits=True) for _ in range(2)]
+
+    def add(n: int) -> str | None:
+        bench = benches[n % 2]
+        name = f'copy_{n}'
+        try:
+            bench.edit({'op': 'add', 'configuration': name, 'source': 'baseline'})
+        except WorkbenchError as err:
+            assert err.status == 409
+            return None
+        return name
+
+    with ThreadPoolExecutor(max_workers=6) as pool:
+        acknowledged = [n for n in pool.map(add, range(18)) if n]
+    assert acknowledged  # the first edit of each workbench meets the file it read
+    kept = set(load_study(sedan_master).configuration_names)
+    assert set(acknowledged) <= kept
+    assert {n for n in kept if n.startswith('copy_')} == set(acknowledged)
+
+
+def test_nul_characters_and_nested_lists_are_bad_requests(server: WorkbenchServer,
+                                                          sample_root: Path) -> None:
+    assert refused(server, sample_root, 'GET', '/api/file?path=sedan/%00') == (
+        400, 'a file name holds no NUL character')
+    assert refused(server, sample_root, 'POST', '/api/edit', {**CAMBER, 'value': '1\x00 deg'}) \
+        == (400, "'value' holds a NUL character")
+    assert refused(server, sample_root, 'POST', '/api/edit', {**CAMBER, 'value': [[1]]}) == (
+        400, "'value' must be a text")
+    runs = WorkbenchServer(Workbench(server.workbench.master_file, runner=lambda names: {}))
+    runs.start()
+    try:
+        assert refused(runs, sample_root, 'POST', '/api/run',
+                       {'configurations': [['baseline']]}) == (
+            400, "'configurations' must be a list of configuration names (texts)")
+    finally:
+        runs.stop()
+
+
+def test_a_deeply_nested_body_is_a_bad_request(server: WorkbenchServer,
+                                               sample_root: Path) -> None:
+    before = tree_snapshot(sample_root)
+    conn = http.client.HTTPConnection('127.0.0.1', server.port, timeout=30)
+    body = b'[' * 30000 + b']' * 30000
+    conn.request('POST', '/api/edit', body=body, headers={
+        'Host': f'127.0.0.1:{server.port}', 'Origin': server.origin,
+        'Content-Length': str(len(body))})
+    response = conn.getresponse()
+    answer = json.loads(response.read())
+    conn.close()
+    assert (response.status, answer['error']) == (400, 'the request body is nested too deeply')
+    assert tree_snapshot(sample_root) == before
+
+
+def test_an_absolute_url_for_another_host_is_refused(server: WorkbenchServer,
+                                                     sample_root: Path) -> None:
+    assert refused(server, sample_root, 'GET', 'http://evil.example/api/state') == (
+        403, f"request for 'evil.example' refused (the workbench answers only as "
+        f'{server.origin})')
+    status, state = call(server, 'GET', f'http://127.0.0.1:{server.port}/api/state')
+    assert status == 200 and state['edits'] is True
+
+
+def test_a_stalled_request_body_releases_its_connection(server: WorkbenchServer,
+                                                        monkeypatch) -> None:
+    """A client that sends half a body and stops is dropped after the idle timeout."""
+    import socket
+
+    from vd_data_server.workbench import server as module
+
+    monkeypatch.setattr(module._Handler, 'timeout', 0.5)
+    with socket.create_connection(('127.0.0.1', server.port)) as sock:
+        sock.sendall(f'POST /api/edit HTTP/1.1\r\nHost: 127.0.0.1:{server.port}\r\n'
+                     f'Origin: {server.origin}\r\nContent-Length: 100\r\n\r\n{{"op"'.encode())
+        sock.settimeout(60)  # a guard against a hang only: the server closes within 0.5 s
+        assert sock.recv(1024) == b''  # closed by the server, no answer
+    assert call(server, 'GET', '/api/state')[0] == 200
+
+
+def test_validation_copies_left_by_a_killed_editor_are_removed(server: WorkbenchServer,
+                                                               sedan_master: Path) -> None:
+    stale = sedan_master.with_name(f'.{sedan_master.name}.k1ll3d.check')
+    stale.write_text('left by kill -9 during an edit')
+    assert call(server, 'POST', '/api/edit', CAMBER)[0] == 200
+    assert not stale.exists()
+    assert not list(sedan_master.parent.glob('.*.check'))

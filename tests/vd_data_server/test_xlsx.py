@@ -133,3 +133,115 @@ def test_a_file_that_is_no_workbook_is_refused(sample_root: Path, tmp_path: Path
         f"{empty}: {name}!A1: sheet '{name}' missing (the workbook needs the sheets Study, "
         'Overview and Overrides, as vd export xlsx writes them)'
         for name in ('Study', 'Overview', 'Overrides')]
+
+
+def _edit_part(book: Path, part: str, edit) -> None:
+    """Rewrite one XML part of the workbook package (what other programs write differently)."""
+    import zipfile
+
+    with zipfile.ZipFile(book) as package:
+        parts = {i.filename: package.read(i) for i in package.infolist()}
+    parts[part] = edit(parts[part].decode('utf-8')).encode('utf-8')
+    with zipfile.ZipFile(book, 'w', zipfile.ZIP_DEFLATED) as package:
+        for name, data in parts.items():
+            package.writestr(name, data)
+
+
+OVERVIEW_PART = 'xl/worksheets/sheet2.xml'
+OVERRIDES_PART = 'xl/worksheets/sheet3.xml'
+
+
+def _no_dimension(text: str) -> str:
+    import re
+
+    return re.sub(r'<dimension ref="[^"]*"\s*/>', '', text)
+
+
+@pytest.mark.parametrize('dimension', [True, False])
+def test_a_row_without_its_first_cell_is_named_by_that_cell(sample_root: Path,
+                                                            sedan_master: Path, tmp_path: Path,
+                                                            dimension: bool) -> None:
+    path = export(sedan_master, tmp_path / 'sedan.xlsx')
+    book = load_workbook(path)
+    over = book['Overrides']
+    row = over.max_row + 1
+    over.cell(row, 2).value = 'front_alignment.toe'
+    over.cell(row, 3).value = 0.1
+    over.cell(row, 4).value = 'deg'
+    book.save(path)
+    if not dimension:
+        _edit_part(path, OVERRIDES_PART, _no_dimension)
+    assert refused(sample_root, path, sample_root / 'studies' / 'imported.yaml') == [
+        f"{path}: Overrides!A{row}: configuration '' is not a column of Overview (columns: "
+        'baseline, stiff_rear, sport)']
+
+
+@pytest.mark.parametrize('dimension', [True, False])
+def test_one_cell_rows_and_styled_empty_cells_are_read(sample_root: Path, sedan_master: Path,
+                                                       tmp_path: Path, dimension: bool) -> None:
+    from openpyxl.styles import PatternFill
+
+    path = export(sedan_master, tmp_path / 'sedan.xlsx')
+    book = load_workbook(path)
+    view = book['Overview']
+    rows = {view.cell(r, 1).value: r for r in range(2, view.max_row + 1)}
+    empty = view.cell(rows['flexible'], 5)  # sport's components: an empty cell with a fill
+    empty.value = None
+    empty.fill = PatternFill('solid', fgColor='FFE27A')
+    view.cell(view.max_row + 2, 1).value = 'notes'  # a row of one cell, after a gap
+    book.save(path)
+    if not dimension:
+        _edit_part(path, OVERVIEW_PART, _no_dimension)
+    assert refused(sample_root, path, sample_root / 'studies' / 'imported.yaml') == [
+        f"{path}: Overview!A{view.max_row}: unknown input group 'notes' (expected one of: "
+        f"{', '.join(schema.all_group_names())})"]
+    view.cell(view.max_row, 1).value = None
+    book.save(path)
+    if not dimension:
+        _edit_part(path, OVERVIEW_PART, _no_dimension)
+    target = sample_root / 'studies' / 'imported.yaml'
+    import_workbook(path, target)
+    study = load_study(target)
+    assert study.configurations['sport'].flexible_components == ()
+    assert study.configurations['sport'].flexible is False
+
+
+def test_a_sheet_beyond_the_column_limit_is_refused(sample_root: Path, sedan_master: Path,
+                                                    tmp_path: Path) -> None:
+    from openpyxl.utils import get_column_letter
+
+    path = export(sedan_master, tmp_path / 'sedan.xlsx')
+    book = load_workbook(path)
+    book['Overview'].cell(1, 3000).value = 'far'
+    book.save(path)
+    assert refused(sample_root, path, sample_root / 'studies' / 'imported.yaml') == [
+        f'{path}: Overview!{get_column_letter(3000)}1: the sheet has more than the limit of '
+        '512 columns']
+
+
+@pytest.mark.parametrize('declaration', [
+    '<!DOCTYPE worksheet [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;">]>',
+    '<!DOCTYPE worksheet SYSTEM "file:///etc/passwd">',
+])
+def test_document_types_and_entities_are_refused(sample_root: Path, sedan_master: Path,
+                                                 tmp_path: Path, declaration: str) -> None:
+    path = export(sedan_master, tmp_path / 'sedan.xlsx')
+    _edit_part(path, OVERVIEW_PART, lambda text: declaration + text)
+    assert refused(sample_root, path, sample_root / 'studies' / 'imported.yaml') == [
+        f'{path}: {OVERVIEW_PART}: a document type or entity definition (<!DOCTYPE, <!ENTITY) '
+        'is refused: a workbook has none']
+
+
+def test_a_formula_without_its_computed_value_is_an_error(sample_root: Path,
+                                                          sedan_master: Path,
+                                                          tmp_path: Path) -> None:
+    """A formula the writing program did not compute is not read as an empty cell."""
+    path = export(sedan_master, tmp_path / 'sedan.xlsx')
+    book = load_workbook(path)
+    view = book['Overview']
+    rows = {view.cell(r, 1).value: r for r in range(2, view.max_row + 1)}
+    view.cell(rows['front_spring'], 5).value = '="Y"'
+    book.save(path)
+    assert refused(sample_root, path, sample_root / 'studies' / 'imported.yaml') == [
+        f"{path}: Overview!E{rows['front_spring']}: formula =\"Y\" has no computed value in "
+        'the file (open and save the workbook in a spreadsheet program, or type the value)']

@@ -192,3 +192,35 @@ def test_vd_capability_refuses_an_axle_without_flex_data(tmp_path, sample_root):
                                    "components on the rear axle (no rear_flex group): nothing "
                                    "to compare")
     assert not out.exists() and tree_snapshot(sample_root) == before
+
+
+def test_default_output_folders_are_new_and_numbered(tmp_path):
+    """Each default folder is new: nothing of an earlier run is met or overwritten."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from vd_data_server.files import numbered_folder
+
+    parent = tmp_path / 'capability' / 'baseline'
+    first = numbered_folder(parent)
+    (first / 'capability_baseline').mkdir()
+    (parent / 'notes').mkdir()
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        folders = list(pool.map(lambda _: numbered_folder(parent), range(8)))
+    assert first == parent / '001'
+    assert sorted(f.name for f in folders) == [f'{n:03d}' for n in range(2, 10)]
+    assert all(not any(f.iterdir()) for f in folders)
+    assert (first / 'capability_baseline').is_dir()
+
+
+@pytest.mark.ros
+def test_a_refused_capability_run_leaves_no_default_folder(tmp_path, sample_root, capsys,
+                                                           monkeypatch):
+    from vd_events.cli.main import main
+    from vdtest import replace_once
+
+    master = sample_root / 'studies' / 'sedan.yaml'
+    replace_once(master, '  rear_flex: X\n', '')
+    monkeypatch.chdir(tmp_path)
+    assert main(['capability', '--master', str(master), '--axle', 'rear']) == 2
+    assert capsys.readouterr().err.strip().endswith('(no rear_flex group): nothing to compare')
+    assert not (tmp_path / 'out').exists()

@@ -52,6 +52,28 @@ def test_numbers_and_units_that_broke_the_parser(capsys, sample_root, sedan_mast
           f"{SPRING}: rate: {message} (line {line_no(spring, '  rate:')})")
 
 
+def test_integer_beyond_python_conversion_limit_names_file_and_line(capsys, sample_root,
+                                                                    sedan_master):
+    spring = sample_root / SPRING
+    replace_once(spring, 'rate: 30.0', 'rate: ' + '9' * 5001)
+    check(capsys, sample_root, sedan_master,
+          f'{SPRING}: number too large (5001 digits, the limit is 4000) '
+          f"(line {line_no(spring, '  rate:')}, column 9)")
+
+
+def test_bare_numbers_without_a_units_block_are_refused(capsys, sample_root, sedan_master):
+    """A spring file that lost its units block is not read as 30 N/m."""
+    spring = sample_root / SPRING
+    replace_once(spring, 'units: {length: mm, force: N}\n', '')
+    check(capsys, sample_root, sedan_master,
+          f"{SPRING}: rate: 30.0 has no unit and the file has no units block (add one, e.g. "
+          "'units: {length: mm, force: N}', or write the unit with the value, e.g. '30.0 N/m') "
+          f"(line {line_no(spring, '  rate:')})\n"
+          f"{SPRING}: preload: 4535 has no unit and the file has no units block (add one, e.g. "
+          "'units: {length: mm, force: N}', or write the unit with the value, e.g. '4535 N') "
+          f"(line {line_no(spring, '  preload:')})")
+
+
 def test_deep_yaml_is_refused_at_the_depth_limit(capsys, sample_root, sedan_master):
     (sample_root / SPRING).write_text('kind: spring\ndata: ' + '[' * 2000 + ']' * 2000 + '\n')
     check(capsys, sample_root, sedan_master,
@@ -269,3 +291,59 @@ def test_vd_data_check_refuses_two_descriptions_of_one_bar(capsys, sample_root, 
           '22 mm) contradicts sedan/front_stabilizer/X.yaml bar_radius 12 mm (a solid bar of '
           'diameter 24 mm): one bar, one description; leave the section out (the flexible bar '
           "takes the stabilizer's) or make them agree")
+
+
+def test_run_in_the_domain_of_a_launch_is_refused(capsys, monkeypatch, sample_root,
+                                                  sedan_master, tmp_path):
+    """`vd launch` claims its ROS domain: a run sent there gets a message, not rclpy errors."""
+    import os
+
+    from vd_events.orchestration.domain import claim_launch_domain
+
+    monkeypatch.setenv('ROS_DOMAIN_ID', '231')
+    launched = claim_launch_domain()  # what a running `vd launch` holds
+    try:
+        monkeypatch.setenv('VD_DOMAIN_ID', '231')
+        check(capsys, sample_root, sedan_master,
+              'VD_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '
+              f'{os.getpid()}); unset VD_DOMAIN_ID or choose another', 'run',
+              'handling_diagram', '--master', str(sedan_master), '--bag', str(tmp_path / 'bag'))
+        assert not list(tmp_path.glob('bag*'))
+        check(capsys, sample_root, sedan_master,
+              'ROS_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '
+              f'{os.getpid()}); set another ROS_DOMAIN_ID for this launch', 'launch',
+              '--master', str(sedan_master))
+    finally:
+        launched.release()
+
+
+def test_tire_file_whose_units_do_not_match_its_numbers(capsys, sample_root, sedan_master):
+    """LENGTH = 'mm' over dimensions written in metres: a 0.3 mm tire, refused at check."""
+    import re
+
+    tir = sample_root / 'tires' / 'Sedan_Pac02Tire.tir'
+    text = tir.read_text(encoding='latin-1')
+    before = text
+    text = re.sub(r"LENGTH\s*=\s*'meter'", "LENGTH = 'mm'", text, count=1)
+    assert text != before
+    tir.write_text(text, encoding='latin-1')
+    rc, out, err = run(capsys, 'data', 'check', '--master', str(sedan_master))
+    assert (rc, out) == (2, '')
+    assert err.splitlines()[0].endswith(
+        "UNLOADED_RADIUS: line 23: key 'UNLOADED_RADIUS' in block [DIMENSION] must lie within "
+        '0.1..2 m for a road tire, here 0.000344 m (are the [UNITS] right, e.g. LENGTH?), '
+        'found 0.344')
+
+
+def test_coincident_hard_points_fail_the_check(capsys, sample_root, sedan_master):
+    """Two pivots of the lower arm on one point: the K&C model the run builds refuses it."""
+    hard = sample_root / 'sedan/front_hardpoints/X.yaml'
+    replace_once(hard, 'lca_rear:       [-260.0, 187.0, 218.0]',
+                 'lca_rear:       [260.0, 200.0, 199.0]')
+    before = tree_snapshot(sample_root)
+    rc, out, err = run(capsys, 'data', 'check', '--master', str(sedan_master))
+    assert (rc, out) == (2, '')
+    assert err.splitlines()[0] == (
+        "configuration 'baseline', axle 'front', flexible: component 'subframe': hard points "
+        "'lca_front.left' and 'lca_rear.left' coincide (a member needs length)")
+    assert tree_snapshot(sample_root) == before

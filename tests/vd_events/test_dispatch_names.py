@@ -214,3 +214,36 @@ def test_a_graph_look_that_misses_this_node_kills_no_instance(monkeypatch):
     graph['nodes'] = [('sweep_runner', '/')]  # a trusted look without the instance
     dispatcher.discover()
     assert inst.dead == 'its node left the ROS graph'
+
+
+@pytest.mark.ros
+def test_a_starting_solver_process_is_awaited_as_long_as_it_runs(ros_domain, monkeypatch):
+    """No clock on a solver this process started: only its exit ends the wait."""
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+
+    from vd_events.orchestration import dispatch
+    from vd_events.orchestration.runner import RunRequest
+
+    monkeypatch.setattr(dispatch, 'DISCOVERY_TIMEOUT', 0.0)  # any clock would have ended it
+    node = rclpy.create_node('dispatch_test', namespace='/nowhere')
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    looks = []
+
+    def starting(family: str) -> bool:
+        looks.append(family)
+        return len(looks) < 20  # the process runs for 20 looks, then exits unseen
+
+    results = []
+    try:
+        runner = dispatch.Dispatcher(node, executor, starting=starting)
+        runner.run([RunRequest('parallel_wheel_travel', 'baseline', 'kc', axle='front')],
+                   lambda request, outcome, error, instance: results.append(error))
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+    assert len(looks) >= 20 and set(looks) == {'kc'}
+    assert results == ["configuration 'baseline', event 'parallel_wheel_travel', model 'kc': "
+                       'no kc solver instance in the ROS graph (start one: vd launch '
+                       '--solvers kc=1, or kc_solver on another host)']

@@ -25,6 +25,7 @@ from vd_events.sweeps.optimize import check_plan, optimize
 from vd_events.sweeps.plan import convert, load_plan
 from vd_events.sweeps.sweep import RUNS_FILE, sweep
 from vd_solvers.kc.from_config import bar_stiffness, run_kc_event
+from vdtest import tree_snapshot
 
 
 def kc_run(study, configuration, overrides, event, axle, parameters):
@@ -243,3 +244,87 @@ def test_configuration_written_beside_the_bundled_study(tmp_path):
     assert points['points.tierod_inner'].si[2] == pytest.approx(0.3418)
     assert points['points.lca_outer'].si[2] == pytest.approx(0.1895)
     assert new.configurations['baseline'].data_hash == study.configurations['baseline'].data_hash
+
+
+def test_plan_write_master_outside_the_data_root_is_refused(tmp_path, sedan_master, capsys,
+                                                            sample_root):
+    """A plan file cannot make vd optimize write anywhere (/etc/...): only under the root."""
+    path = tmp_path / 'bump.yaml'
+    target = tmp_path / 'elsewhere' / 'sedan.yaml'
+    target.parent.mkdir()
+    path.write_text(OPT_PLAN.format(master=sedan_master).replace(
+        'max_evaluations: 30,', f'max_evaluations: 30, write_master: {target},'))
+    before = tree_snapshot(tmp_path)
+    assert cli.main(['optimize', str(path), '--out', str(tmp_path / 'out')]) == 2
+    assert capsys.readouterr().err.strip() == (
+        f"{path}: optimize.write_master: {target} is outside the study's data root "
+        f'{sample_root}: a plan writes master files only under it (name the file on the '
+        'command line to write elsewhere: vd optimize --write-master PATH)')
+    assert tree_snapshot(tmp_path) == before
+
+
+def test_write_master_named_on_the_command_line_may_lie_anywhere(tmp_path, sedan_master):
+    from dataclasses import replace
+
+    from vd_events.sweeps.plan import OptimizeSpec
+
+    path = tmp_path / 'bump.yaml'
+    path.write_text(OPT_PLAN.format(master=sedan_master))
+    plan = load_plan(path, optimize=True)
+    target = tmp_path / 'elsewhere' / 'sedan.yaml'
+    plan = replace(plan, optimize=replace(plan.optimize or OptimizeSpec(), write_master=target,
+                                          named_by_user=True))
+    assert check_plan(plan, load_study(sedan_master), tmp_path / 'out') == 'zero_bump_steer'
+
+
+@pytest.mark.parametrize('value', ['100000000000', '0', '4097'])
+def test_max_evaluations_is_bounded(tmp_path, sedan_master, value):
+    path = tmp_path / 'bump.yaml'
+    path.write_text(OPT_PLAN.format(master=sedan_master).replace('max_evaluations: 30',
+                                                                 f'max_evaluations: {value}'))
+    with pytest.raises(DataError) as err:
+        load_plan(path, optimize=True)
+    assert str(err.value) == (f'{path}: optimize.max_evaluations: expected a whole number '
+                              f'1..4096, found {value}')
+
+
+def test_a_master_changed_during_the_optimisation_is_not_overwritten(tmp_path, sedan_master):
+    from vd_data_server.masteredit import ConflictError, fingerprint
+    from vd_events.sweeps.optimize import Evaluation, write_configuration
+
+    path = tmp_path / 'bump.yaml'
+    path.write_text(OPT_PLAN.format(master=sedan_master))
+    plan = load_plan(path, optimize=True)
+    study = load_study(sedan_master)
+    read = fingerprint(sedan_master)
+    edited = sedan_master.read_text().replace('# Sample study', '# Edited sample study', 1)
+    sedan_master.write_text(edited)  # another editor, while the optimisation ran
+    with pytest.raises(ConflictError) as err:
+        write_configuration(plan, study, 'opt', Evaluation((341.5,), (0.0,), 0.0, True),
+                            sedan_master, expected=read)
+    assert str(err.value) == (f'{sedan_master}: changed on disk since the optimisation read '
+                              "it: the configuration 'opt' is not written (the history is)")
+    assert sedan_master.read_text() == edited
+
+
+@pytest.mark.parametrize(('edit', 'message'), [
+    (('metric: roll_stiffness_bar,', 'metric: roll_stifness_bar,'),
+     "responses.roll_stiffness_bar.metric: run opposite_wheel_travel/front (kc) has no metric "
+     "'roll_stifness_bar' (metrics: max_constraint_residual, max_force_residual, "
+     'rigid_mass.lca, rigid_mass.strut, rigid_mass.tierod, rigid_mass.upright, roll_camber, '
+     'roll_steer, roll_stiffness, roll_stiffness_bar, roll_stiffness_no_bar)'),
+    (('unit: N*m/rad}\n  roll_stiffness_bar', 'unit: N/mm}\n  roll_stiffness_bar'),
+     "responses.roll_stiffness.unit: unit 'N*m/rad' cannot be converted to 'N/mm' (metric "
+     "'roll_stiffness' is in N*m/rad)"),
+])
+def test_a_response_the_runs_do_not_report_stops_the_sweep_after_one_point(
+        tmp_path, sedan_master, edit, message):
+    path = tmp_path / 'bar.yaml'
+    path.write_text(BAR_PLAN.format(master=sedan_master).replace(*edit, 1))
+    plan = load_plan(path)
+    study = load_study(plan.master)
+    local = Local(study)
+    with pytest.raises(DataError) as err:
+        sweep(plan, study, local, tmp_path / 'out', bags=False)
+    assert str(err.value) == f'{path}: {message}'
+    assert local.calls == 1  # the first point only, not the three of the sweep

@@ -186,3 +186,55 @@ def test_bad_column_map(capsys, tmp_path: Path, edit, message) -> None:
     data, cmap = files(tmp_path, 'rig.csv', 'Travel LH,Toe LH\nmm,deg\n0,0\n1,0\n',
                        KC_MAP.replace(*edit, 1))
     assert refused(capsys, tmp_path, data, cmap).startswith(f'{cmap}: {message}')
+
+
+RIG = 'Travel LH,Toe LH\nmm,deg\n' + ''.join(f'{x},0.0{i}\n' for i, x in
+                                            enumerate((-20, -10, 0, 10, 20)))
+
+
+@pytest.mark.parametrize(('text', 'message'), [
+    (RIG.replace('-20,', '1e308,'), "line 3, column 1 'Travel LH': wheel_travel_left 1e+305 m "
+     'is implausible (beyond 2 m)'),
+    (RIG.replace('0,0.02', '30,0.02'), "line 6, column 1 'Travel LH': wheel_travel_left does "
+     'not run one way (0.03 m, then 0.01 m): import each sweep of a loop as a file of its own'),
+    (RIG.replace('\n-10,', '\n-20,'), "line 4, column 1 'Travel LH': wheel_travel_left does "
+     'not run one way (-0.02 m, then -0.02 m): import each sweep of a loop as a file of its '
+     'own'),
+    ('Travel LH,Toe LH\nmm,deg\n' + '5,0.01\n' * 5,
+     "column 1 'Travel LH': wheel_travel_left does not change (0.005 m throughout): nothing "
+     'was swept'),
+    ('Travel LH,Toe LH\nmm,deg\n0,0\n1,0\n', 'line 3: 2 steps: a K&C rig measurement needs '
+     'at least 5 (truncated file?)'),
+    (RIG.replace('0,0.02', ',0.02'), "line 5, column 1 'Travel LH': not a number: ''"),
+    (RIG.replace('0,0.02', 'nan,0.02'), "line 5, column 1 'Travel LH': not a finite number: "
+     "'nan'"),
+    (RIG.replace('0,0.02', 'inf,0.02'), "line 5, column 1 'Travel LH': not a finite number: "
+     "'inf'"),
+])
+def test_rig_tables_the_comparison_cannot_use(capsys, tmp_path: Path, text: str,
+                                              message: str) -> None:
+    data, cmap = files(tmp_path, 'rig.csv', text)
+    assert refused(capsys, tmp_path, data, cmap) == f'{data}: {message}'
+
+
+def test_rig_table_with_a_duplicate_column(capsys, tmp_path: Path) -> None:
+    data, cmap = files(tmp_path, 'rig.csv', RIG.replace('Toe LH', 'Travel LH', 1))
+    assert refused(capsys, tmp_path, data, cmap) == (
+        f"{data}: line 1, column 2 'Travel LH': the column name appears twice")
+
+
+def test_log_with_a_duplicate_time_column(capsys, tmp_path: Path) -> None:
+    data, cmap = files(tmp_path, 'log.csv', 'Time,Time\n0.0,0.0\n0.1,0.1\n0.2,0.2\n', LOG_MAP)
+    assert refused(capsys, tmp_path, data, cmap) == (
+        f"{data}: line 1, column 2 'Time': the column name appears twice")
+
+
+def test_measured_file_over_the_size_limit(capsys, tmp_path: Path, monkeypatch) -> None:
+    from vd_events.measured import table
+
+    monkeypatch.setattr(table, 'MAX_MEASURED_BYTES', 1 << 20)
+    data, _ = files(tmp_path, 'log.vbo', VBO + '137 101405.15 +03120.00000 +00070.00000 '
+                    '072.000\n' * 30000, None)
+    assert refused(capsys, tmp_path, data, None) == (
+        f'{data}: exceeds the limit of 1 MiB per measured file (cut the log to its '
+        'manoeuvres, or split it)')

@@ -136,7 +136,7 @@ def _leaf(spec: schema.Spec, node: Any, key: str, units: UnitSystem) -> Value:
         return _scalar_value(key, si, spec.quantity, units)
     if isinstance(spec, schema.Point):
         xyz = _triple(node, file, key)
-        factor = si_factor(units.unit('length'), 'length')
+        factor = si_factor(units.bare_unit('length', key=key, value=node), 'length')
         si_xyz = (xyz[0] * factor, xyz[1] * factor, xyz[2] * factor)
         plausibility.check_point(si_xyz, file=file, key=key, raw=node)
         return Value(key, 'point', si_xyz, 'm', display_unit=units.display('length'))

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+import glob
+import hashlib
 import io
 import os
 from pathlib import Path
@@ -28,6 +30,7 @@ from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
 from .errors import DataError, DataErrors
+from .files import locked
 from .master import inside
 from .shape import PLAIN_NAME as _NAME  # the one rule for configuration and variant names
 from .study import Study, load_study
@@ -35,6 +38,21 @@ from .yamlio import read_bytes
 
 #: suffix of the copy of the previous content kept next to an edited master file
 BACKUP_SUFFIX = '.bak'
+#: suffix of the temporary copy an edit is validated in (``.<name>.<random>.check``)
+CHECK_SUFFIX = '.check'
+
+
+def remove_stale_checks(master: Path) -> list[Path]:
+    """
+    Remove the validation copies of ``master`` a killed editor left; return them.
+
+    Called with the master file locked (:func:`files.locked`): every editor validates
+    under that lock, so no live one is using a copy at that moment.
+    """
+    stale = sorted(master.parent.glob(f'.{glob.escape(master.name)}.*{CHECK_SUFFIX}'))
+    for path in stale:
+        path.unlink(missing_ok=True)
+    return stale
 
 
 @dataclass(frozen=True)
@@ -58,6 +76,31 @@ class Edit:
 
 
 OPS = ('variant', 'override', 'flexible', 'add')
+
+
+@dataclass(frozen=True)
+class Fingerprint:
+    """What a master file was when it was read: modification time and content hash."""
+
+    mtime_ns: int
+    sha256: str
+
+
+def fingerprint(path: str | Path) -> Fingerprint:
+    """Return the fingerprint of the file ``path`` now."""
+    real = master_path(path)
+    return Fingerprint(real.stat().st_mtime_ns,
+                       hashlib.sha256(read_bytes(real, display=str(path))).hexdigest())
+
+
+class ConflictError(DataError):
+    """The file changed since the writer read it: the edit is refused, nothing written."""
+
+
+def _conflict(display: str) -> ConflictError:
+    return ConflictError('changed on disk since it was read (another workbench, vd command or '
+                         'editor wrote it): this edit is not written; look at the file as it '
+                         'is now and edit again', file=display)
 
 
 def _yaml() -> YAML:
@@ -205,7 +248,7 @@ def validate_text(text: str, master: Path) -> Study:
     name ``master``, exactly as a load of the written file would.
     """
     folder = master.parent
-    fd, tmp = tempfile.mkstemp(prefix=f'.{master.name}.', suffix='.check', dir=folder)
+    fd, tmp = tempfile.mkstemp(prefix=f'.{master.name}.', suffix=CHECK_SUFFIX, dir=folder)
     try:
         with os.fdopen(fd, 'w', encoding='utf-8') as stream:
             stream.write(text)
@@ -256,30 +299,43 @@ def _replace_with(path: Path, data: bytes, mode: int | None = None) -> None:
         raise
 
 
-def edit_master(path: str | Path, edits: Sequence[Edit]) -> bool:
+def edit_master(path: str | Path, edits: Sequence[Edit], *,
+                expected: Fingerprint | None = None) -> bool:
     """
     Apply ``edits`` to the master file at ``path``, validate, write atomically.
 
-    Returns whether the file changed. On any error (a bad value, an
-    unknown variant, a broken structure) raises DataError and the file is unchanged.
+    The file is locked from its reading to its replacement (:func:`files.locked`), so
+    concurrent editors queue instead of losing updates. ``expected``, when given, is
+    the fingerprint of the file as the editor last read it (the workbench's page): a
+    file changed since raises :class:`ConflictError`. Returns whether the file changed.
+    On any error (a bad value, an unknown variant, a broken structure, a conflict)
+    raises DataError and the file is unchanged.
     """
     real = master_path(path)
     display = str(path)
-    text = read_bytes(real, display=display).decode('utf-8', errors='strict')
-    doc = load_document(text, file=display)
-    for edit in edits:
-        apply_edit(doc, edit, file=display)
-    new_text = dump_document(doc)
-    try:
-        validate_text(new_text, real)
-    except DataErrors as err:
-        raise DataErrors([_renamed(e, str(real), Path(display)) for e in err.errors]) from None
-    except DataError as err:
-        raise _renamed(err, str(real), Path(display)) from None
-    if new_text == text:
-        return False
-    write_atomically(real, new_text)
-    return True
+    with locked(real):
+        remove_stale_checks(real)
+        read = fingerprint(real)
+        if expected is not None and read != expected:
+            raise _conflict(display)
+        text = read_bytes(real, display=display).decode('utf-8', errors='strict')
+        doc = load_document(text, file=display)
+        for edit in edits:
+            apply_edit(doc, edit, file=display)
+        new_text = dump_document(doc)
+        try:
+            validate_text(new_text, real)
+        except DataErrors as err:
+            raise DataErrors([_renamed(e, str(real), Path(display))
+                              for e in err.errors]) from None
+        except DataError as err:
+            raise _renamed(err, str(real), Path(display)) from None
+        if new_text == text:
+            return False
+        if fingerprint(real) != read:  # an editor outside vd wrote it meanwhile
+            raise _conflict(display)
+        write_atomically(real, new_text)
+        return True
 
 
 def write_master(path: str | Path, doc: Mapping[str, Any], *, root: Path | None = None) -> str:
@@ -296,7 +352,13 @@ def write_master(path: str | Path, doc: Mapping[str, Any], *, root: Path | None 
     stream = io.StringIO()
     _yaml().dump(doc, stream)
     text = stream.getvalue()
-    validate_text(text, target)
-    if not target.exists() or target.read_text(encoding='utf-8') != text:
+    if not target.exists():
+        validate_text(text, target)
         write_atomically(target, text)
+        return text
+    with locked(target):
+        remove_stale_checks(target)
+        validate_text(text, target)
+        if target.read_text(encoding='utf-8') != text:
+            write_atomically(target, text)
     return text

@@ -727,6 +727,14 @@ NONZERO_KEYS: Final[tuple[tuple[str, str], ...]] = (
     ('SCALING_COEFFICIENTS', 'LCX'),
     ('SCALING_COEFFICIENTS', 'LMUX'),
 )
+#: (block, key, lowest, highest) in SI of the dimensions a road tire has: outside, the
+#: file's [UNITS] are likely wrong (LENGTH = 'mm' for values in metres reads a 0.3 mm tire)
+DIMENSION_RANGES: Final[tuple[tuple[str, str, float, float], ...]] = (
+    ('DIMENSION', 'UNLOADED_RADIUS', 0.1, 2.0),
+    ('DIMENSION', 'WIDTH', 0.05, 1.5),
+    ('DIMENSION', 'RIM_RADIUS', 0.05, 1.5),
+    ('DIMENSION', 'RIM_WIDTH', 0.03, 1.5),
+)
 #: Validity ranges (block, smallest key, largest key): the smallest must lie below the largest.
 RANGES: Final[tuple[tuple[str, str, str], ...]] = (
     ('INFLATION_PRESSURE_RANGE', 'PRESMIN', 'PRESMAX'),
@@ -763,7 +771,8 @@ def check_values(
     LFZO, pressure or vertical stiffness, a zero divisor of the Magic Formula, a validity
     range whose minimum is not below its maximum, an inflation pressure outside
     [PRESMIN, PRESMAX], a load-deflection curve without a real Q_FZ1
-    ((C_z R0 / FNOMIN)^2 < 4 Q_FZ2), and a USE_MODE vd does not evaluate.
+    ((C_z R0 / FNOMIN)^2 < 4 Q_FZ2), a USE_MODE vd does not evaluate, and tire dimensions
+    outside :data:`DIMENSION_RANGES` (a file whose [UNITS] do not match its numbers).
 
     ``where`` gives the ``line N: `` prefix and the text as written of a (block, key)
     read from a file; the same check runs on the values of a tire group after
@@ -794,6 +803,11 @@ def check_values(
         given = number(block, key)
         if given is not None and given <= 0.0:
             bad(block, key, 'must be > 0', given)
+    for block, key, lowest, highest in DIMENSION_RANGES:
+        given = number(block, key)
+        if given is not None and given > 0.0 and not lowest <= given <= highest:
+            bad(block, key, f'must lie within {lowest:g}..{highest:g} m for a road tire, here '
+                f'{given:g} m (are the [UNITS] right, e.g. LENGTH?)', given)
     for block, key in NONZERO_KEYS:
         divisor = sections.get(block, {}).get(key)
         if isinstance(divisor, float) and divisor == 0.0:

@@ -158,6 +158,8 @@ class UnitSystem:
 
     def __init__(self, block: Mapping[str, str] | None, *, file: str) -> None:
         self.file = file
+        #: whether the file has a units block: without one, a bare number has no unit
+        self.declared = block is not None
         declared = dict(block or {})
         units: dict[str, str] = {}
         for quantity, unit in declared.items():
@@ -184,6 +186,21 @@ class UnitSystem:
     def unit(self, quantity: str) -> str:
         return self.units[quantity]
 
+    def bare_unit(self, quantity: str, *, key: str, value: object) -> str:
+        """
+        Return the unit of a number written without one.
+
+        A file without a units block gives bare numbers no unit: ``rate: 30`` would
+        silently be 30 N/m where the author meant N/mm. Only dimensionless values may then
+        be bare.
+        """
+        if not self.declared and quantity != 'dimensionless':
+            raise DataError(f'{value!r} has no unit and the file has no units block (add one, '
+                            f"e.g. 'units: {{length: mm, force: N}}', or write the unit with "
+                            f"the value, e.g. '{value} {SI_UNITS[quantity]}')", file=self.file,
+                            key=key)
+        return self.units[quantity]
+
     def display(self, quantity: str) -> str:
         """Short, readable unit for reports (``N/mm`` rather than ``(N)/(mm)``)."""
         unit = self.units[quantity]
@@ -203,10 +220,10 @@ def to_si(value: object, quantity: str, units: UnitSystem, *, key: str) -> float
         raise DataError(f'number too large ({len(str(abs(value)))} digits)', file=units.file,
                         key=key)
     if isinstance(value, (int, float)):
-        number, unit = float(value), units.unit(quantity)
+        number, unit = float(value), units.bare_unit(quantity, key=key, value=value)
     elif isinstance(value, str) and _is_number(value):
         # PyYAML reads YAML 1.1, where '7.0e7' (no exponent sign) is a string.
-        number, unit = float(value), units.unit(quantity)
+        number, unit = float(value), units.bare_unit(quantity, key=key, value=value)
     elif isinstance(value, str):
         number, unit = parse_quantity(value, quantity, file=units.file, key=key)
     else:

@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from pathlib import Path
 import re
 from typing import Any
+import zipfile
 
 from openpyxl import Workbook, load_workbook
 from openpyxl.styles import Alignment, Font, PatternFill
@@ -57,6 +58,15 @@ OVERRIDE_HEAD = ('configuration', 'key', 'value', 'unit')
 _QUANTITY = re.compile(r'^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s+(\S.*?)\s*$')
 #: largest workbook read, bytes (a study of 50 configurations is < 200 kB)
 MAX_BYTES = 20 * 1024 * 1024
+#: largest workbook unpacked (all its XML parts), bytes
+MAX_UNPACKED = 200 * 1024 * 1024
+#: bytes of an XML part read at a time when it is searched for a document type
+CHUNK_BYTES = 1 << 20
+#: rows and columns of an input sheet read; a cell beyond is refused
+MAX_ROWS = 2000
+MAX_COLUMNS = 512
+#: the sheets a workbook is imported from (the group sheets are results)
+INPUT_SHEETS = ('Study', 'Overview', 'Overrides')
 
 
 def _split(raw: Any) -> tuple[Any, str]:
@@ -212,12 +222,128 @@ def _text(value: Any) -> str:
     return str(value).strip()
 
 
-def _sheet(book: Any, name: str, cells: _Cells) -> Any:
-    if name not in book.sheetnames:
-        cells.add(name, 'A1', f"sheet '{name}' missing (the workbook needs the sheets Study, "
-                  'Overview and Overrides, as vd export xlsx writes them)')
-        return None
-    return book[name]
+class _Sheet:
+    """
+    One sheet's values by position (row, column from 1), read whole and bounded.
+
+    Positions, not openpyxl's cells: a read-only sheet gives an empty cell no coordinate,
+    and a row with gaps or a sheet without a ``<dimension>`` has rows of any length.
+    """
+
+    def __init__(self, name: str, rows: list[tuple[Any, ...]]) -> None:
+        self.name = name
+        self.rows = rows
+
+    def value(self, row: int, col: int) -> Any:
+        values = self.rows[row - 1] if row <= len(self.rows) else ()
+        return values[col - 1] if col <= len(values) else None
+
+    def text(self, row: int, col: int) -> str:
+        return _text(self.value(row, col))
+
+    def width(self, row: int) -> int:
+        values = self.rows[row - 1] if row <= len(self.rows) else ()
+        return max((i + 1 for i, v in enumerate(values) if v is not None), default=0)
+
+    @staticmethod
+    def ref(row: int, col: int) -> str:
+        return f'{get_column_letter(col)}{row}'
+
+
+def _check_package(path: Path, display: str) -> None:
+    """
+    Refuse a workbook whose XML declares a DOCTYPE or entities, or that unpacks too large.
+
+    openpyxl parses the package's XML with the standard library; a document type with
+    entity definitions ("billion laughs", external entities) is refused before it is
+    parsed, as defusedxml would. Spreadsheet programs never write one.
+    """
+    try:
+        with zipfile.ZipFile(path) as package:
+            members = package.infolist()
+            if sum(m.file_size for m in members) > MAX_UNPACKED:
+                raise DataError(f'unpacks to more than the limit of {MAX_UNPACKED >> 20} MiB',
+                                file=display)
+            for member in members:
+                if not member.filename.endswith(('.xml', '.rels')):
+                    continue
+                if _declares_entities(package, member):
+                    raise DataError(f'{member.filename}: a document type or entity '
+                                    'definition (<!DOCTYPE, <!ENTITY) is refused: a workbook '
+                                    'has none', file=display)
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError) as err:
+        raise DataError(f'not an xlsx workbook ({type(err).__name__}: {err})',
+                        file=display) from None
+
+
+def _declares_entities(package: zipfile.ZipFile, member: zipfile.ZipInfo) -> bool:
+    """Tell whether the XML part holds ``<!DOCTYPE`` or ``<!ENTITY`` (read in chunks)."""
+    tail = b''
+    with package.open(member) as stream:
+        while chunk := stream.read(CHUNK_BYTES):
+            text = tail + chunk
+            if b'<!DOCTYPE' in text or b'<!ENTITY' in text:
+                return True
+            tail = text[-8:]
+    return False
+
+
+def _read_sheets(path: Path, display: str, cells: _Cells) -> dict[str, _Sheet] | None:
+    """Read the three input sheets; a formula without a computed value is a bad cell."""
+    try:
+        if path.stat().st_size > MAX_BYTES:
+            raise DataError(f'exceeds the limit of {MAX_BYTES >> 20} MiB per workbook',
+                            file=display)
+        _check_package(path, display)
+        values = load_workbook(path, read_only=True, data_only=True)
+        formulas = load_workbook(path, read_only=True, data_only=False)
+        sheets: dict[str, _Sheet] = {}
+        for name in INPUT_SHEETS:
+            if name not in values.sheetnames:
+                cells.add(name, 'A1', f"sheet '{name}' missing (the workbook needs the sheets "
+                          'Study, Overview and Overrides, as vd export xlsx writes them)')
+                continue
+            sheets[name] = _bounded(name, values[name], cells)
+            # the same cells again: their limits are reported once, above
+            _formulas(sheets[name], _bounded(name, formulas[name], _Cells(display)), cells)
+    except DataError:
+        raise
+    except FileNotFoundError:
+        raise DataError('file not found', file=display) from None
+    except Exception as err:  # noqa: BLE001 - openpyxl raises many kinds on a non-workbook
+        raise DataError(f'not an xlsx workbook ({type(err).__name__}: {err})',
+                        file=display) from None
+    return None if cells.errors else sheets
+
+
+def _bounded(name: str, sheet: Any, cells: _Cells) -> _Sheet:
+    """Read the sheet's rows up to :data:`MAX_ROWS` x :data:`MAX_COLUMNS`; beyond: a bad cell."""
+    # the cells themselves, not the <dimension> the file declares (absent, or wrong): each
+    # row is as long as its last cell (at most Excel's 16384 columns)
+    sheet.reset_dimensions()
+    rows = [tuple(r) for r in sheet.iter_rows(min_row=1, max_row=MAX_ROWS + 1,
+                                              values_only=True)]
+    if len(rows) > MAX_ROWS and any(v is not None for v in rows[MAX_ROWS]):
+        cells.add(name, _Sheet.ref(MAX_ROWS + 1, 1), f'the sheet has more than the limit of '
+                  f'{MAX_ROWS} rows')
+    for r, row in enumerate(rows[:MAX_ROWS], 1):
+        beyond = [c for c, v in enumerate(row[MAX_COLUMNS:], MAX_COLUMNS + 1) if v is not None]
+        if beyond:
+            cells.add(name, _Sheet.ref(r, beyond[0]), f'the sheet has more than the limit of '
+                      f'{MAX_COLUMNS} columns')
+            break
+    return _Sheet(name, [row[:MAX_COLUMNS] for row in rows[:MAX_ROWS]])
+
+
+def _formulas(values: _Sheet, formulas: _Sheet, cells: _Cells) -> None:
+    """Refuse a formula whose result the file does not hold (never read as an empty cell)."""
+    for r, row in enumerate(formulas.rows, 1):
+        for c, formula in enumerate(row, 1):
+            if isinstance(formula, str) and formula.startswith('=') and \
+                    values.value(r, c) is None:
+                cells.add(values.name, _Sheet.ref(r, c), f'formula {formula[:60]} has no '
+                          'computed value in the file (open and save the workbook in a '
+                          'spreadsheet program, or type the value)')
 
 
 def read_workbook(path: Path, target: Path) -> dict[str, Any]:
@@ -228,52 +354,39 @@ def read_workbook(path: Path, target: Path) -> dict[str, Any]:
     variants exist. Raises DataError with every bad cell as ``Sheet!CELL: message``.
     """
     display = str(path)
-    try:
-        if path.stat().st_size > MAX_BYTES:
-            raise DataError(f'exceeds the limit of {MAX_BYTES >> 20} MiB per workbook',
-                            file=display)
-        book = load_workbook(path, read_only=True, data_only=True)
-    except DataError:
-        raise
-    except FileNotFoundError:
-        raise DataError('file not found', file=display) from None
-    except Exception as err:  # noqa: BLE001 - openpyxl raises many kinds on a non-workbook
-        raise DataError(f'not an xlsx workbook ({type(err).__name__}: {err})',
-                        file=display) from None
     cells = _Cells(display)
-    study_sheet, view, over = (_sheet(book, n, cells) for n in ('Study', 'Overview',
-                                                                'Overrides'))
+    sheets = _read_sheets(path, display, cells)
     cells.raise_if_any()
+    assert sheets is not None
+    study_sheet, view, over = (sheets[n] for n in INPUT_SHEETS)
     study: dict[str, Any] = {}
-    for row in study_sheet.iter_rows(min_row=2):
-        if not row or row[0].value is None:
+    for r in range(2, len(study_sheet.rows) + 1):
+        if study_sheet.value(r, 1) is None:
             continue
-        key = _text(row[0].value)
-        value = _text(row[1].value) if len(row) > 1 else ''
+        key, value = study_sheet.text(r, 1), study_sheet.text(r, 2)
         if key == 'master file':
             continue
         if key not in STUDY_FIELDS:
-            cells.add('Study', row[0].coordinate, f"unknown field '{key}' (expected one of: "
+            cells.add('Study', _Sheet.ref(r, 1), f"unknown field '{key}' (expected one of: "
                       f"{', '.join(STUDY_FIELDS)})")
         elif value:
             study[key] = value
     for key in ('name', 'vehicle'):
         if key not in study:
             cells.add('Study', 'B2' if key == 'name' else 'B4', f"missing the study's {key}")
-    rows = list(view.iter_rows())
-    if not rows:
+    if not view.rows:
         cells.add('Overview', 'A1', 'the sheet is empty')
         cells.raise_if_any()
-    head = [_text(c.value) for c in rows[0]]
+    head = [view.text(1, c) for c in range(1, view.width(1) + 1)]
     if tuple(head[:2]) != OVERVIEW_HEAD:
         cells.add('Overview', 'A1', f"expected the headings '{OVERVIEW_HEAD[0]}', "
                   f"'{OVERVIEW_HEAD[1]}' in A1:B1, found {head[:2]}")
         cells.raise_if_any()
     names: list[tuple[int, str]] = []
-    for col, name in enumerate(head[2:], 2):
+    for col, name in enumerate(head[2:], 3):
         if not name or name == CONSISTENCY_HEAD:
             break
-        ref = rows[0][col].coordinate
+        ref = _Sheet.ref(1, col)
         if not _NAME.match(name):
             cells.add('Overview', ref, f"configuration name '{name}': names may hold letters, "
                       "digits, '_', '-' and '.'")
@@ -291,63 +404,61 @@ def read_workbook(path: Path, target: Path) -> dict[str, Any]:
     flexible: dict[str, str] = {}
     descriptions: dict[str, str] = {}
     refs: dict[tuple[str, str], str] = {}
-    for row in rows[1:]:
-        label = _text(row[0].value)
+    for r in range(2, len(view.rows) + 1):
+        label = view.text(r, 1)
         if not label:
             continue
         if label == 'flexible':
             for col, name in names:
-                flexible[name] = _text(row[col].value) if col < len(row) else ''
-                ref = row[col].coordinate if col < len(row) else ''
-                refs[(name, 'flexible')] = refs[(name, 'flexible_components')] = ref
+                flexible[name] = view.text(r, col)
+                refs[(name, 'flexible')] = refs[(name, 'flexible_components')] = \
+                    _Sheet.ref(r, col)
             continue
         if label == 'description':
             for col, name in names:
-                descriptions[name] = _text(row[col].value) if col < len(row) else ''
+                descriptions[name] = view.text(r, col)
             continue
         if label not in known:
-            cells.add('Overview', row[0].coordinate, f"unknown input group '{label}' (expected "
+            cells.add('Overview', _Sheet.ref(r, 1), f"unknown input group '{label}' (expected "
                       f"one of: {', '.join(known)})")
             continue
         available = sorted(p.stem for p in (vehicle / label).glob('*.yaml')) \
             if vehicle is not None and (vehicle / label).is_dir() else None
 
-        def check(cell: Any, variant: str, group: str = label,
+        def check(ref: str, variant: str, group: str = label,
                   available: list[str] | None = available) -> bool:
             if not _NAME.match(variant):
-                cells.add('Overview', cell.coordinate, f"variant must be a plain name, found "
-                          f"'{variant}'")
+                cells.add('Overview', ref, f"variant must be a plain name, found '{variant}'")
                 return False
             if available is not None and variant not in available:
-                cells.add('Overview', cell.coordinate, f"unknown variant '{variant}' for group "
+                cells.add('Overview', ref, f"unknown variant '{variant}' for group "
                           f"'{group}' (available: {', '.join(available) or 'none'})")
                 return False
             return True
 
-        default = _text(row[1].value) if len(row) > 1 else ''
-        if default and check(row[1], default):
+        default = view.text(r, 2)
+        if default and check(_Sheet.ref(r, 2), default):
             defaults[label] = default
         for col, name in names:
-            variant = _text(row[col].value) if col < len(row) else ''
+            variant = view.text(r, col)
             if not variant:
                 continue
-            refs[(name, f'variants.{label}')] = row[col].coordinate
-            if check(row[col], variant) and variant != defaults.get(label):
+            refs[(name, f'variants.{label}')] = _Sheet.ref(r, col)
+            if check(_Sheet.ref(r, col), variant) and variant != defaults.get(label):
                 variants[name][label] = variant
     overrides: dict[str, dict[str, str]] = {n: {} for _, n in names}
-    for row in list(over.iter_rows())[1:]:
-        values = [c.value for c in row] + [None] * 4
-        if all(v is None for v in values[:4]):
+    for r in range(2, len(over.rows) + 1):
+        name, key, value, unit = (over.value(r, c) for c in range(1, 5))
+        if all(v is None for v in (name, key, value, unit)):
             continue
-        name, key, value, unit = values[:4]
-        ref = row[0].coordinate
+        ref = _Sheet.ref(r, 1)
         name, key = _text(name), _text(key)
         if name not in overrides:
             cells.add('Overrides', ref, f"configuration '{name}' is not a column of Overview "
                       f"(columns: {', '.join(n for _, n in names)})")
             continue
         group, _, rest = key.partition('.')
-        key_ref = row[1].coordinate
+        key_ref = _Sheet.ref(r, 2)
         if not rest or group not in known:
             cells.add('Overrides', key_ref, f"expected GROUP.KEY with a known group, found "
                       f"'{key}'")
@@ -356,16 +467,16 @@ def read_workbook(path: Path, target: Path) -> dict[str, Any]:
             cells.add('Overrides', key_ref, f"'{key}' is overridden twice for '{name}'")
             continue
         if value is None or _text(value) == '':
-            cells.add('Overrides', row[2].coordinate, 'missing the value')
+            cells.add('Overrides', _Sheet.ref(r, 3), 'missing the value')
             continue
         if isinstance(value, bool):
-            cells.add('Overrides', row[2].coordinate, f'expected a number or a text, found '
+            cells.add('Overrides', _Sheet.ref(r, 3), f'expected a number or a text, found '
                       f'{value!r}')
             continue
         number = _number_text(value) if isinstance(value, (int, float)) else str(value).strip()
         unit = _text(unit)
         overrides[name][key] = f'{number} {unit}' if unit else number
-        refs[(name, f'overrides.{key}')] = row[2].coordinate
+        refs[(name, f'overrides.{key}')] = _Sheet.ref(r, 3)
     cells.raise_if_any()
     doc: dict[str, Any] = {'study': {k: study[k] for k in STUDY_FIELDS if k in study},
                            'defaults': defaults, 'configurations': {}}

@@ -24,12 +24,18 @@ MAX_FILE_BYTES = 1 << 20
 MAX_DEPTH = 64
 #: most nodes a YAML file may hold with its aliases expanded
 MAX_NODES = 100_000
+#: most digits of a whole number (Python refuses to convert longer ones: 4300)
+MAX_DIGITS = 4000
 
 
 class LineDict(dict):
     """A mapping that knows the source line of each of its keys (1-based)."""
 
     lines: dict[str, int]
+
+
+class _OverLimit(yaml.constructor.ConstructorError):
+    """A well-formed value over one of the limits (not malformed YAML)."""
 
 
 class _Loader(yaml.SafeLoader):
@@ -53,7 +59,18 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LineDict:
     return result
 
 
+def _construct_int(loader: _Loader, node: yaml.ScalarNode) -> int:
+    """Build a YAML integer, refused above :data:`MAX_DIGITS` digits with its line."""
+    digits = sum(c.isdigit() for c in str(node.value))
+    if digits > MAX_DIGITS:
+        raise _OverLimit(
+            None, None, f'number too large ({digits} digits, the limit is {MAX_DIGITS})',
+            node.start_mark)
+    return yaml.SafeLoader.construct_yaml_int(loader, node)
+
+
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
+_Loader.add_constructor('tag:yaml.org,2002:int', _construct_int)
 
 
 def _check_size(text: str, file: str) -> None:
@@ -102,9 +119,8 @@ def loads(text: str, *, file: str) -> Any:
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
         where = f' (line {mark.line + 1}, column {mark.column + 1})' if mark else ''
-        raise DataError(
-            f'malformed YAML: {err.problem or err.context}{where}', file=file
-        ) from None
+        what = '' if isinstance(err, _OverLimit) else 'malformed YAML: '
+        raise DataError(f'{what}{err.problem or err.context}{where}', file=file) from None
     except yaml.YAMLError as err:
         raise DataError(f'malformed YAML: {err}', file=file) from None
 

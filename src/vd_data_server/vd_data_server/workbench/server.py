@@ -30,7 +30,7 @@ from urllib.parse import parse_qs, urlsplit
 
 from vd_data_server.errors import DataError, WorkbenchError
 from vd_data_server.master import inside
-from vd_data_server.masteredit import Edit, edit_master
+from vd_data_server.masteredit import ConflictError, Edit, Fingerprint, edit_master, fingerprint
 from vd_data_server.overview import study_state
 from vd_data_server.service import DataService
 from vd_data_server.yamlio import read_bytes
@@ -41,6 +41,8 @@ WATCH_PERIOD = 0.2
 KEEPALIVE = 10.0
 #: largest request body accepted, bytes
 MAX_BODY = 64 * 1024
+#: seconds a connection may stay idle in the middle of a request before it is dropped
+IDLE_TIMEOUT = 30.0
 WEB = Path(__file__).resolve().parent / 'web'
 #: the only static files served: name in the URL -> (file, content type)
 STATIC = {'/': ('index.html', 'text/html; charset=utf-8'),
@@ -68,6 +70,9 @@ class Workbench:
         self.runs: dict[str, Any] = {}
         self._running = False
         self._stop = threading.Event()
+        # the master file as the page shows it: taken before each load, so an edit made
+        # from an older page than the file is refused (HTTP 409), never lost
+        self._read: Fingerprint | None = self._fingerprint()
         outcome = self.service.load()
         if self.service.study is None:
             raise DataError('\n'.join(outcome.errors) or 'cannot load', file=str(master_file))
@@ -111,12 +116,25 @@ class Workbench:
                                    timeout)
             return self._state if self.version > version else None
 
+    def _fingerprint(self) -> Fingerprint | None:
+        try:
+            return fingerprint(self.master_file)
+        except (DataError, OSError):  # gone or unreadable: the load says why
+            return None
+
+    def _reload(self) -> None:
+        self._read = self._fingerprint()
+        self.service.load()
+        self._rebuild()
+
     def poll(self) -> bool:
         """Reload if a watched file changed; True if the state changed."""
         with self._lock:
+            read = self._fingerprint()
             outcome = self.service.poll()
             if outcome is None:
                 return False
+            self._read = read
             self._rebuild()
             return True
 
@@ -149,11 +167,17 @@ class Workbench:
         bad = [k for k, v in fields.items() if not isinstance(v, str)]
         if bad:
             raise WorkbenchError(HTTPStatus.BAD_REQUEST, f"'{bad[0]}' must be a text")
+        bad = [k for k, v in fields.items() if '\x00' in v]
+        if bad:
+            raise WorkbenchError(HTTPStatus.BAD_REQUEST, f"'{bad[0]}' holds a NUL character")
         edit = Edit(**fields)
         with self._lock:
-            changed = edit_master(self.master_file, [edit])
-            self.service.load()
-            self._rebuild()
+            try:
+                changed = edit_master(self.master_file, [edit], expected=self._read)
+            except ConflictError as err:
+                self._reload()
+                raise WorkbenchError(HTTPStatus.CONFLICT, str(err)) from None
+            self._reload()
         what = {'variant': f'{edit.group} = {edit.value}',
                 'override': f'{edit.key} = {edit.value}' if edit.value else f'{edit.key} cleared',
                 'flexible': f'flexible = {edit.value or "off"}',
@@ -167,8 +191,11 @@ class Workbench:
                                  '(started without a runner)')
         study = self.service.study
         assert study is not None
+        if not all(isinstance(n, str) for n in names):
+            raise WorkbenchError(HTTPStatus.BAD_REQUEST, "'configurations' must be a list of "
+                                 'configuration names (texts)')
         unknown = [n for n in names if n not in study.configurations]
-        if not names or unknown or not all(isinstance(n, str) for n in names):
+        if not names or unknown:
             raise WorkbenchError(HTTPStatus.BAD_REQUEST, 'mark one or more configurations '
                                  f"(available: {', '.join(study.configuration_names)})"
                                  + (f"; unknown: {', '.join(map(str, unknown))}" if unknown
@@ -205,6 +232,8 @@ class Workbench:
     def read_data_file(self, rel: str) -> str:
         """Return a file under the data root as text (the page shows the data files)."""
         root = self.data_root
+        if '\x00' in rel:
+            raise WorkbenchError(HTTPStatus.BAD_REQUEST, 'a file name holds no NUL character')
         path = root / rel
         if not rel or rel.startswith('/') or not inside(root, path):
             raise WorkbenchError(HTTPStatus.FORBIDDEN, f"'{rel}' is outside the data root "
@@ -221,6 +250,10 @@ class Workbench:
 class _Handler(BaseHTTPRequestHandler):
     server: 'WorkbenchServer'
     protocol_version = 'HTTP/1.1'
+    #: s a connection may stay silent (socket timeout): a client that stalls in its
+    #: request, or stops reading, releases its thread; the page's event stream writes a
+    #: keep-alive every KEEPALIVE s, well inside it
+    timeout = IDLE_TIMEOUT
 
     def log_message(self, format: str, *args: Any) -> None:  # noqa: A002 - the base's name
         if self.server.verbose:
@@ -229,6 +262,12 @@ class _Handler(BaseHTTPRequestHandler):
     # -- checks ---------------------------------------------------------------------------
     def _check_host(self) -> None:
         host = self.headers.get('Host', '')
+        if not self.path.startswith('/'):  # absolute form (a proxy's request): its host too
+            url = urlsplit(self.path)
+            if url.scheme != 'http' or url.netloc not in self.server.hosts:
+                raise WorkbenchError(HTTPStatus.FORBIDDEN, f"request for '{url.netloc}' "
+                                     f'refused (the workbench answers only as '
+                                     f'{self.server.origin})')
         if host not in self.server.hosts:
             raise WorkbenchError(HTTPStatus.FORBIDDEN, f"host '{host}' refused (the workbench "
                                  f'answers only as {self.server.origin})')
@@ -252,6 +291,9 @@ class _Handler(BaseHTTPRequestHandler):
             body = json.loads(raw.decode('utf-8') or '{}')
         except (UnicodeDecodeError, json.JSONDecodeError):
             raise WorkbenchError(HTTPStatus.BAD_REQUEST, 'the request body is not JSON') from None
+        except RecursionError:
+            raise WorkbenchError(HTTPStatus.BAD_REQUEST, 'the request body is nested too '
+                                 'deeply') from None
         if not isinstance(body, dict):
             raise WorkbenchError(HTTPStatus.BAD_REQUEST, 'the request body must be a JSON object')
         return body
@@ -281,6 +323,8 @@ class _Handler(BaseHTTPRequestHandler):
             self._json(HTTPStatus.UNPROCESSABLE_ENTITY, {'ok': False, 'error': str(err)})
         except (BrokenPipeError, ConnectionResetError):
             pass
+        except TimeoutError:  # a stalled client: drop the connection, say nothing
+            self.close_connection = True
         except Exception as err:  # noqa: BLE001 - one failed request never ends the server
             self._json(HTTPStatus.INTERNAL_SERVER_ERROR,
                        {'ok': False, 'error': f'the request failed: {type(err).__name__}: {err}'})

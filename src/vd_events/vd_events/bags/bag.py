@@ -48,8 +48,9 @@ from rosbags.interfaces import (
 from rosbags.rosbag2 import CompressionFormat, CompressionMode, Reader, StoragePlugin, Writer
 from rosbags.rosbag2.storage_mcap import McapWriter
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-import yaml
 
+from vd_data_server.errors import DataError
+from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError
 
 # rosbags is imported where a bag is written or read: a run without a bag (and the
@@ -185,9 +186,8 @@ def offered_qos(path: str | Path) -> dict[str, list]:
     def duration(d) -> Duration:
         return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
 
-    meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
     out = {}
-    for entry in meta['rosbag2_bagfile_information']['topics_with_message_count']:
+    for entry in bag_metadata(path)['topics_with_message_count']:
         topic = entry['topic_metadata']
         out[topic['name']] = [QoSProfile(
             history=HistoryPolicy[q['history'].upper()], depth=int(q['depth']),
@@ -323,22 +323,63 @@ class BagMessage:
 
 
 def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMessage]:
-    """Yield every message (deserialised with rosbags) of a finished bag."""
-    path = Path(path)
-    if not (path / 'metadata.yaml').is_file():
-        raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')
+    """
+    Yield every message (deserialised with rosbags) of a finished bag.
 
+    A bag that cannot be read whole (a truncated ``.mcap``, a broken ``metadata.yaml``,
+    a message that does not deserialise) raises :class:`BagError` naming the bag.
+    """
+    path = Path(path)
+    bag_metadata(path)
     store = typestore()
-    with Reader(path) as reader:
-        conns = [c for c in reader.connections if topics is None or c.topic in topics]
-        if not conns:  # rosbags reads every connection when given none
-            return
-        for conn, timestamp, raw in reader.messages(connections=conns):
-            yield BagMessage(conn.topic, conn.msgtype, timestamp,
-                             store.deserialize_cdr(raw, conn.msgtype))
+    try:
+        with Reader(path) as reader:
+            conns = [c for c in reader.connections if topics is None or c.topic in topics]
+            if not conns:  # rosbags reads every connection when given none
+                return
+            for conn, timestamp, raw in reader.messages(connections=conns):
+                yield BagMessage(conn.topic, conn.msgtype, timestamp,
+                                 store.deserialize_cdr(raw, conn.msgtype))
+    except BagError:
+        raise
+    except Exception as err:  # noqa: BLE001 - rosbags and the MCAP reader raise many kinds
+        raise BagError(f'{path}: not a readable rosbag2 bag ({_reason(err)})') from None
+
+
+def _reason(err: BaseException) -> str:
+    text = str(err).strip().splitlines()[0] if str(err).strip() else ''
+    return f'{type(err).__name__}: {text}' if text else type(err).__name__
+
+
+def bag_metadata(path: str | Path) -> dict[str, Any]:
+    """
+    Return a finished bag's ``metadata.yaml`` information, checked for what vd reads of it.
+
+    Read with the bounded YAML loader; a missing, malformed or incomplete file raises
+    :class:`BagError` naming the bag.
+    """
+    path = Path(path)
+    meta_file = path / 'metadata.yaml'
+    if not meta_file.is_file():
+        raise BagError(f'{path}: not a finished rosbag2 bag (no metadata.yaml)')
+    try:
+        meta = load_file(meta_file, display=str(meta_file))
+    except DataError as err:
+        raise BagError(f'{path}: broken metadata.yaml ({err.detail})') from None
+    info = meta.get('rosbag2_bagfile_information') if isinstance(meta, dict) else None
+    if not isinstance(info, dict):
+        info = {}
+    topics = info.get('topics_with_message_count')
+    if not isinstance(topics, list) or not all(
+            isinstance(t, dict) and isinstance(t.get('topic_metadata'), dict) for t in topics):
+        raise BagError(f'{path}: broken metadata.yaml (no rosbag2_bagfile_information with '
+                       'its topics_with_message_count)')
+    custom = info.get('custom_data') or {}
+    if not isinstance(custom, dict):
+        raise BagError(f'{path}: broken metadata.yaml (custom_data is not a mapping)')
+    return info
 
 
 def custom_data(path: str | Path) -> dict[str, str]:
 
-    meta = yaml.safe_load((Path(path) / 'metadata.yaml').read_text())
-    return dict(meta.get('rosbag2_bagfile_information', {}).get('custom_data') or {})
+    return {str(k): str(v) for k, v in (bag_metadata(path).get('custom_data') or {}).items()}

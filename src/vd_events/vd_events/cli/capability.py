@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 
 from rich.table import Table as RichTable
 
 from vd_data_server.errors import DataError
+from vd_data_server.files import numbered_folder
 from vd_data_server.overview import console
 from vd_events.cli import options
 from vd_events.reports.sections import capability_rows
@@ -28,10 +30,16 @@ def cmd_capability(args: argparse.Namespace) -> int:
     steps = [p for p in args.parameters if p.partition('=')[0].strip() == 'steps']
     if len(steps) != len(args.parameters):
         raise DataError("vd capability takes only the parameter 'steps' (every event has it)")
-    out = Path(args.out) if args.out else Path('out') / 'capability' / name
+    # the default: a new numbered folder per run, so a second run never meets the first's
+    out = Path(args.out) if args.out else numbered_folder(Path('out') / 'capability' / name)
     progress = options.progress_bar(args)
-    tables = options.with_progress(progress, lambda: run_study(master, study, name, axles, out,
-                                                        args.parameters, progress=progress))
+    try:
+        tables = options.with_progress(progress, lambda: run_study(
+            master, study, name, axles, out, args.parameters, progress=progress))
+    except BaseException:
+        if not args.out and not any(out.iterdir()):
+            os.removedirs(out)  # the folders this run made, left empty: nothing written
+        raise
     if args.json:
         print(json.dumps({'configuration': name, 'out': str(out),
                           'tables': [t.to_json() for t in tables]}))

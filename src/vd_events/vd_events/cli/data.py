@@ -19,6 +19,8 @@ from vd_data_server.tire_group import tire_properties
 from vd_events.cli.options import study as load
 from vd_events.errors import UsageError
 from vd_solvers.errors import SolverError
+from vd_solvers.kc.from_config import build_kc_model
+from vd_solvers.results import FIDELITIES
 from vd_solvers.tire.magic_formula import MagicFormula
 
 
@@ -60,15 +62,33 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
+#: the axles a K&C model is built for
+KC_AXLES = ('front', 'rear')
+
+
 def check_models(study: Study) -> None:
     """
     Build what a run builds from the data beyond loading it.
 
-    That is each configuration's tire models (finite forces over the working range), so
-    `vd data check` and a run agree.
+    That is each configuration's tire models (finite forces over the working range) and
+    its K&C models of both axles, rigid and flexible (hard points, flexible components,
+    imported stiffness files), with the functions the runs use, so `vd data check` and a
+    run agree.
     """
     errors: dict[str, DataError] = {}
     for config in study.configurations.values():
+        for axle in KC_AXLES:
+            if f'{axle}_hardpoints' not in config.groups:
+                continue
+            for fidelity in FIDELITIES[::-1]:  # flexible first: it builds every component
+                label = f"configuration '{config.name}', axle '{axle}', {fidelity}"
+                try:
+                    build_kc_model(config, axle, fidelity, label)
+                except DataError as err:
+                    errors.setdefault(str(err), err)
+                except SolverError as err:
+                    # one line per problem: the first configuration that meets it names it
+                    errors.setdefault(str(err).removeprefix(f'{label}: '), DataError(str(err)))
         for group in config.groups.values():
             if group.kind != 'tire':
                 continue

@@ -115,7 +115,8 @@ def _capability(sub) -> None:
     cap.add_argument('--axle', default='', help='front | rear (default: both)')
     _master(cap)
     cap.add_argument('--out', default=None, help='folder for the bag of the runs and tables '
-                     '(default: out/capability/<configuration>; must not hold it yet)')
+                     '(default: a new numbered folder out/capability/<configuration>/NNN; '
+                     'a folder given must not hold it yet)')
     cap.add_argument('--param', dest='parameters', action='append', default=[],
                      metavar='NAME=VALUE', help='event parameter for every event, e.g. steps=41')
     _json(cap)
@@ -135,6 +136,10 @@ def _sweeps(sub) -> None:
                          'already running on ROS_DOMAIN_ID (vd launch --solvers, other hosts) '
                          'instead of starting any')
         cmd.add_argument('--out', help='output folder (default: out/<plan name>)')
+        if name == 'optimize':
+            cmd.add_argument('--write-master', metavar='PATH', help='master file the '
+                             "configuration is written to, anywhere (the plan's "
+                             "optimize.write_master must lie under the study's data root)")
         _json(cmd)
         cmd.set_defaults(**handler(f'sweep:cmd_{name}'))
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 from contextlib import contextmanager
+from dataclasses import replace
 import json
 from pathlib import Path
 import sys
@@ -17,7 +18,7 @@ from vd_events.orchestration.dispatch import Dispatcher, SolverGraph, parse_solv
 from vd_events.orchestration.runner import MODEL_FAMILY
 from vd_events.reports.sweep import write_outputs
 from vd_events.sweeps.optimize import check_plan, optimize
-from vd_events.sweeps.plan import load_plan, points
+from vd_events.sweeps.plan import OptimizeSpec, load_plan, points
 from vd_events.sweeps.sweep import requests_for, sweep
 
 
@@ -117,6 +118,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 def cmd_optimize(args: argparse.Namespace) -> int:
 
     plan = load_plan(Path(args.plan), optimize=True)
+    if args.write_master:
+        spec = replace(plan.optimize or OptimizeSpec(), write_master=Path(args.write_master),
+                       named_by_user=True)
+        plan = replace(plan, optimize=spec)
     study = load_study(plan.master)
     _solvers(args.solvers, args.attach)
     out = Path(args.out) if args.out else Path('out') / plan.name

@@ -33,9 +33,12 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 import math
+from pathlib import Path
 
 import numpy as np
 
+from vd_events.errors import InputError
+from vd_events.measured.columns import KC_SWEEP
 from vd_solvers.constants import DEG
 from vd_solvers.constants import STANDARD_GRAVITY as G
 
@@ -56,6 +59,10 @@ LIMITS: Mapping[str, tuple[float, float]] = {
 SHOWN: Mapping[str, tuple[str, float]] = {
     'rad': ('deg', 1.0 / DEG), 'rad/s': ('deg/s', 1.0 / DEG), 'm/s': ('km/h', 3.6),
     'm/s^2': ('m/s^2', 1.0)}
+#: SI unit -> largest plausible |value| of a K&C rig channel (catches 1e308 and mm read as m)
+RIG_LIMITS: Mapping[str, float] = {'m': 2.0, 'rad': math.pi, 'N': 1e6, 'N*m': 1e6}
+#: fewest steps of a K&C rig sweep (a gradient needs points on both sides of design)
+MIN_RIG_STEPS = 5
 TURN_RATE = 2.0 * DEG  # rad/s of heading rate: the car is turning
 MIN_SPEED = 5.0  # m/s: the GPS heading means something
 SIGN_CORRELATION = 0.5
@@ -251,6 +258,52 @@ def agreement(x: np.ndarray, reference: np.ndarray, mask: np.ndarray) -> Agreeme
     return Agreement(float(np.sum(a * b)) / norm, n)
 
 
+def check_rig(path: Path, channels: Mapping[str, np.ndarray], units: Mapping[str, str],
+              lines: Sequence[int], where: Mapping[str, tuple[int, str]], event: str) -> None:
+    """
+    Refuse a K&C rig measurement the comparison cannot use, naming the row and column.
+
+    ``channels`` SI (``units``), ``lines`` the file line of each step, ``where`` channel ->
+    (file column, column name). Every value finite and within :data:`RIG_LIMITS` of its
+    unit; at least :data:`MIN_RIG_STEPS` steps; the event's swept channel
+    (:data:`columns.KC_SWEEP`) present, changing, and running one way (a loop up and down
+    is two sweeps: import them as two files).
+    """
+    for name, values in channels.items():
+        limit = RIG_LIMITS.get(units.get(name, ''), math.inf)
+        bad = np.nonzero(~(np.abs(values) <= limit))[0]
+        if bad.size:
+            i = int(bad[0])
+            column, shown_name = where[name]
+            what = 'not finite' if not math.isfinite(values[i]) else \
+                f'implausible (beyond {limit:g} {units[name]})'
+            raise InputError(path, f'{name} {values[i]:.6g} {units[name]} is {what}',
+                             line=lines[i], column=column, name=shown_name)
+    steps = len(lines)
+    if steps < MIN_RIG_STEPS:
+        raise InputError(path, f'{steps} steps: a K&C rig measurement needs at least '
+                         f'{MIN_RIG_STEPS} (truncated file?)', line=lines[0] if lines else None)
+    axis = KC_SWEEP.get(event)
+    if axis is None:
+        return
+    if axis not in channels:
+        raise InputError(path, f'no column is mapped to {axis}, the swept channel of {event} '
+                         '(the comparison runs along it)')
+    x = channels[axis]
+    column, shown_name = where[axis]
+    if float(np.ptp(x)) == 0.0:
+        raise InputError(path, f'{axis} does not change ({x[0]:.6g} {units[axis]} throughout): '
+                         'nothing was swept', column=column, name=shown_name)
+    step = np.diff(x)
+    direction = np.sign(step[np.nonzero(step)[0][0]])
+    wrong = np.nonzero(np.sign(step) != direction)[0]
+    if wrong.size:
+        i = int(wrong[0]) + 1
+        raise InputError(path, f'{axis} does not run one way ({x[i - 1]:.6g} {units[axis]}, '
+                         f'then {x[i]:.6g} {units[axis]}): import each sweep of a loop as a '
+                         'file of its own', line=lines[i], column=column, name=shown_name)
+
+
 __all__ = ['Gap', 'Glitch', 'Agreement', 'Findings', 'sample_interval', 'find_gaps', 'segments',
            'find_glitches', 'repair', 'noise', 'heading_rate', 'agreement', 'shown', 'LIMITS',
-           'GAP_FACTOR', 'TURN_RATE', 'MIN_SPEED']
+           'GAP_FACTOR', 'TURN_RATE', 'MIN_SPEED', 'check_rig', 'RIG_LIMITS', 'MIN_RIG_STEPS']

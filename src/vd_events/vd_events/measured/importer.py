@@ -128,6 +128,11 @@ def read_measurement(path: Path, cmap: ColumnMap | None,
         raise InputError(path, 'a K&C rig measurement has no time axis: --repair, --yaw-sign, '
                          '--from/--to, --window, --imu-position and --event are for vehicle '
                          'logs')
+    else:
+        assert cmap is not None
+        checks.check_rig(path, measured.channels, measured.units, measured.lines,
+                         {c: (measured.positions[c], measured.columns[c])
+                          for c in measured.channels}, cmap.event)
     return measured, kind
 
 

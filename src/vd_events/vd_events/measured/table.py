@@ -36,12 +36,24 @@ class Measured:
     findings: Findings | None = None  # what the import's checks found
 
 
+#: largest measured file read (a 100 Hz VBOX log of 40 channels for an hour is ~60 MiB)
+MAX_MEASURED_BYTES = 128 << 20
+
+
 def read_text(path: Path) -> str:
-    """Return the text: UTF-8 (with or without BOM), else Windows-1252; refuse binaries."""
+    """
+    Return the text: UTF-8 (with or without BOM), else Windows-1252; refuse binaries.
+
+    A file over :data:`MAX_MEASURED_BYTES` is refused before it is read.
+    """
     try:
-        data = path.read_bytes()
+        with path.open('rb') as stream:
+            data = stream.read(MAX_MEASURED_BYTES + 1)
     except IsADirectoryError:
         raise InputError(path, 'is a folder, not a measured file') from None
+    if len(data) > MAX_MEASURED_BYTES:
+        raise InputError(path, f'exceeds the limit of {MAX_MEASURED_BYTES >> 20} MiB per '
+                         'measured file (cut the log to its manoeuvres, or split it)')
     if b'\x00' in data[:4096]:
         raise InputError(path, 'not a text file (binary data)')
     try:
@@ -176,4 +188,4 @@ def check_increasing(path: Path, time: np.ndarray, lines: list[int], column: int
                          f'{time[i]:.6g} s)', line=lines[i], column=column, name=name)
 
 
-__all__ = ['Measured', 'read_table', 'read_text', 'check_increasing']
+__all__ = ['Measured', 'read_table', 'read_text', 'check_increasing', 'MAX_MEASURED_BYTES']

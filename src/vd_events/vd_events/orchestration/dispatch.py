@@ -63,8 +63,9 @@ ACTION_TYPE = 'vd_interfaces/action/RunEvent'
 SILENCE = 30.0
 #: times a goal is sent before its run counts as failed (instances died under it)
 ATTEMPTS = 3
-#: s to wait for the first instance of a family the runs need (a loaded machine starts a
-#: solver process in 10-40 s)
+#: s to wait for the first instance of a family the runs need, when no process started
+#: here can bring one (instances attached from the graph, other hosts); the instances
+#: this process starts are awaited as long as their processes run
 DISCOVERY_TIMEOUT = 90.0
 #: s between two looks at the graph
 DISCOVERY_PERIOD = 0.5
@@ -141,6 +142,10 @@ class Dispatcher:
     log: Callable[[str], None] | None = None
     expect: Mapping[str, int] = field(default_factory=dict)
     expect_wait: float = EXPECT_WAIT
+    #: family -> whether a solver process this process started for it still runs (None:
+    #: none started here). While one runs, its instance is awaited without a time limit:
+    #: a loaded machine starts it late, its exit is the sign it never will
+    starting: Callable[[str], bool | None] | None = None
 
     def discover(self) -> None:
 
@@ -209,9 +214,10 @@ class Dispatcher:
                     idle = []
                 else:
                     started.add(family)
-                if self.live(family):
+                own = self.starting(family) if self.starting is not None else None
+                if self.live(family) or own:
                     waiting_since[family] = now
-                elif now - waiting_since[family] > DISCOVERY_TIMEOUT:
+                elif own is False or now - waiting_since[family] > DISCOVERY_TIMEOUT:
                     for lost in [j for j in pending if j.request.family == family]:
                         pending.remove(lost)
                         done(lost.request, None, f'{lost.request.label}: no {family} solver '
@@ -360,8 +366,15 @@ class SolverGraph:
             raise
         alive = None if self.attach else (
             lambda name: self.procs[name].poll() is None if name in self.procs else None)
+        starting = None if self.attach else self._starting
         return Dispatcher(self.node, self.executor, alive=alive, log=self.log,
-                          expect=self.counts)
+                          expect=self.counts, starting=starting)
+
+    def _starting(self, family: str) -> bool | None:
+        """Whether a process started here for ``family`` runs (None: none was started)."""
+        procs = [self.procs[n] for n in instance_names(family, self.counts.get(family, 0))
+                 if n in self.procs]
+        return any(p.poll() is None for p in procs) if procs else None
 
     def _start_processes(self, domain: int) -> None:
         env = dict(os.environ, ROS_DOMAIN_ID=str(domain), VD_PARENT_PID=str(os.getpid()),

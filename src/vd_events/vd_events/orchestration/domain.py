@@ -9,6 +9,10 @@ Every ``vd run`` / ``vd study`` starts its own ROS graph in a domain of its own
 temporary folder per user), held for the run's life: the kernel drops the lock
 when the process ends, however it ends (``kill -9`` included), so a claim never
 goes stale. A run never starts in a domain another live run holds.
+
+``vd launch`` runs in the caller's ``ROS_DOMAIN_ID`` (other tools join it there) and
+claims it the same way (:func:`claim_launch_domain`): a ``vd run`` never lands in a
+domain where launched vd nodes serve, and a second ``vd launch`` in it is refused.
 """
 from __future__ import annotations
 
@@ -26,6 +30,8 @@ DOMAINS = range(101, 216)
 #: the highest domain id ROS 2 accepts with the default port layout
 MAX_DOMAIN_ID = 232
 ENV = 'VD_DOMAIN_ID'
+#: the domain ROS nodes join (ROS 2's own variable; unset is domain 0)
+ROS_ENV = 'ROS_DOMAIN_ID'
 
 
 
@@ -69,9 +75,9 @@ def holder(domain: int) -> str:
         return '?'
 
 
-def requested_domain() -> int | None:
-    """``VD_DOMAIN_ID`` as a domain id, None if unset; DomainError if it is not one."""
-    text = os.environ.get(ENV)
+def requested_domain(variable: str = ENV) -> int | None:
+    """Read the environment ``variable`` as a domain id: None if unset, DomainError if bad."""
+    text = os.environ.get(variable)
     if text is None or text.strip() == '':
         return None
     try:
@@ -79,9 +85,24 @@ def requested_domain() -> int | None:
     except ValueError:
         domain = -1
     if not 0 <= domain <= MAX_DOMAIN_ID:
-        raise DomainError(f'{ENV}: expected a ROS domain id 0..{MAX_DOMAIN_ID}, found '
+        raise DomainError(f'{variable}: expected a ROS domain id 0..{MAX_DOMAIN_ID}, found '
                           f'{text[:40]!r}')
     return domain
+
+
+def claim_launch_domain() -> DomainClaim:
+    """Claim the caller's ``ROS_DOMAIN_ID`` (unset: 0) for ``vd launch``, or refuse it."""
+    domain = requested_domain(ROS_ENV) or 0
+    try:
+        claim = _try_lock(domain)
+    except OSError as err:
+        raise DomainError(f'cannot claim a ROS domain under {lock_dir()}: '
+                          f'{err.strerror or err}') from None
+    if claim is None:
+        raise DomainError(f'{ROS_ENV}: ROS domain {domain} is in use by another vd run or vd '
+                          f'launch (pid {holder(domain)}); set another {ROS_ENV} for this '
+                          'launch')
+    return claim
 
 
 def claim_domain() -> DomainClaim:
@@ -92,7 +113,8 @@ def claim_domain() -> DomainClaim:
             claim = _try_lock(wanted)
             if claim is None:
                 raise DomainError(f'{ENV}: ROS domain {wanted} is in use by another vd run '
-                                  f'(pid {holder(wanted)}); unset {ENV} or choose another')
+                                  f'or vd launch (pid {holder(wanted)}); unset {ENV} or '
+                                  'choose another')
             return claim
         candidates = list(DOMAINS)
         random.shuffle(candidates)

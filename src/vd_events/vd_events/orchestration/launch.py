@@ -28,6 +28,7 @@ from vd_data_server.ros.node_main import make_executor, quiet_teardown, spin_gua
 from vd_data_server.study import load_study
 from vd_events.orchestration import graph
 from vd_events.orchestration.dispatch import parse_solvers
+from vd_events.orchestration.domain import claim_launch_domain
 from vd_events.orchestration.runner import stop_processes
 
 
@@ -40,9 +41,13 @@ def launch(master: Path | None, *, distributed: bool,
     master = master or default_master()
     load_study(master)  # refuse bad data before anything starts
     specs = graph.graph(master, allow_edits=allow_edits or None, instances=counts)
-    if distributed:
-        return _distributed(specs, master, namespace)
-    return _embedded(specs, master, namespace)
+    claim = claim_launch_domain()  # held while the nodes run: no vd run lands among them
+    try:
+        if distributed:
+            return _distributed(specs, master, namespace)
+        return _embedded(specs, master, namespace)
+    finally:
+        claim.release()
 
 
 def _embedded(specs, master: Path, namespace: str) -> int:

@@ -36,6 +36,9 @@ from ruamel.yaml import YAML
 from scipy import optimize as so
 
 from vd_data_server.errors import DataError
+from vd_data_server.files import locked
+from vd_data_server.master import inside
+from vd_data_server.masteredit import ConflictError, Fingerprint, fingerprint
 from vd_data_server.study import load_study
 from vd_events.sweeps.plan import SweepPlan, format_number
 from vd_events.sweeps.sweep import Evaluator, evaluate, load_records, requests_for, response_values
@@ -103,6 +106,13 @@ def check_plan(plan: SweepPlan, study, out: Path | None = None) -> str:
     name = (spec.configuration if spec and spec.configuration
             else f'{plan.configuration}_{plan.name}'.replace('.', '_'))
     target = output_master(plan, out)
+    root = study.master.data_root
+    if spec and spec.write_master is not None and not spec.named_by_user \
+            and not inside(root, target):
+        raise DataError(f"{target} is outside the study's data root {root}: a plan writes "
+                        'master files only under it (name the file on the command line to '
+                        'write elsewhere: vd optimize --write-master PATH)', file=file,
+                        key='optimize.write_master')
     if target.resolve() == plan.master.resolve():
         existing = study.configuration_names
     elif target.exists():
@@ -132,6 +142,9 @@ def optimize(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *,
              log: Callable[[str], None] | None = None) -> OptimizeResult:
     """Run the optimisation, record its history and write the best configuration."""
     name = check_plan(plan, study, out)
+    target = output_master(plan, out)
+    # the file as it was when the optimisation started: written only if still so
+    read = fingerprint(target) if target.exists() else None
     spec = plan.optimize
     method = spec.method if spec else 'least_squares'
     budget = spec.max_evaluations if spec else 60
@@ -213,7 +226,7 @@ def optimize(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *,
     best = min(met or history, key=lambda e: e.objective)
     result = OptimizeResult(best, history, message, name)
     _write_history(plan, history, out)
-    result.master = write_configuration(plan, study, name, best, output_master(plan, out))
+    result.master = write_configuration(plan, study, name, best, target, expected=read)
     return result
 
 
@@ -255,15 +268,29 @@ def _write_history(plan: SweepPlan, history: Sequence[Evaluation], out: Path) ->
 
 
 def write_configuration(plan: SweepPlan, study, name: str, best: Evaluation,
-                        target: Path) -> Path:
+                        target: Path, *, expected: Fingerprint | None = None) -> Path:
     """
     Write ``name`` (the base configuration plus the best factor values) into ``target``.
 
     ``target`` is the plan's master file (the configuration is added, comments kept
     by ruamel.yaml's round trip) or a new master file beside it elsewhere (a copy of
     the plan's master with ``study.data_root`` pointing at the same data). Written
-    under a temporary name, loaded and checked like any master file, then renamed.
+    under a temporary name, loaded and checked like any master file, then renamed, with
+    ``target`` locked from its reading to its replacement (:func:`files.locked`).
+    ``expected``: the fingerprint of ``target`` when the optimisation read it; a file
+    changed since raises :class:`ConflictError` and nothing is written.
     """
+    if not target.exists():
+        return _write_configuration(plan, name, best, target)
+    with locked(target):
+        if expected is not None and fingerprint(target) != expected:
+            raise ConflictError('changed on disk since the optimisation read it: the '
+                                f'configuration {name!r} is not written (the history is)',
+                                file=str(target))
+        return _write_configuration(plan, name, best, target)
+
+
+def _write_configuration(plan: SweepPlan, name: str, best: Evaluation, target: Path) -> Path:
     yaml = YAML()
     yaml.preserve_quotes = True
     source = target if target.exists() else plan.master

@@ -67,6 +67,8 @@ METHODS = ('least_squares', 'slsqp', 'nelder_mead')
 MAX_LEVELS = 21
 #: most design points of one plan (runs per point multiply it)
 MAX_POINTS = 4096
+#: most evaluations of one optimisation (each is one design point's runs)
+MAX_EVALUATIONS = MAX_POINTS
 #: fewest points of a sampled design (a regression needs more points than factors)
 MIN_SAMPLES = 2
 _NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
@@ -138,6 +140,9 @@ class OptimizeSpec:
     max_evaluations: int = 60
     configuration: str = ''  # name of the configuration written; '' = <base>_<plan name>
     write_master: Path | None = None  # master file written; None = the plan's master
+    #: write_master was named on the command line (vd optimize --write-master): it may lie
+    #: anywhere; one from the plan file must lie under the study's data root
+    named_by_user: bool = False
 
 
 @dataclass(frozen=True)
@@ -554,9 +559,9 @@ def _optimize(raw: Any, path: Path, file: str) -> OptimizeSpec | None:
         raise DataError(f"unknown method {method!r} (methods: {', '.join(METHODS)})",
                         file=file, key='optimize.method')
     evals = raw.get('max_evaluations', 60)
-    if isinstance(evals, bool) or not isinstance(evals, int) or evals < 1:
-        raise DataError(f'expected a positive integer, found {evals!r}', file=file,
-                        key='optimize.max_evaluations')
+    if isinstance(evals, bool) or not isinstance(evals, int) or not 1 <= evals <= MAX_EVALUATIONS:
+        raise DataError(f'expected a whole number 1..{MAX_EVALUATIONS}, found {evals!r}',
+                        file=file, key='optimize.max_evaluations')
     name = raw.get('configuration', '')
     if name and (not isinstance(name, str) or not _PLAIN.match(name)):
         raise DataError('a configuration name is letters, digits, _, - and .', file=file,
@@ -595,5 +600,4 @@ def points(plan: SweepPlan) -> list[tuple[float, ...]]:
 
 __all__ = ['SweepPlan', 'Factor', 'RunSpec', 'Response', 'Target', 'OptimizeSpec',
            'load_plan', 'points', 'convert', 'format_number', 'parse_factors', 'read_quantity',
-           'base_value', 'DESIGNS', 'MAX_LEVELS',
-           'MAX_POINTS']
+           'base_value', 'DESIGNS', 'MAX_LEVELS', 'MAX_POINTS', 'MAX_EVALUATIONS']

@@ -262,6 +262,32 @@ def response_values(plan: SweepPlan, requests: Sequence[Sequence[RunRequest]],
     return values, errors
 
 
+def check_responses(plan: SweepPlan, row: Sequence[RunRequest],
+                    records: Mapping[str, RunRecord]) -> None:
+    """
+    Refuse a response whose run finished without its metric, or with a unit it cannot have.
+
+    ``row``: one point's requests (as :func:`requests_for` gives them). A run that failed
+    says nothing about the metrics: it is left to the table.
+    """
+    run_index = {spec: j for j, spec in enumerate(plan.runs)}
+    for response in plan.responses:
+        record = records.get(run_key(row[run_index[response.run]]))
+        if record is None or record.error is not None:
+            continue
+        key = f'responses.{response.name}'
+        if response.metric not in record.metrics:
+            raise DataError(f"run {response.run.label} has no metric '{response.metric}' "
+                            f"(metrics: {', '.join(sorted(record.metrics))})",
+                            file=str(plan.path), key=f'{key}.metric')
+        value, unit = record.metrics[response.metric]
+        try:
+            convert(value, unit, response.unit)
+        except ValueError as err:
+            raise DataError(f"{err} (metric '{response.metric}' is in {unit or '-'})",
+                            file=str(plan.path), key=f'{key}.unit') from None
+
+
 def sweep(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *, bags: bool = True,
           progress: Callable[[int, int], None] | None = None) -> SweepResult:
     """
@@ -273,8 +299,14 @@ def sweep(plan: SweepPlan, study, evaluator: Evaluator, out: Path, *, bags: bool
     requests = requests_for(plan, study, values)
     known = load_records(out)
     flat = [r for row in requests for r in row]
+    # the first point first: a response the runs do not report (an unknown metric, a unit
+    # it cannot be converted to) is refused before the rest of the sweep runs
+    known, first = evaluate(requests[0], evaluator, out, bags=bags, known=known,
+                            progress=progress)
+    check_responses(plan, requests[0], known)
     records, computed = evaluate(flat, evaluator, out, bags=bags, known=known,
                                  progress=progress)
+    computed += first
     responses, errors = response_values(plan, requests, records)
     result = SweepResult(plan, values, responses, errors, computed,
                          len({run_key(r) for r in flat}) - computed)
@@ -374,6 +406,6 @@ def pareto_front(a: np.ndarray, b: np.ndarray, senses: tuple[str, str]) -> np.nd
     return np.array(sorted(front, key=lambda i: fa[i]), dtype=int)
 
 
-__all__ = ['sweep', 'evaluate', 'requests_for', 'run_key', 'load_records', 'RunRecord',
-           'SweepResult', 'response_values', 'table_csv', 'src', 'main_effects',
+__all__ = ['sweep', 'check_responses', 'evaluate', 'requests_for', 'run_key', 'load_records',
+           'RunRecord', 'SweepResult', 'response_values', 'table_csv', 'src', 'main_effects',
            'first_order_indices', 'pareto_front', 'columns', 'RUNS_FILE']

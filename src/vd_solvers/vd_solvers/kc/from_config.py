@@ -18,12 +18,12 @@ from dataclasses import replace
 import math
 
 import numpy as np
-import yaml
 
 from vd_data_server.model import Configuration, GroupData
 from vd_data_server.schema import ARB_POINTS, BAR_COMPONENT, BUSHING_DIRECTIONS
 from vd_data_server.tire_group import tire_properties
 from vd_data_server.units import si_factor
+from vd_data_server.yamlio import loads
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import parse_params
 from vd_solvers.flex import section as sec
@@ -293,10 +293,10 @@ def _imported(group: GroupData, comp: str, base: str):
     text = group.text(f'{base}.imported.content')
     what = f'{rel} ({group.file} {base}.imported)'
     if group.text(f'{base}.imported.format') == 'plain':
-        try:
-            raw = yaml.safe_load(text)
-        except yaml.YAMLError as err:
-            raise SolverError(f'{what}: not valid YAML ({err.__class__.__name__})') from None
+        raw = loads(text, file=what)
+        if raw is None:
+            raise SolverError(f'{what}: the file is empty (expected units, nodes and '
+                              'stiffness)')
         units = (raw or {}).get('units', {}) if isinstance(raw, dict) else {}
     else:
         raw = None
@@ -338,6 +338,24 @@ def _event_kwargs(values: Mapping[str, float]) -> dict[str, float]:
     return {k: (int(v) if k == 'steps' else v) for k, v in values.items()}
 
 
+def build_kc_model(config: Configuration, axle: str, fidelity: str, label: str,
+                   at_rigid_limit: bool = False) -> KCModel:
+    """
+    Build the K&C model a run of ``config`` solves (``vd data check`` builds the same).
+
+    Everything a K&C run refuses before its first step is refused here: hard points,
+    flexible components, imported stiffness files. Messages start with ``label``.
+    ``at_rigid_limit``: the flexible model at its rigid limit (:func:`rigid_limit`).
+    """
+    try:
+        inp = suspension_input(config, axle, fidelity)
+        if at_rigid_limit:
+            inp = rigid_limit(inp)
+    except SolverError as err:
+        raise SolverError(f'{label}: {err}') from None
+    return KCModel(inp, label)
+
+
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
                  progress: Callable[[float, str], None] | None = None,
@@ -356,15 +374,10 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     if axle not in ('front', 'rear'):
         raise SolverError(f'{label}: K&C events need --axle front or rear')
     values = parse_params(event, EVENT_PARAMS[event], params)
-    try:
-        inp = suspension_input(config, axle, fidelity)
-        if at_rigid_limit:
-            inp = rigid_limit(inp)
-    except SolverError as err:
-        raise SolverError(f'{label}: {err}') from None
+    model = build_kc_model(config, axle, fidelity, label, at_rigid_limit)
+    inp = model.inp
     if event == 'steering' and inp.steering is None:
         raise SolverError(f'{label}: the {axle} axle has no steering')
-    model = KCModel(inp, label)
     with_bar = event == 'opposite_wheel_travel' and inp.stabilizer is not None
     runs = 2 if with_bar else 1
 
@@ -461,6 +474,6 @@ def flatten_channels(raw: Mapping[str, np.ndarray]) -> dict[str, Channel]:
     return out
 
 
-__all__ = ['EVENT_PARAMS', 'EVENTS', 'run_kc_event', 'run_suite', 'suspension_input',
-           'bar_stiffness', 'flatten_channels', 'rigid_limit', 'RIGID_LIMIT_SCALE',
-           'RIGID_LIMIT_BAR_SCALE']
+__all__ = ['EVENT_PARAMS', 'EVENTS', 'build_kc_model', 'run_kc_event', 'run_suite',
+           'suspension_input', 'bar_stiffness', 'flatten_channels', 'rigid_limit',
+           'RIGID_LIMIT_SCALE', 'RIGID_LIMIT_BAR_SCALE']

@@ -31,7 +31,10 @@ the step named by ``/clock``. Nothing is extrapolated:
 * while it waits, the session repeats step k's messages every REPEAT_PERIOD s of wall
   time (a controller that connects late gets the state it must answer); with no valid
   command within ``command_timeout`` s (``start_timeout`` for the first step) it stops
-  with a timeout error.
+  with a timeout error;
+* a second publisher on the command topic (two controllers answering the same steps)
+  stops the session with an error naming the publishing nodes (looked at every
+  REPEAT_PERIOD s).
 
 Mode ``free`` runs without waiting, at ``real_time_factor`` times wall time, applying
 the newest command and holding it until the next one arrives (a refused command is
@@ -133,12 +136,14 @@ class LockstepSession:
         self.status = 'running'
         self.held = Command()
         self.held_setpoint: Setpoint | None = None  # free mode: the newest setpoint, if any
+        inputs = (node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command,
+                                           COMMANDS),
+                  node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
+                                           self._on_ackermann, COMMANDS),
+                  node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS))
+        self.command_topics = tuple(sub.topic_name for sub in inputs)
         for entity in (
-                node.create_subscription(VehicleCommand, COMMAND_TOPIC, self._on_command,
-                                         COMMANDS),
-                node.create_subscription(AckermannDriveStamped, ACKERMANN_TOPIC,
-                                         self._on_ackermann, COMMANDS),
-                node.create_subscription(Twist, TWIST_TOPIC, self._on_twist, COMMANDS),
+                *inputs,
                 node.create_service(Trigger, RESET_SERVICE, self._on_reset),
                 node.create_subscription(PoseWithCovarianceStamped, INITIAL_POSE_TOPIC,
                                          self._on_initial_pose, COMMANDS)):
@@ -166,6 +171,7 @@ class LockstepSession:
                                                      self._free_step))
         else:
             self.timer = self._own(node.create_timer(REPEAT_PERIOD, self._watchdog))
+        self.controllers = self._own(node.create_timer(REPEAT_PERIOD, self._check_controllers))
 
     def _own(self, entity):
         self._entities.append(entity)
@@ -359,6 +365,19 @@ class LockstepSession:
             return
         if time.monotonic() - self._published_at >= REPEAT_PERIOD:
             self._publish(repeat=True)
+
+    def _check_controllers(self) -> None:
+        """Stop when a second controller publishes commands (any input): one is answered."""
+        if not self.active:
+            return
+        found = [(topic, info) for topic in self.command_topics
+                 for info in self.node.get_publishers_info_by_topic(topic)]
+        if len(found) > 1:
+            topics = sorted({topic for topic, _ in found})
+            names = sorted({f"{i.node_namespace.rstrip('/')}/{i.node_name}" for _, i in found})
+            self._stop(f"{len(found)} publishers on {', '.join(topics)} "
+                       f"({', '.join(names)}): lock-step takes the commands of one "
+                       'controller; stop the others')
 
     # --- free running -----------------------------------------------------------------
 
