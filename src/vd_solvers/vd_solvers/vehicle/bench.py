@@ -26,9 +26,11 @@ import numpy as np
 from scipy.integrate import odeint
 
 from vd_solvers.timing import median_time
+from vd_solvers.tire.magic_formula import relaxation_at
 
 from .drivers import OpenLoopSteering, SpeedController
 from .events import run_vehicle_event
+from .forces import wheel_radii, wheel_tires
 from .model import STEP, VehicleModel
 from .simulation import simulate
 
@@ -95,14 +97,19 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
     vx = np.full(4, SPEED)
     maps = model.maps
 
+    front, rear = model.arrays.tire_front, model.arrays.tire_rear
+    fz, gamma, travel = (np.ascontiguousarray(x) for x in (wheel.fz, wheel.gamma, wheel.travel))
+    kappa, alpha = np.ascontiguousarray(wheel.kappa), np.ascontiguousarray(wheel.alpha)
+
     def tires():
-        model._tire(wheel.fz, wheel.kappa, wheel.alpha, wheel.gamma, vx)
-        model.tire_radii(wheel.fz)
-        model._relaxation(wheel.fz, wheel.gamma)
+        wheel_tires(front, rear, fz, kappa, alpha, gamma, vx, model.mirror)
+        wheel_radii(front, rear, fz)
+        relaxation_at(front, fz[:2], gamma[:2])
+        relaxation_at(rear, fz[2:], gamma[2:])
 
     def suspension_maps():
-        maps.travel(wheel.travel)
-        maps.arb(wheel.travel)
+        maps.travel(travel)
+        maps.arb(travel)
         maps.road_wheel_angles(swa)
 
     def multibody():
