@@ -196,9 +196,9 @@ def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:
                            'integrator': 'scipy.integrate.odeint (LSODA)',
                            'parameters': 'parameters_vehicle2 (BMW 320i)'}
     matched = TOLERANCES[-1]
-    for tolerance in TOLERANCES:
-        if _error_pct(run(angle, tolerance), reference) <= error_pct:
-            matched = tolerance
+    for trial in TOLERANCES:
+        if _error_pct(run(angle, trial), reference) <= error_pct:
+            matched = trial
             break
     for key, tolerance in (('default', None), ('matched', matched)):
         wall = median_time(lambda: run(angle, tolerance))
