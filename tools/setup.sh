@@ -77,3 +77,15 @@ if [ "$(cat "$ROOT/install/.vd-build" 2>/dev/null)" != "$src_hash" ]; then
         say "colcon build failed (see log/latest_build)"; exit 1; }
     echo "$src_hash" > "$ROOT/install/.vd-build"
 fi
+
+# 4. the compiled numerical kernels (numba, vd_solvers.compiled): their cache is built here, so
+#    the first run after setup loads machine code instead of compiling; again whenever a source
+#    of vd_solvers (numba's own cache key is the file's time stamp) or a package changes.
+jit_hash=$( (find src/vd_solvers/vd_solvers -name '*.py' -printf '%p %T@\n' | sort; \
+    cat requirements.lock) | sha256sum | cut -c1-16)
+if [ "$(cat "$ROOT/install/.vd-jit" 2>/dev/null)" != "$jit_hash" ]; then
+    say "compiling the numerical kernels (numba cache)"
+    bash "$ROOT/tools/env.sh" python -m vd_solvers.warm >&2 || {
+        say "compiling the numerical kernels failed"; exit 1; }
+    echo "$jit_hash" > "$ROOT/install/.vd-jit"
+fi

@@ -20,3 +20,13 @@ def median_time(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
         fn()
         times.append(time.perf_counter() - t0)
     return statistics.median(times)
+
+
+def median_cpu_time(fn: Callable[[], Any], repeats: int = REPEATS) -> float:
+    """Median CPU seconds of this process over ``repeats`` calls of ``fn``."""
+    times = []
+    for _ in range(repeats):
+        t0 = time.process_time()
+        fn()
+        times.append(time.process_time() - t0)
+    return statistics.median(times)

@@ -285,20 +285,33 @@ def print_bench(results: dict[str, Any]) -> None:
         ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
          f"{vehicle['step_s'] * 1e3:g} ms)",
-         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}",
+         f"{ss['wall_s']:.3f} s, RTF {ss['real_time_factor']:.1f}, CPU {ss['cpu_s']:.3f} s",
          ''),
-        ('  per step', f"{ss['us_per_step']:.0f} us", ''),
+        (f"  yaw-rate error vs {ss['reference_step_s'] * 1e3:g} ms steps",
+         f"{ss['yaw_rate_error_pct']:.2f} % of steady", ''),
+        ('  per step', f"{ss['us_per_step']:.0f} us, CPU {ss['cpu_us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),
         ('    suspension maps', f"{per['suspension_maps_us']:.0f} us", ''),
         ('    all forces (incl. the two above)', f"{per['forces_total_us']:.0f} us", ''),
         ('    multibody (Pinocchio ABA + integration)', f"{per['multibody_us']:.0f} us", ''),
         (f"full vehicle: constant radius turn ({crt['simulated_s']:.0f} s simulated)",
          f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ''),
-        (f"CommonRoad MB ({cr['states']} states, odeint): 10 s step steer",
-         f"{cr['wall_s']:.3f} s, RTF {cr['real_time_factor']:.1f}", ''),
-        ('vd / CommonRoad real-time factor, step steer',
-         f"{vehicle['ratio_vs_commonroad']:.2f}", '>= 20'),
     ]
+    if 'unavailable' in cr:
+        rows.append(('CommonRoad MB peer', cr['unavailable'], ''))
+    else:
+        for key, label in (('default', 'default tolerances'),
+                           ('matched', f"rtol = atol = {cr['matched']['tolerance']:g}")):
+            run = cr[key]
+            rows.append((f"CommonRoad MB ({cr['states']} states, odeint, {label}): "
+                         '10 s step steer',
+                         f"{run['wall_s']:.3f} s, RTF {run['real_time_factor']:.1f}, "
+                         f"CPU {run['cpu_s']:.3f} s, yaw-rate error "
+                         f"{run['yaw_rate_error_pct']:.2f} %", ''))
+        rows += [('vd / CommonRoad real-time factor, step steer (default tolerances)',
+                  f"{vehicle['ratio_vs_commonroad']:.2f}", ''),
+                 ('CommonRoad CPU / vd CPU, step steer, matched accuracy',
+                  f"{vehicle['ratio_vs_commonroad_cpu']:.2f}", '>= 20')]
     sw = results['sweep']
     rows += [
         (f"K&C sweep, {sw['runs']} runs of 101 steps: in this process, one by one",

@@ -193,9 +193,11 @@ from numpy.typing import ArrayLike
 
 from vd_data_server.errors import DataError
 from vd_data_server.tir import TireProperties
+from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
-__all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces']
+__all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces',
+           'combined_forces', 'radii_at', 'relaxation_at', 'slip_stiffness_at']
 
 #: Formats evaluated here (TireProperties.file_format).
 _FORMATS: Final[tuple[str, ...]] = ('PAC2002', 'MF52', 'MF61', 'MF62')
@@ -431,11 +433,11 @@ class MagicFormula:
 
     def fy(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure-slip lateral force Fy0, N, file (TYDEX) convention: alpha > 0 gives Fy < 0."""
-        fz_, alpha_, gamma_ = _arrays(fz, alpha, gamma)
+        shape, (fz_, alpha_, gamma_) = _flat(fz, alpha, gamma)
         s = self._mirror
         loaded, fz_e = _loaded(self._p, fz_)
         force = s * _pure_lateral(self._p, fz_e, s * alpha_, s * gamma_)
-        return np.where(loaded, force, 0.0)
+        return np.where(loaded, force, 0.0).reshape(shape)
 
     def fy_iso(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """
@@ -447,11 +449,11 @@ class MagicFormula:
 
     def fx(self, fz: ArrayLike, kappa: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure-slip longitudinal force Fx0, N; kappa > 0 (driving) gives Fx > 0."""
-        fz_, kappa_, gamma_ = _arrays(fz, kappa, gamma)
+        shape, (fz_, kappa_, gamma_) = _flat(fz, kappa, gamma)
         p = self._p
         loaded, fz_e = _loaded(p, fz_)
         fx0, _ = _longitudinal(p, fz_e, _dfz(p, fz_e), gamma_ * p[LGAX], kappa_, 1.0)
-        return np.where(loaded, fx0, 0.0)
+        return np.where(loaded, fx0, 0.0).reshape(shape)
 
     def cornering_stiffness(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """
@@ -460,19 +462,17 @@ class MagicFormula:
         Exact derivative of :meth:`fy`, so it includes the horizontal shift SH_y;
         where SH_y = 0 it equals K_y = B C D of the Magic Formula.
         """
-        fz_, gamma_ = _arrays(fz, gamma)
+        shape, (fz_, gamma_) = _flat(fz, gamma)
         p = self._p
         loaded, fz_e = _loaded(p, fz_)
         # d/dalpha [s F(s alpha, s gamma)] = s^2 F'(s alpha, s gamma), and s^2 = 1.
         slope = _lateral_slope_at_zero(p, fz_e, self._mirror * gamma_)
-        return np.where(loaded, slope, 0.0)
+        return np.where(loaded, slope, 0.0).reshape(shape)
 
     def slip_stiffness(self, fz: ArrayLike) -> np.ndarray:
         """Longitudinal slip stiffness K_xk = B_x C_x D_x = dFx0/dkappa at kappa = -SH_x, N."""
-        fz_ = np.asarray(fz, dtype=float)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
-        return np.where(loaded, _kxk(p, fz_e, _dfz(p, fz_e)), 0.0)
+        shape, (fz_,) = _flat(fz)
+        return slip_stiffness_at(self._p, fz_).reshape(shape)
 
     def peak_lateral_friction(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """
@@ -480,9 +480,9 @@ class MagicFormula:
 
         mu_y is the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1).
         """
-        fz_, gamma_ = _arrays(fz, gamma)
+        shape, (fz_, gamma_) = _flat(fz, gamma)
         p = self._p
-        return _mu_y(p, _dfz(p, fz_), gamma_ * p[LGAY])
+        return _mu_y(p, _dfz(p, fz_), gamma_ * p[LGAY]).reshape(shape)
 
     def lateral_curvature(self, fz: ArrayLike, gamma: ArrayLike = 0.0,
                           slip_sign: ArrayLike = 0.0) -> np.ndarray:
@@ -493,10 +493,10 @@ class MagicFormula:
         (PEY1 + PEY2 dfz)(1 + PEY5 gamma_y^2) LEY: the mean of the two branches, used for a
         symmetric (odd) fit.
         """
-        fz_, gamma_, sign_ = _arrays(fz, gamma, slip_sign)
+        shape, (fz_, gamma_, sign_) = _flat(fz, gamma, slip_sign)
         p = self._p
         s = self._mirror
-        return _ey(p, _dfz(p, fz_), s * gamma_ * p[LGAY], s * sign_)
+        return _ey(p, _dfz(p, fz_), s * gamma_ * p[LGAY], s * sign_).reshape(shape)
 
     # --- combined slip -----------------------------------------------------------------
 
@@ -512,15 +512,10 @@ class MagicFormula:
         construction, so the four wheels of a car are one call. Off the ground (Fz <= 0)
         every output is 0.
         """
-        fz_, kappa_, alpha_, gamma_, vx_ = _arrays(fz, kappa, alpha, gamma, vx)
-        phit_ = np.asarray(phit, dtype=float)  # broadcast where used (0 unless turn slip)
-        s = np.broadcast_to(np.asarray(self._mirror if mirror is None else mirror, dtype=float),
-                            fz_.shape)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
-        fx, fy, mx, my, mz = _steady_state(p, fz_e, kappa_, s * alpha_, s * gamma_, vx_,
-                                           s * phit_)
-        return TireForces(*(np.where(loaded, f, 0.0) for f in (fx, s * fy, s * mx, my, s * mz)))
+        shape, (fz_, kappa_, alpha_, gamma_, vx_, s, phit_) = _flat(
+            fz, kappa, alpha, gamma, vx, self._mirror if mirror is None else mirror, phit)
+        forces = combined_forces(self._p, fz_, kappa_, alpha_, gamma_, vx_, s, phit_)
+        return TireForces(*(f.reshape(shape) for f in forces))
 
     def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike,
                              gamma: ArrayLike = 0.0) -> np.ndarray:
@@ -537,14 +532,13 @@ class MagicFormula:
         aligning torque -t Fy turns the wheel towards its direction of travel. The residual
         torque Mzr is not part of the trail. Off the ground: 0.
         """
-        fz_, gamma_ = _arrays(fz, gamma)
+        shape, (fz_, gamma_) = _flat(fz, gamma)
         p = self._p
         loaded, fz_e = _loaded(p, fz_)
         gamma_z = self._mirror * gamma_ * p[LGAZ]
-        bt, dt, sht, et = _trail_factors(p, fz_e, _dfz(p, fz_e), gamma_z, sht_alpha=0.0,
-                                         zeta5=1.0)
+        bt, dt, sht, et = _trail_factors(p, fz_e, _dfz(p, fz_e), gamma_z, 0.0, 1.0)
         trail = _trail(p, bt, dt, et, sht, np.zeros_like(fz_e))
-        return np.where(loaded, trail, 0.0)
+        return np.where(loaded, trail, 0.0).reshape(shape)
 
     # --- radii, vertical force, relaxation ---------------------------------------------
 
@@ -556,13 +550,9 @@ class MagicFormula:
         module doc.
         """
         self._need_vertical_stiffness()
-        fz_ = np.maximum(np.asarray(fz, dtype=float), 0.0)
-        omega_ = np.asarray(omega, dtype=float)
-        p = self._p
-        loaded = _loaded_radius(p, fz_, omega_, 0.0, 0.0)
-        if p[RE_LINEAR] != 0.0:
-            return loaded, loaded
-        return loaded, _effective_radius(p, fz_, omega_)
+        shape, (fz_, omega_) = _flat(fz, omega)
+        loaded, effective = radii_at(self._p, fz_, omega_)
+        return loaded.reshape(shape), effective.reshape(shape)
 
     def loaded_radius(self, fz: ArrayLike, gamma: ArrayLike = 0.0, fx: ArrayLike = 0.0,
                       fy: ArrayLike = 0.0, omega: ArrayLike = 0.0) -> np.ndarray:
@@ -572,13 +562,13 @@ class MagicFormula:
         The inverse of :meth:`vertical_force`; file convention for ``gamma`` and ``fy``.
         """
         self._need_vertical_stiffness()
-        fz_, gamma_, fx_, fy_, omega_ = _arrays(fz, gamma, fx, fy, omega)
+        shape, (fz_, gamma_, fx_, fy_, omega_) = _flat(fz, gamma, fx, fy, omega)
         p = self._p
         s = self._mirror
         fz_ = np.maximum(fz_, 0.0)
         if p[V62] != 0.0 and (np.any(gamma_ != 0.0) or np.any(fy_ != 0.0)):
-            return _loaded_radius_62(p, fz_, s * gamma_, fx_, s * fy_, omega_)
-        return _loaded_radius(p, fz_, omega_, fx_, fy_)
+            return _loaded_radius_62(p, fz_, s * gamma_, fx_, s * fy_, omega_).reshape(shape)
+        return _loaded_radius(p, fz_, omega_, fx_, fy_).reshape(shape)
 
     def vertical_force(self, deflection: ArrayLike, gamma: ArrayLike = 0.0,
                        fx: ArrayLike = 0.0, fy: ArrayLike = 0.0,
@@ -590,9 +580,10 @@ class MagicFormula:
         force, speed, pressure and (6.2) camber and bottoming terms.
         """
         self._need_vertical_stiffness()
-        rho, gamma_, fx_, fy_, omega_ = _arrays(deflection, gamma, fx, fy, omega)
+        shape, (rho, gamma_, fx_, fy_, omega_) = _flat(deflection, gamma, fx, fy, omega)
         s = self._mirror
-        return _vertical_force(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_, omega_)
+        return _vertical_force(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_,
+                               omega_).reshape(shape)
 
     def relaxation_lengths(self, fz: ArrayLike,
                            gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -601,11 +592,9 @@ class MagicFormula:
 
         Both are 0 off the ground.
         """
-        fz_, gamma_ = _arrays(fz, gamma)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
-        sigma_k, sigma_a = _relaxation(p, fz_e, self._mirror * gamma_)
-        return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
+        shape, (fz_, gamma_) = _flat(fz, gamma)
+        sigma_k, sigma_a = relaxation_at(self._p, fz_, self._mirror * gamma_)
+        return sigma_k.reshape(shape), sigma_a.reshape(shape)
 
     def _need_vertical_stiffness(self) -> None:
         if self._p[VERTICAL_STIFFNESS] <= 0.0:
@@ -669,28 +658,33 @@ def _coefficients(props: TireProperties, pressure: float | None) -> np.ndarray:
 # --- the equations (module doc); p is the coefficient vector, every other input an array ---
 
 
+@jit
 def _loaded(p: np.ndarray, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Mask of wheels on the ground, and loads safe to evaluate (no 0/0 off the ground)."""
     loaded = fz > 0.0
     return loaded, np.where(loaded, fz, p[FZ0P])
 
 
+@jit
 def _dfz(p: np.ndarray, fz: np.ndarray) -> np.ndarray:
     """Return dfz = (Fz - Fz0') / Fz0' ([P] 4.E2a)."""
     return (fz - p[FZ0P]) / p[FZ0P]
 
 
-def _magic(b: np.ndarray, c: float, e: np.ndarray, x: np.ndarray) -> np.ndarray:
+@jit
+def _magic(b: np.ndarray, c: float, e: np.ndarray, x: np.ndarray | float) -> np.ndarray:
     """C atan(B x - E (B x - atan(B x))): the argument of the Magic Formula's sine / cosine."""
     bx = b * x
     return c * np.arctan(bx - e * (bx - np.arctan(bx)))
 
 
+@jit
 def _sign(x: np.ndarray) -> np.ndarray:
     """Return sgn x with sgn 0 = +1 (equivalent slip angles, [B] A54-A55)."""
     return np.where(x < 0.0, -1.0, 1.0)
 
 
+@jit
 def _kxk(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
     """Longitudinal slip stiffness Kxk ([P] 4.E15)."""
     dpi = p[DPI]
@@ -698,6 +692,7 @@ def _kxk(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
             * (1.0 + p[PPX1] * dpi + p[PPX2] * dpi * dpi) * p[LKX])
 
 
+@jit
 def _longitudinal(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_x: np.ndarray,
                   kappa: np.ndarray, zeta1: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Pure-slip Fx0 and Kxk ([P] 4.E9-4.E18)."""
@@ -715,6 +710,7 @@ def _longitudinal(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_x: np.nd
     return dx * np.sin(_magic(bx, cx, ex, kappa_x)) + svx, kxk
 
 
+@jit
 def _mu_y(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray) -> np.ndarray:
     """Lateral peak friction muy ([P] 4.E23)."""
     dpi = p[DPI]
@@ -722,6 +718,7 @@ def _mu_y(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray) -> np.ndarray:
             * (1.0 - p[PDY3] * gamma_y * gamma_y) * p[LMUY])
 
 
+@jit
 def _kya(p: np.ndarray, fz: np.ndarray, gamma_y: ArrayLike, zeta3: ArrayLike) -> np.ndarray:
     """Cornering stiffness Kya ([P] 4.E25)."""
     dpi = p[DPI]
@@ -732,11 +729,13 @@ def _kya(p: np.ndarray, fz: np.ndarray, gamma_y: ArrayLike, zeta3: ArrayLike) ->
             * zeta3 * p[LKY])
 
 
+@jit
 def _kyg0(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
     """Camber stiffness Kyg0 of MF 6.x ([P] 4.E30)."""
     return fz * (p[PKY6] + p[PKY7] * dfz) * (1.0 + p[PPY5] * p[DPI]) * p[LKYC]
 
 
+@jit
 def _ey(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray, sign: np.ndarray) -> np.ndarray:
     """Lateral curvature Ey for sgn(alpha_y) = ``sign`` ([P] 4.E24), at most 1."""
     return np.minimum((p[PEY1] + p[PEY2] * dfz)
@@ -744,6 +743,7 @@ def _ey(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray, sign: np.ndarray) -
                       * p[LEY], _MAX_CURVATURE)
 
 
+@jit
 def _lateral_shifts(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray,
                     kya: np.ndarray, zeta2: ArrayLike, shyp: ArrayLike
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -764,6 +764,7 @@ def _lateral_shifts(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.
     return shy, svy, svyg
 
 
+@jit
 def _lateral(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray,
              alpha: np.ndarray, zeta2: ArrayLike, zeta3: ArrayLike, shyp: ArrayLike
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -779,6 +780,7 @@ def _lateral(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray
     return dy * np.sin(_magic(by, cy, ey, alpha_y)) + svy, mu, kya, by, shy, svy
 
 
+@jit
 def _pure_lateral(p: np.ndarray, fz: np.ndarray, alpha: np.ndarray,
                   gamma: np.ndarray) -> np.ndarray:
     """Fy0 in the file frame: the steady state at kappa = 0, without turn slip input."""
@@ -788,6 +790,7 @@ def _pure_lateral(p: np.ndarray, fz: np.ndarray, alpha: np.ndarray,
     return _lateral(p, fz, dfz, gamma * p[LGAY], alpha, zeta2, zeta3, shyp)[0]
 
 
+@jit
 def _lateral_slope_at_zero(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     """
     dFy0/dalpha at alpha = 0 (x = SHy): D cos(C atan phi) C dphi/dx / (1 + phi^2).
@@ -811,6 +814,7 @@ def _lateral_slope_at_zero(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> 
     return dy * np.cos(cy * np.arctan(phi)) * cy * dphi_dx / (1.0 + phi * phi)
 
 
+@jit
 def _turn_slip(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, kappa: np.ndarray,
                alpha: np.ndarray, gamma: np.ndarray, phit: np.ndarray
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray,
@@ -844,12 +848,14 @@ def _turn_slip(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, kappa: np.ndarray
     return zeta1, zeta2, zeta3, zeta5, zeta6, shyp, phi, eps_g
 
 
+@jit
 def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray,
-            sh: ArrayLike) -> np.ndarray:
+            sh: np.ndarray | float) -> np.ndarray:
     """Combined-slip weighting G = cos(magic(slip + SH)) / cos(magic(SH)) ([P] 4.E51, 4.E59)."""
-    return np.cos(_magic(b, c, e, slip + sh)) / np.cos(_magic(b, c, e, np.asarray(sh)))
+    return np.cos(_magic(b, c, e, slip + sh)) / np.cos(_magic(b, c, e, sh))
 
 
+@jit
 def _trail_factors(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_z: np.ndarray,
                    sht_alpha: ArrayLike, zeta5: ArrayLike
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -873,17 +879,20 @@ def _trail_factors(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_z: np.n
     return bt, dt, alpha_t, et
 
 
+@jit
 def _trail(p: np.ndarray, bt: np.ndarray, dt: np.ndarray, et: np.ndarray,
            alpha_t: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     """Return t = Dt cos(Ct atan(Bt at - Et (Bt at - atan(Bt at)))) cos alpha ([P] 4.E73)."""
     return dt * np.cos(_magic(bt, p[QCZ1], et, alpha_t)) * np.cos(alpha)
 
 
+@jit
 def _equivalent(alpha: np.ndarray, kappa_term: np.ndarray) -> np.ndarray:
     """atan(sqrt(tan^2 alpha + (Kxk/Kya kappa)^2)) sgn(alpha) ([B] A54, A55)."""
     return np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term * kappa_term)) * _sign(alpha)
 
 
+@jit
 def _effective_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike) -> np.ndarray:
     """R_e ([B] eqs. 1, 5, 7)."""
     r_omega = _free_radius(p, omega)
@@ -892,23 +901,27 @@ def _effective_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike) -> np.nda
     return r_omega - p[FNOMIN] / cz * (p[DREFF] * np.arctan(p[BREFF] * rho) + p[FREFF] * rho)
 
 
+@jit
 def _free_radius(p: np.ndarray, omega: ArrayLike) -> np.ndarray:
     """R_omega = R0 (Q_RE0 + Q_V1 (omega R0 / V0)^2) ([B] eq. 1)."""
     if p[LONGVL] > 0.0:
         speed = np.multiply(omega, p[R0] / p[LONGVL])
         return p[R0] * (p[Q_RE0] + p[Q_V1] * speed * speed)
-    return np.asarray(p[R0] * p[Q_RE0] + np.multiply(omega, 0.0))
+    return p[R0] * p[Q_RE0] + np.multiply(omega, 0.0)
 
 
+@jit
 def _force_factor(p: np.ndarray, omega: ArrayLike, fx: ArrayLike,
                   fy_term: ArrayLike) -> np.ndarray:
     """Return fc of the vertical force ([P] A3.3, [B] eq. 4): speed, force, pressure terms."""
-    speed = np.abs(np.multiply(omega, p[R0] / p[LONGVL])) if p[LONGVL] > 0.0 else 0.0
+    scale = p[R0] / p[LONGVL] if p[LONGVL] > 0.0 else 0.0
+    speed = np.abs(np.multiply(omega, scale))
     fx_term = np.multiply(fx, p[Q_FCX] / p[FNOMIN])
     return ((1.0 + p[Q_V2] * speed - fx_term * fx_term - np.multiply(fy_term, fy_term))
             * (1.0 + p[PFZ1] * p[DPI]))
 
 
+@jit
 def _loaded_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike, fx: ArrayLike,
                    fy: ArrayLike) -> np.ndarray:
     """R_omega - rho with rho from Fz = fc (Q_FZ1 x + Q_FZ2 x^2) FNOMIN, x = rho/R0 (6.1)."""
@@ -968,6 +981,7 @@ def _loaded_radius_62(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray, fx: np.n
     return r_omega - 0.5 * (low + high)
 
 
+@jit
 def _relaxation(p: np.ndarray, fz: np.ndarray,
                 gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(sigma_kappa, sigma_alpha): [5] from PTX/PTY, 6.x from Kxk, Kya and [STRUCTURAL]."""
@@ -992,6 +1006,7 @@ def _relaxation(p: np.ndarray, fz: np.ndarray,
     return sigma_k, sigma_a
 
 
+@jit
 def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.ndarray,
                   gamma: np.ndarray, vx: np.ndarray, phit: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -1086,17 +1101,56 @@ def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.nd
     return (fx * p[FX_ON], fy * p[FY_ON], mx * p[FY_ON], my * p[FX_ON], mz * p[FY_ON])
 
 
-def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
+@jit
+def combined_forces(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.ndarray,
+                    gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray, phit: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """
-    Return float arrays broadcast to one shape.
+    (Fx, Fy, Mx, My, Mz) of :meth:`MagicFormula.steady_state` for coefficients ``p``.
 
-    They are returned as they are when they already are (the full vehicle calls this
-    every step with four-wheel arrays).
+    Arrays (n,); ``mirror`` +1 as measured, -1 mirrored, per element; 0 off the ground.
     """
-    first = values[0]
-    if isinstance(first, np.ndarray):
-        ready = tuple(v for v in values if isinstance(v, np.ndarray)
-                      and v.dtype == np.float64 and v.shape == first.shape)
-        if len(ready) == len(values):
-            return ready
-    return tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))
+    loaded, fz_e = _loaded(p, fz)
+    fx, fy, mx, my, mz = _steady_state(p, fz_e, kappa, mirror * alpha, mirror * gamma, vx,
+                                       mirror * phit)
+    return (np.where(loaded, fx, 0.0), np.where(loaded, mirror * fy, 0.0),
+            np.where(loaded, mirror * mx, 0.0), np.where(loaded, my, 0.0),
+            np.where(loaded, mirror * mz, 0.0))
+
+
+@jit
+def radii_at(p: np.ndarray, fz: np.ndarray,
+               omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(R_l, R_e) of :meth:`MagicFormula.radii`, arrays (n,), m."""
+    fz_ = np.maximum(fz, 0.0)
+    loaded = _loaded_radius(p, fz_, omega, 0.0, 0.0)
+    if p[RE_LINEAR] != 0.0:
+        return loaded, loaded
+    return loaded, _effective_radius(p, fz_, omega)
+
+
+@jit
+def relaxation_at(p: np.ndarray, fz: np.ndarray,
+                       gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(sigma_kappa, sigma_alpha) of :meth:`MagicFormula.relaxation_lengths`, (n,), m."""
+    loaded, fz_e = _loaded(p, fz)
+    sigma_k, sigma_a = _relaxation(p, fz_e, gamma)
+    return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
+
+
+@jit
+def slip_stiffness_at(p: np.ndarray, fz: np.ndarray) -> np.ndarray:
+    """K_xk of :meth:`MagicFormula.slip_stiffness`, (n,), N."""
+    loaded, fz_e = _loaded(p, fz)
+    return np.where(loaded, _kxk(p, fz_e, _dfz(p, fz_e)), 0.0)
+
+
+def _flat(*values: ArrayLike) -> tuple[tuple[int, ...], tuple[np.ndarray, ...]]:
+    """
+    Return the broadcast shape of ``values`` and each as a contiguous float vector.
+
+    The compiled equations then see one array type whatever the caller passes (scalars,
+    broadcast grids); results are reshaped to the shape.
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+    return arrays[0].shape, tuple(np.array(a, dtype=float, order='C').ravel() for a in arrays)

@@ -4,7 +4,10 @@
 Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the CommonRoad peer.
 
 * ``step_steer_10s``: a 10 s step steer (100 km/h, steering-wheel ramp at 1 s to the
-  angle of 4 m/s^2) on the sedan baseline, the simulation alone (model built before).
+  angle of 4 m/s^2) on the sedan baseline, the simulation alone (model built before):
+  wall and CPU time, and its accuracy, the largest yaw-rate error over the run against the
+  same model at REFERENCE_STEP (converged: the error is first order in the step), in % of
+  the steady yaw rate.
 * ``constant_radius_turn``: the ISO 4138 event with its defaults (``run_vehicle_event``,
   K&C maps cached), simulated time over wall time.
 * ``per_step``: microseconds per call, on a state in the middle of the step steer, of the
@@ -14,7 +17,12 @@ Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the Com
 * ``commonroad``: the same 10 s step steer on CommonRoad's multibody model
   (``vehiclemodels.vehicle_dynamics_mb``, 29 states, parameters_vehicle2, a BMW 320i),
   integrated with ``scipy.integrate.odeint`` as in CommonRoad's examples, output at
-  100 Hz; the steer step is the same road-wheel angle over the same ramp.
+  100 Hz; its own steer step to the same steady yaw rate, over the same ramp. Its
+  yaw-rate error is measured as vd's, against a converged odeint run (rtol = atol =
+  REFERENCE_TOLERANCE). Timed at odeint's default tolerances and at matched accuracy: the
+  loosest of TOLERANCES (rtol = atol) whose error is at most vd's. ``ratio_vs_commonroad_cpu``
+  is the peer's CPU time at matched accuracy over vd's (> 1: vd faster); when the package
+  does not import, ``commonroad`` says so.
 """
 from __future__ import annotations
 
@@ -25,10 +33,12 @@ from typing import Any
 import numpy as np
 from scipy.integrate import odeint
 
-from vd_solvers.timing import median_time
+from vd_solvers.timing import median_cpu_time, median_time
+from vd_solvers.tire.magic_formula import relaxation_at
 
 from .drivers import OpenLoopSteering, SpeedController
 from .events import run_vehicle_event
+from .forces import wheel_radii, wheel_tires
 from .model import STEP, VehicleModel
 from .simulation import simulate
 
@@ -37,10 +47,19 @@ DURATION = 10.0
 STEP_TIME = 1.0
 RAMP = 0.1
 MICRO_CALLS = 500
+#: step of the converged reference of the step steer, s
+REFERENCE_STEP = 0.0005
+#: odeint tolerances (rtol = atol) tried for the peer's run at vd's accuracy, loosest first
+TOLERANCES = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 1e-6)
+#: odeint tolerance of the peer's converged reference
+REFERENCE_TOLERANCE = 1e-10
+#: sampling period of the compared yaw rates, s
+SAMPLE = 0.01
 
 
 def _micro(fn: Callable[[], Any]) -> float:
-    """Microseconds per call."""
+    """Microseconds per call (after one untimed call)."""
+    fn()
     t0 = time.perf_counter()
     for _ in range(MICRO_CALLS):
         fn()
@@ -55,20 +74,26 @@ def bench_vehicle(config) -> dict[str, Any]:
     swa = 0.4  # rad, about 4 m/s^2 at 100 km/h on the sample sedan (steering ratio 15.8)
     _, r_e = model.tire_radii(model.static_loads())
 
-    def step_steer():
+    def step_steer(h: float = STEP):
         steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + RAMP, DURATION],
                                     angles=[0.0, 0.0, swa, swa])
         speed = SpeedController(lambda t: SPEED, model.total_mass, float(np.mean(r_e)))
         return simulate(model, steering, speed, DURATION, event='step_steer',
-                        initial_speed=SPEED, record_every=2)
+                        initial_speed=SPEED, record_every=round(SAMPLE / h), h=h)
 
+    trace = step_steer()  # untimed: first calls
     wall = median_time(step_steer)
-    trace = step_steer()
+    cpu = median_cpu_time(step_steer)
+    yaw_rate = trace.channels()['yaw_rate']
+    reference = step_steer(REFERENCE_STEP).channels()['yaw_rate']
     out: dict[str, Any] = {
         'step_s': STEP, 'model_build_s': build,
-        'step_steer_10s': {'wall_s': wall, 'real_time_factor': DURATION / wall,
+        'step_steer_10s': {'wall_s': wall, 'cpu_s': cpu, 'real_time_factor': DURATION / wall,
                            'steps': trace.steps,
-                           'us_per_step': wall / trace.steps * 1e6},
+                           'us_per_step': wall / trace.steps * 1e6,
+                           'cpu_us_per_step': cpu / trace.steps * 1e6,
+                           'yaw_rate_error_pct': _error_pct(yaw_rate, reference),
+                           'reference_step_s': REFERENCE_STEP},
     }
     t0 = time.perf_counter()
     crt = run_vehicle_event(config, 'constant_radius_turn')
@@ -80,11 +105,23 @@ def bench_vehicle(config) -> dict[str, Any]:
     # the same manoeuvre for the peer: its own steer step to the same steady lateral
     # acceleration (ISO 7401, 4 m/s^2 at 100 km/h), not our road-wheel angle (the peer's
     # BMW understeers less: our 2.3 deg would take it beyond its limit)
-    out['commonroad'] = bench_commonroad(float(trace.channels()['yaw_rate'][-1]))
-    out['step_steer_10s']['steady_yaw_rate'] = float(trace.channels()['yaw_rate'][-1])
+    out['step_steer_10s']['steady_yaw_rate'] = float(yaw_rate[-1])
+    try:
+        out['commonroad'] = bench_commonroad(float(yaw_rate[-1]),
+                                             out['step_steer_10s']['yaw_rate_error_pct'])
+    except ImportError as err:
+        out['commonroad'] = {'unavailable': f'commonroad-vehicle-models does not import: {err}'}
+        return out
     out['ratio_vs_commonroad'] = (out['step_steer_10s']['real_time_factor']
                                   / out['commonroad']['real_time_factor'])
+    out['ratio_vs_commonroad_cpu'] = out['commonroad']['matched']['cpu_s'] / cpu
     return out
+
+
+def _error_pct(y: np.ndarray, reference: np.ndarray) -> float:
+    """Largest |y - reference| over the samples, in % of the reference's final value."""
+    n = min(len(y), len(reference))
+    return float(100.0 * np.max(np.abs(y[:n] - reference[:n])) / abs(reference[n - 1]))
 
 
 def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
@@ -95,14 +132,19 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
     vx = np.full(4, SPEED)
     maps = model.maps
 
+    front, rear = model.arrays.tire_front, model.arrays.tire_rear
+    fz, gamma, travel = (np.ascontiguousarray(x) for x in (wheel.fz, wheel.gamma, wheel.travel))
+    kappa, alpha = np.ascontiguousarray(wheel.kappa), np.ascontiguousarray(wheel.alpha)
+
     def tires():
-        model._tire(wheel.fz, wheel.kappa, wheel.alpha, wheel.gamma, vx)
-        model.tire_radii(wheel.fz)
-        model._relaxation(wheel.fz, wheel.gamma)
+        wheel_tires(front, rear, fz, kappa, alpha, gamma, vx, model.mirror)
+        wheel_radii(front, rear, fz)
+        relaxation_at(front, fz[:2], gamma[:2])
+        relaxation_at(rear, fz[2:], gamma[2:])
 
     def suspension_maps():
-        maps.travel(wheel.travel)
-        maps.arb(wheel.travel)
+        maps.travel(travel)
+        maps.arb(travel)
         maps.road_wheel_angles(swa)
 
     def multibody():
@@ -114,13 +156,14 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
             'multibody_us': _micro(multibody)}
 
 
-def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
+def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:
     """
     Run the 10 s step steer on CommonRoad's multibody model (module doc).
 
     Its road-wheel
     step scaled so that its steady yaw rate is ``yaw_rate`` (rad/s; from one untimed
-    run with a small step, the response being linear there).
+    run with a small step, the response being linear there); matched accuracy: a yaw-rate
+    error of at most ``error_pct`` (%).
     """
     from vehiclemodels.init_mb import init_mb
     from vehiclemodels.parameters_vehicle2 import parameters_vehicle2
@@ -128,30 +171,47 @@ def bench_commonroad(yaw_rate: float) -> dict[str, Any]:
 
     p = parameters_vehicle2()
     x0 = init_mb([0.0, 0.0, 0.0, SPEED, 0.0, 0.0, 0.0], p)
-    t = np.linspace(0.0, DURATION, int(DURATION * 100) + 1)
+    t = np.linspace(0.0, DURATION, round(DURATION / SAMPLE) + 1)
     result: dict[str, Any] = {}
 
-    def run(angle: float):
+    def run(angle: float, tolerance: float | None = None):
         rate = angle / RAMP
 
         def rhs(x, tt):
             steer_rate = rate if STEP_TIME <= tt < STEP_TIME + RAMP else 0.0
             return vehicle_dynamics_mb(x, [steer_rate, 0.0], p)
 
-        result['x'], result['info'] = odeint(rhs, x0, t, full_output=True, hmax=RAMP / 4)
+        tol = {} if tolerance is None else {'rtol': tolerance, 'atol': tolerance}
+        result['x'], result['info'] = odeint(rhs, x0, t, full_output=True, hmax=RAMP / 4,
+                                             **tol)
+        if not np.all(np.isfinite(result['x'])):
+            raise RuntimeError('the CommonRoad peer run diverged; its timing would be '
+                               'meaningless')
+        return result['x'][:, 5].copy()
 
     probe = 0.005  # rad
-    run(probe)
-    angle = probe * yaw_rate / float(result['x'][-1, 5])
-    wall = median_time(lambda: run(angle))
-    x = result['x']
-    if not np.all(np.isfinite(x)):
-        raise RuntimeError('the CommonRoad peer run diverged; its timing would be meaningless')
-    return {'wall_s': wall, 'real_time_factor': DURATION / wall, 'states': len(x0),
-            'rhs_evaluations': int(result['info']['nfe'][-1]),
-            'steady_yaw_rate': float(x[-1, 5]), 'road_wheel_angle': angle,
-            'integrator': 'scipy.integrate.odeint (LSODA)',
-            'parameters': 'parameters_vehicle2 (BMW 320i)'}
+    angle = probe * yaw_rate / float(run(probe)[-1])
+    reference = run(angle, REFERENCE_TOLERANCE)
+    out: dict[str, Any] = {'states': len(x0), 'road_wheel_angle': angle,
+                           'integrator': 'scipy.integrate.odeint (LSODA)',
+                           'parameters': 'parameters_vehicle2 (BMW 320i)'}
+    matched = TOLERANCES[-1]
+    for trial in TOLERANCES:
+        if _error_pct(run(angle, trial), reference) <= error_pct:
+            matched = trial
+            break
+    for key, tolerance in (('default', None), ('matched', matched)):
+        wall = median_time(lambda: run(angle, tolerance))
+        cpu = median_cpu_time(lambda: run(angle, tolerance))
+        x = run(angle, tolerance)
+        out[key] = {'wall_s': wall, 'cpu_s': cpu, 'real_time_factor': DURATION / wall,
+                    'tolerance': tolerance, 'rhs_evaluations': int(result['info']['nfe'][-1]),
+                    'yaw_rate_error_pct': _error_pct(x, reference),
+                    'steady_yaw_rate': float(x[-1])}
+    # the figures of the default run at the top level, as before
+    out.update({k: out['default'][k] for k in ('wall_s', 'real_time_factor', 'rhs_evaluations',
+                                                'steady_yaw_rate')})
+    return out
 
 
 __all__ = ['bench_vehicle', 'bench_commonroad']

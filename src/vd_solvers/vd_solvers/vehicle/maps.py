@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vd_data_server.model import Configuration
+from vd_solvers.compiled import jit
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.kc.cache import NO_BAR, kc_model, kc_result
@@ -88,37 +89,53 @@ class SuspensionMaps:
 
     def travel(self, z: np.ndarray) -> np.ndarray:
         """(len(TRAVEL_ROWS), 4) values at wheel travels ``z`` (4,)."""
-        u = (z - self.travel0) / self.travel_step
-        i = np.clip(np.floor(u).astype(int), 0, GRID_POINTS - 2)
-        frac = u - i
-        cols = np.arange(4)
-        lo = self.travel_table[:, cols, i]
-        return lo + frac * (self.travel_table[:, cols, i + 1] - lo)
+        return grid_lookup(self.travel_table, self.travel0, self.travel_step, _vector(z))
 
     def arb(self, z: np.ndarray) -> np.ndarray:
         """(4,) anti-roll-bar force on each wheel, N (upward on the wheel positive)."""
-        half = 0.5 * np.array([z[0] - z[1], z[1] - z[0], z[2] - z[3], z[3] - z[2]])
-        u = (half - self.arb0) / self.arb_step
-        i = np.clip(np.floor(u).astype(int), 0, GRID_POINTS - 2)
-        frac = u - i
-        cols = np.arange(4)
-        lo = self.arb_table[cols, i]
-        return lo + frac * (self.arb_table[cols, i + 1] - lo)
+        return grid_lookup(self.arb_table.reshape(1, 4, GRID_POINTS), self.arb0, self.arb_step,
+                           half_difference(_vector(z)))[0]
 
     def roll(self, z: np.ndarray) -> np.ndarray:
         """(2, 4) toe and camber correction in roll at wheel travels ``z`` (module doc)."""
-        half = 0.5 * np.array([z[0] - z[1], z[1] - z[0], z[2] - z[3], z[3] - z[2]])
-        u = (half - self.roll0) / self.roll_step
-        i = np.clip(np.floor(u).astype(int), 0, GRID_POINTS - 2)
-        frac = u - i
-        cols = np.arange(4)
-        lo = self.roll_table[:, cols, i]
-        return lo + frac * (self.roll_table[:, cols, i + 1] - lo)
+        return grid_lookup(self.roll_table, self.roll0, self.roll_step,
+                           half_difference(_vector(z)))
 
     def road_wheel_angles(self, swa: float) -> tuple[float, float]:
         """Steer angles (rad, + left) of FL and FR at steering-wheel angle ``swa`` (rad)."""
         return (float(np.interp(swa, self.steer_swa, self.steer_angle[:, 0])),
                 float(np.interp(swa, self.steer_swa, self.steer_angle[:, 1])))
+
+
+def _vector(z: np.ndarray) -> np.ndarray:
+    return np.ascontiguousarray(z, dtype=float)
+
+
+@jit
+def grid_lookup(table: np.ndarray, x0: np.ndarray, step: np.ndarray,
+                x: np.ndarray) -> np.ndarray:
+    """
+    Linear interpolation of per-wheel tables on uniform grids (linear extrapolation outside).
+
+    ``table`` (rows, 4, GRID_POINTS), grid of wheel w: ``x0[w] + step[w] * k``; ``x`` (4,).
+    Returns (rows, 4).
+    """
+    rows, wheels, points = table.shape
+    out = np.empty((rows, wheels))
+    for w in range(wheels):
+        u = (x[w] - x0[w]) / step[w]
+        i = min(max(int(np.floor(u)), 0), points - 2)
+        frac = u - i
+        for r in range(rows):
+            lo = table[r, w, i]
+            out[r, w] = lo + frac * (table[r, w, i + 1] - lo)
+    return out
+
+
+@jit
+def half_difference(z: np.ndarray) -> np.ndarray:
+    """(4,) half the travel difference of each wheel to the other of its axle, (z_w - z_o)/2."""
+    return 0.5 * np.array([z[0] - z[1], z[1] - z[0], z[2] - z[3], z[3] - z[2]])
 
 
 def _uniform(x: np.ndarray, y: np.ndarray, what: str) -> tuple[float, float, np.ndarray]:
@@ -235,4 +252,5 @@ def suspension_maps(config: Configuration, fidelity: str = 'rigid') -> Suspensio
         provenance={k: v.strip().rstrip(';') for k, v in prov.items()})
 
 
-__all__ = ['SuspensionMaps', 'suspension_maps', 'WHEELS', 'TRAVEL_ROWS', 'KC_STEPS']
+__all__ = ['SuspensionMaps', 'suspension_maps', 'WHEELS', 'TRAVEL_ROWS', 'KC_STEPS',
+           'grid_lookup', 'half_difference']

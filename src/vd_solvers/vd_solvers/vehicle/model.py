@@ -74,6 +74,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
+from .forces import COMPLIANCE_ROWS, CONSTANT_ROWS, VehicleArrays, vehicle_forces, wheel_radii
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
 #: integration step, s
@@ -82,7 +83,6 @@ STEP = 0.005
 VX_FLOOR = 1.0
 #: side sign per wheel: +1 left, -1 right
 SIDE = np.array([1.0, -1.0, 1.0, -1.0])
-FRONT = np.array([True, True, False, False])
 
 
 class SlipUpdate(NamedTuple):
@@ -141,9 +141,6 @@ class VehicleModel:
         front_props = tire_properties(config.group('front_tire'))
         rear_props = tire_properties(config.group('rear_tire'))
         self.tires = (MagicFormula(front_props), MagicFormula(rear_props))
-        # one vectorised evaluation of all four wheels where both axles share the .tir data
-        self._one_tire = (front_props.file_format == rear_props.file_format
-                          and front_props.sections == rear_props.sections)
         for axle, tire in zip(('front', 'rear'), self.tires):
             if tire.vertical_stiffness <= 0.0:
                 raise SolverError(f"configuration '{config.name}': {axle} tire has no "
@@ -176,7 +173,11 @@ class VehicleModel:
         self._static = self.static_loads()
         # slip stiffness for the implicit spin update, taken proportional to the load
         # (PKX1 Fz): only the stability of the update depends on it
-        self._slip_stiffness_static = self._slip_stiffness(self._static)
+        self._slip_stiffness_static = np.concatenate(
+            [self.tires[0].slip_stiffness(self._static[:2]),
+             self.tires[1].slip_stiffness(self._static[2:])])
+        self.arrays = self._arrays()
+        self._no_previous = np.zeros((4, 4))
 
     @staticmethod
     def _mirror(tire: MagicFormula, side: float) -> float:
@@ -245,11 +246,8 @@ class VehicleModel:
 
     def tire_radii(self, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Return the (loaded, effective rolling) radii of the four tires at loads ``fz``, m."""
-        if self._one_tire:
-            return self.tires[0].radii(fz)
-        lf, ef = self.tires[0].radii(fz[:2])
-        lr, er = self.tires[1].radii(fz[2:])
-        return np.concatenate([lf, lr]), np.concatenate([ef, er])
+        return wheel_radii(self.arrays.tire_front, self.arrays.tire_rear,
+                           np.ascontiguousarray(fz, dtype=float))
 
     # --- one step ----------------------------------------------------------------------
 
@@ -262,147 +260,47 @@ class VehicleModel:
         ``slip`` (2, 4): transient [kappa', alpha'] at the start of the step; ``wheel_torque``
         (4,) N*m drive (+) / brake torques about the spin axes.
         """
-        rot = pin.Quaternion(q[6], q[3], q[4], q[5]).toRotationMatrix()  # world R body
-        z = q[7::2]
-        zdot = v[6::2]
-        spin = v[7::2]
-        v_lin, omega = v[0:3], v[3:6]
-        r = self.wheel_centres.copy()
-        r[:, 2] += z  # wheel centres, body frame
-        v_body = v_lin + _cross(omega, r)
-        v_body[:, 2] += zdot  # wheel-centre velocity, body axes
-        p_world = q[0:3] + r @ rot.T
-        v_world = v_body @ rot.T
-        tau = np.zeros(self.model.nv)
+        prev = (np.stack([previous.fx, previous.fy, previous.mz, previous.steer])
+                if previous is not None else self._no_previous)
+        tau, wheel, update = vehicle_forces(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(v, dtype=float),
+            float(swa), np.ascontiguousarray(wheel_torque, dtype=float),
+            np.ascontiguousarray(slip, dtype=float), prev, previous is not None, float(h),
+            self.arrays, self.vx_floor, self.total_mass, self.options.road,
+            self.options.dampers)
+        return tau, WheelState(*wheel), SlipUpdate(*update)
+
+    def _arrays(self) -> VehicleArrays:
+        """Return the constant inputs of the compiled force evaluation (:mod:`.forces`)."""
         maps = self.maps
-        table = maps.travel(z)
-        # --- tire kinematics
-        steer = np.zeros(4)
-        steer[0], steer[1] = maps.road_wheel_angles(swa)
-        if previous is not None:
-            # body-axis tire forces and the aligning moments of the previous step for the
-            # compliances
-            fy_b = previous.fx * np.sin(previous.steer) + previous.fy * np.cos(previous.steer)
-            fx_b = previous.fx * np.cos(previous.steer) - previous.fy * np.sin(previous.steer)
-            mz_prev = previous.mz
-        else:
-            fy_b = fx_b = mz_prev = np.zeros(4)
-        side = np.where(fx_b < 0.0, 0, 1)
-        cols = np.arange(4)
-        roll = maps.roll(z)
-        toe = (table[1] + roll[0] + maps.compliance_steer_y * fy_b
-               + maps.compliance_steer_x[side, cols] * fx_b + maps.compliance_steer_mz * mz_prev)
-        camber = table[2] + roll[1] + maps.compliance_camber_y * fy_b
-        steer = steer - SIDE * toe
-        # the wheel's spin axis: body y turned by the inclination to the body (+ top to the
-        # right, the .tir convention) about the wheel's heading, then by the steer about z
-        lean = -SIDE * camber
-        cos_l = np.cos(lean)
-        axis = np.stack([-np.sin(steer) * cos_l, np.cos(steer) * cos_l, np.sin(lean)],
-                        axis=1) @ rot.T  # world
-        gamma = np.arcsin(np.clip(axis[:, 2], -1.0, 1.0))
-        # heading on the road: spin axis x road normal
-        level = np.hypot(axis[:, 0], axis[:, 1])
-        ch, sh = axis[:, 1] / level, -axis[:, 0] / level
-        vx = v_world[:, 0] * ch + v_world[:, 1] * sh
-        vy = -v_world[:, 0] * sh + v_world[:, 1] * ch
-        height = p_world[:, 2]
-        if self.options.road:
-            fz = np.maximum(self.cz * (self.r0 - height) - self.cd * v_world[:, 2], 0.0)
-            fz = np.where(height < self.r0, fz, 0.0)
-        else:
-            fz = np.zeros(4)
-        _, r_e = self.tire_radii(fz)
-        denom = np.maximum(np.abs(vx), self.vx_floor)
-        kappa = (spin * r_e - vx) / denom
-        alpha = np.arctan(vy / denom)
-        sigma_k, sigma_a = self._relaxation(fz, gamma)
-        # The transient slips follow the steady ones with the time constant sigma / V, V the
-        # same floored speed as in the slip definitions: at standstill the tire then acts as
-        # a damper instead of freezing a slip (a limit cycle at rest).
-        decay_k = np.where(sigma_k > 0.0, np.exp(-denom * h / np.maximum(sigma_k, 1e-9)), 0.0)
-        decay_a = np.where(sigma_a > 0.0, np.exp(-denom * h / np.maximum(sigma_a, 1e-9)), 0.0)
-        if previous is None:
-            slip = np.stack([kappa, alpha])  # start in the steady state
-        k_t, a_t = slip
-        update = SlipUpdate(alpha=alpha + (a_t - alpha) * decay_a, kappa=k_t, decay=decay_k,
-                            radius=r_e, vx=vx, denominator=denom)
-        f = self._tire(fz, k_t, a_t, gamma, vx)
-        wheel = WheelState(fz=fz, fx=f.fx, fy=f.fy, mz=f.mz, kappa=k_t, alpha=a_t, gamma=gamma,
-                           steer=steer, travel=z)
-        # --- tire wrench (world) at the contact point, moment about the wheel centre
-        e_h = np.stack([ch, sh, np.zeros(4)], axis=1)
-        e_l = np.stack([-sh, ch, np.zeros(4)], axis=1)
-        force = f.fx[:, None] * e_h + f.fy[:, None] * e_l
-        force[:, 2] = fz
-        # (contact point - wheel centre) x force, the lever being (0, 0, -height)
-        moment = np.stack([height * force[:, 1], -height * force[:, 0], f.mz], axis=1) \
-            + f.mx[:, None] * e_h + f.my[:, None] * e_l
-        force_b = force @ rot
-        moment_b = moment @ rot
-        # carrier Jacobian: body linear, body angular (about the origin), travel
-        tau[0:3] = force_b.sum(axis=0)
-        tau[3:6] = (_cross(r, force_b) + moment_b).sum(axis=0)
-        tau[6::2] = force_b[:, 2]
-        # Linearly implicit wheel spin. With Fx linearised in the transient slip (slope K_x)
-        # and kappa' advanced with the spin rate at the end of the step,
-        #   I dw = h (T - R_e K_x ((1 - d)(kappa - kappa') + (1 - d) R_e dw / V)),
-        # so dw = h T_eff / I with T_eff below. The explicit form is unstable for
-        # h > V / (sigma omega_n^2) (omega_n of the spin/slip mode): 1.7 ms at 10 m/s.
-        k_x = self._slip_stiffness_static * fz / self._static
-        # the wheel-spin equation I dw/dt = T - R F_x + M_y: the contact force's moment
-        # about the wheel's own spin axis plus the rolling-resistance moment M_y; the
-        # aligning and overturning moments are about road axes and reach the body through
-        # the bearing (M_z's share along a cambered axis would roll a car at rest)
-        lever_moment = np.stack([height * force[:, 1], -height * force[:, 0],
-                                 np.zeros(4)], axis=1)
-        spin_torque = (lever_moment * axis).sum(axis=1) + f.my + wheel_torque
-        lag = (1.0 - decay_k) * r_e * k_x
-        tau[7::2] = (spin_torque - lag * (kappa - k_t)) * self.spin_inertia / (
-            self.spin_inertia + h * lag * r_e / denom)
-        # --- suspension
-        suspension = table[0] + maps.arb(z)
-        if self.options.dampers:
-            ratio = table[3]
-            damper = np.concatenate([
-                np.interp(ratio[:2] * zdot[:2], maps.damper_x[0], maps.damper_y[0]),
-                np.interp(ratio[2:] * zdot[2:], maps.damper_x[1], maps.damper_y[1])])
-            suspension = suspension + ratio * damper
-        side_now = np.where(force_b[:, 0] < 0.0, 0, 1)
-        # The carriers slide along the body's z axis only, so an unsprung mass's lateral
-        # inertia reaches the body at its wheel centre. In the car it is the links that
-        # carry the tire force less that inertia (the force roll centre's jacking acts on
-        # that share) while the unsprung mass's own overturning moment loads its tires
-        # (the unsprung term of the load transfer): the lateral acceleration of the
-        # previous step's tire forces restores both.
-        inertia = self.unsprung * fy_b.sum() / self.total_mass
-        jacking = (maps.jacking_y * (force_b[:, 1] - inertia)
-                   + maps.jacking_x[side_now, cols] * force_b[:, 0]
-                   + self._unsprung_arm * inertia)
-        tau[6::2] -= suspension + (jacking if self.options.road else 0.0)
-        return tau, wheel, update
+        per_wheel = {'side': SIDE, 'r0': self.r0, 'cz': self.cz, 'cd': self.cd,
+                     'mirror': self.mirror, 'unsprung': self.unsprung,
+                     'spin_inertia': self.spin_inertia, 'unsprung_arm': self._unsprung_arm,
+                     'slip_stiffness_static': self._slip_stiffness_static,
+                     'static_load': self._static}
+        compliance = {'steer_y': maps.compliance_steer_y, 'camber_y': maps.compliance_camber_y,
+                      'steer_mz': maps.compliance_steer_mz,
+                      'steer_x_braking': maps.compliance_steer_x[0],
+                      'steer_x_traction': maps.compliance_steer_x[1],
+                      'jacking_y': maps.jacking_y, 'jacking_x_braking': maps.jacking_x[0],
+                      'jacking_x_traction': maps.jacking_x[1]}
 
-    def _tire(self, fz, kappa, alpha, gamma, vx):
-        if self._one_tire:
-            return self.tires[0].steady_state(fz, kappa, alpha, gamma, vx, mirror=self.mirror)
-        front = self.tires[0].steady_state(fz[:2], kappa[:2], alpha[:2], gamma[:2], vx[:2],
-                                           mirror=self.mirror[:2])
-        rear = self.tires[1].steady_state(fz[2:], kappa[2:], alpha[2:], gamma[2:], vx[2:],
-                                          mirror=self.mirror[2:])
-        return type(front)(*(np.concatenate([a, b]) for a, b in zip(front, rear)))
+        def c(a) -> np.ndarray:
+            return np.ascontiguousarray(a, dtype=float)
 
-    def _slip_stiffness(self, fz):
-        if self._one_tire:
-            return self.tires[0].slip_stiffness(fz)
-        return np.concatenate([self.tires[0].slip_stiffness(fz[:2]),
-                               self.tires[1].slip_stiffness(fz[2:])])
-
-    def _relaxation(self, fz, gamma):
-        if self._one_tire:
-            return self.tires[0].relaxation_lengths(fz, gamma)
-        kf, af = self.tires[0].relaxation_lengths(fz[:2], gamma[:2])
-        kr, ar = self.tires[1].relaxation_lengths(fz[2:], gamma[2:])
-        return np.concatenate([kf, kr]), np.concatenate([af, ar])
+        return VehicleArrays(
+            centres=c(self.wheel_centres),
+            wheel=c(np.stack([per_wheel[k] for k in CONSTANT_ROWS])),
+            tire_front=c(self.tires[0].coefficients), tire_rear=c(self.tires[1].coefficients),
+            travel0=c(maps.travel0), travel_step=c(maps.travel_step),
+            travel_table=c(maps.travel_table), arb0=c(maps.arb0), arb_step=c(maps.arb_step),
+            arb_table=c(maps.arb_table[None]), roll0=c(maps.roll0), roll_step=c(maps.roll_step),
+            roll_table=c(maps.roll_table),
+            compliance=c(np.stack([compliance[k] for k in COMPLIANCE_ROWS])),
+            damper_front_x=c(maps.damper_x[0]), damper_front_y=c(maps.damper_y[0]),
+            damper_rear_x=c(maps.damper_x[1]), damper_rear_y=c(maps.damper_y[1]),
+            steer_swa=c(maps.steer_swa), steer_left=c(maps.steer_angle[:, 0]),
+            steer_right=c(maps.steer_angle[:, 1]))
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         """Pinocchio ABA: generalised accelerations (nv,)."""
@@ -427,17 +325,6 @@ class VehicleModel:
 
     def label(self, event: str, t: float) -> str:
         return f"configuration '{self.config.name}', event '{event}', t = {t:.3f} s"
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """
-    Compute a x b row by row for (3,) or (n, 3) operands.
-
-    np.cross costs more on small arrays.
-    """
-    a = np.broadcast_to(a, b.shape)
-    return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-                     a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
 __all__ = ['VehicleModel', 'WheelState', 'SlipUpdate', 'Options', 'STEP', 'WHEELS']

@@ -124,7 +124,10 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
 
 def _row(model: VehicleModel, q, v, t, swa, wheel, cog, torque) -> list[float]:
     rot = pin.Quaternion(q[6], q[3], q[4], q[5]).toRotationMatrix()
-    v_cog = rot @ (v[0:3] + np.cross(v[3:6], cog))
+    o = v[3:6]  # omega x cog written out: np.cross costs more than the rest of the row
+    v_cog = rot @ (v[0:3] + np.array([o[1] * cog[2] - o[2] * cog[1],
+                                      o[2] * cog[0] - o[0] * cog[2],
+                                      o[0] * cog[1] - o[1] * cog[0]]))
     yaw = math.atan2(rot[1, 0], rot[0, 0])
     roll = math.asin(max(-1.0, min(1.0, rot[2, 1])))
     pitch = -math.asin(max(-1.0, min(1.0, rot[2, 0])))

@@ -1,0 +1,103 @@
+# Copyright 2026 The vd authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+Build the compiled-code cache at setup: ``python -m vd_solvers.warm`` (``make setup`` runs it).
+
+Every compiled function of the full-vehicle step and of the Magic Formula's public methods is
+called once with the argument types a run passes (contiguous float vectors, floats, bools),
+with the bundled sample tires, so numba writes its cache (:mod:`vd_solvers.compiled`) and the
+first ``vd run`` after setup loads machine code instead of compiling it. No K&C solve is
+needed: the suspension maps are stand-ins of the right shapes, the tires are real.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
+from vd_data_server.tire_group import tire_properties
+from vd_solvers import compiled
+from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
+from vd_solvers.vehicle.forces import (
+    COMPLIANCE_ROWS,
+    CONSTANT_ROWS,
+    VehicleArrays,
+    vehicle_forces,
+    wheel_radii,
+    wheel_tires,
+)
+from vd_solvers.vehicle.maps import GRID_POINTS, TRAVEL_ROWS, grid_lookup, half_difference
+
+
+def _tire(mf: MagicFormula) -> None:
+    fz = np.array([1000.0, 4000.0, 8000.0])
+    slip = np.array([-0.1, 0.0, 0.1])
+    mf.fy(fz, slip, slip)
+    mf.fx(fz, slip, slip)
+    mf.cornering_stiffness(fz, slip)
+    mf.slip_stiffness(fz)
+    mf.peak_lateral_friction(fz, slip)
+    mf.lateral_curvature(fz, slip, slip)
+    mf.steady_state(fz, slip, slip, slip, fz)
+    mf.pneumatic_trail(fz, slip)
+    mf.relaxation_lengths(fz, slip)
+    if mf.vertical_stiffness > 0.0:
+        mf.radii(fz)
+        mf.loaded_radius(fz)
+
+
+def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
+    grid = np.linspace(-0.1, 0.1, GRID_POINTS)
+    ones, zeros = np.ones(4), np.zeros(4)
+    travel = np.broadcast_to(grid, (len(TRAVEL_ROWS), 4, GRID_POINTS)).copy()
+    curve = np.array([-1.0, 0.0, 1.0])
+    wheel = np.ones((len(CONSTANT_ROWS), 4))
+    arrays = VehicleArrays(
+        centres=np.array([[0.0, 0.8, 0.3], [0.0, -0.8, 0.3], [-2.8, 0.8, 0.3],
+                          [-2.8, -0.8, 0.3]]),
+        wheel=wheel, tire_front=front, tire_rear=rear, travel0=zeros - 0.1,
+        travel_step=ones * (grid[1] - grid[0]), travel_table=travel, arb0=zeros - 0.1,
+        arb_step=ones * (grid[1] - grid[0]), arb_table=travel[:1].copy(), roll0=zeros - 0.1,
+        roll_step=ones * (grid[1] - grid[0]), roll_table=travel[:2].copy(),
+        compliance=np.zeros((len(COMPLIANCE_ROWS), 4)), damper_front_x=curve,
+        damper_front_y=curve, damper_rear_x=curve, damper_rear_y=curve, steer_swa=curve,
+        steer_left=curve * 0.1, steer_right=curve * 0.1)
+    q = np.zeros(15)
+    q[6] = 1.0
+    v = np.zeros(14)
+    v[0] = 20.0
+    for previous in (False, True):
+        vehicle_forces(q, v, 0.1, zeros.copy(), np.zeros((2, 4)), np.zeros((4, 4)), previous,
+                       0.005, arrays, 1.0, 1500.0, True, True)
+    fz = np.full(4, 4000.0)
+    wheel_radii(front, rear, fz)
+    wheel_tires(front, rear, fz, zeros.copy(), zeros.copy(), zeros.copy(), fz, ones.copy())
+    relaxation_at(front, fz[:2], zeros[:2])
+    z = zeros.copy()
+    grid_lookup(travel, arrays.travel0, arrays.travel_step, z)
+    half_difference(z)
+
+
+def main() -> int:
+    """Compile and cache (module doc); a no-op with VD_NO_JIT=1."""
+    if not compiled.ENABLED:
+        return 0
+    study = load_study(default_master())
+    seen: set[bytes] = set()
+    pairs = []
+    for config in study.configurations.values():
+        tires = [MagicFormula(tire_properties(config.group(f'{axle}_tire')))
+                 for axle in ('front', 'rear')]
+        for tire in tires:
+            key = tire.coefficients.tobytes()
+            if key not in seen:
+                seen.add(key)
+                _tire(tire)
+        pairs.append(tuple(t.coefficients for t in tires))
+    for front, rear in pairs[:1]:
+        _vehicle(front, rear)
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())
