@@ -281,6 +281,7 @@ def print_bench(results: dict[str, Any]) -> None:
     vehicle = results['vehicle']
     ss, crt, cr, per = (vehicle['step_steer_10s'], vehicle['constant_radius_turn'],
                         vehicle['commonroad'], vehicle['per_step'])
+    mf = vehicle['magic_formula_us_per_tire']
     rows += [
         ('full vehicle: K&C maps + model build', f"{vehicle['model_build_s']:.2f} s", ''),
         (f"full vehicle: 10 s step steer ({ss['steps']} steps of "
@@ -291,6 +292,10 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{ss['yaw_rate_error_pct']:.2f} % of steady", ''),
         ('  per step', f"{ss['us_per_step']:.0f} us, CPU {ss['cpu_us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),
+        *((f'    Magic Formula per tire, a call of {n} wheels',
+           f"compiled {mf['compiled'][n]:.2f} us, numpy {mf['numpy'][n]:.1f} us "
+           f"({mf['numpy'][n] / mf['compiled'][n]:.0f}x)", 'compiled under 1 us')
+          for n in mf.get('compiled', {})),
         ('    suspension maps', f"{per['suspension_maps_us']:.0f} us", ''),
         ('    all forces (incl. the two above)', f"{per['forces_total_us']:.0f} us", ''),
         ('    multibody (Pinocchio ABA + integration)', f"{per['multibody_us']:.0f} us", ''),

@@ -34,6 +34,7 @@ import numpy as np
 from scipy.integrate import odeint
 
 from vd_solvers.timing import median_cpu_time, median_time
+from vd_solvers.tire import bench as tire_bench
 from vd_solvers.tire.magic_formula import relaxation_at
 
 from .drivers import OpenLoopSteering, SpeedController
@@ -102,6 +103,7 @@ def bench_vehicle(config) -> dict[str, Any]:
     out['constant_radius_turn'] = {'wall_s': crt_wall, 'simulated_s': simulated,
                                    'real_time_factor': simulated / crt_wall}
     out['per_step'] = _per_step(model, swa)
+    out['magic_formula_us_per_tire'] = tire_bench.per_tire()
     # the same manoeuvre for the peer: its own steer step to the same steady lateral
     # acceleration (ISO 7401, 4 m/s^2 at 100 km/h), not our road-wheel angle (the peer's
     # BMW understeers less: our 2.3 deg would take it beyond its limit)
