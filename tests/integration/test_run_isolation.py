@@ -39,8 +39,8 @@ def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch,
                            '--bag', str(bag))
         assert (rc, out) == (2, '')
         assert err.strip() == (f"VD_DOMAIN_ID: ROS domain {held.domain} is in use by another "
-                               f"vd run (pid {__import__('os').getpid()}); unset VD_DOMAIN_ID "
-                               "or choose another")
+                               f"vd run or vd launch (pid {__import__('os').getpid()}); unset "
+                               "VD_DOMAIN_ID or choose another")
         assert not list(tmp_path.glob('bag*'))
         assert tree_snapshot(sedan_master.parents[1]) == before
     finally:
