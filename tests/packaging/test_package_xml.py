@@ -29,6 +29,7 @@ ROSDEP_KEYS = {
     'matplotlib': 'python3-matplotlib',
     'rosbags': 'python3-rosbags-pip',
     'pyopencrg': 'python3-pyopencrg-pip',
+    'numba': 'python3-numba',
     'pinocchio': 'pinocchio',
     'vehiclemodels': 'python3-commonroad-vehicle-models-pip',
     'ruamel': 'python3-ruamel.yaml',
