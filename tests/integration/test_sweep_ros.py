@@ -15,6 +15,7 @@ import random
 import signal
 import subprocess
 import sys
+import threading
 
 from numpy.testing import assert_allclose
 import pytest
@@ -65,19 +66,29 @@ def test_two_solver_processes_and_one_killed_mid_sweep(tmp_path, sedan_master):
     killed: list[str] = []
     graph = SolverGraph(plan.master, {'kc': 2}, log=lines.append)
     with graph as dispatcher:
-        def evaluator(requests, done):
-            def on_done(request, outcome, error, instance):
-                done(request, outcome, error, instance)
-                victim = next((i for i in dispatcher.instances.values()
+        def kill_when_busy(stop: threading.Event) -> None:
+            # the first moment kc_solver_2 holds an accepted goal, its process is killed
+            while not stop.is_set() and not killed:
+                victim = next((i for i in list(dispatcher.instances.values())
                                if i.node == '/vd/kc_solver_2'), None)
-                if (not killed and instance == '/vd/kc_solver' and victim is not None
-                        and victim.job is not None and victim.job.handle is not None):
+                job = victim.job if victim is not None else None
+                if job is not None and job.handle is not None:
                     graph.kill('kc_solver_2')
-                    killed.append(victim.job.request.overrides[0])
-            dispatcher.run(requests, on_done)
+                    killed.append(job.request.overrides[0])
+                stop.wait(0.01)
+
+        def evaluator(requests, done):
+            stop = threading.Event()
+            watcher = threading.Thread(target=kill_when_busy, args=(stop,), daemon=True)
+            watcher.start()
+            try:
+                dispatcher.run(requests, done)
+            finally:
+                stop.set()
+                watcher.join()
 
         result = sweep(plan, study, evaluator, out, bags=False)
-    assert killed, 'kc_solver_2 was never busy when kc_solver finished a run'
+    assert killed, 'kc_solver_2 never held a goal'
     assert any(line.startswith('solver instance /vd/kc_solver_2 lost (its process ended)')
                for line in lines), lines
     # no run was lost: every point has its result, equal to the single run in this process
