@@ -59,6 +59,13 @@ class Study:
     def configuration_names(self) -> list[str]:
         return list(self.configurations)
 
+    def configurations_in(self, target: str | Path) -> list[str]:
+        """Return the configuration names of master file ``target`` (none if it is new)."""
+        target = Path(target)
+        if target.resolve() == self.master.path.resolve():
+            return self.configuration_names
+        return load_study(target).configuration_names if target.exists() else []
+
     def status_of(self, configuration: str, group: str) -> GroupStatus:
         for entry in self.status:
             if entry.configuration == configuration and entry.group == group:

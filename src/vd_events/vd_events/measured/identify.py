@@ -659,13 +659,7 @@ def predictions(predictor: Predictor, overrides: Mapping[str, str],
 def check_output(plan: IdentifyPlan, study) -> None:
     """Refuse a plan whose configuration exists in the master file it would be written to."""
     target = plan.write_master
-    if target.resolve() == plan.master.resolve():
-        existing = study.configuration_names
-    elif target.exists():
-        existing = load_study(target).configuration_names
-    else:
-        existing = []
-    if plan.output_configuration in existing:
+    if plan.output_configuration in study.configurations_in(target):
         raise DataError(f'configuration {plan.output_configuration!r} already exists in '
                         f'{target} (never overwritten: choose another output.configuration)',
                         file=str(plan.path), key='output.configuration')

@@ -113,13 +113,7 @@ def check_plan(plan: SweepPlan, study, out: Path | None = None) -> str:
                         'master files only under it (name the file on the command line to '
                         'write elsewhere: vd optimize --write-master PATH)', file=file,
                         key='optimize.write_master')
-    if target.resolve() == plan.master.resolve():
-        existing = study.configuration_names
-    elif target.exists():
-        existing = load_study(target).configuration_names
-    else:
-        existing = []
-    if name in existing:
+    if name in study.configurations_in(target):
         raise DataError(f'configuration {name!r} already exists in {target} (choose another '
                         'name: optimize.configuration)', file=file, key='optimize.configuration')
     # the bounds of every factor, each with the others at the start, are points that run
