@@ -43,8 +43,12 @@ class _Loader(yaml.SafeLoader):
 
 
 class _FastLoader(getattr(yaml, 'CSafeLoader', yaml.SafeLoader)):  # type: ignore[misc]
-    """The same loader on libyaml's parser (when PyYAML has it): a valid file loads ~5x
-    faster; a file it refuses is read again by :class:`_Loader` for the message."""
+    """
+    The same loader on libyaml's parser (when PyYAML has it).
+
+    A valid file loads several times faster; a file it refuses is read again by
+    :class:`_Loader`, whose messages the tests and users know.
+    """
 
 
 def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LineDict:
