@@ -177,10 +177,13 @@ class System:
         self.n_dof = 6 * self.n_parts
         self._batches = batches
         # The primitive-combination matrices are very sparse (a few entries per row):
-        # products with them dominate an evaluation in dense form. (scipy.sparse is
-        # imported here, not with the module, to keep the solver nodes' start fast.)
-
+        # they are kept sparse for the index work below, dense for the products with
+        # vectors; the products with the primitives' Jacobian D are scattered directly
+        # into dense Jacobians (:meth:`_build_products`), with no sparse matrix built per
+        # evaluation (that construction cost more than the rest of an evaluation).
         self.c_g, self.c_e = scipy.sparse.csr_matrix(c_g), scipy.sparse.csr_matrix(c_e)
+        self._c_g_dense = np.ascontiguousarray(c_g, dtype=float)
+        self._c_e_dense = np.ascontiguousarray(c_e, dtype=float)
         self.laws = laws
         self.coupled = [(idx, law.matrix) for law, idx in laws if isinstance(law, MatrixLaw)]
         self.coupled_max = max((float(np.max(np.abs(k))) for _, k in self.coupled), default=0.0)
@@ -188,6 +191,8 @@ class System:
         self.n_prim = c_g.shape[1]
         self.n_con = c_g.shape[0]
         self._build_scatter(pt_part, pt_local, vec_part, vec_local)
+        self._g_product = self._build_product(self.c_g)
+        self._e_product = self._build_product(self.c_e)
         # per coupled law: the DOFs its measures touch (its nodes' parts), so its
         # tangent block is assembled on those columns only
         self._coupled_cols = []
@@ -297,6 +302,34 @@ class System:
             (np.repeat(prims[self._pair_a], 36), np.repeat(prims, 9))
         )
 
+    def _build_product(self, c: scipy.sparse.csr_matrix
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, int]]:
+        """
+        Return the scatter of the product C D into a dense (rows, n_dof) array.
+
+        D holds the entries ``d_vals`` at (``_d_rows``, ``_d_cols``); entry t contributes
+        C[r, d_rows[t]] d_vals[t] to (r, d_cols[t]) for every nonzero of C's column
+        d_rows[t] (ground columns, >= n_dof, dropped). Returned: flat target index, the
+        entry t of each contribution, its coefficient, and the product's shape.
+        """
+        csc = c.tocsc()
+        keep = np.nonzero(self._d_cols < self.n_dof)[0]
+        column = self._d_rows[keep]
+        counts = np.diff(csc.indptr)[column]
+        entry = np.repeat(keep, counts)
+        first = np.repeat(csc.indptr[column] - np.cumsum(counts) + counts, counts)
+        pos = first + np.arange(entry.size)
+        target = csc.indices[pos] * self.n_dof + self._d_cols[entry]
+        return target, entry, csc.data[pos].astype(float), (c.shape[0], self.n_dof)
+
+    @staticmethod
+    def _product(scatter: tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, int]],
+                 d_flat: np.ndarray) -> np.ndarray:
+        """Return C D (dense) from the scatter of :meth:`_build_product` and D's entries."""
+        target, entry, coef, shape = scatter
+        return np.bincount(target, coef * d_flat[entry],
+                           minlength=shape[0] * shape[1]).reshape(shape)
+
     # -- evaluation -------------------------------------------------------------
     def evaluate(self, state: State, load: LoadCase) -> Evaluation:
         """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
@@ -306,8 +339,7 @@ class System:
         j_slot = jac[self._slot_marker]
         d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
 
-        d = scipy.sparse.csr_matrix((d_vals.ravel(), (self._d_rows, self._d_cols)),
-                                    shape=(self.n_prim, self._nc))[:, : self.n_dof]
+        d_flat = d_vals.ravel()
         if hess:
             ja = j_slot[self._pair_a]
             blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)),
@@ -316,9 +348,10 @@ class System:
             blocks = np.zeros((0, 6, 6))
         chart = _chart(g_slot, lever[self._slot_marker])
         so_vals = np.concatenate((blocks.ravel(), chart.ravel()))
-        g = self.c_g @ x - self.g_design - self._constraint_offset(load)
-        jacobian, measure_jacobian = (self.c_g @ d).toarray(), (self.c_e @ d).toarray()
-        y = self.c_e @ x - self.e_design - self._energy_offset(load)
+        g = self._c_g_dense @ x - self.g_design - self._constraint_offset(load)
+        jacobian = self._product(self._g_product, d_flat)
+        measure_jacobian = self._product(self._e_product, d_flat)
+        y = self._c_e_dense @ x - self.e_design - self._energy_offset(load)
         energy, d1, d2 = (np.empty_like(y) for _ in range(3))
         for law, idx in self.laws:
             energy[idx], d1[idx], d2[idx] = law.evaluate(y[idx])
@@ -431,7 +464,7 @@ class Evaluation:
     def tangent(self, lam: np.ndarray) -> np.ndarray:
         """d(force residual)/dq (n_dof, n_dof) at fixed lambda."""
         s, e = self.system, self.measure_jacobian
-        weights = s.c_e.T @ self.d1 + s.c_g.T @ lam
+        weights = self.d1 @ s._c_e_dense + lam @ s._c_g_dense
         stiff = np.nonzero(self.d2)[0]  # measures with a diagonal stiffness
         k = e[stiff].T @ (self.d2[stiff, None] * e[stiff])
         k += s.second_order(self.so_vals, weights) + self.k_ext
