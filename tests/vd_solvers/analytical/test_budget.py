@@ -20,6 +20,7 @@ import pytest
 
 from vd_solvers.analytical import bicycle, two_track
 from vd_solvers.analytical.budget import (
+    PITCH_TERMS,
     RANGE_TERMS,
     SHIFT_TERMS,
     TERMS,
@@ -165,6 +166,42 @@ def test_rolling_resistance_term(rigid_car: VehicleParams) -> None:
     assert only_term(p, 'rolling_resistance') == pytest.approx(expected, rel=1e-9)
 
 
+def test_rolling_resistance_pitch_term(rigid_car: VehicleParams) -> None:
+    """
+    The rolling-resistance moments unload the front axle: understeer.
+
+    Written out: each tire's M_y = -rho_rr F_z R_l about the wheel's axis, summed over
+    the car, is a nose-up moment -rho_rr R_l m g; the pitch balance takes
+    rho_rr R_l m g / L from the front axle to the rear, whose lateral forces (m a_y b / L,
+    m a_y a / L) stay; the bare axles' slips F / C at the loads in motion.
+    """
+    rho_rr, radius = 0.012, 0.30
+    p = replace(rigid_car,
+                compliance_front=AxleCompliance(rolling_resistance=rho_rr, loaded_radius=radius),
+                compliance_rear=AxleCompliance(rolling_resistance=rho_rr, loaded_radius=radius))
+    weight = p.mass * p.g
+    shift = rho_rr * radius * weight / p.wheelbase
+    front_force = p.mass * p.cog_to_rear_axle / p.wheelbase  # N per m/s^2
+    rear_force = p.mass * p.cog_to_front_axle / p.wheelbase
+
+    def slip(force: float, tire, axle_load: float) -> float:
+        return force / (2.0 * float(tire.cornering_stiffness(axle_load / 2.0)))
+
+    moving = (slip(front_force, p.tire_front, p.axle_load_front - shift)
+              - slip(rear_force, p.tire_rear, p.axle_load_rear + shift))
+    static = (slip(front_force, p.tire_front, p.axle_load_front)
+              - slip(rear_force, p.tire_rear, p.axle_load_rear))
+    expected = moving - static
+    assert expected > 0.0
+    assert only_term(p, 'rolling_resistance_pitch', also=('rolling_resistance',)) == (
+        pytest.approx(expected, rel=1e-9))
+    # the bicycle's effective axles hold it: K moves by the term
+    change = bicycle.understeer_gradient(p) - bicycle.understeer_gradient(
+        replace(p, compliance_front=AxleCompliance(rolling_resistance=rho_rr),
+                compliance_rear=AxleCompliance(rolling_resistance=rho_rr)))
+    assert change == pytest.approx(expected, rel=1e-9)
+
+
 @pytest.mark.parametrize('axle, sign', [('front', 1.0), ('rear', -1.0)])
 def test_roll_camber_term(rigid_car: VehicleParams, axle: str, sign: float) -> None:
     # the wheels lean out of the turn by -0.8 rad per rad of roll; the camber
@@ -206,6 +243,7 @@ def all_terms(p: VehicleParams) -> VehicleParams:
         pneumatic_trail=0.03,
         camber_stiffness=4000.0,
         rolling_resistance=0.01,
+        loaded_radius=0.30,
     )
     rear = AxleCompliance(
         lateral_compliance_steer=0.09 / DEG / 1e3,
@@ -216,6 +254,7 @@ def all_terms(p: VehicleParams) -> VehicleParams:
         pneumatic_trail=0.03,
         camber_stiffness=3500.0,
         rolling_resistance=0.01,
+        loaded_radius=0.30,
     )
     return replace(p, compliance_front=front, compliance_rear=rear)
 
@@ -244,11 +283,12 @@ def test_effective_stiffness_reproduces_each_axle_slip(passenger_car: VehiclePar
 def test_two_track_linear_gradient_equals_the_budget(passenger_car: VehicleParams) -> None:
     # the two-track model applies steer and camber thrust per wheel and solves the
     # tires itself: its linear-range slope must be the budget's total but for the
-    # shift terms, which its equal-slip axles do not hold (the wheel-by-wheel model does)
+    # shift and pitch terms, which its equal-slip axles at their static loads do not
+    # hold (the wheel-by-wheel model does)
     p = all_terms(passenger_car)
     budget = understeer_budget(p)
     k_two_track = two_track.understeer_gradient_linear(p)
-    shifts = sum(budget.term(name).value for name in SHIFT_TERMS)
+    shifts = sum(budget.term(name).value for name in SHIFT_TERMS + PITCH_TERMS)
     assert k_two_track == pytest.approx(budget.total - shifts, rel=1e-3)
     point = two_track.steady_state(p, 3.0, RADIUS)
     # in force and moment equilibrium with the camber thrust in the wheel forces

@@ -11,6 +11,7 @@ import pytest
 
 from vd_data_server.study import load_study
 from vd_solvers.analytical import bicycle, cornering
+from vd_solvers.analytical.budget import understeer_budget
 from vd_solvers.analytical.from_config import cornering_vehicle, vehicle_params
 from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.vehicle_data import static_wheel_loads
@@ -54,6 +55,56 @@ def test_a_steady_state_balances_its_own_wheel_forces(sedan):
         assert point.force_y[w] == pytest.approx(float(pure.fy), rel=1e-2)
     # left turn: the outer (right) wheels carry more
     assert point.load[1] > point.load[0] and point.load[3] > point.load[2]
+
+
+@pytest.fixture(scope='module')
+def hmmwv():
+    config = load_study(STUDIES / 'hmmwv.yaml').configurations['baseline']
+    kc = kc_inputs(config, static_wheel_loads(config))
+    p = vehicle_params(config, kc.suspension, kc.compliance)
+    return p, cornering_vehicle(config, p)
+
+
+def test_the_rolling_resistance_moments_load_the_rear_axle(hmmwv):
+    """
+    Recompute the body's pitch balance about the CoG from the returned state.
+
+    Forces at the ground, h below the CoG, and the tires' rolling-resistance moments M_y
+    about their spin axes (the HMMWV's .tir has QSY1 = 0.008):
+    sum x_i F_zi = -h sum F_x,body + sum M_y cos(delta) with sum F_x,body = -m r v.
+    The moments are nose-up: the front axle carries less than its static share.
+    """
+    p, vehicle = hmmwv
+    point = cornering.steady_state(vehicle, 2.0, 40.0)
+    r = point.speed / point.radius
+    v = point.speed * math.sin(point.sideslip)
+    x = np.array([p.cog_to_front_axle] * 2 + [-p.cog_to_rear_axle] * 2)
+    moments = point.rolling_moment * np.cos(point.steer)
+    assert np.all(point.rolling_moment < 0.0)
+    assert point.load.sum() == pytest.approx(p.mass * p.g, rel=1e-12)
+    assert np.sum(x * point.load) == pytest.approx(
+        p.cog_height * p.mass * r * v + moments.sum(), abs=1e-6 * p.mass * p.g)
+    at_rest = vehicle.with_effects(longitudinal=False)
+    assert point.load[:2].sum() < cornering.steady_state(at_rest, 2.0, 40.0).load[:2].sum()
+
+
+def test_the_budget_holds_the_rolling_resistance_pitch_of_the_wheel_by_wheel_model(hmmwv):
+    """
+    The budget's rolling_resistance_pitch is the wheel-by-wheel model's at a_y -> 0.
+
+    At static loads (no lateral transfer, so the rolling resistance has no yaw moment)
+    the wheel-by-wheel model's longitudinal forces and moments change its slope at
+    a_y -> 0 by the pitch term, with the Magic Formula instead of the budget's fitted
+    tire and the drive forces' small lateral components: within 10 %.
+    """
+    p, vehicle = hmmwv
+    static = vehicle.with_effects(load_transfer=False)
+    with_moments = cornering.gradients(static, 40.0, cornering.ORIGIN_RANGE).understeer
+    without = cornering.gradients(static.with_effects(longitudinal=False), 40.0,
+                                  cornering.ORIGIN_RANGE).understeer
+    term = understeer_budget(p).term('rolling_resistance_pitch').value
+    assert term > 0.0
+    assert with_moments - without == pytest.approx(term, rel=0.10)
 
 
 def test_the_wheel_by_wheel_model_reduces_to_the_bicycle_at_vanishing_lateral_acceleration(

@@ -23,16 +23,6 @@ STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data
 CONFIGURATIONS = [('sedan', 'baseline'), ('sedan', 'stiff_rear'), ('sedan', 'sport'),
                   ('hmmwv', 'baseline'), ('hmmwv', 'bushings')]
 DOCS = Path(__file__).resolve().parents[3] / 'docs' / 'ladder.md'
-HMMWV_GAP = ('the HMMWV understeer gradient, a small difference of two large axle slips '
-             '(9.4 deg/g each), is 8 % (two-track) and 12 % (budget) below the full '
-             "vehicle's; the roll gradients agree within 4 %, so the difference is not in "
-             'the load transfer alone (docs/ladder.md)')
-
-
-def _cases(hmmwv_gap: bool, strict: bool = True):
-    mark = pytest.mark.xfail(strict=strict, reason=HMMWV_GAP)
-    return [pytest.param(s, c, marks=mark) if hmmwv_gap and s == 'hmmwv' else (s, c)
-            for s, c in CONFIGURATIONS]
 
 
 @pytest.fixture(scope='module')
@@ -48,14 +38,14 @@ def ladders():
     return get
 
 
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=True))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_two_track_and_full_vehicle_understeer_gradients_agree(ladders, study, name):
     result = ladders(study, name)
     assert result.two_track.understeer_gradient == pytest.approx(
         result.vehicle.understeer_gradient, rel=0.05)
 
 
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=False))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_two_track_and_full_vehicle_roll_gradients_and_yaw_rate_gains_agree(ladders, study,
                                                                              name):
     result = ladders(study, name)
@@ -65,8 +55,7 @@ def test_two_track_and_full_vehicle_roll_gradients_and_yaw_rate_gains_agree(ladd
                                                            rel=0.05)
 
 
-# the HMMWV's budget: 12 % below the full vehicle (docs/ladder.md), near the 10 % edge: not strict
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=True, strict=False))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_the_bicycle_budget_agrees_with_the_full_vehicle(ladders, study, name):
     result = ladders(study, name)
     assert result.bicycle.understeer_gradient == pytest.approx(
@@ -75,7 +64,7 @@ def test_the_bicycle_budget_agrees_with_the_full_vehicle(ladders, study, name):
                                                          rel=0.10)
 
 
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=False))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_the_named_terms_add_up(ladders, study, name):
     """The budget's terms are its total; the remaining terms are the rungs' differences."""
     result = ladders(study, name)
@@ -94,7 +83,7 @@ def test_the_named_terms_add_up(ladders, study, name):
     assert effects['load_transfer'] > 0.0
 
 
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=False))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_the_step_response_is_that_of_the_single_track_of_its_own_axles(ladders, study, name):
     """
     Check the full vehicle's linear-range step response against its axles' single track.
@@ -127,7 +116,7 @@ def _documented() -> dict[tuple[str, str], dict[str, object]]:
     return out
 
 
-@pytest.mark.parametrize('study, name', _cases(hmmwv_gap=False))
+@pytest.mark.parametrize('study, name', CONFIGURATIONS)
 def test_the_documented_ladder_is_the_computed_one(ladders, study, name):
     """docs/ladder.md's gradients (deg/g) and gains are this code's on this data."""
     documented = _documented()[study, name]

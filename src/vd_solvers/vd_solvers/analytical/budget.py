@@ -11,7 +11,8 @@ and its summary table; Milliken & Milliken, "Race Car Vehicle Dynamics",
 ch. 5, "effective axle cornering stiffness")::
 
     K = tire + roll_steer + lateral_compliance_steer + aligning_torque + camber
-        + aligning_moment + rolling_resistance                  (linear, a_y -> 0)
+        + aligning_moment + rolling_resistance + rolling_resistance_pitch
+                                                                (linear, a_y -> 0)
         + load_transfer + tire_nonlinearity           (over the linear range)
 
 Each compliance term is a front minus rear difference of the axles' *compliance
@@ -50,6 +51,17 @@ and the axle slips move by dF_i / C_i,eff (C_i,eff of the compliance terms):
     rolling_resistance        dF_f = sum t_i rho_rr,i tau_i / (L - t_f + t_r)
                               (tau_i: the load transfer per m/s^2, eq. 4)
 
+One term moves vertical load between the axles: the free-rolling tires'
+rolling-resistance moments M_y = -rho_rr,i F_z R_l,i (the contact pressure's centre
+ahead of the wheel centre) in the body's pitch balance take
+dN = sum rho_rr,i R_l,i N_i / L from the front axle to the rear, at any speed. The
+lateral forces stay where the yaw balance puts them; the tires' cornering stiffness
+follows the loads::
+
+    rolling_resistance_pitch  e_i = N_i/g (1/C_i(N_i -+ dN) - 1/C_i(N_i))
+                              (C_i(N): the axle's two tires at N/2 each; - front,
+                              + rear)
+
 The terms so far are linear: the bicycle model with C_eff has exactly their sum
 as K. Over the linear range the full vehicle and the two-track model report
 (ISO 4138, a least-squares slope over 1..3 m/s^2) two more, second order in a_y,
@@ -80,11 +92,14 @@ from vd_solvers.errors import SolverError
 
 #: budget terms: Gillespie's order, then the force shifts, then the range terms
 TERMS = ('tire', 'load_transfer', 'roll_steer', 'lateral_compliance_steer', 'aligning_torque',
-         'camber', 'aligning_moment', 'rolling_resistance', 'tire_nonlinearity')
+         'camber', 'aligning_moment', 'rolling_resistance', 'rolling_resistance_pitch',
+         'tire_nonlinearity')
 #: the terms second order in a_y, from the two-track model over the linear range
 RANGE_TERMS = ('load_transfer', 'tire_nonlinearity')
 #: the terms that move lateral force between the axles
 SHIFT_TERMS = ('aligning_moment', 'rolling_resistance')
+#: the terms that move vertical load between the axles
+PITCH_TERMS = ('rolling_resistance_pitch',)
 #: the source of every compliance term of a parameter set without K&C results
 BARE_TIRE = 'bare tire: no K&C results'
 #: the source of a range term the two-track model did not supply
@@ -164,6 +179,30 @@ def force_shift(p: VehicleParams) -> dict[str, float]:
     }
 
 
+def pitch_load_shift(p: VehicleParams) -> float:
+    """
+    Load the rolling-resistance moments take from the front axle to the rear, N.
+
+    sum rho_rr,i R_l,i N_i / L over the axles (module doc).
+    """
+    front, rear = p.compliance_front, p.compliance_rear
+    moment = (front.rolling_resistance * front.loaded_radius * p.axle_load_front
+              + rear.rolling_resistance * rear.loaded_radius * p.axle_load_rear)
+    return moment / p.wheelbase
+
+
+def pitch_slip(p: VehicleParams) -> tuple[float, float]:
+    """Front and rear axle slip per unit a_y of the rolling-resistance pitch, rad/(m/s^2)."""
+    shift = pitch_load_shift(p)
+    out = []
+    for axle, sign in (('front', -1.0), ('rear', 1.0)):
+        load, stiffness, _ = _axle(p, axle)
+        tire = p.tire_front if axle == 'front' else p.tire_rear
+        moving = 2.0 * float(tire.cornering_stiffness((load + sign * shift) / 2.0))
+        out.append(load / p.g * (1.0 / moving - 1.0 / stiffness))
+    return out[0], out[1]
+
+
 def _roll_gradient(p: VehicleParams) -> float:
     """Roll gradient, rad/(m/s^2), where a roll term needs it (0.0 otherwise)."""
     needs = any(c.roll_steer != 0.0 or (c.roll_camber != 0.0 and c.camber_stiffness != 0.0)
@@ -208,6 +247,7 @@ def understeer_budget(p: VehicleParams,
     slip_f = compliance_slip(p, 'front', rho)
     slip_r = compliance_slip(p, 'rear', rho)
     shifts = shift_slip(p, rho)
+    pitch = pitch_slip(p)
     ranges = dict(range_terms or {})
     terms = []
     for name in TERMS:
@@ -223,6 +263,9 @@ def understeer_budget(p: VehicleParams,
             front, rear = shifts[name]
             terms.append(BudgetTerm(name, front, rear, _source(p, name, comp_f, comp_r),
                                     front - rear))
+        elif name in PITCH_TERMS:
+            terms.append(BudgetTerm(name, pitch[0], pitch[1],
+                                    _source(p, name, comp_f, comp_r), pitch[0] - pitch[1]))
         else:
             terms.append(BudgetTerm(name, slip_f[name], slip_r[name],
                                     _source(p, name, comp_f, comp_r),
@@ -233,6 +276,7 @@ def understeer_budget(p: VehicleParams,
 _TERM_FIELDS = {
     'aligning_moment': ('pneumatic_trail',),
     'rolling_resistance': ('rolling_resistance',),
+    'rolling_resistance_pitch': ('rolling_resistance', 'loaded_radius'),
     'roll_steer': ('roll_steer',),
     'lateral_compliance_steer': ('lateral_compliance_steer',),
     'aligning_torque': ('aligning_torque_compliance_steer', 'pneumatic_trail'),
@@ -265,11 +309,12 @@ def effective_axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
         return _axle(p, 'front')[1], _axle(p, 'rear')[1]
     rho = _roll_gradient(p)
     shifts = shift_slip(p, rho)
+    pitch = pitch_slip(p)
     out = []
     for k, axle in enumerate(('front', 'rear')):
         load, stiffness, _ = _axle(p, axle)
         slip = (load / stiffness + p.g * sum(compliance_slip(p, axle, rho).values())
-                + p.g * sum(pair[k] for pair in shifts.values()))
+                + p.g * sum(pair[k] for pair in shifts.values()) + p.g * pitch[k])
         if not slip > 0.0:
             raise SolverError(
                 f"{axle} axle: the compliance slip {math.degrees(slip - load / stiffness):.4g} "
@@ -279,6 +324,7 @@ def effective_axle_cornering_stiffness(p: VehicleParams) -> tuple[float, float]:
     return out[0], out[1]
 
 
-__all__ = ['TERMS', 'RANGE_TERMS', 'SHIFT_TERMS', 'BARE_TIRE', 'NO_RANGE', 'BudgetTerm',
-           'UndersteerBudget', 'compliance_slip', 'force_shift', 'shift_slip',
-           'understeer_budget', 'effective_axle_cornering_stiffness']
+__all__ = ['TERMS', 'RANGE_TERMS', 'SHIFT_TERMS', 'PITCH_TERMS', 'BARE_TIRE', 'NO_RANGE',
+           'BudgetTerm', 'UndersteerBudget', 'compliance_slip', 'force_shift', 'shift_slip',
+           'pitch_load_shift', 'pitch_slip', 'understeer_budget',
+           'effective_axle_cornering_stiffness']

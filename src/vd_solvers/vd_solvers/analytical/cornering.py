@@ -15,21 +15,24 @@ on a circle of radius R at speed V (r = V/R, a_y = V r), each wheel with
   lateral-force and aligning-moment compliance steer of its own forces (K&C, linear);
 * its inclination to the road: static camber, roll camber, compliance camber (same
   sources), :class:`AxleCompliance` signs;
-* its load (eq. 5, and between the axles m (-r v) h / L: the centripetal acceleration's
-  part along the body with the sideslip) and the full Magic Formula of its axle's .tir
-  (combined slip,
-  aligning and rolling-resistance moments; the side it is mounted on mirrored as in the
-  full vehicle);
+* its load (eq. 5; between the axles m (-r v) h / L, the centripetal acceleration's
+  part along the body with the sideslip, and sum M_y cos(delta) / L, the tires'
+  rolling-resistance moments: the contact pressure's centre ahead of each wheel centre,
+  about the body's y axis, unloads the front axle and loads the rear, the body's pitch
+  balance as in the full vehicle) and the full Magic Formula of its axle's .tir
+  (combined slip, aligning and rolling-resistance moments; the side it is mounted on
+  mirrored as in the full vehicle);
 * its slip from the body's motion: the wheel-centre velocity (u - r y, v + r x) in the
   wheel's heading;
 * its longitudinal force: a share of the drive torque (``drive_front`` to the front,
   open differentials) plus the rolling-resistance moment, over the loaded radius (the
   wheel-spin balance; the slip ratio that gives it, with the .tir's shifts, by Newton).
 
-Unknowns: steering-wheel angle, body sideslip, drive torque and each wheel's lateral
-force and aligning moment; equations: the longitudinal (m a_x = -m r v), lateral
-(m r u) and yaw (0) balances of the body at the CoG and each wheel's force and moment
-equal to its tire's (Powell's hybrid method, scipy ``fsolve``). Residuals are recomputed
+Unknowns: steering-wheel angle, body sideslip, drive torque, each wheel's lateral
+force and aligning moment and the front axle's load from the rolling-resistance moments;
+equations: the longitudinal (m a_x = -m r v), lateral (m r u) and yaw (0) balances of the
+body at the CoG, each wheel's force and moment equal to its tire's and that load equal
+to sum M_y cos(delta) / L (Powell's hybrid method, scipy ``fsolve``). Residuals are recomputed
 from the returned state in the tests.
 
 The understeer gradient is, as for the full vehicle (ISO 4138), the least-squares slope
@@ -72,8 +75,12 @@ class Effects:
     """What the model holds (defaults: everything); the ladder switches them off one by one."""
 
     aligning_moment: bool = True  # the tires' aligning moments in the yaw balance
-    longitudinal: bool = True  # drive and rolling resistance, their yaw moment
-    load_transfer: bool = True  # False: every wheel at its static load
+    # drive and rolling resistance: their yaw moment, and the rolling-resistance moments'
+    # pitch (load from the front axle to the rear)
+    longitudinal: bool = True
+    # False: no lateral or inertial load transfer (the wheels at their static loads but
+    # for the rolling-resistance moments' pitch, a longitudinal effect)
+    load_transfer: bool = True
     steering_map: bool = True  # False: both front wheels at delta_sw / i_s
 
 
@@ -116,6 +123,7 @@ class CorneringPoint:
     force_x: np.ndarray  # wheel axes
     force_y: np.ndarray
     aligning_moment: np.ndarray
+    rolling_moment: np.ndarray  # M_y about the wheel's spin axis, N*m (< 0 resists rolling)
     residual: np.ndarray  # the balances at the solution, relative
 
     def excess_steer(self, ratio: float, wheelbase: float) -> float:
@@ -194,6 +202,10 @@ def steady_state(vehicle: CorneringVehicle, lateral_acceleration: float,
             fz = load + np.array([-pitch, -pitch, pitch, pitch])
         else:
             fz = load
+        if fx_on:
+            # the rolling-resistance moments' pitch: the front axle's load changes by
+            # sum M_y cos(delta) / L (z[11], solved with the tires' M_y at these loads)
+            fz = fz + np.array([0.5, 0.5, -0.5, -0.5]) * z[11] * weight
         fy_w, mz_w = z[3:7] * weight, z[7:11] * weight * p.wheelbase
         steer = static_steer + roll_steer
         if vehicle.effects.steering_map:
@@ -228,11 +240,14 @@ def steady_state(vehicle: CorneringVehicle, lateral_acceleration: float,
         yaw = np.sum(x * fyb - y * fxb)
         if vehicle.effects.aligning_moment:
             yaw += np.sum(mz_w)
+        pitch = (z[11] * weight * p.wheelbase - np.sum(f.my * cs) if fx_on
+                 else z[11] * weight * p.wheelbase)
         return np.concatenate([
             [(np.sum(fxb) + p.mass * r * v) / weight if fx_on else z[2],
              (np.sum(fyb) - p.mass * r * u) / weight,
              yaw / (weight * p.wheelbase)],
-            (fy_w - f.fy) / weight, (mz_w - f.mz) / (weight * p.wheelbase)])
+            (fy_w - f.fy) / weight, (mz_w - f.mz) / (weight * p.wheelbase),
+            [pitch / (weight * p.wheelbase)]])
 
     guess = _guess(vehicle, a_y, radius, load, weight)
     solution, info, flag, message = optimize.fsolve(residual, guess, full_output=True,
@@ -247,7 +262,8 @@ def steady_state(vehicle: CorneringVehicle, lateral_acceleration: float,
         steering_wheel_angle=float(solution[0]), sideslip=float(solution[1]),
         roll=float(phi), drive_torque=float(solution[2] * weight * radii.mean()),
         steer=steer, slip_angle=-alpha_t, inclination=gamma, load=load, force_x=fx,
-        force_y=fy_w, aligning_moment=mz_w, residual=res)
+        force_y=fy_w, aligning_moment=mz_w, rolling_moment=f.my if fx_on else np.zeros(4),
+        residual=res)
 
 
 def _guess(vehicle: CorneringVehicle, a_y: float, radius: float, load: np.ndarray,
@@ -263,7 +279,7 @@ def _guess(vehicle: CorneringVehicle, a_y: float, radius: float, load: np.ndarra
     beta = p.cog_to_rear_axle / radius - alpha_r
     fy = np.concatenate([c[:2] * alpha_f, c[2:] * alpha_r])
     return np.concatenate([[delta * vehicle.steering.ratio, beta, 0.0], fy / weight,
-                           np.zeros(4)])
+                           np.zeros(5)])
 
 
 @dataclass(frozen=True)

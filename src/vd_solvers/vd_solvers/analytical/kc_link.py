@@ -21,8 +21,9 @@ parameters, so the numbers equal those of ``vd run EVENT --axle AXLE``):
 static wheel load: the pneumatic trail at zero slip
 (:meth:`MagicFormula.pneumatic_trail`), the camber stiffness (the
 derivative of the lateral force with respect to the lean of the wheel top
-towards +y, at zero slip) and the rolling resistance -M_y / (F_z R_l) of the
-free-rolling tire (the speed-independent part, at ROLLING_SPEED). The K&C
+towards +y, at zero slip), the rolling resistance -M_y / (F_z R_l) of the
+free-rolling tire (the speed-independent part, at ROLLING_SPEED) and the loaded
+radius R_l. The K&C
 metrics are SI (rad/N, rad/rad, N*m/rad), as the analytical parameters.
 """
 from __future__ import annotations
@@ -115,6 +116,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
             pneumatic_trail=float(mf.pneumatic_trail(fz)),
             camber_stiffness=camber_stiffness(mf, fz),
             rolling_resistance=rolling_resistance(mf, fz),
+            loaded_radius=float(mf.radii(fz)[0]),
             sources={
                 'lateral_compliance_steer': kc('lateral_compliance_steer', 'lateral_force'),
                 'lateral_compliance_camber': kc('lateral_compliance_camber', 'lateral_force'),
@@ -125,6 +127,7 @@ def kc_inputs(config: Configuration, static_loads: tuple[float, float]) -> KCInp
                 'pneumatic_trail': f'{tir} pneumatic trail at {fz:.0f} N, zero slip',
                 'camber_stiffness': f'{tir} camber stiffness at {fz:.0f} N, zero slip',
                 'rolling_resistance': f'{tir} rolling resistance at {fz:.0f} N',
+                'loaded_radius': f'{tir} loaded radius at {fz:.0f} N',
             })
     return KCInputs(suspension, compliance)
 

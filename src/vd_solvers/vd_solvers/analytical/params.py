@@ -71,6 +71,9 @@ class AxleCompliance:
         rolling_resistance: longitudinal force of the free-rolling tire per
             unit load, -F_x/F_z (the .tir's rolling-resistance moment over the
             loaded radius at the static wheel load), -.
+        loaded_radius: of the tire at the static wheel load, m: the lever of the
+            rolling-resistance moment M_y = -rolling_resistance F_z R_l, which
+            moves load from the front axle to the rear (0: no such moment).
         sources: provenance per attribute name (not part of equality).
 
     """
@@ -83,6 +86,7 @@ class AxleCompliance:
     pneumatic_trail: float = 0.0
     camber_stiffness: float = 0.0
     rolling_resistance: float = 0.0
+    loaded_radius: float = 0.0
     sources: Mapping[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
