@@ -27,8 +27,8 @@ from typing import Any
 from . import plausibility, schema
 from .errors import DataError, DataErrors
 from .model import GroupData, Value
-from .shared import group_facts
 from .shape import Collector, join, kind_of, section_keys
+from .shared import group_facts
 from .units import SI_UNITS, UnitSystem, parse_quantity, parse_unit, si_factor, to_si
 from .yamlio import line_of, load_file
 

@@ -171,14 +171,14 @@ def _driveline_facts(g: GroupData) -> list[DataError]:
                 not g.scalar(f'{base}.locking_torque') > 0.0:
             refuse(f'{base}.locking_torque', 'a limited_slip differential needs a positive '
                    'locking_torque')
-    gears, ratios = g.values['gears'].si
+    gears, ratios = g.curve('gears')
     if list(gears) != [float(n) for n in range(1, len(gears) + 1)]:
         refuse('gears', "gears x must number the gears 1, 2, 3, ... (found "
                f"{', '.join(f'{x:g}' for x in gears)})")
     if any(r <= 0.0 for r in ratios):
         refuse('gears', 'every gear ratio must be positive')
     shift = g.get_scalar('shift_speed')
-    top = g.values['engine_torque'].si[0][-1]
+    top = g.curve('engine_torque')[0][-1]
     if shift is not None and shift > top:
         refuse('shift_speed', f'shift_speed {shift:.4g} rad/s lies beyond the engine_torque '
                f'curve (up to {top:.4g} rad/s)')
@@ -186,7 +186,7 @@ def _driveline_facts(g: GroupData) -> list[DataError]:
 
 
 def group_facts(g: GroupData) -> list[DataError]:
-    """The contradictions within one ``driveline`` or ``brakes`` group (module doc)."""
+    """Return the contradictions within one ``driveline`` or ``brakes`` group (module doc)."""
     if g.kind == 'driveline':
         return _driveline_facts(g)
     if g.kind == 'brakes':
