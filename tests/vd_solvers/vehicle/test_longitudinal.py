@@ -146,6 +146,32 @@ def test_anti_lock_brakes_stop_shorter_and_keep_the_wheels_turning_on_low_mu(sed
     assert without['mean_fully_developed_deceleration'].value < 0.32 * 9.81
 
 
+def test_anti_lock_brakes_keep_the_car_steerable_on_low_mu() -> None:
+    """
+    The HMMWV braking with 500 N on mu 0.3, the steering wheel turned 90 deg at 0.5 s.
+
+    Its tire file's combined-slip terms take a sliding tire's side force away (the
+    sedan's file has none: its side force does not depend on the slip ratio). With ABS
+    the wheels keep turning and the path bends (over 2 m to the side by 2.5 s); with the
+    wheels locked the car slides on straight, less than a fifth of that.
+    """
+    configs = load_study(STUDIES / 'hmmwv_longitudinal.yaml').configurations
+    side = {}
+    for name in ('abs', 'no_abs'):
+        model = VehicleModel(_low_mu(configs[name], 0.3))
+        brakes = model.chassis.brakes
+        pedals = PedalRamp(0.0, 0.15, (0.0, 0.0), (0.0, brakes.pressure_from_pedal(500.0)))
+        steering = OpenLoopSteering(times=[0.0, 0.5, 0.6, 2.5],
+                                    angles=[0.0, 0.0, math.radians(90.0), math.radians(90.0)])
+        trace = simulate(model, steering, pedals, 2.5, event='braking_in_a_bend',
+                         initial_speed=20.0)
+        ch = trace.channels()
+        assert np.max(ch['slip_ratio'][-1]) < (-0.9 if name == 'no_abs' else -0.05), name
+        side[name] = float(ch['y'][-1])
+    assert side['abs'] > 2.0
+    assert abs(side['no_abs']) < side['abs'] / 5.0
+
+
 def test_open_and_limited_slip_differentials_on_a_split_load(sedan) -> None:
     """
     Full throttle with the sprung centre of gravity 300 mm to the left.
