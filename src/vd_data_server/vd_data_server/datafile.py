@@ -25,9 +25,10 @@ from pathlib import Path
 from typing import Any
 
 from . import plausibility, schema
-from .errors import DataError
+from .errors import DataError, DataErrors
 from .model import GroupData, Value
 from .shape import Collector, join, kind_of, section_keys
+from .shared import group_facts
 from .units import SI_UNITS, UnitSystem, parse_quantity, parse_unit, si_factor, to_si
 from .yamlio import line_of, load_file
 
@@ -81,9 +82,13 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
     col.raise_if_any()
     source = display if variant == '' else f'{display} (variant {variant})'
     values = {k: v.with_source(source) for k, v in values.items()}
-    return GroupData(group=group, kind=expected_kind, variant=variant, file=display,
+    data = GroupData(group=group, kind=expected_kind, variant=variant, file=display,
                      values=values, description=str(raw.get('description') or ''),
                      warnings=tuple(col.warnings))
+    errors = group_facts(data)
+    if errors:
+        raise errors[0] if len(errors) == 1 else DataErrors(errors)
+    return data
 
 
 def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: Collector,
@@ -170,6 +175,10 @@ def _check_range(si: float, spec: schema.Scalar, file: str, key: str, raw: Any) 
     if spec.minimum is not None and si < spec.minimum:
         raise DataError(f'must be >= {spec.minimum:g} {SI_UNITS[spec.quantity]}, found {raw!r}',
                         file=file, key=key)
+    if spec.maximum is not None and si > spec.maximum:
+        unit = SI_UNITS[spec.quantity]
+        raise DataError(f"must be <= {spec.maximum:g}{' ' + unit if unit else ''}, found {raw!r}",
+                        file=file, key=key)
 
 
 def _triple(node: Any, file: str, key: str) -> tuple[float, float, float]:
@@ -221,6 +230,8 @@ def _curve(spec: schema.Curve, node: Any, key: str, units: UnitSystem) -> Value:
     y_si = tuple(float(c) * fy for c in ys)
     if spec.x_minimum is not None and x_si[0] < spec.x_minimum:
         raise DataError(f'curve x must start at >= {spec.x_minimum:g}', file=file, key=key)
+    if spec.y_minimum is not None and min(y_si) < spec.y_minimum:
+        raise DataError(f'curve y must be >= {spec.y_minimum:g}', file=file, key=key)
     for axis, seq, quantity in (('x', x_si, spec.x_quantity), ('y', y_si, spec.y_quantity)):
         extreme = max(seq, key=abs)
         plausibility.check_scalar(extreme, quantity, file=file, key=f'{key}.{axis}',

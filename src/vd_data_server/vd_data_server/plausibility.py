@@ -41,6 +41,7 @@ LIMITS: Mapping[str, tuple[float, float]] = {
     'rack_ratio': (0.0, 1.0),
     'acceleration': (0.0, 1e4),
     'frequency': (0.0, 1e6),
+    'angular_velocity': (0.0, 1e5),
     'dimensionless': (0.0, 1e6),
 }
 #: largest distance of a hard point or centre of gravity from the origin (m, per

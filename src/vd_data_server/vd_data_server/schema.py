@@ -23,6 +23,7 @@ class Scalar:
     default: float | None = None  # SI
     minimum: float | None = None  # SI, inclusive
     positive: bool = False  # strictly > 0
+    maximum: float | None = None  # SI, inclusive
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class Curve:
     required: bool = True
     increasing: bool = True  # y must be non-decreasing (physical force curves)
     x_minimum: float | None = None
+    y_minimum: float | None = None
 
 
 @dataclass(frozen=True)
@@ -171,6 +173,11 @@ SUBFRAME_POINTS = ('subframe_front', 'subframe_rear')
 OPTIONAL_POINTS = ARB_POINTS + SUBFRAME_POINTS
 SUBFRAME_COMPONENT = 'subframe'
 
+#: drive layouts and differential types of the driveline group
+DRIVE_LAYOUTS = ('FWD', 'RWD', 'AWD')
+DIFFERENTIALS = ('open', 'limited_slip', 'locked')
+ANTI_LOCK = ('all_wheels', 'none')
+
 _STOP = Section({
     'clearance': Scalar('length', 'travel of the spring/damper from design length before the '
                         'stop touches', minimum=0.0),
@@ -189,6 +196,30 @@ def _six(trans: str, rot: str, what: str, required: bool) -> Section:
                   required=required, default=None if required else 0.0)
         for d in BUSHING_DIRECTIONS
     }, required=required)
+
+
+def _caliper(axle: str) -> Section:
+    return Section({
+        'piston_diameter': Scalar('length', f'{axle} caliper piston diameter', positive=True),
+        'pistons': Scalar('dimensionless', 'pistons per side of the disc (1 on a floating '
+                          'caliper)', required=False, default=1.0, minimum=1.0, maximum=6.0),
+        'pad_friction': Scalar('dimensionless', 'pad-to-disc friction coefficient',
+                               positive=True, maximum=1.0),
+        'effective_radius': Scalar('length', "from the wheel axis to the pads' centre of "
+                                   'pressure (inside the rim)', positive=True),
+    }, doc=f'{axle} wheel brake')
+
+
+def _differential(axle: str) -> Section:
+    return Section({
+        'type': Text(f'{axle} differential', choices=DIFFERENTIALS),
+        'locking_torque': Scalar('torque', 'limited_slip: torque the clutch carries from the '
+                                 'faster to the slower wheel when it slips', required=False,
+                                 default=0.0, minimum=0.0),
+        'lock_damping': Scalar('torsional_damping', 'locked: stiffness of the lock against '
+                               'a left/right speed difference', required=False,
+                               default=1000.0, positive=True),
+    }, required=False, doc=f'{axle} axle differential (default: open)')
 
 
 KINDS: Mapping[str, Section] = {
@@ -355,10 +386,66 @@ KINDS: Mapping[str, Section] = {
         'roll_centre_height_rear': Scalar('length', 'rear roll-centre height above ground, '
                                           'design target'),
     }),
+    'brakes': Section({
+        'front': _caliper('front'),
+        'rear': _caliper('rear'),
+        'master_cylinder_diameter': Scalar('length', 'master-cylinder bore', positive=True),
+        'pedal_ratio': Scalar('dimensionless', 'pedal lever ratio', positive=True,
+                              maximum=20.0),
+        'booster_gain': Scalar('dimensionless', 'brake booster force gain (1: no booster)',
+                               required=False, default=1.0, minimum=1.0, maximum=20.0),
+        'knee_pressure': Scalar('pressure', "rear proportioning valve's knee pressure (left "
+                                'out: no valve)', required=False, positive=True),
+        'knee_slope': Scalar('dimensionless', 'rear pressure rise per master pressure above '
+                             'the knee', required=False, default=1.0, minimum=0.0,
+                             maximum=1.0),
+        'anti_lock': Text("anti-lock brakes: 'all_wheels' (a slip controller per wheel) or "
+                          "'none'; default none", choices=ANTI_LOCK, required=False),
+        'abs_dump_slip': Scalar('dimensionless', 'braking slip above which the anti-lock '
+                                'controller lowers the pressure', required=False,
+                                default=0.15, positive=True, maximum=0.9),
+        'abs_build_slip': Scalar('dimensionless', 'braking slip below which it raises it '
+                                 'again (below abs_dump_slip)', required=False, default=0.08,
+                                 positive=True, maximum=0.9),
+    }),
+    'driveline': Section({
+        'layout': Text('driven axles: FWD, RWD or AWD', choices=DRIVE_LAYOUTS),
+        'front_share': Scalar('dimensionless', "AWD: the front axle's share of the drive "
+                              'torque (FWD: 1, RWD: 0)', required=False, minimum=0.0,
+                              maximum=1.0),
+        'engine_torque': Curve('angular_velocity', 'torque', 'full-load engine torque versus '
+                               'engine speed (none outside the curve)', increasing=False,
+                               x_minimum=0.0, y_minimum=0.0),
+        'gears': Curve('dimensionless', 'dimensionless', 'gear ratio (engine over gearbox '
+                       'output speed) by gear number 1, 2, ...', increasing=False,
+                       x_minimum=1.0, y_minimum=0.0),
+        'final_drive': Scalar('dimensionless', 'final-drive (axle) ratio', positive=True,
+                              maximum=50.0),
+        'efficiency': Scalar('dimensionless', 'gearbox and final-drive efficiency',
+                             required=False, default=0.92, positive=True, maximum=1.0),
+        'shift_speed': Scalar('angular_velocity', 'engine speed of a full-throttle upshift '
+                              "(default: the curve's last speed)", required=False,
+                              positive=True),
+        'front_differential': _differential('front'),
+        'rear_differential': _differential('rear'),
+    }),
+    'aero': Section({
+        'drag_coefficient': Scalar('dimensionless', 'drag coefficient C_d', minimum=0.0,
+                                   maximum=3.0),
+        'frontal_area': Scalar('area', "frontal area A (also the lift coefficients' "
+                               'reference)', positive=True),
+        'lift_coefficient_front': Scalar('dimensionless', 'front-axle lift coefficient '
+                                         'C_l,f (positive up; negative: downforce)',
+                                         required=False, default=0.0),
+        'lift_coefficient_rear': Scalar('dimensionless', 'rear-axle lift coefficient C_l,r',
+                                        required=False, default=0.0),
+        'air_density': Scalar('density', 'air density (20 degC, 101.325 kPa: 1.204 kg/m^3)',
+                              required=False, default=1.204, positive=True),
+    }),
 }
 
 #: vehicle-level groups (no axle prefix)
-VEHICLE_KINDS = ('mass', 'geometry', 'targets', 'steering')
+VEHICLE_KINDS = ('mass', 'geometry', 'targets', 'steering', 'brakes', 'driveline', 'aero')
 #: per-axle groups are named ``front_<kind>`` / ``rear_<kind>``
 AXLE_KINDS = ('hardpoints', 'spring', 'damper', 'bump_stop', 'rebound_stop', 'bushings',
               'stabilizer', 'alignment', 'tire', 'flex')
@@ -451,7 +538,8 @@ def describe(spec: Spec, prefix: str = '') -> list[FieldDoc]:
 
 
 __all__ = ['AXLES', 'KINDS', 'TEMPLATE_POINTS', 'OPTIONAL_POINTS', 'ARB_POINTS',
-           'SUBFRAME_POINTS', 'BUSHING_DIRECTIONS', 'REQUIRED_GROUPS',
+           'SUBFRAME_POINTS', 'BUSHING_DIRECTIONS', 'REQUIRED_GROUPS', 'DRIVE_LAYOUTS',
+           'DIFFERENTIALS', 'ANTI_LOCK',
            'TEMPLATE_COMPONENTS', 'BAR_COMPONENT', 'SUBFRAME_COMPONENT', 'SECTION_SHAPES',
            'Scalar', 'Curve', 'Point', 'Vector', 'Text', 'Name', 'Flag', 'ListOf', 'Raw',
            'Section', 'MapOf', 'MASTER', 'group_kind',

@@ -17,7 +17,15 @@ refused here, at check time, naming both files, keys and values:
 * torsion length: the distance of the two ``arb_pivot`` hard points (where the beam
   bar's torsion part runs) vs ``torsion_length``;
 * a bar given only by its ``torsional_stiffness``: the flex section's G J / L;
-* the corner's unsprung mass (mass group) must hold the parts' ``rigid_mass``.
+* the corner's unsprung mass (mass group) must hold the parts' ``rigid_mass``;
+* within one group, after the master file's overrides too: a ``driveline`` states its
+  layout once (``front_share`` agrees with FWD/RWD, lies strictly between 0 and 1 for
+  AWD), has no differential on an axle it does not drive, a positive locking torque on
+  a limited-slip differential, gears numbered 1..n and an upshift speed on its engine
+  map; a ``brakes`` group's anti-lock controller rebuilds pressure below the slip it
+  dumps at (:func:`group_facts`);
+* a brake's pads work inside the wheel: the ``brakes`` group's ``effective_radius`` of an
+  axle lies below the rim radius (``RIM_RADIUS``) of that axle's tire property file.
 """
 from __future__ import annotations
 
@@ -27,6 +35,7 @@ import math
 from . import schema
 from .errors import DataError, DataErrors
 from .model import GroupData
+from .tire_group import PREFIX
 
 #: relative difference at which two statements of one quantity contradict each other:
 #: three significant figures, the precision a data file writes a value to
@@ -133,6 +142,72 @@ def _masses(axle: str, flex: GroupData, mass: GroupData) -> list[DataError]:
                       key='components')]
 
 
+def _driveline_facts(g: GroupData) -> list[DataError]:
+    errors = []
+
+    def refuse(key: str, message: str) -> None:
+        errors.append(DataError(message, file=g.file, key=key))
+
+    layout = g.text('layout')
+    share = g.get_scalar('front_share')
+    implied = {'FWD': 1.0, 'RWD': 0.0}.get(layout)
+    if share is None and implied is None:
+        refuse('front_share', "required with layout AWD (the front axle's share of the drive "
+               'torque)')
+    elif share is not None and implied is not None and share != implied:
+        refuse('front_share', f'front_share {share:g} contradicts layout {layout} '
+               f'(front_share {implied:g}); leave it out or make them agree')
+    elif share is not None and implied is None and not 0.0 < share < 1.0:
+        refuse('front_share', 'layout AWD drives both axles: front_share must lie strictly '
+               f'between 0 and 1, found {share:g}')
+    for axle, driven in (('front', implied != 0.0), ('rear', implied != 1.0)):
+        base = f'{axle}_differential'
+        if not g.has(f'{base}.type'):
+            continue
+        if not driven:
+            refuse(f'{base}.type', f'the {axle} axle is not driven (layout {layout}): it has '
+                   'no differential')
+        elif g.text(f'{base}.type') == 'limited_slip' and \
+                not g.scalar(f'{base}.locking_torque') > 0.0:
+            refuse(f'{base}.locking_torque', 'a limited_slip differential needs a positive '
+                   'locking_torque')
+    gears, ratios = g.curve('gears')
+    if list(gears) != [float(n) for n in range(1, len(gears) + 1)]:
+        refuse('gears', "gears x must number the gears 1, 2, 3, ... (found "
+               f"{', '.join(f'{x:g}' for x in gears)})")
+    if any(r <= 0.0 for r in ratios):
+        refuse('gears', 'every gear ratio must be positive')
+    shift = g.get_scalar('shift_speed')
+    top = g.curve('engine_torque')[0][-1]
+    if shift is not None and shift > top:
+        refuse('shift_speed', f'shift_speed {shift:.4g} rad/s lies beyond the engine_torque '
+               f'curve (up to {top:.4g} rad/s)')
+    return errors
+
+
+def group_facts(g: GroupData) -> list[DataError]:
+    """Return the contradictions within one ``driveline`` or ``brakes`` group (module doc)."""
+    if g.kind == 'driveline':
+        return _driveline_facts(g)
+    if g.kind == 'brakes':
+        dump, build = g.scalar('abs_dump_slip'), g.scalar('abs_build_slip')
+        if not build < dump:
+            return [DataError(f'abs_build_slip {build:g} must lie below abs_dump_slip '
+                              f'{dump:g}', file=g.file, key='abs_build_slip')]
+    return []
+
+
+def _brake_in_rim(axle: str, brakes: GroupData, tire: GroupData) -> list[DataError]:
+    rim = tire.get_scalar(f'{PREFIX}DIMENSION.RIM_RADIUS')
+    radius = brakes.scalar(f'{axle}.effective_radius')
+    if rim is None or radius < rim:
+        return []
+    return [DataError(f'{axle}.effective_radius {radius * 1e3:g} mm does not fit inside the '
+                      f"rim: {tire.file} -> {tire.text('file')} RIM_RADIUS is {rim * 1e3:g} mm "
+                      '(the pads work inside the wheel); lower it or fit a larger rim',
+                      file=brakes.file, key=f'{axle}.effective_radius')]
+
+
 def check_shared_facts(groups: Mapping[str, GroupData]) -> None:
     """Refuse a configuration whose groups state one fact twice, differently (module doc)."""
     errors: list[DataError] = []
@@ -146,8 +221,14 @@ def check_shared_facts(groups: Mapping[str, GroupData]) -> None:
             errors += _bar(flex, stab, groups.get(f'{axle}_hardpoints'))
         if 'mass' in groups:
             errors += _masses(axle, flex, groups['mass'])
+    for g in groups.values():
+        errors += group_facts(g)
+    for axle in schema.AXLES:
+        tire = groups.get(f'{axle}_tire')
+        if 'brakes' in groups and tire is not None:
+            errors += _brake_in_rim(axle, groups['brakes'], tire)
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
 
 
-__all__ = ['check_shared_facts', 'material_shear_modulus', 'RELATIVE', 'LENGTH']
+__all__ = ['check_shared_facts', 'group_facts', 'material_shear_modulus', 'RELATIVE', 'LENGTH']

@@ -73,6 +73,7 @@ SI_UNITS: Mapping[str, str] = {
     'rack_ratio': 'm/rad',
     'acceleration': 'm/s^2',
     'frequency': '1/s',
+    'angular_velocity': 'rad/s',
     'dimensionless': '',
 }
 
@@ -92,6 +93,7 @@ _DERIVED: Mapping[str, str] = {
     'area': '{length}^2',
     'area_moment': '{length}^4',
     'rack_ratio': '{length}/revolution',
+    'angular_velocity': '{angle}/{time}',
 }
 
 #: the abbreviations printed to users for SI units
@@ -99,7 +101,8 @@ SI_SYMBOLS: Mapping[str, str] = {
     'm': 'm', 'rad': 'rad', 'N': 'N', 'kg': 'kg', 's': 's', 'm/s': 'm/s', 'N/m': 'N/m',
     'N*s/m': 'N·s/m', 'N*m/rad': 'N·m/rad', 'N*m*s/rad': 'N·m·s/rad', 'N*m': 'N·m',
     'kg*m^2': 'kg·m²', 'Pa': 'Pa', 'kg/m^3': 'kg/m³', 'm^2': 'm²', 'm^4': 'm⁴',
-    'm/rad': 'm/rad', 'm/s^2': 'm/s²', '1/s': '1/s', '': '-',
+    'm/rad': 'm/rad', 'm/s^2': 'm/s²', '1/s': '1/s', 'rad/s': 'rad/s',
+    '': '-',
 }
 
 

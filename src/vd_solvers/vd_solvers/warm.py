@@ -19,6 +19,7 @@ from vd_data_server.tire_group import tire_properties
 from vd_solvers import compiled
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
 from vd_solvers.vehicle.forces import (
+    AERO_ROWS,
     COMPLIANCE_ROWS,
     CONSTANT_ROWS,
     VehicleArrays,
@@ -61,7 +62,7 @@ def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
         roll_step=ones * (grid[1] - grid[0]), roll_table=travel[:2].copy(),
         compliance=np.zeros((len(COMPLIANCE_ROWS), 4)), damper_front_x=curve,
         damper_front_y=curve, damper_rear_x=curve, damper_rear_y=curve, steer_swa=curve,
-        steer_left=curve * 0.1, steer_right=curve * 0.1)
+        steer_left=curve * 0.1, steer_right=curve * 0.1, aero=np.zeros(len(AERO_ROWS)))
     q = np.zeros(15)
     q[6] = 1.0
     v = np.zeros(14)

@@ -59,6 +59,21 @@ def test_wheel_torques_through_gears_and_split():
         line.ratio(4)
 
 
+def test_automatic_gear_and_the_slipping_clutch_at_launch():
+    line = Driveline(ENGINE, gears=(3.5, 2.0, 1.3), final_drive=4.0, efficiency=0.9,
+                     front_share=0.4)
+    # ratios 14, 8, 5.2: at 40 rad/s the engine turns 560, 320, 208 rad/s
+    wheels = (40.0, 40.0, 40.0, 40.0)
+    assert line.gear(wheels, shift_speed=600.0) == 1
+    assert line.gear(wheels, shift_speed=500.0) == 2
+    assert line.gear(wheels, shift_speed=200.0) == 3  # none below: the top gear
+    # at rest the clutch slips: the engine stays at the map's first speed, 80 rad/s,
+    # and gives its 150 N m through first gear
+    still = (0.0, 0.0, 0.0, 0.0)
+    assert line.engine_speed(1, still) == 80.0
+    assert line.available_torque(1, still) == pytest.approx(150.0 * 14.0 * 0.9)
+
+
 def test_bad_drivelines_are_refused():
     with pytest.raises(ValueError, match="unknown differential 'torsen'"):
         Differential('torsen')

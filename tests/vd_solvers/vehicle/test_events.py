@@ -240,4 +240,6 @@ def test_unknown_event_is_an_error(sedan):
         run_vehicle_event(sedan['baseline'], 'double_lane_change')
     assert str(err.value) == ("configuration 'baseline', event 'double_lane_change': the "
                               "full-vehicle model has no event 'double_lane_change' (events: "
-                              "constant_radius_turn, step_steer, sine_with_dwell)")
+                              "constant_radius_turn, step_steer, sine_with_dwell, "
+                              "straight_line_braking, brake_in_turn, power_off_in_turn, "
+                              "straight_line_acceleration)")

@@ -44,6 +44,10 @@ METRIC_UNITS = {
     'roll_centre_height_force': 'mm',
     'roll_centre_height_front': 'mm',
     'roll_centre_height_rear': 'mm',
+    'mean_fully_developed_deceleration': 'm/s^2',  # as UN R13-H quotes it
+    'mean_deceleration': 'm/s^2',
+    'mean_longitudinal_deceleration': 'm/s^2',
+    'brake_pressure': 'bar',
 }
 
 _GRAVITY = re.compile(r'(?<![A-Za-z_])g(?![A-Za-z_0-9])')
@@ -84,6 +88,17 @@ HEADLINE = (
     Headline('anti_squat', 'anti-squat', '{:.0f}'),
     Headline('steering_ratio', 'steering ratio', '{:.1f}'),
     Headline('ackermann', 'Ackermann', '{:.0f}'),
+    # braking and acceleration (vd_solvers.vehicle.longitudinal_events)
+    Headline('stopping_distance', 'stop', '{:.1f}'),
+    Headline('mean_fully_developed_deceleration', 'MFDD', '{:.2f}'),
+    Headline('locked_wheels', 'locked wheels', '{:.0f}'),
+    Headline('max_pitch', 'pitch', '{:.2f}', summary=False),
+    Headline('acceleration_time', 't_acc', '{:.2f}'),
+    Headline('max_longitudinal_acceleration', 'a_x,max', '{:.3f}'),
+    Headline('yaw_rate_ratio', 'r(t_n)/r_0', '{:.3f}'),
+    Headline('lateral_acceleration_ratio', 'a_y(t_n)/a_y,0', '{:.3f}'),
+    Headline('heading_deviation', 'heading dev.', '{:.2f}'),
+    Headline('path_deviation', 'path dev.', '{:.2f}'),
 )
 HEADLINE_NAMES = tuple(h.name for h in HEADLINE)
 

@@ -138,6 +138,31 @@ VEHICLE_PLOTS: Mapping[str, Sequence[tuple[Axis, Axis]]] = {
         (_FROM_STEP, Axis('roll', 'roll angle [deg]', TO_DEG)),
         (_FROM_STEP, Axis('steering_wheel_angle', 'steering-wheel angle [deg]', TO_DEG)),
     ),
+    'straight_line_braking': (
+        (_TIME, Axis('speed', 'speed [km/h]', 3.6)),
+        (_TIME, Axis('longitudinal_acceleration', 'longitudinal acceleration [m/s²]')),
+        (_TIME, Axis('pitch', 'pitch angle [deg]', TO_DEG)),
+        (_TIME, Axis('brake_pressure_front_left', 'brake pressure, front left [bar]', 1e-5)),
+        (_TIME, Axis('slip_ratio_front_left', 'slip ratio, front left [-]')),
+    ),
+    'brake_in_turn': (
+        (_TIME, Axis('yaw_rate', 'yaw rate [deg/s]', TO_DEG)),
+        (_TIME, _AY),
+        (_TIME, Axis('speed', 'speed [km/h]', 3.6)),
+        (Axis('x', 'x [m]'), Axis('y', 'y [m]')),
+    ),
+    'power_off_in_turn': (
+        (_TIME, Axis('yaw_rate', 'yaw rate [deg/s]', TO_DEG)),
+        (_TIME, _AY),
+        (_TIME, Axis('speed', 'speed [km/h]', 3.6)),
+        (Axis('x', 'x [m]'), Axis('y', 'y [m]')),
+    ),
+    'straight_line_acceleration': (
+        (_TIME, Axis('speed', 'speed [km/h]', 3.6)),
+        (_TIME, Axis('longitudinal_acceleration', 'longitudinal acceleration [m/s²]')),
+        (_TIME, Axis('gear', 'gear [-]')),
+        (_TIME, Axis('slip_ratio_front_left', 'slip ratio, front left [-]')),
+    ),
     # a vehicle-test log and its replays (vd import / vd replay)
     'vehicle_test': tuple((_TIME, Axis(c, label, scale)) for c, label, scale in (
         ('yaw_rate', 'yaw rate [deg/s]', TO_DEG),

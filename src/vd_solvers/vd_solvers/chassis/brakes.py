@@ -88,6 +88,16 @@ class BrakeSystem:
         """Brake torque of one front and one rear wheel at a master pressure, N m."""
         return self.front.torque(pressure), self.rear.torque(self.rear_pressure(pressure))
 
+    def pressure_for_torque(self, total: float) -> float:
+        """Master pressure at which the four brakes together give ``total`` N m, Pa."""
+        front, rear = 2.0 * self.front.gain, 2.0 * self.rear.gain
+        total = max(total, 0.0)
+        if total <= (front + rear) * self.knee_pressure:
+            return total / (front + rear)
+        # above the knee: total = front p + rear (p_k + s (p - p_k))
+        return (total - rear * self.knee_pressure * (1.0 - self.knee_slope)) / (
+            front + rear * self.knee_slope)
+
     def front_share(self, pressure: float) -> float:
         """Return the front axle's share of the brake torque at a master pressure, -."""
         front, rear = self.torques(pressure)

@@ -7,7 +7,10 @@ The driveline: engine map, gears, axle split and a differential per axle.
   outside idle..redline), scaled by the throttle 0..1.
 * **Gearbox and final drive**: the total ratio i = i_gear i_final and an efficiency eta:
   the torque at the driven wheels is T_e i eta, the engine turns at i times the driven
-  wheels' mean speed.
+  wheels' mean speed, but not below the map's first speed: pulling away, the clutch (or
+  converter) slips and holds the engine there.
+* **Automatic gear choice** (:meth:`Driveline.gear`): the lowest gear in which the engine
+  stays at or below the upshift speed.
 * **Axle split**: a fixed front share of the drive torque (0 rear-wheel drive, 1
   front-wheel drive; between: all-wheel drive through a locked-ratio centre coupling).
 * **Differential** per axle, torque in T to the left and right wheels:
@@ -115,17 +118,34 @@ class Driveline:
 
     def engine_speed(self, gear: int, wheel_speeds: tuple[float, float, float, float]) -> float:
         """Engine speed from the driven wheels' mean speed (FL, FR, RL, RR), rad/s."""
+        return max(self.ratio(gear) * self.driven_speed(wheel_speeds),
+                   float(self.engine.speeds[0]))
+
+    def driven_speed(self, wheel_speeds: tuple[float, float, float, float]) -> float:
+        """Speed of the gearbox output over the final drive: the driven wheels' mean, rad/s."""
         f = 0.5 * (wheel_speeds[0] + wheel_speeds[1])
         r = 0.5 * (wheel_speeds[2] + wheel_speeds[3])
-        driven = self.front_share * f + (1.0 - self.front_share) * r
-        return self.ratio(gear) * driven
+        return self.front_share * f + (1.0 - self.front_share) * r
+
+    def gear(self, wheel_speeds: tuple[float, float, float, float], shift_speed: float) -> int:
+        """Return the lowest gear that keeps the engine at or below ``shift_speed`` (rad/s)."""
+        driven = self.driven_speed(wheel_speeds)
+        for n in range(1, len(self.gears) + 1):
+            if self.ratio(n) * driven <= shift_speed:
+                return n
+        return len(self.gears)
+
+    def available_torque(self, gear: int,
+                         wheel_speeds: tuple[float, float, float, float]) -> float:
+        """Full-throttle drive torque of all driven wheels together in ``gear``, N m."""
+        return (self.engine.torque(self.engine_speed(gear, wheel_speeds), 1.0)
+                * self.ratio(gear) * self.efficiency)
 
     def wheel_torques(self, throttle: float, gear: int,
                       wheel_speeds: tuple[float, float, float, float]
                       ) -> tuple[float, float, float, float]:
         """Drive torque of each wheel (FL, FR, RL, RR), N m."""
-        total = (self.engine.torque(self.engine_speed(gear, wheel_speeds), throttle)
-                 * self.ratio(gear) * self.efficiency)
+        total = float(np.clip(throttle, 0.0, 1.0)) * self.available_torque(gear, wheel_speeds)
         fl, fr = self.front.split(self.front_share * total, wheel_speeds[0], wheel_speeds[1])
         rl, rr = self.rear.split((1.0 - self.front_share) * total, wheel_speeds[2],
                                  wheel_speeds[3])

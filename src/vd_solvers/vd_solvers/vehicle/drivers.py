@@ -5,7 +5,11 @@ Driver models and the driveline: small classes behind two protocols and a regist
 
 Steering drivers return the steering-wheel angle (rad, + left) at time t from what
 they see (:class:`Observation`); the speed controller returns the total wheel torque
-(N*m, + drive, - brake) that :func:`wheel_torques` splits over the wheels.
+(N*m, + drive, - brake), a longitudinal driver the pedals (:class:`Pedals`: throttle and
+master-cylinder pressure). :class:`WheelTorques` turns either into the four wheel torques
+of a step: through the vehicle's brakes (anti-lock per wheel) and driveline
+(:mod:`vd_solvers.chassis`) where its configuration has them, through the fixed shares
+of :func:`wheel_torques` where it has not.
 
 ``DRIVERS`` maps the name used in docs/events.md to the class.
 """
@@ -18,6 +22,8 @@ from typing import NamedTuple, Protocol
 
 import numpy as np
 
+from vd_solvers.chassis import antilock
+from vd_solvers.chassis.from_config import Chassis
 from vd_solvers.errors import SolverError
 
 
@@ -32,12 +38,19 @@ class Observation(NamedTuple):
     course: float  # direction of the body origin's velocity, rad
 
 
+class Pedals(NamedTuple):
+    """A longitudinal driver's command: throttle 0..1 and master-cylinder pressure, Pa."""
+
+    throttle: float
+    pressure: float
+
+
 class SteeringDriver(Protocol):
     def steering_wheel_angle(self, obs: Observation, h: float) -> float: ...
 
 
 class SpeedDriver(Protocol):
-    def wheel_torque(self, obs: Observation, h: float) -> float: ...
+    def wheel_torque(self, obs: Observation, h: float) -> float | Pedals: ...
 
 
 class OpenLoopSteering:
@@ -211,7 +224,76 @@ def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np
         axle = np.array([drive_front, drive_front, 1.0 - drive_front, 1.0 - drive_front])
         return 0.5 * total * axle
     axle = np.array([brake_front, brake_front, 1.0 - brake_front, 1.0 - brake_front])
-    return 0.5 * total * axle * np.tanh(spin / 0.1)
+    return 0.5 * total * axle * np.tanh(spin / BRAKE_SPIN_SCALE)
+
+
+#: spin speed over which a brake's torque reverses with the wheel's rotation, rad/s
+BRAKE_SPIN_SCALE = 0.1
+
+
+class WheelTorques:
+    """
+    The wheel torques of each step from the driver's request and the chassis systems.
+
+    A request is a total torque (the speed controller) or :class:`Pedals`. With a
+    driveline, a drive torque request opens the throttle as far as it needs
+    (at most fully) in the gear :meth:`.Driveline.gear` chooses with the upshift speed,
+    and the differentials split it by the wheels' speeds; with brakes, a brake torque
+    request becomes the master pressure that gives it
+    (:meth:`.BrakeSystem.pressure_for_torque`), the rear line passes the proportioning
+    valve, and with anti-lock brakes each wheel's controller
+    (:func:`vd_solvers.chassis.antilock.step`) modulates its own line pressure from the
+    wheel's braking slip. Each brake opposes its wheel's rotation (tanh over
+    BRAKE_SPIN_SCALE). Without a driveline or brakes group the request is split by the
+    fixed shares ``drive_front`` and ``brake_front`` (:func:`wheel_torques`). After a
+    call, ``throttle``, ``gear`` and ``pressures`` (the four brakes' line pressures, Pa)
+    say what it did.
+    """
+
+    def __init__(self, chassis: Chassis | None, drive_front: float = 0.5,
+                 brake_front: float = 0.65) -> None:
+        self.chassis = chassis if chassis is not None else Chassis()
+        self.drive_front, self.brake_front = drive_front, brake_front
+        self.states = [antilock.WheelState() for _ in range(4)]
+        self.throttle = 0.0
+        self.gear = 0
+        self.pressures = np.zeros(4)
+
+    def __call__(self, request: float | Pedals, spin: np.ndarray, kappa: np.ndarray,
+                 speed: float, h: float) -> np.ndarray:
+        """Torques FL FR RL RR (N*m) at wheel spin speeds ``spin`` and slips ``kappa``."""
+        c = self.chassis
+        wanted = 0.0  # the drive torque the throttle is opened for
+        if isinstance(request, Pedals):
+            throttle, pressure = request
+        elif request >= 0.0 and c.driveline is not None:
+            throttle, pressure, wanted = -1.0, 0.0, float(request)
+        elif request < 0.0 and c.brakes is not None:
+            throttle, pressure = 0.0, c.brakes.pressure_for_torque(-request)
+        else:
+            self.throttle, self.gear, self.pressures = 0.0, 0, np.zeros(4)
+            return wheel_torques(float(request), self.drive_front, self.brake_front, spin)
+        torques = np.zeros(4)
+        wheels = (float(spin[0]), float(spin[1]), float(spin[2]), float(spin[3]))
+        line = c.driveline
+        if line is not None:
+            self.gear = line.gear(wheels, c.shift_speed)
+            if throttle < 0.0:
+                available = line.available_torque(self.gear, wheels)
+                throttle = min(wanted / available, 1.0) if available > 0.0 else 0.0
+            torques += line.wheel_torques(throttle, self.gear, wheels)
+        self.throttle = max(throttle, 0.0)
+        if c.brakes is not None:
+            rear = c.brakes.rear_pressure(pressure)
+            lines = np.array([pressure, pressure, rear, rear])
+            if c.anti_lock is not None:
+                for w in range(4):
+                    lines[w] = antilock.step(c.anti_lock, self.states[w], h, lines[w],
+                                             -float(kappa[w]), speed)
+            gains = np.array([c.brakes.front.gain] * 2 + [c.brakes.rear.gain] * 2)
+            torques -= gains * lines * np.tanh(spin / BRAKE_SPIN_SCALE)
+            self.pressures = lines
+        return torques
 
 
 #: name -> driver class (docs/events.md)
@@ -225,4 +307,5 @@ DRIVERS: Mapping[str, type] = {
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
            'CurvatureController',
-           'SpeedController', 'wheel_torques', 'DRIVERS']
+           'SpeedController', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
+           'BRAKE_SPIN_SCALE']

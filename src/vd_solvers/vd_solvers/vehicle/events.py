@@ -21,6 +21,9 @@ peak / steady - 1; steady values are means over the last STEADY_WINDOW s.
 
 sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
 :mod:`.sine_with_dwell`.
+
+straight_line_braking (ISO 21994), brake_in_turn (ISO 7975), power_off_in_turn (ISO 9816)
+and straight_line_acceleration: see :mod:`.longitudinal_events`.
 """
 from __future__ import annotations
 
@@ -39,6 +42,7 @@ from vd_solvers.results import Channel, EventOutcome, Metric
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
 from .constant_radius import PARAMS as CRT_PARAMS
 from .drivers import OpenLoopSteering, SpeedController
+from .longitudinal_events import LONGITUDINAL_EVENTS
 from .maps import WHEELS
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
@@ -73,6 +77,10 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                              maximum=1.0),
     },
     'sine_with_dwell': SWD_PARAMS,
+    'straight_line_braking': LONGITUDINAL_EVENTS['straight_line_braking'][0],
+    'brake_in_turn': LONGITUDINAL_EVENTS['brake_in_turn'][0],
+    'power_off_in_turn': LONGITUDINAL_EVENTS['power_off_in_turn'][0],
+    'straight_line_acceleration': LONGITUDINAL_EVENTS['straight_line_acceleration'][0],
 }
 EVENTS = tuple(EVENT_PARAMS)
 
@@ -101,6 +109,14 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
             raise SolverError(f'{label}: {err}') from err
     elif event == 'constant_radius_turn':
         metrics, channels, notes = run_constant_radius(model, values, progress, _channels)
+    elif event in LONGITUDINAL_EVENTS:
+        try:
+            metrics, channels, notes = LONGITUDINAL_EVENTS[event][1](model, values, progress,
+                                                                     _channels)
+        except SolverError as err:
+            if config.name in str(err):
+                raise
+            raise SolverError(f'{label}: {err}') from err
     else:
         metrics, channels, notes = _step_steer(model, values, progress)
     step = (TURN_STEP if event == 'constant_radius_turn' else

@@ -8,8 +8,9 @@ are stated in :mod:`.model`'s doc): wheel kinematics from the body state, steer 
 from the suspension maps and the compliances, tire loads, slips and their first-order
 transients, the Magic Formula (:func:`vd_solvers.tire.magic_formula.combined_forces`, the
 one implementation), the contact wrenches mapped to the generalised forces, the linearly
-implicit wheel spin, springs, anti-roll bars, dampers and jacking. It is compiled with
-numba (:mod:`vd_solvers.compiled`); ``VD_NO_JIT=1`` runs it as Python.
+implicit wheel spin, springs, anti-roll bars, dampers and jacking, and the aerodynamic
+drag and lift (:mod:`vd_solvers.chassis.aero`'s equations on the body's x speed). It is
+compiled with numba (:mod:`vd_solvers.compiled`); ``VD_NO_JIT=1`` runs it as Python.
 
 Wheel order FL FR RL RR; SI; body frame ISO 8855 / REP 103 (x forward, y left, z up).
 """
@@ -39,6 +40,12 @@ COMPLIANCE_ROWS = ('steer_y', 'camber_y', 'steer_mz', 'steer_x_braking', 'steer_
                    'jacking_y', 'jacking_x_braking', 'jacking_x_traction')
 
 
+#: the aerodynamic constants (:class:`VehicleArrays` ``aero``): 1/2 rho C_d A (kg/m),
+#: 1/2 rho C_l A of the front and rear axle (kg/m), the axles' x and the drag's height
+#: (the sprung centre of gravity's z), body frame, m; zeros: no aerodynamics
+AERO_ROWS = ('drag', 'lift_front', 'lift_rear', 'x_front', 'x_rear', 'z_drag')
+
+
 class VehicleArrays(NamedTuple):
     """The constant inputs of :func:`vehicle_forces` for one vehicle (contiguous float arrays)."""
 
@@ -63,6 +70,7 @@ class VehicleArrays(NamedTuple):
     steer_swa: np.ndarray
     steer_left: np.ndarray
     steer_right: np.ndarray
+    aero: np.ndarray  # (len(AERO_ROWS),)
 
 
 @jit
@@ -307,8 +315,18 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
         tau[6::2] -= suspension + jacking
     else:
         tau[6::2] -= suspension
+    # --- aerodynamics in still air: drag against the body's x speed at the height z_drag,
+    # lift (+ up) through each axle's line
+    air = c.aero
+    drag = -air[0] * v[0] * abs(v[0])
+    lift_front = air[1] * v[0] * v[0]
+    lift_rear = air[2] * v[0] * v[0]
+    tau[0] += drag
+    tau[2] += lift_front + lift_rear
+    tau[4] += air[5] * drag - air[3] * lift_front - air[4] * lift_rear
     return tau, wheel, update
 
 
 __all__ = ['vehicle_forces', 'wheel_radii', 'wheel_tires', 'VehicleArrays', 'WHEEL_ROWS',
+           'AERO_ROWS',
            'UPDATE_ROWS', 'CONSTANT_ROWS', 'COMPLIANCE_ROWS']

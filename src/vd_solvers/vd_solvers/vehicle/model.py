@@ -41,8 +41,12 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
   moment about the wheel's own spin axis and the rolling-resistance moment drive the
   wheel (I dw/dt = T - R F_x + M_y), so a free-rolling wheel settles where its
   longitudinal force balances the rolling resistance, whatever its steer.
-* driveline and brakes: wheel torques from the speed driver, split by
-  :func:`.drivers.wheel_torques` (front/rear share, open differentials).
+* driveline and brakes: wheel torques from the drivers through the configuration's
+  brakes (anti-lock per wheel) and driveline (engine map, gears, differentials), or split
+  by fixed shares without those groups (:class:`.drivers.WheelTorques`);
+* aerodynamics (the ``aero`` group; none without it): drag against the body's x speed at
+  the sprung centre of gravity's height, lift through each axle's line
+  (:mod:`vd_solvers.chassis.aero`).
 
 Integrator: semi-implicit (symplectic) Euler on Pinocchio's ABA accelerations,
 ``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), with the
@@ -69,12 +73,20 @@ import pinocchio as pin
 from vd_data_server.model import Configuration
 from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
+from vd_solvers.chassis.from_config import chassis_systems
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
-from .forces import COMPLIANCE_ROWS, CONSTANT_ROWS, VehicleArrays, vehicle_forces, wheel_radii
+from .forces import (
+    AERO_ROWS,
+    COMPLIANCE_ROWS,
+    CONSTANT_ROWS,
+    VehicleArrays,
+    vehicle_forces,
+    wheel_radii,
+)
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
 #: integration step, s
@@ -166,6 +178,7 @@ class VehicleModel:
         # outer wheel loaded: 2 h / t = h / |y|
         self._unsprung_arm = -SIDE * self.wheel_centres[:, 2] / np.abs(self.wheel_centres[:, 1])
         self.sprung_mass = mass.scalar('sprung_mass')
+        self.chassis = chassis_systems(config)  # brakes, driveline, aerodynamics
         self.gravity = STANDARD_GRAVITY if options.gravity else 0.0
         self.model = self._build(mass)
         self.data = self.model.createData()
@@ -300,7 +313,19 @@ class VehicleModel:
             damper_front_x=c(maps.damper_x[0]), damper_front_y=c(maps.damper_y[0]),
             damper_rear_x=c(maps.damper_x[1]), damper_rear_y=c(maps.damper_y[1]),
             steer_swa=c(maps.steer_swa), steer_left=c(maps.steer_angle[:, 0]),
-            steer_right=c(maps.steer_angle[:, 1]))
+            steer_right=c(maps.steer_angle[:, 1]), aero=c(self._aero()))
+
+    def _aero(self) -> np.ndarray:
+        """Return the aerodynamic constants of :data:`.forces.AERO_ROWS` (zeros: none)."""
+        aero = self.chassis.aero
+        if aero is None:
+            return np.zeros(len(AERO_ROWS))
+        q = 0.5 * aero.density
+        rows = {'drag': q * aero.drag_area, 'lift_front': q * aero.frontal_area * aero.lift_front,
+                'lift_rear': q * aero.frontal_area * aero.lift_rear,
+                'x_front': self.wheel_centres[0, 0], 'x_rear': self.wheel_centres[2, 0],
+                'z_drag': self.config.group('mass').point('sprung_cog')[2]}
+        return np.array([rows[k] for k in AERO_ROWS])
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         """Pinocchio ABA: generalised accelerations (nv,)."""

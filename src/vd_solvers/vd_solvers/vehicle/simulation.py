@@ -5,8 +5,11 @@ Time integration of the full vehicle with its drivers, and the recorded trace.
 
 ``simulate`` advances :class:`.model.VehicleModel` with a fixed step, asks the drivers
 every step, records every ``record_every`` steps and stops at ``duration`` or when
-``stop(trace_row)`` says so. Channels are SI, ISO 8855 signs: roll positive left side
-up (outward in a left turn), sideslip and yaw rate positive to the left.
+``stop(trace_row)`` says so. The speed driver's request becomes wheel torques through
+:class:`.drivers.WheelTorques` (the configuration's brakes and driveline, or the fixed
+shares ``drive_front`` and ``brake_front`` without them). Channels are SI, ISO 8855
+signs: roll positive left side up (outward in a left turn), sideslip and yaw rate positive
+to the left.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ import pinocchio as pin
 
 from vd_solvers.errors import SolverError
 
-from .drivers import Observation, SpeedDriver, SteeringDriver, wheel_torques
+from .drivers import Observation, Pedals, SpeedDriver, SteeringDriver, WheelTorques
 from .model import STEP, VehicleModel
 
 #: recorded per-sample channels besides the per-wheel ones
@@ -29,6 +32,10 @@ TRACE = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sidesli
          'cog_velocity_x', 'cog_velocity_y', 'cog_velocity_z', 'wheel_torque')
 PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclination',
              'tire_force_x', 'tire_force_y', 'wheel_steer', 'aligning_moment')
+#: what the brakes and driveline did per sample: throttle 0..1, gear (0: no driveline),
+#: and per wheel the brake line pressure (Pa) and the wheel torque (N*m)
+ACTUATION = ('throttle', 'gear')
+ACTUATION_WHEEL = ('brake_pressure', 'applied_torque')
 
 
 @dataclass
@@ -36,7 +43,9 @@ class Trace:
     """Recorded samples: ``rows`` of TRACE values and per-wheel (4,) arrays."""
 
     rows: list[list[float]] = field(default_factory=list)
-    wheels: dict[str, list[np.ndarray]] = field(default_factory=lambda: {k: [] for k in PER_WHEEL})
+    wheels: dict[str, list[np.ndarray]] = field(
+        default_factory=lambda: {k: [] for k in PER_WHEEL + ACTUATION_WHEEL})
+    actuation: dict[str, list[float]] = field(default_factory=lambda: {k: [] for k in ACTUATION})
     timings: dict[str, float] = field(default_factory=lambda: {'forces': 0.0, 'multibody': 0.0})
     steps: int = 0
     stop_reason: str = ''
@@ -47,6 +56,8 @@ class Trace:
         out = {name: data[:, i] for i, name in enumerate(TRACE)}
         for key, values in self.wheels.items():
             out[key] = np.array(values)
+        for key, scalars in self.actuation.items():
+            out[key] = np.array(scalars)
         t = out['time']
         if t.size >= 3:
             ax_w = np.gradient(out['cog_velocity_x'], t)
@@ -80,14 +91,17 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
     trace = Trace()
     cog = np.array(model.config.group('mass').point('sprung_cog'))
     n_steps = int(round(duration / h))
-    swa = torque = 0.0
+    swa = 0.0
     t_forces = t_mb = 0.0
+    actuate = WheelTorques(model.chassis, drive_front, brake_front)
     for step in range(n_steps + 1):
         t = step * h
         obs = observe(model, q, v, t)
         swa = steering.steering_wheel_angle(obs, h)
-        torque = speed.wheel_torque(obs, h) if speed is not None else 0.0
-        torques = wheel_torques(torque, drive_front, brake_front, v[7::2])
+        request = speed.wheel_torque(obs, h) if speed is not None else 0.0
+        kappa = previous.kappa if previous is not None else np.zeros(4)
+        torques = actuate(request, v[7::2], kappa, obs.speed, h)
+        torque = float(np.sum(torques)) if isinstance(request, Pedals) else float(request)
         c0 = time.perf_counter()
         tau, wheel, update = model.forces(q, v, swa, torques, slip, previous, h)
         c1 = time.perf_counter()
@@ -98,6 +112,10 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
                                                wheel.gamma, wheel.fx, wheel.fy, wheel.steer,
                                                wheel.mz)):
                 trace.wheels[key].append(values)
+            trace.wheels['brake_pressure'].append(actuate.pressures.copy())
+            trace.wheels['applied_torque'].append(torques)
+            trace.actuation['throttle'].append(actuate.throttle)
+            trace.actuation['gear'].append(float(actuate.gear))
             if stop is not None:
                 reason = stop(dict(zip(TRACE, row)))
                 if reason:
@@ -139,4 +157,4 @@ def _row(model: VehicleModel, q, v, t, swa, wheel, cog, torque) -> list[float]:
             swa, wheel.steer[0], wheel.steer[1], v_cog[0], v_cog[1], v_cog[2], torque]
 
 
-__all__ = ['simulate', 'Trace', 'TRACE', 'PER_WHEEL', 'observe']
+__all__ = ['simulate', 'Trace', 'TRACE', 'PER_WHEEL', 'ACTUATION', 'ACTUATION_WHEEL', 'observe']
