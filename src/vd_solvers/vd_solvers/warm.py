@@ -11,6 +11,8 @@ needed: the suspension maps are stand-ins of the right shapes, the tires are rea
 """
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from vd_data_server.paths import default_master
@@ -18,6 +20,8 @@ from vd_data_server.study import load_study
 from vd_data_server.tire_group import tire_properties
 from vd_solvers import compiled
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
+from vd_solvers.vehicle import dynamics
+from vd_solvers.vehicle.drivers import speed_law, wheel_torques
 from vd_solvers.vehicle.forces import (
     AERO_ROWS,
     COMPLIANCE_ROWS,
@@ -70,6 +74,7 @@ def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
     for previous in (False, True):
         vehicle_forces(q, v, 0.1, zeros.copy(), np.zeros((2, 4)), np.zeros((4, 4)), previous,
                        0.005, arrays, 1.0, 1500.0, True, True)
+    _dynamics(q, v, arrays)
     fz = np.full(4, 4000.0)
     wheel_radii(front, rear, fz)
     wheel_tires(front, rear, fz, zeros.copy(), zeros.copy(), zeros.copy(), fz, ones.copy())
@@ -79,10 +84,44 @@ def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
     half_difference(z)
 
 
+def _dynamics(q: np.ndarray, v: np.ndarray, arrays: VehicleArrays) -> None:
+    """Compile the step and loop of :mod:`vd_solvers.vehicle.dynamics` on a stand-in tree."""
+    mb = dynamics.MultibodyArrays(body=np.diag([1000.0, 1000.0, 1000.0, 500.0, 2000.0, 2000.0]),
+                                  offsets=arrays.centres.copy(), carrier_mass=np.full(4, 40.0),
+                                  wheel_inertia=np.full((4, 2), 1.0),
+                                  gravity=np.array([0.0, 0.0, -9.81]))
+    zeros = np.zeros(4)
+    dynamics.vehicle_step(q, v, 0.1, zeros.copy(), np.zeros((2, 4)), np.zeros((4, 4)), False,
+                          0.005, arrays, 1.0, 1500.0, True, True, mb)
+    dynamics.observation(q, v)
+    dynamics.record_row(q, v, 0.0, 0.0, np.zeros((9, 4)), np.zeros(3), 0.0)
+    wheel_torques(1.0, 0.5, 0.65, zeros.copy())
+    speed_law(1.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.005)
+    swa = np.zeros(3)
+    for gains in (np.zeros(0), np.ones(4)):
+        dynamics.run_open_loop(q, v, np.zeros((2, 4)), np.zeros((4, 4)), False, 0, 2, 2, 1,
+                               0.005, swa, swa, swa, gains, 0.0, 0.5, 0.65, arrays, 1.0, 1500.0,
+                               True, True, mb, np.zeros(3), np.empty((3, 16)),
+                               np.empty((3, 9, 4)))
+
+
+def clear() -> None:
+    """
+    Remove the package's cached machine code.
+
+    numba checks the time stamp of the file of the function it loads, not of the files of
+    the functions that one calls (the step calls the forces, the forces the Magic Formula):
+    a fresh cache cannot hold a caller compiled against an older callee.
+    """
+    for path in Path(compiled.__file__).resolve().parent.rglob('__pycache__/*.nb[ic]'):
+        path.unlink(missing_ok=True)
+
+
 def main() -> int:
     """Compile and cache (module doc); a no-op with VD_NO_JIT=1."""
     if not compiled.ENABLED:
         return 0
+    clear()
     study = load_study(default_master())
     seen: set[bytes] = set()
     pairs = []

@@ -13,7 +13,8 @@ Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the Com
 * ``per_step``: microseconds per call, on a state in the middle of the step steer, of the
   tire evaluation (four wheels: combined-slip Magic Formula, radii, relaxation lengths,
   slip stiffness), the suspension maps (travel tables, anti-roll bar, steering), the
-  whole force evaluation, and the multibody step (Pinocchio ABA + integration).
+  whole force evaluation, the multibody accelerations and update (compiled, :mod:`.dynamics`)
+  and the whole compiled step (forces, multibody, slips) called from Python.
 * ``commonroad``: the same 10 s step steer on CommonRoad's multibody model
   (``vehiclemodels.vehicle_dynamics_mb``, 29 states, parameters_vehicle2, a BMW 320i),
   integrated with ``scipy.integrate.odeint`` as in CommonRoad's examples, output at
@@ -38,6 +39,7 @@ from vd_solvers.tire import bench as tire_bench
 from vd_solvers.tire.magic_formula import relaxation_at
 
 from .drivers import OpenLoopSteering, SpeedController
+from .dynamics import accelerations, integrate
 from .events import run_vehicle_event
 from .forces import wheel_radii, wheel_tires
 from .model import STEP, VehicleModel
@@ -133,6 +135,7 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
     tau, wheel, _ = model.forces(q, v, swa, np.zeros(4), slip, None, STEP)
     vx = np.full(4, SPEED)
     maps = model.maps
+    mb = model.multibody
 
     front, rear = model.arrays.tire_front, model.arrays.tire_rear
     fz, gamma, travel = (np.ascontiguousarray(x) for x in (wheel.fz, wheel.gamma, wheel.travel))
@@ -150,12 +153,16 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
         maps.road_wheel_angles(swa)
 
     def multibody():
-        model.integrate(q, v, model.acceleration(q, v, tau), STEP)
+        accelerations(q, v, tau, mb)
+        integrate(q, STEP * v)
+
+    def step():
+        model.step(q, v, swa, np.zeros(4), slip, None, STEP)
 
     return {'tires_us': _micro(tires), 'suspension_maps_us': _micro(suspension_maps),
             'forces_total_us': _micro(lambda: model.forces(q, v, swa, np.zeros(4), slip,
                                                            wheel, STEP)),
-            'multibody_us': _micro(multibody)}
+            'multibody_us': _micro(multibody), 'step_us': _micro(step)}
 
 
 def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:

@@ -24,8 +24,9 @@ import pinocchio as pin
 from vd_solvers.errors import SolverError
 
 from .drivers import wheel_torques
+from .dynamics import PREVIOUS_ROWS, record_row
 from .model import STEP, VehicleModel, WheelState
-from .simulation import PER_WHEEL, TRACE, _row
+from .simulation import PER_WHEEL, TRACE
 
 #: steering modes of a command (the VehicleCommand constants)
 STEERING_ANGLE, STEERING_TORQUE = 0, 1
@@ -85,9 +86,9 @@ class Stepper:
         self.max_angle = steering_lock(model)
         self.q, self.v = model.initial_state(initial_speed)
         self.slip = np.zeros((2, 4))
-        self.previous: WheelState | None = None
+        self.previous: np.ndarray | None = None  # the last step's wheel rows PREVIOUS_ROWS
         self.step = 0
-        self._cog = np.array(model.config.group('mass').point('sprung_cog'))
+        self._cog = np.array(model.config.group('mass').point('sprung_cog'), dtype=float)
         self._last_swa = 0.0
         self._last_torque = 0.0
         self._state: dict[str, float] | None = None  # the current state's row, once built
@@ -124,22 +125,21 @@ class Stepper:
         """Apply ``command`` over one step (refused with CommandError, state unchanged)."""
         check_command(command, self.max_angle)
         model = self.model
-        spin = self.v[7::2]
-        torques = (wheel_torques(command.drive_torque, self.drive_front, self.brake_front, spin)
-                   + wheel_torques(-command.brake_torque, self.drive_front, self.brake_front,
-                                   spin))
-        tau, wheel, update = model.forces(self.q, self.v, command.steering_wheel_angle, torques,
-                                          self.slip, self.previous, self.h)
+        spin = np.ascontiguousarray(self.v[7::2])
+        torques = (wheel_torques(float(command.drive_torque), self.drive_front,
+                                 self.brake_front, spin)
+                   + wheel_torques(-float(command.brake_torque), self.drive_front,
+                                   self.brake_front, spin))
+        q, v, slip, wheel = model.step(self.q, self.v, command.steering_wheel_angle, torques,
+                                       self.slip, self.previous, self.h)
         before = self.state()
         self._state = None
-        a = model.acceleration(self.q, self.v, tau)
-        q, v = model.integrate(self.q, self.v, a, self.h)
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
             raise SolverError(f"{model.label('lockstep', self.time + self.h)}: the state "
                               'became non-finite')
-        self.q, self.v = q, v
-        self.slip = np.stack([update.kappa_next(v[7::2]), update.alpha])
-        self.previous = self.wheel = wheel
+        self.q, self.v, self.slip = q, v, slip
+        self.previous = wheel[PREVIOUS_ROWS]
+        self.wheel = WheelState(*wheel)
         self.step += 1
         self._last_swa = command.steering_wheel_angle
         self._last_torque = command.drive_torque - command.brake_torque
@@ -162,8 +162,9 @@ class Stepper:
 
     def _row(self) -> dict[str, float]:
         assert self.wheel is not None
-        return dict(zip(TRACE, _row(self.model, self.q, self.v, self.time, self._last_swa,
-                                    self.wheel, self._cog, self._last_torque)))
+        row = record_row(self.q, self.v, self.time, float(self._last_swa), np.array(self.wheel),
+                         self._cog, float(self._last_torque))
+        return dict(zip(TRACE, row.tolist()))
 
     def wheels(self) -> dict[str, np.ndarray]:
         """Return the per-wheel quantities of the last step (PER_WHEEL, arrays FL FR RL RR)."""

@@ -18,12 +18,13 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 import math
-from typing import NamedTuple, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
 from vd_solvers.chassis import antilock
 from vd_solvers.chassis.from_config import Chassis
+from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
 
@@ -57,12 +58,16 @@ class OpenLoopSteering:
     """
     Steering-wheel angle from a function of time, or a table.
 
-    A table is linear between its points and held beyond its ends.
+    A table is linear between its points and held beyond its ends. A ``vectorized``
+    signal takes an array of times and returns the angles. :meth:`schedule` gives the
+    angles at many times at once (the compiled loop of :mod:`.simulation` takes them so).
     """
 
-    def __init__(self, signal: Callable[[float], float] | None = None,
+    def __init__(self, signal: Callable[[Any], Any] | None = None,
                  times: Sequence[float] | np.ndarray = (),
-                 angles: Sequence[float] | np.ndarray = ()) -> None:
+                 angles: Sequence[float] | np.ndarray = (), vectorized: bool = False) -> None:
+        self._table_points: tuple[np.ndarray, np.ndarray] | None = None
+        self.vectorized = vectorized
         if signal is None:
             t = np.asarray(times, dtype=float)
             a = np.asarray(angles, dtype=float)
@@ -71,15 +76,26 @@ class OpenLoopSteering:
                                   '(time, angle) points of equal length')
             if np.any(np.diff(t) <= 0.0) or not np.all(np.isfinite(a)):
                 raise SolverError('open-loop steering: times must increase and angles be finite')
-            self._t, self._a = t, a
+            self._table_points = (t, a)
             signal = self._table
-        self.signal = signal
+        self.signal: Callable[[Any], Any] = signal
 
     def _table(self, t: float) -> float:
-        return float(np.interp(t, self._t, self._a))
+        assert self._table_points is not None
+        return float(np.interp(t, *self._table_points))
 
     def steering_wheel_angle(self, obs: Observation, h: float) -> float:
+        if self.vectorized:
+            return float(self.signal(np.array([obs.t]))[0])
         return float(self.signal(obs.t))
+
+    def schedule(self, times: Sequence[float]) -> np.ndarray:
+        """Return the steering-wheel angles at ``times`` (s), rad."""
+        if self._table_points is not None:
+            return np.interp(np.asarray(times, dtype=float), *self._table_points)
+        if self.vectorized:
+            return np.asarray(self.signal(np.asarray(times, dtype=float)), dtype=float)
+        return np.array([float(self.signal(t)) for t in times])
 
 
 class ReplaySteering(OpenLoopSteering):
@@ -205,12 +221,32 @@ class SpeedController:
     _integral: float = field(default=0.0, init=False)
 
     def wheel_torque(self, obs: Observation, h: float) -> float:
-        error = self.reference(obs.t) - obs.speed
-        self._integral += error * h
-        slope = (self.reference(obs.t + h) - self.reference(obs.t)) / h
-        return self.mass * self.wheel_radius * (slope + self.kp * error + self.ki * self._integral)
+        torque, self._integral = speed_law(self.reference(obs.t), self.reference(obs.t + h),
+                                           obs.speed, self._integral, self.mass,
+                                           self.wheel_radius, self.kp, self.ki, h)
+        return torque
 
 
+@jit
+def speed_law(reference: float, reference_next: float, speed: float, integral: float,
+              mass: float, wheel_radius: float, kp: float, ki: float, h: float
+              ) -> tuple[float, float]:
+    """
+    Return the torque law of :class:`SpeedController`: (torque N*m, integral after the step).
+
+    ``reference`` and ``reference_next`` are v_ref at t and t + h, m/s.
+    """
+    error = reference - speed
+    integral = integral + error * h
+    slope = (reference_next - reference) / h
+    return mass * wheel_radius * (slope + kp * error + ki * integral), integral
+
+
+#: spin speed over which a brake's torque reverses with the wheel's rotation, rad/s
+BRAKE_SPIN_SCALE = 0.1
+
+
+@jit
 def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np.ndarray
                   ) -> np.ndarray:
     """
@@ -225,10 +261,6 @@ def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np
         return 0.5 * total * axle
     axle = np.array([brake_front, brake_front, 1.0 - brake_front, 1.0 - brake_front])
     return 0.5 * total * axle * np.tanh(spin / BRAKE_SPIN_SCALE)
-
-
-#: spin speed over which a brake's torque reverses with the wheel's rotation, rad/s
-BRAKE_SPIN_SCALE = 0.1
 
 
 class WheelTorques:
@@ -272,7 +304,8 @@ class WheelTorques:
             throttle, pressure = 0.0, c.brakes.pressure_for_torque(-request)
         else:
             self.throttle, self.gear, self.pressures = 0.0, 0, np.zeros(4)
-            return wheel_torques(float(request), self.drive_front, self.brake_front, spin)
+            return wheel_torques(float(request), self.drive_front, self.brake_front,
+                                 np.ascontiguousarray(spin, dtype=float))
         torques = np.zeros(4)
         wheels = (float(spin[0]), float(spin[1]), float(spin[2]), float(spin[3]))
         line = c.driveline
@@ -307,5 +340,5 @@ DRIVERS: Mapping[str, type] = {
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
            'CurvatureController',
-           'SpeedController', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
+           'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
            'BRAKE_SPIN_SCALE']

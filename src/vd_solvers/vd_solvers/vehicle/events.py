@@ -121,8 +121,9 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         metrics, channels, notes = _step_steer(model, values, progress)
     step = (TURN_STEP if event == 'constant_radius_turn' else
             values.get('time_step', STEP))
-    notes = [*notes, f'integrator: semi-implicit Euler on Pinocchio ABA, step {step * 1e3:g} ms; '
-             'transient slip integrated exactly per step, wheel spin linearly implicit',
+    notes = [*notes, 'integrator: semi-implicit Euler on the articulated-body algorithm, '
+             f'step {step * 1e3:g} ms; transient slip integrated exactly per step, wheel spin '
+             'linearly implicit',
              *(f'{k}: {v}' for k, v in sorted(model.maps.provenance.items()))]
     return EventOutcome(event=event, configuration=config.name, model='vehicle',
                         fidelity=fidelity, axle='', data_hash=config.data_hash, metrics=metrics,

@@ -48,8 +48,11 @@ Forces per step (all from the configuration; :mod:`.maps` for the suspension):
   the sprung centre of gravity's height, lift through each axle's line
   (:mod:`vd_solvers.chassis.aero`).
 
-Integrator: semi-implicit (symplectic) Euler on Pinocchio's ABA accelerations,
-``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), with the
+Integrator: semi-implicit (symplectic) Euler on the articulated-body accelerations,
+``v+ = v + h a(q, v)``, ``q+ = integrate(q, h v+)``, fixed step ``h`` (STEP), compiled for
+this tree in :mod:`.dynamics` (:meth:`VehicleModel.step`; Pinocchio's ``aba`` and
+``integrate``, :meth:`VehicleModel.acceleration` and :meth:`VehicleModel.integrate`, are
+its reference), with the
 transient slips advanced analytically (exact first-order decay over the step) and the
 stiff wheel-spin / longitudinal-slip coupling linearly implicit (see
 :meth:`VehicleModel.forces`): that is what makes the step independent of speed. A
@@ -79,6 +82,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
+from .dynamics import kappa_next, multibody_arrays, vehicle_step
 from .forces import (
     AERO_ROWS,
     COMPLIANCE_ROWS,
@@ -114,8 +118,7 @@ class SlipUpdate(NamedTuple):
 
     def kappa_next(self, spin: np.ndarray) -> np.ndarray:
         """Kappa' at the end of the step for the spin rates ``spin`` (rad/s) reached."""
-        target = (spin * self.radius - self.vx) / self.denominator
-        return target + (self.kappa - target) * self.decay
+        return kappa_next(np.stack(self), np.ascontiguousarray(spin, dtype=float))
 
 
 class WheelState(NamedTuple):
@@ -190,6 +193,7 @@ class VehicleModel:
             [self.tires[0].slip_stiffness(self._static[:2]),
              self.tires[1].slip_stiffness(self._static[2:])])
         self.arrays = self._arrays()
+        self.multibody = multibody_arrays(self.model)
         self._no_previous = np.zeros((4, 4))
 
     @staticmethod
@@ -282,6 +286,25 @@ class VehicleModel:
             self.arrays, self.vx_floor, self.total_mass, self.options.road,
             self.options.dampers)
         return tau, WheelState(*wheel), SlipUpdate(*update)
+
+    def step(self, q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.ndarray,
+             slip: np.ndarray, previous: np.ndarray | None, h: float
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """
+        One compiled step (:func:`.dynamics.vehicle_step`): q, v and slip at its end, the wheels.
+
+        ``previous`` (4, 4): the previous step's wheel rows dynamics.PREVIOUS_ROWS (Fx, Fy,
+        Mz, steer), None on the first step; the wheels' state is (WHEEL_ROWS, 4) at the
+        step's start.
+        """
+        has_previous = previous is not None
+        return vehicle_step(
+            np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(v, dtype=float),
+            float(swa), np.ascontiguousarray(wheel_torque, dtype=float),
+            np.ascontiguousarray(slip, dtype=float),
+            self._no_previous if previous is None else np.ascontiguousarray(previous),
+            has_previous, float(h), self.arrays, self.vx_floor, self.total_mass,
+            self.options.road, self.options.dampers, self.multibody)
 
     def _arrays(self) -> VehicleArrays:
         """Return the constant inputs of the compiled force evaluation (:mod:`.forces`)."""

@@ -10,54 +10,83 @@ every step, records every ``record_every`` steps and stops at ``duration`` or wh
 shares ``drive_front`` and ``brake_front`` without them). Channels are SI, ISO 8855
 signs: roll positive left side up (outward in a left turn), sideslip and yaw rate positive
 to the left.
+
+When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, none or a
+:class:`.drivers.SpeedController`) and the configuration has no brakes or driveline group
+(their anti-lock controllers, gear choice and differentials run in Python), the whole
+run is one compiled loop (:func:`.dynamics.run_open_loop`, in blocks of recorded rows when
+there is a ``stop`` or a ``progress``); otherwise each step asks the drivers in Python and
+calls the compiled step (:meth:`.model.VehicleModel.step`). Both give the same trace.
 """
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-import math
-import time
 
 import numpy as np
-import pinocchio as pin
 
 from vd_solvers.errors import SolverError
 
-from .drivers import Observation, Pedals, SpeedDriver, SteeringDriver, WheelTorques
+from .drivers import (
+    Observation,
+    OpenLoopSteering,
+    Pedals,
+    SpeedController,
+    SpeedDriver,
+    SteeringDriver,
+    WheelTorques,
+)
+from .dynamics import PREVIOUS_ROWS, ROW_SIZE, observation, record_row, run_open_loop
+from .forces import WHEEL_ROWS
 from .model import STEP, VehicleModel
 
 #: recorded per-sample channels besides the per-wheel ones
 TRACE = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
          'steering_wheel_angle', 'steer_angle_front_left', 'steer_angle_front_right',
          'cog_velocity_x', 'cog_velocity_y', 'cog_velocity_z', 'wheel_torque')
+assert len(TRACE) == ROW_SIZE
 PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclination',
              'tire_force_x', 'tire_force_y', 'wheel_steer', 'aligning_moment')
-#: what the brakes and driveline did per sample: throttle 0..1, gear (0: no driveline),
-#: and per wheel the brake line pressure (Pa) and the wheel torque (N*m)
+#: what the brakes and driveline did per sample (recorded by the per-step loop): throttle
+#: 0..1, gear (0: no driveline), and per wheel the brake line pressure (Pa) and the wheel
+#: torque (N*m)
 ACTUATION = ('throttle', 'gear')
 ACTUATION_WHEEL = ('brake_pressure', 'applied_torque')
+#: the row of the wheels' state (forces.WHEEL_ROWS) each per-wheel channel is
+_WHEEL_ROW = dict(zip(PER_WHEEL, (WHEEL_ROWS.index(k) for k in (
+    'fz', 'travel', 'alpha', 'kappa', 'gamma', 'fx', 'fy', 'steer', 'mz'))))
+#: recorded rows per call of the compiled loop when a stop or progress needs to see them
+BLOCK_ROWS = 50
 
 
 @dataclass
 class Trace:
-    """Recorded samples: ``rows`` of TRACE values and per-wheel (4,) arrays."""
+    """Recorded samples: blocks of TRACE rows (n, len(TRACE)) and wheel states (n, 9, 4)."""
 
-    rows: list[list[float]] = field(default_factory=list)
-    wheels: dict[str, list[np.ndarray]] = field(
-        default_factory=lambda: {k: [] for k in PER_WHEEL + ACTUATION_WHEEL})
-    actuation: dict[str, list[float]] = field(default_factory=lambda: {k: [] for k in ACTUATION})
-    timings: dict[str, float] = field(default_factory=lambda: {'forces': 0.0, 'multibody': 0.0})
+    blocks: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    #: per recorded row: (ACTUATION values (2,), ACTUATION_WHEEL values (2, 4)); empty when
+    #: the compiled loop ran (no brakes or driveline to report)
+    actuation: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     steps: int = 0
     stop_reason: str = ''
 
+    def append(self, rows: np.ndarray, wheels: np.ndarray) -> None:
+        self.blocks.append((rows, wheels))
+
     def channels(self) -> dict[str, np.ndarray]:
         """Every channel as an array over the samples, plus accelerations (m/s^2)."""
-        data = np.array(self.rows)
+        data = np.concatenate([b[0] for b in self.blocks])
+        wheels = np.concatenate([b[1] for b in self.blocks])
         out = {name: data[:, i] for i, name in enumerate(TRACE)}
-        for key, values in self.wheels.items():
-            out[key] = np.array(values)
-        for key, scalars in self.actuation.items():
-            out[key] = np.array(scalars)
+        for key, row in _WHEEL_ROW.items():
+            out[key] = np.ascontiguousarray(wheels[:, row, :])
+        if self.actuation:
+            scalars = np.array([a[0] for a in self.actuation])
+            per_wheel = np.array([a[1] for a in self.actuation])
+            for i, key in enumerate(ACTUATION):
+                out[key] = scalars[:, i]
+            for i, key in enumerate(ACTUATION_WHEEL):
+                out[key] = per_wheel[:, i, :]
         t = out['time']
         if t.size >= 3:
             ax_w = np.gradient(out['cog_velocity_x'], t)
@@ -71,11 +100,9 @@ class Trace:
 
 
 def observe(model: VehicleModel, q: np.ndarray, v: np.ndarray, t: float) -> Observation:
-    rot = pin.Quaternion(q[6], q[3], q[4], q[5]).toRotationMatrix()
-    vw = rot @ v[0:3]
-    return Observation(t=t, x=float(q[0]), y=float(q[1]),
-                       yaw=math.atan2(rot[1, 0], rot[0, 0]), speed=math.hypot(vw[0], vw[1]),
-                       course=math.atan2(vw[1], vw[0]))
+    yaw, speed, course = observation(q, v)
+    return Observation(t=t, x=float(q[0]), y=float(q[1]), yaw=float(yaw), speed=float(speed),
+                       course=float(course))
 
 
 def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver | None,
@@ -83,78 +110,108 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
              record_every: int = 10, h: float = STEP, drive_front: float = 0.5,
              brake_front: float = 0.65,
              stop: Callable[[dict[str, float]], str] | None = None,
-             progress: Callable[[float, str], None] | None = None) -> Trace:
-    """Integrate from straight-ahead motion at ``initial_speed`` (module doc)."""
+             progress: Callable[[float, str], None] | None = None,
+             compiled_loop: bool = True) -> Trace:
+    """
+    Integrate from straight-ahead motion at ``initial_speed`` (module doc).
+
+    ``compiled_loop`` False asks the drivers step by step in Python whatever they are.
+    """
     q, v = model.initial_state(initial_speed, initial_yaw_rate)
+    cog = np.array(model.config.group('mass').point('sprung_cog'), dtype=float)
+    n_steps = int(round(duration / h))
+    chassis = model.chassis
+    run = (_open_loop if compiled_loop and isinstance(steering, OpenLoopSteering)
+           and (speed is None or type(speed) is SpeedController)
+           and chassis.brakes is None and chassis.driveline is None else _per_step)
+    return run(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
+               record_every=record_every, drive_front=drive_front, brake_front=brake_front,
+               stop=stop, progress=progress)
+
+
+def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
+              drive_front, brake_front, stop, progress) -> Trace:
+    trace = Trace()
     slip = np.zeros((2, 4))
     previous = None
-    trace = Trace()
-    cog = np.array(model.config.group('mass').point('sprung_cog'))
-    n_steps = int(round(duration / h))
-    swa = 0.0
-    t_forces = t_mb = 0.0
+    kappa_row = WHEEL_ROWS.index('kappa')
+    last = None  # the previous step's wheel state (its transient slips feed the ABS)
     actuate = WheelTorques(model.chassis, drive_front, brake_front)
     for step in range(n_steps + 1):
         t = step * h
         obs = observe(model, q, v, t)
         swa = steering.steering_wheel_angle(obs, h)
         request = speed.wheel_torque(obs, h) if speed is not None else 0.0
-        kappa = previous.kappa if previous is not None else np.zeros(4)
-        torques = actuate(request, v[7::2], kappa, obs.speed, h)
+        kappa = last[kappa_row] if last is not None else np.zeros(4)
+        torques = actuate(request, np.ascontiguousarray(v[7::2]), kappa, obs.speed, h)
         torque = float(np.sum(torques)) if isinstance(request, Pedals) else float(request)
-        c0 = time.perf_counter()
-        tau, wheel, update = model.forces(q, v, swa, torques, slip, previous, h)
-        c1 = time.perf_counter()
+        q_next, v_next, slip_next, wheel = model.step(q, v, swa, torques, slip, previous, h)
         if step % record_every == 0:
-            row = _row(model, q, v, t, swa, wheel, cog, torque)
-            trace.rows.append(row)
-            for key, values in zip(PER_WHEEL, (wheel.fz, wheel.travel, wheel.alpha, wheel.kappa,
-                                               wheel.gamma, wheel.fx, wheel.fy, wheel.steer,
-                                               wheel.mz)):
-                trace.wheels[key].append(values)
-            trace.wheels['brake_pressure'].append(actuate.pressures.copy())
-            trace.wheels['applied_torque'].append(torques)
-            trace.actuation['throttle'].append(actuate.throttle)
-            trace.actuation['gear'].append(float(actuate.gear))
+            row = record_row(q, v, t, swa, wheel, cog, torque)
+            trace.append(row[None], wheel[None])
+            trace.actuation.append((np.array([actuate.throttle, float(actuate.gear)]),
+                                    np.stack([actuate.pressures, torques])))
             if stop is not None:
                 reason = stop(dict(zip(TRACE, row)))
                 if reason:
                     trace.stop_reason = reason
                     break
-            if progress is not None and step % (record_every * 50) == 0:
+            if progress is not None and step % (record_every * BLOCK_ROWS) == 0:
                 progress(step / max(n_steps, 1), 'simulating')
         if step == n_steps:
             break
-        c2 = time.perf_counter()
-        a = model.acceleration(q, v, tau)
-        q, v = model.integrate(q, v, a, h)
-        t_mb += time.perf_counter() - c2
-        t_forces += c1 - c0
-        slip = np.stack([update.kappa_next(v[7::2]), update.alpha])
-        previous = wheel
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+        if not (np.all(np.isfinite(q_next)) and np.all(np.isfinite(v_next))):
             raise SolverError(f'{model.label(event, t + h)}: the state became non-finite')
+        q, v, slip, previous, last = q_next, v_next, slip_next, wheel[PREVIOUS_ROWS], wheel
         trace.steps += 1
-    trace.timings['forces'] = t_forces
-    trace.timings['multibody'] = t_mb
     return trace
 
 
-def _row(model: VehicleModel, q, v, t, swa, wheel, cog, torque) -> list[float]:
-    rot = pin.Quaternion(q[6], q[3], q[4], q[5]).toRotationMatrix()
-    o = v[3:6]  # omega x cog written out: np.cross costs more than the rest of the row
-    v_cog = rot @ (v[0:3] + np.array([o[1] * cog[2] - o[2] * cog[1],
-                                      o[2] * cog[0] - o[0] * cog[2],
-                                      o[0] * cog[1] - o[1] * cog[0]]))
-    yaw = math.atan2(rot[1, 0], rot[0, 0])
-    roll = math.asin(max(-1.0, min(1.0, rot[2, 1])))
-    pitch = -math.asin(max(-1.0, min(1.0, rot[2, 0])))
-    omega_w = rot @ v[3:6]
-    c, s = math.cos(yaw), math.sin(yaw)
-    u = v_cog[0] * c + v_cog[1] * s
-    w = -v_cog[0] * s + v_cog[1] * c
-    return [t, q[0], q[1], yaw, roll, pitch, omega_w[2], math.hypot(u, w), math.atan2(w, u),
-            swa, wheel.steer[0], wheel.steer[1], v_cog[0], v_cog[1], v_cog[2], torque]
+def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
+               drive_front, brake_front, stop, progress) -> Trace:
+    trace = Trace()
+    times = [k * h for k in range(n_steps + 1)]
+    swa = np.ascontiguousarray(steering.schedule(times), dtype=float)
+    if speed is not None:
+        reference = np.array([float(speed.reference(t)) for t in times])
+        reference_next = np.array([float(speed.reference(t + h)) for t in times])
+        gains = np.array([speed.mass, speed.wheel_radius, speed.kp, speed.ki], dtype=float)
+        integral = float(speed._integral)
+    else:
+        reference = reference_next = gains = np.zeros(0)
+        integral = 0.0
+    slip, previous, has_previous = np.zeros((2, 4)), np.zeros((4, 4)), False
+    block = (record_every * BLOCK_ROWS if stop is not None or progress is not None
+             else n_steps + 1)
+    capacity = -(-block // record_every)
+    rows, wheels = np.empty((capacity, ROW_SIZE)), np.empty((capacity, len(WHEEL_ROWS), 4))
+    step = 0
+    while step <= n_steps:
+        if progress is not None:
+            progress(step / max(n_steps, 1), 'simulating')
+        first = step
+        q, v, slip, previous, step, n, integral, failed = run_open_loop(
+            q, v, slip, previous, has_previous, first, min(first + block, n_steps + 1),
+            n_steps, record_every, h, swa, reference, reference_next, gains, integral,
+            drive_front, brake_front, model.arrays, model.vx_floor, model.total_mass,
+            model.options.road, model.options.dampers, model.multibody, cog, rows, wheels)
+        has_previous = step > 0
+        for i in range(n):
+            if stop is not None:
+                reason = stop(dict(zip(TRACE, rows[i])))
+                if reason:
+                    trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
+                    trace.stop_reason = reason
+                    trace.steps = int(round(rows[i, 0] / h))
+                    return trace
+        trace.append(rows[:n].copy(), wheels[:n].copy())
+        if failed >= 0:
+            raise SolverError(f'{model.label(event, failed * h + h)}: the state became '
+                              'non-finite')
+        trace.steps = min(step, n_steps)
+    if speed is not None:
+        speed._integral = integral
+    return trace
 
 
 __all__ = ['simulate', 'Trace', 'TRACE', 'PER_WHEEL', 'ACTUATION', 'ACTUATION_WHEEL', 'observe']

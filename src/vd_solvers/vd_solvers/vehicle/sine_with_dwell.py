@@ -107,8 +107,8 @@ def _sine_run(model: VehicleModel, amplitude: float, direction: int) -> Trace:
     end = STEER_START + 1.0 / FREQUENCY + DWELL
     duration = end + rule.YAW_TIMES[1] + RECORD_MARGIN
     steering = OpenLoopSteering(
-        lambda t: float(rule.sine_with_dwell(np.array([t]), amplitude, direction,
-                                             STEER_START, FREQUENCY, DWELL)[0]))
+        lambda t: rule.sine_with_dwell(t, amplitude, direction, STEER_START, FREQUENCY, DWELL),
+        vectorized=True)
     return simulate(model, steering, None, duration, event='sine_with_dwell',
                     initial_speed=SWD_SPEED, record_every=RECORD_EVERY)
 
