@@ -65,6 +65,13 @@ Combined slip ([P] 4.E50-4.E67)
     USE_MODE (last digit) 3 evaluates uncombined (Gxa = Gyk = 1, SVyk = 0, no kappa in Mz),
     1 gives Fx and My only, 2 Fy, Mx and Mz only, 4 combined, 5 combined with turn slip.
 
+Road friction ([P] 4.E7 with its lambda*_mu; MF-Tyre's road friction factor)
+    A road of friction mu_road (``road``, per wheel, 1 by default: the friction the tire was
+    measured on) enters as lambda*_mu = LMU mu_road: LMUX and LMUY are multiplied by mu_road
+    wherever they appear here, i.e. in mux and SVx, in muy, SVy and SVyg (and so in SVyk and
+    the turn-slip moment through muy), in the LKY/LMUY of Bt and Br, and in Dr. The
+    slip-speed decay of [P] 4.E7 (LMUV) is not modelled, so lambda*_mu = LMU mu_road.
+
 Aligning moment ([P] 4.E31-4.E49 pure; 4.E71-4.E78, [B] A54-A56 combined)
     Mz = -t Fy' + Mzr + s Fx
     t = Dt cos(Ct atan(Bt at,eq - Et (Bt at,eq - atan(Bt at,eq)))) cos alpha          (4.E73)
@@ -178,9 +185,13 @@ changes nothing.
 
 Speed
 -----
-Every evaluation is module-level arithmetic on numpy arrays and one float vector of
+Every equation is written once, as a function of one wheel's floats and one float vector of
 coefficients (``_p``, indexed by the module constants below): no Python objects, no
-dictionary look-ups per call, so the same functions can be compiled as they are.
+dictionary look-ups, no temporary arrays per call. :func:`wheel_forces` is the one-wheel
+kernel; :func:`four_wheel_forces` calls it for the compiled vehicle step, and
+:func:`combined_forces` and every :class:`MagicFormula` method loop over arrays of wheels
+and call the same functions, so compiled (:mod:`vd_solvers.compiled`) a call allocates its
+outputs only.
 """
 
 from __future__ import annotations
@@ -197,7 +208,8 @@ from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
 __all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces',
-           'combined_forces', 'radii_at', 'relaxation_at', 'slip_stiffness_at', 'wheel_forces']
+           'combined_forces', 'four_wheel_forces', 'radii_at', 'relaxation_at',
+           'slip_stiffness_at', 'wheel_forces']
 
 #: Formats evaluated here (TireProperties.file_format).
 _FORMATS: Final[tuple[str, ...]] = ('PAC2002', 'MF52', 'MF61', 'MF62')
@@ -1109,6 +1121,26 @@ def wheel_forces(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: fl
     fx, fy, mx, my, mz = _steady_state(p, fz, kappa, mirror * alpha, mirror * gamma, vx,
                                        mirror * phit, road)
     return fx, mirror * fy, mirror * mx, my, mirror * mz
+
+
+@jit
+def four_wheel_forces(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
+                      alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray,
+                      mirror: np.ndarray, road: np.ndarray | float = 1.0) -> np.ndarray:
+    """
+    (5, 4) Fx, Fy, Mx, My, Mz of a car's wheels FL FR RL RR, ``front`` tire on FL FR.
+
+    Inputs (4,) as :func:`wheel_forces` takes them per wheel (no turn slip); ``road`` per
+    wheel or for all. The evaluation of the compiled vehicle step: one output array.
+    """
+    friction = np.empty(4)
+    friction[:] = road
+    out = np.empty((5, 4))
+    for w in range(4):
+        p = front if w < 2 else rear
+        out[0, w], out[1, w], out[2, w], out[3, w], out[4, w] = wheel_forces(
+            p, fz[w], kappa[w], alpha[w], gamma[w], vx[w], mirror[w], 0.0, friction[w])
+    return out
 
 
 # --- the same equations over arrays of wheels (the numpy interface) -----------------

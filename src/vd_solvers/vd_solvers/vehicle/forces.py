@@ -6,7 +6,7 @@ The full vehicle's force evaluation of one step, as one compiled function on arr
 :func:`vehicle_forces` is the physics of :meth:`.model.VehicleModel.forces` (the equations
 are stated in :mod:`.model`'s doc): wheel kinematics from the body state, steer and camber
 from the suspension maps and the compliances, tire loads, slips and their first-order
-transients, the Magic Formula (:func:`vd_solvers.tire.magic_formula.wheel_forces`, the
+transients, the Magic Formula (:func:`vd_solvers.tire.magic_formula.four_wheel_forces`, the
 one implementation), the contact wrenches mapped to the generalised forces, the linearly
 implicit wheel spin, springs, anti-roll bars, dampers and jacking. It is compiled with
 numba (:mod:`vd_solvers.compiled`); ``VD_NO_JIT=1`` runs it as Python.
@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vd_solvers.compiled import jit
-from vd_solvers.tire.magic_formula import radii_at, relaxation_at, wheel_forces
+from vd_solvers.tire.magic_formula import four_wheel_forces, radii_at, relaxation_at
 
 from .maps import grid_lookup, half_difference
 
@@ -135,14 +135,7 @@ def wheel_tires(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.n
     ``road`` is the road friction per wheel (or for all), the factor on the tire's LMUX and
     LMUY (:mod:`vd_solvers.tire.magic_formula`, "Road friction"); 1 is the tire's own.
     """
-    friction = np.empty(4)
-    friction[:] = road
-    out = np.empty((5, 4))
-    for w in range(4):
-        p = front if w < 2 else rear
-        out[0, w], out[1, w], out[2, w], out[3, w], out[4, w] = wheel_forces(
-            p, fz[w], kappa[w], alpha[w], gamma[w], vx[w], mirror[w], 0.0, friction[w])
-    return out
+    return four_wheel_forces(front, rear, fz, kappa, alpha, gamma, vx, mirror, road)
 
 
 @jit
