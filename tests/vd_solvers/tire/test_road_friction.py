@@ -86,7 +86,8 @@ def test_road_friction_is_lmux_and_lmuy_scaled_in_the_mf6_equations(name: str) -
     turn = name.endswith('turn_slip')
     phit = 0.04 if turn else 0.0
     fz, kappa, alpha, gamma, road = _grid(props)
-    got = MagicFormula(props).steady_state(fz, kappa, alpha, gamma, SPEED, phit=phit, road=road)
+    got = MagicFormula(props).steady_state(fz, kappa, alpha, gamma, SPEED, phit=phit,
+                                           road_friction=road)
     for i in range(fz.size):
         ref = Mf6(_scaled(props, road[i]), turn_slip=turn)
         want = ref.evaluate(fz[i], kappa[i], alpha[i], gamma[i], SPEED, phit)
@@ -99,7 +100,7 @@ def test_road_friction_is_lmux_and_lmuy_scaled_in_the_mf6_equations(name: str) -
 def test_road_friction_is_lmux_and_lmuy_scaled_in_the_pac2002_equations(path: str) -> None:
     props = read_tir(DATA_DIR / path)
     fz, kappa, alpha, gamma, road = _grid(props)
-    got = MagicFormula(props).steady_state(fz, kappa, alpha, gamma, SPEED, road=road)
+    got = MagicFormula(props).steady_state(fz, kappa, alpha, gamma, SPEED, road_friction=road)
     for i in range(fz.size):
         want = pac2002_reference(_scaled(props, road[i]), fz[i], kappa[i], alpha[i], gamma[i],
                                  SPEED)

@@ -66,11 +66,11 @@ Combined slip ([P] 4.E50-4.E67)
     1 gives Fx and My only, 2 Fy, Mx and Mz only, 4 combined, 5 combined with turn slip.
 
 Road friction ([P] 4.E7 with its lambda*_mu; MF-Tyre's road friction factor)
-    A road of friction mu_road (``road``, per wheel, 1 by default: the friction the tire was
-    measured on) enters as lambda*_mu = LMU mu_road: LMUX and LMUY are multiplied by mu_road
-    wherever they appear here, i.e. in mux and SVx, in muy, SVy and SVyg (and so in SVyk and
-    the turn-slip moment through muy), in the LKY/LMUY of Bt and Br, and in Dr. The
-    slip-speed decay of [P] 4.E7 (LMUV) is not modelled, so lambda*_mu = LMU mu_road.
+    A road of friction mu_road (``road_friction``, per wheel, 1 by default: the friction the
+    tire was measured on) enters as lambda*_mu = LMU mu_road: LMUX and LMUY are multiplied by
+    mu_road wherever they appear here, i.e. in mux and SVx, in muy, SVy and SVyg (and so in
+    SVyk and the turn-slip moment through muy), in the LKY/LMUY of Bt and Br, and in Dr.
+    The slip-speed decay of [P] 4.E7 (LMUV) is not modelled, so lambda*_mu = LMU mu_road.
 
 Aligning moment ([P] 4.E31-4.E49 pure; 4.E71-4.E78, [B] A54-A56 combined)
     Mz = -t Fy' + Mzr + s Fx
@@ -119,6 +119,9 @@ Radii and vertical stiffness ([B] eqs. 1, 4, 5, 7; [P] A3.3; [M] for 6.2)
     influence, the camber shift Sfyg (Q_FYS1-3) of Fy, and (vd's reading of the 6.2
     parameter definitions) bottoming: BOTTOM_STIFF times the deflection beyond
     R_omega - RIM_RADIUS - BOTTOM_OFFST.
+    The full vehicle's tire (:func:`four_wheel_springs`) is this curve, all of it, for MF 6.x
+    files, at the wheel's deflection R0 - R_l (rho = R_omega - R_l), spin, camber and its
+    previous step's Fx, Fy; for PAC2002 / MF 5.2 files it is the linear Fz = Cz (R0 - R_l).
 
 Relaxation lengths
     sigma_kappa = Fz (PTX1 + PTX2 dfz) exp(-PTX3 dfz)(R0/Fz0') LSGKP                   [5]
@@ -208,8 +211,8 @@ from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
 __all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces',
-           'combined_forces', 'four_wheel_forces', 'radii_at', 'relaxation_at',
-           'slip_stiffness_at', 'wheel_forces']
+           'combined_forces', 'four_wheel_forces', 'four_wheel_springs', 'radii_at',
+           'relaxation_at', 'slip_stiffness_at', 'wheel_forces']
 
 #: Formats evaluated here (TireProperties.file_format).
 _FORMATS: Final[tuple[str, ...]] = ('PAC2002', 'MF52', 'MF61', 'MF62')
@@ -503,20 +506,20 @@ class MagicFormula:
     def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike,
                      gamma: ArrayLike = 0.0, vx: ArrayLike = 0.0,
                      mirror: ArrayLike | None = None, phit: ArrayLike = 0.0,
-                     road: ArrayLike = 1.0) -> TireForces:
+                     road_friction: ArrayLike = 1.0) -> TireForces:
         """
         Combined-slip forces and moments (module doc), file (TYDEX) convention.
 
         ``fz`` N, ``kappa`` -, ``alpha``/``gamma`` rad, ``vx`` m/s (rolling resistance
         only), ``phit`` 1/m (turn slip, used where USE_MODE asks for it). ``mirror`` (+1 as
         measured, -1 mirrored, per element) overrides the mounting side given at
-        construction, so the four wheels of a car are one call. ``road`` is the road
-        friction, a factor on LMUX and LMUY (module doc, "Road friction"), per element.
+        construction, so the four wheels of a car are one call. ``road_friction`` is the
+        road friction, a factor on LMUX and LMUY (module doc, "Road friction"), per element.
         Off the ground (Fz <= 0) every output is 0.
         """
         shape, (fz_, kappa_, alpha_, gamma_, vx_, s, phit_, road_) = _flat(
             fz, kappa, alpha, gamma, vx, self._mirror if mirror is None else mirror, phit,
-            road)
+            road_friction)
         forces = combined_forces(self._p, fz_, kappa_, alpha_, gamma_, vx_, s, phit_, road_)
         return TireForces(*(f.reshape(shape) for f in forces))
 
@@ -580,6 +583,18 @@ class MagicFormula:
         s = self._mirror
         return _vertical_force_at(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_,
                                   omega_).reshape(shape)
+
+    def deflection(self, fz: ArrayLike, omega: ArrayLike = 0.0) -> np.ndarray:
+        """
+        Return R0 - R_l, m: the deflection of the full vehicle's tire at load ``fz`` N.
+
+        The deflection at which :func:`four_wheel_springs` gives ``fz`` at spin ``omega``
+        (rad/s), Fx = Fy = 0 and no camber: MF 6.x the load-deflection curve (R0 minus
+        :meth:`loaded_radius`), PAC2002 / MF 5.2 Fz / C_z.
+        """
+        self._need_vertical_stiffness()
+        shape, (fz_, omega_) = _flat(fz, omega)
+        return _deflection_at(self._p, np.maximum(fz_, 0.0), omega_).reshape(shape)
 
     def relaxation_lengths(self, fz: ArrayLike,
                            gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -987,6 +1002,29 @@ def _loaded_radius_62(p: np.ndarray, fz: float, gamma: float, fx: float, fy: flo
 
 
 @jit
+def _tire_spring(p: np.ndarray, deflection: float, gamma: float, fx: float, fy: float,
+                 omega: float) -> float:
+    """
+    Fz of the tire at ``deflection`` = R0 - R_l, the full vehicle's vertical tire (module doc).
+
+    MF 6.x: the load-deflection curve of :func:`_vertical_force` at R_omega - R_l; PAC2002 /
+    MF 5.2: the linear C_z (1 + PFZ1 dpi) deflection (negative for a negative deflection).
+    """
+    if p[V6] != 0.0:
+        return _vertical_force(p, deflection + (_free_radius(p, omega) - p[R0]), gamma, fx, fy,
+                               omega)
+    return p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]) * deflection
+
+
+@jit
+def _deflection(p: np.ndarray, fz: float, omega: float) -> float:
+    """R0 - R_l at which :func:`_tire_spring` carries ``fz`` >= 0 at Fx = Fy = 0, no camber."""
+    if p[V6] != 0.0:
+        return p[R0] - _loaded_radius(p, fz, omega, 0.0, 0.0)
+    return fz / (p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]))
+
+
+@jit
 def _relaxation(p: np.ndarray, fz: float, gamma: float) -> tuple[float, float]:
     """(sigma_kappa, sigma_alpha): [5] from PTX/PTY, 6.x from Kxk, Kya and [STRUCTURAL]."""
     dfz = _dfz(p, fz)
@@ -1009,15 +1047,15 @@ def _relaxation(p: np.ndarray, fz: float, gamma: float) -> tuple[float, float]:
 
 @jit
 def _steady_state(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: float,
-                  vx: float, phit: float, road: float
+                  vx: float, phit: float, road_friction: float
                   ) -> tuple[float, float, float, float, float]:
     """
     Combined-slip (Fx, Fy, Mx, My, Mz) in the file frame, load > 0 (module doc).
 
-    ``road`` is the road friction lambda*_mu / LMU ([P] 4.E7; module doc).
+    ``road_friction`` is lambda*_mu / LMU ([P] 4.E7; module doc, "Road friction").
     """
-    lmux = p[LMUX] * road
-    lmuy = p[LMUY] * road
+    lmux = p[LMUX] * road_friction
+    lmuy = p[LMUY] * road_friction
     dfz = _dfz(p, fz)
     gamma_y = gamma * p[LGAY]
     gamma_z = gamma * p[LGAZ]
@@ -1108,38 +1146,58 @@ def _steady_state(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: f
 
 @jit
 def wheel_forces(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: float,
-                 vx: float, mirror: float, phit: float, road: float
+                 vx: float, mirror: float, phit: float, road_friction: float
                  ) -> tuple[float, float, float, float, float]:
     """
     (Fx, Fy, Mx, My, Mz) of one wheel: the kernel of :func:`combined_forces` (floats).
 
-    ``mirror`` +1 as measured, -1 mirrored; ``road`` the road friction (module doc,
+    ``mirror`` +1 as measured, -1 mirrored; ``road_friction`` (module doc,
     "Road friction"), 1 for the file's; 0 everything off the ground (Fz <= 0).
     """
     if not fz > 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0
     fx, fy, mx, my, mz = _steady_state(p, fz, kappa, mirror * alpha, mirror * gamma, vx,
-                                       mirror * phit, road)
+                                       mirror * phit, road_friction)
     return fx, mirror * fy, mirror * mx, my, mirror * mz
 
 
 @jit
 def four_wheel_forces(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
                       alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray,
-                      mirror: np.ndarray, road: np.ndarray | float = 1.0) -> np.ndarray:
+                      mirror: np.ndarray, road_friction: np.ndarray | float = 1.0) -> np.ndarray:
     """
     (5, 4) Fx, Fy, Mx, My, Mz of a car's wheels FL FR RL RR, ``front`` tire on FL FR.
 
-    Inputs (4,) as :func:`wheel_forces` takes them per wheel (no turn slip); ``road`` per
-    wheel or for all. The evaluation of the compiled vehicle step: one output array.
+    Inputs (4,) as :func:`wheel_forces` takes them per wheel (no turn slip); ``road_friction``
+    per wheel or for all. The evaluation of the compiled vehicle step: one output array.
     """
     friction = np.empty(4)
-    friction[:] = road
+    friction[:] = road_friction
     out = np.empty((5, 4))
     for w in range(4):
         p = front if w < 2 else rear
         out[0, w], out[1, w], out[2, w], out[3, w], out[4, w] = wheel_forces(
             p, fz[w], kappa[w], alpha[w], gamma[w], vx[w], mirror[w], 0.0, friction[w])
+    return out
+
+
+@jit
+def four_wheel_springs(front: np.ndarray, rear: np.ndarray, deflection: np.ndarray,
+                       gamma: np.ndarray, fx: np.ndarray, fy: np.ndarray, omega: np.ndarray,
+                       mirror: np.ndarray) -> np.ndarray:
+    """
+    (4,) vertical tire forces of a car's wheels FL FR RL RR, N, ``front`` tire on FL FR.
+
+    ``deflection`` = R0 - R_l (m), ``gamma`` rad, ``fx``, ``fy`` N (the forces of the 6.x
+    stiffening, as :func:`four_wheel_forces` returns them), ``omega`` spin rad/s, ``mirror``
+    per wheel. MF 6.x: the 6.x load-deflection curve (module doc, "Radii and vertical
+    stiffness"); PAC2002 / MF 5.2: the linear C_z (1 + PFZ1 dpi). No damping.
+    """
+    out = np.empty(4)
+    for w in range(4):
+        p = front if w < 2 else rear
+        s = mirror[w]
+        out[w] = _tire_spring(p, deflection[w], s * gamma[w], fx[w], s * fy[w], omega[w])
     return out
 
 
@@ -1149,17 +1207,17 @@ def four_wheel_forces(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa
 @jit
 def combined_forces(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.ndarray,
                     gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray, phit: np.ndarray,
-                    road: np.ndarray | float = 1.0
+                    road_friction: np.ndarray | float = 1.0
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """
     (Fx, Fy, Mx, My, Mz) of :meth:`MagicFormula.steady_state` for coefficients ``p``.
 
-    Arrays (n,); ``mirror`` +1 as measured, -1 mirrored, per element; ``road`` the road
-    friction per element or for all (module doc, "Road friction"); 0 off the ground.
+    Arrays (n,); ``mirror`` +1 as measured, -1 mirrored, per element; ``road_friction`` per
+    element or for all (module doc, "Road friction"); 0 off the ground.
     """
     n = fz.size
     friction = np.empty(n)
-    friction[:] = road
+    friction[:] = road_friction
     fx, fy, mx = np.empty(n), np.empty(n), np.empty(n)
     my, mz = np.empty(n), np.empty(n)
     for i in range(n):
@@ -1252,6 +1310,15 @@ def _vertical_force_at(p: np.ndarray, rho: np.ndarray, gamma: np.ndarray, fx: np
     out = np.empty(rho.size)
     for i in range(rho.size):
         out[i] = _vertical_force(p, rho[i], gamma[i], fx[i], fy[i], omega[i])
+    return out
+
+
+@jit
+def _deflection_at(p: np.ndarray, fz: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """R0 - R_l of :meth:`MagicFormula.deflection`, (n,), loads >= 0."""
+    out = np.empty(fz.size)
+    for i in range(fz.size):
+        out[i] = _deflection(p, fz[i], omega[i])
     return out
 
 

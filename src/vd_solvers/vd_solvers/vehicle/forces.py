@@ -20,7 +20,12 @@ from typing import NamedTuple
 import numpy as np
 
 from vd_solvers.compiled import jit
-from vd_solvers.tire.magic_formula import four_wheel_forces, radii_at, relaxation_at
+from vd_solvers.tire.magic_formula import (
+    four_wheel_forces,
+    four_wheel_springs,
+    radii_at,
+    relaxation_at,
+)
 
 from .maps import grid_lookup, half_difference
 
@@ -128,14 +133,15 @@ def wheel_radii(front: np.ndarray, rear: np.ndarray,
 @jit
 def wheel_tires(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
                 alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray,
-                road: np.ndarray | float = 1.0) -> np.ndarray:
+                road_friction: np.ndarray | float = 1.0) -> np.ndarray:
     """
     (5, 4) Fx, Fy, Mx, My, Mz of the four wheels (file convention, ``mirror`` per wheel).
 
-    ``road`` is the road friction per wheel (or for all), the factor on the tire's LMUX and
-    LMUY (:mod:`vd_solvers.tire.magic_formula`, "Road friction"); 1 is the tire's own.
+    ``road_friction`` is the road friction per wheel (or for all), the factor on the tire's
+    LMUX and LMUY (:mod:`vd_solvers.tire.magic_formula`, "Road friction"); 1 is the tire's
+    own.
     """
-    return four_wheel_forces(front, rear, fz, kappa, alpha, gamma, vx, mirror, road)
+    return four_wheel_forces(front, rear, fz, kappa, alpha, gamma, vx, mirror, road_friction)
 
 
 @jit
@@ -153,7 +159,7 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     (len(UPDATE_ROWS), 4).
     """
     side = c.wheel[0]
-    r0, cz, cd, mirror = c.wheel[1], c.wheel[2], c.wheel[3], c.wheel[4]
+    r0, cd, mirror = c.wheel[1], c.wheel[3], c.wheel[4]
     unsprung, spin_inertia, unsprung_arm = c.wheel[5], c.wheel[6], c.wheel[7]
     slip_stiffness_static, static_load = c.wheel[8], c.wheel[9]
     comp = c.compliance
@@ -214,8 +220,13 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     vy = -v_world[:, 0] * sh + v_world[:, 1] * ch
     height = np.ascontiguousarray(p_world[:, 2])
     if road:
-        fz = np.maximum(cz * (r0 - height) - cd * v_world[:, 2], 0.0)
-        fz = np.where(height < r0, fz, 0.0)
+        # the tire's vertical force at its deflection: the 6.x load-deflection curve (with
+        # the previous step's Fx, Fy) or the linear C_z, plus damping, >= 0 in contact
+        tire_fx = previous[0] if has_previous else np.zeros(4)
+        tire_fy = previous[1] if has_previous else np.zeros(4)
+        spring = four_wheel_springs(c.tire_front, c.tire_rear, r0 - height, gamma, tire_fx,
+                                    tire_fy, spin, mirror)
+        fz = np.where(spring > 0.0, np.maximum(spring - cd * v_world[:, 2], 0.0), 0.0)
     else:
         fz = np.zeros(4)
     r_e = wheel_radii(c.tire_front, c.tire_rear, fz)[1]

@@ -217,8 +217,15 @@ class VehicleModel:
         """
         q = pin.neutral(self.model)
         fz_static = self.static_loads()
+        _, r_e = self.tire_radii(fz_static)
+        # wheel-centre speeds of a body yawing about its origin
+        vx_wheel = speed - yaw_rate * self.wheel_centres[:, 1]
+        spin = vx_wheel / r_e
         # body height and pitch at which the tires carry the static loads at zero travel
-        sink = (self.r0 - fz_static / self.cz) - self.wheel_centres[:, 2]
+        deflection = np.concatenate([self.tires[k // 2].deflection(fz_static[k:k + 2],
+                                                                    spin[k:k + 2])
+                                     for k in (0, 2)])
+        sink = (self.r0 - deflection) - self.wheel_centres[:, 2]
         x_f, x_r = self.wheel_centres[0, 0], self.wheel_centres[2, 0]
         pitch = (sink[2] - sink[0]) / (x_f - x_r)  # ISO pitch: z = q_z - x pitch
         q[2] = sink[0] + pitch * x_f
@@ -229,10 +236,7 @@ class VehicleModel:
         # origin ahead of it sideways at yaw_rate times the distance
         v[1] = yaw_rate * (-self.wheel_centres[2:, 0].mean())
         v[5] = yaw_rate
-        _, r_e = self.tire_radii(fz_static)
-        # wheel-centre speeds of a body yawing about its origin
-        vx_wheel = speed - yaw_rate * self.wheel_centres[:, 1]
-        v[7::2] = vx_wheel / r_e
+        v[7::2] = spin
         return q, v
 
     def static_loads(self) -> np.ndarray:
