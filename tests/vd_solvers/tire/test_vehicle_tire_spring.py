@@ -28,11 +28,15 @@ import re
 import numpy as np
 import numpy.testing as npt
 
+from vd_data_server.study import load_study
 from vd_data_server.tir import TireProperties, parse_tir_text, read_tir
 from vd_solvers.tire.magic_formula import MagicFormula, four_wheel_springs
+from vd_solvers.vehicle.model import VehicleModel
+from vd_solvers.vehicle_data import static_wheel_loads
 
 DATA_DIR = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'tires'
 MF62 = DATA_DIR / 'MF62_255_55R20.tir'
+MF62_STUDY = DATA_DIR.parent / 'studies' / 'sedan_mf62.yaml'
 SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
 DEFLECTIONS = (-0.004, 0.001, 0.012, 0.03, 0.1)  # m; 0.1 bottoms the 6.2 sample
 FORCES = ((0.0, 0.0), (4000.0, -2500.0), (-6000.0, 5000.0))  # (Fx, Fy) N
@@ -126,13 +130,30 @@ def test_pac2002_tires_keep_their_linear_stiffness() -> None:
 
 
 def test_the_static_deflection_carries_the_load() -> None:
-    """MagicFormula.deflection (the vehicle's initial state) inverts the spring at Fx = Fy = 0."""
+    """MagicFormula.deflection (the vehicle's initial state) inverts the spring, Fx = Fy = 0."""
     mf62 = MagicFormula(read_tir(MF62))
     sedan = MagicFormula(read_tir(SEDAN))
-    for fz, omega in itertools.product((500.0, 4000.0, 6752.0, 11000.0), SPINS):
+    for fz, omega, gamma in itertools.product((500.0, 4000.0, 6752.0, 11000.0), SPINS,
+                                              (0.0, -0.03, 0.05)):
         for tire in (mf62, sedan):
-            deflection = float(tire.deflection(fz, omega))
-            npt.assert_allclose(_four(tire, tire, deflection, 0.0, 0.0, 0.0, omega), fz,
+            deflection = float(tire.deflection(fz, omega, gamma))
+            npt.assert_allclose(_four(tire, tire, deflection, gamma, 0.0, 0.0, omega), fz,
                                 rtol=1e-12)
     # PAC2002: Fz / C_z, the linear deflection
     assert float(sedan.deflection(4000.0)) == 4000.0 / sedan.vertical_stiffness
+
+
+def test_the_car_on_mf62_tires_starts_on_its_static_loads() -> None:
+    """
+    The initial state of the sedan on the MF 6.2 sample (with its static camber) is at rest.
+
+    Its tires carry the static wheel loads through the 6.2 curve, camber included.
+    """
+    for name in ('mf62', 'mf62_low_pressure'):
+        config = load_study(MF62_STUDY).configurations[name]
+        vehicle = VehicleModel(config)
+        q, v = vehicle.initial_state(0.0)
+        _, wheel, _ = vehicle.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, 0.005)
+        assert np.all(np.abs(wheel.gamma) > 0.005)  # the static camber enters
+        front, rear = static_wheel_loads(config)
+        npt.assert_allclose(wheel.fz, [front, front, rear, rear], rtol=1e-6)

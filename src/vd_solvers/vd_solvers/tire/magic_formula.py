@@ -584,17 +584,20 @@ class MagicFormula:
         return _vertical_force_at(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_,
                                   omega_).reshape(shape)
 
-    def deflection(self, fz: ArrayLike, omega: ArrayLike = 0.0) -> np.ndarray:
+    def deflection(self, fz: ArrayLike, omega: ArrayLike = 0.0,
+                   gamma: ArrayLike = 0.0) -> np.ndarray:
         """
         Return R0 - R_l, m: the deflection of the full vehicle's tire at load ``fz`` N.
 
         The deflection at which :func:`four_wheel_springs` gives ``fz`` at spin ``omega``
-        (rad/s), Fx = Fy = 0 and no camber: MF 6.x the load-deflection curve (R0 minus
-        :meth:`loaded_radius`), PAC2002 / MF 5.2 Fz / C_z.
+        (rad/s), camber ``gamma`` (rad, file convention; it enters MF 6.2 only) and
+        Fx = Fy = 0: MF 6.x the load-deflection curve (R0 minus :meth:`loaded_radius`),
+        PAC2002 / MF 5.2 Fz / C_z.
         """
         self._need_vertical_stiffness()
-        shape, (fz_, omega_) = _flat(fz, omega)
-        return _deflection_at(self._p, np.maximum(fz_, 0.0), omega_).reshape(shape)
+        shape, (fz_, omega_, gamma_) = _flat(fz, omega, gamma)
+        return _deflection_at(self._p, np.maximum(fz_, 0.0), omega_,
+                              self._mirror * gamma_).reshape(shape)
 
     def relaxation_lengths(self, fz: ArrayLike,
                            gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -1017,8 +1020,10 @@ def _tire_spring(p: np.ndarray, deflection: float, gamma: float, fx: float, fy: 
 
 
 @jit
-def _deflection(p: np.ndarray, fz: float, omega: float) -> float:
-    """R0 - R_l at which :func:`_tire_spring` carries ``fz`` >= 0 at Fx = Fy = 0, no camber."""
+def _deflection(p: np.ndarray, fz: float, omega: float, gamma: float) -> float:
+    """R0 - R_l at which :func:`_tire_spring` carries ``fz`` >= 0 at Fx = Fy = 0."""
+    if p[V62] != 0.0 and gamma != 0.0:
+        return p[R0] - _loaded_radius_62(p, fz, gamma, 0.0, 0.0, omega)
     if p[V6] != 0.0:
         return p[R0] - _loaded_radius(p, fz, omega, 0.0, 0.0)
     return fz / (p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]))
@@ -1314,11 +1319,12 @@ def _vertical_force_at(p: np.ndarray, rho: np.ndarray, gamma: np.ndarray, fx: np
 
 
 @jit
-def _deflection_at(p: np.ndarray, fz: np.ndarray, omega: np.ndarray) -> np.ndarray:
-    """R0 - R_l of :meth:`MagicFormula.deflection`, (n,), loads >= 0."""
+def _deflection_at(p: np.ndarray, fz: np.ndarray, omega: np.ndarray,
+                   gamma: np.ndarray) -> np.ndarray:
+    """R0 - R_l of :meth:`MagicFormula.deflection` (file frame), (n,), loads >= 0."""
     out = np.empty(fz.size)
     for i in range(fz.size):
-        out[i] = _deflection(p, fz[i], omega[i])
+        out[i] = _deflection(p, fz[i], omega[i], gamma[i])
     return out
 
 
