@@ -49,6 +49,8 @@ def _tire(mf: MagicFormula) -> None:
     if mf.vertical_stiffness > 0.0:
         mf.radii(fz)
         mf.loaded_radius(fz)
+        mf.deflection(fz, slip)
+        mf.vertical_force(slip, slip, slip, slip, slip)
 
 
 def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:

@@ -292,7 +292,8 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{ss['yaw_rate_error_pct']:.2f} % of steady", ''),
         ('  per step', f"{ss['us_per_step']:.0f} us, CPU {ss['cpu_us_per_step']:.0f} us", ''),
         ('    tires (MF, radii, relaxation; 4 wheels)', f"{per['tires_us']:.0f} us", ''),
-        *((f'    Magic Formula per tire, a call of {n} wheels',
+        *((f'    Magic Formula per tire, '
+           f"{f'a call of {n} wheels' if n.isdigit() else f'4 wheels in the {n}'}",
            f"compiled {mf['compiled'][n]:.2f} us, numpy {mf['numpy'][n]:.1f} us "
            f"({mf['numpy'][n] / mf['compiled'][n]:.0f}x)", 'compiled under 1 us')
           for n in mf.get('compiled', {})),

@@ -65,6 +65,13 @@ Combined slip ([P] 4.E50-4.E67)
     USE_MODE (last digit) 3 evaluates uncombined (Gxa = Gyk = 1, SVyk = 0, no kappa in Mz),
     1 gives Fx and My only, 2 Fy, Mx and Mz only, 4 combined, 5 combined with turn slip.
 
+Road friction ([P] 4.E7 with its lambda*_mu; MF-Tyre's road friction factor)
+    A road of friction mu_road (``road_friction``, per wheel, 1 by default: the friction the
+    tire was measured on) enters as lambda*_mu = LMU mu_road: LMUX and LMUY are multiplied by
+    mu_road wherever they appear here, i.e. in mux and SVx, in muy, SVy and SVyg (and so in
+    SVyk and the turn-slip moment through muy), in the LKY/LMUY of Bt and Br, and in Dr.
+    The slip-speed decay of [P] 4.E7 (LMUV) is not modelled, so lambda*_mu = LMU mu_road.
+
 Aligning moment ([P] 4.E31-4.E49 pure; 4.E71-4.E78, [B] A54-A56 combined)
     Mz = -t Fy' + Mzr + s Fx
     t = Dt cos(Ct atan(Bt at,eq - Et (Bt at,eq - atan(Bt at,eq)))) cos alpha          (4.E73)
@@ -112,6 +119,9 @@ Radii and vertical stiffness ([B] eqs. 1, 4, 5, 7; [P] A3.3; [M] for 6.2)
     influence, the camber shift Sfyg (Q_FYS1-3) of Fy, and (vd's reading of the 6.2
     parameter definitions) bottoming: BOTTOM_STIFF times the deflection beyond
     R_omega - RIM_RADIUS - BOTTOM_OFFST.
+    The full vehicle's tire (:func:`four_wheel_springs`) is this curve, all of it, for MF 6.x
+    files, at the wheel's deflection R0 - R_l (rho = R_omega - R_l), spin, camber and its
+    previous step's Fx, Fy; for PAC2002 / MF 5.2 files it is the linear Fz = Cz (R0 - R_l).
 
 Relaxation lengths
     sigma_kappa = Fz (PTX1 + PTX2 dfz) exp(-PTX3 dfz)(R0/Fz0') LSGKP                   [5]
@@ -178,9 +188,13 @@ changes nothing.
 
 Speed
 -----
-Every evaluation is module-level arithmetic on numpy arrays and one float vector of
+Every equation is written once, as a function of one wheel's floats and one float vector of
 coefficients (``_p``, indexed by the module constants below): no Python objects, no
-dictionary look-ups per call, so the same functions can be compiled as they are.
+dictionary look-ups, no temporary arrays per call. :func:`wheel_forces` is the one-wheel
+kernel; :func:`four_wheel_forces` calls it for the compiled vehicle step, and
+:func:`combined_forces` and every :class:`MagicFormula` method loop over arrays of wheels
+and call the same functions, so compiled (:mod:`vd_solvers.compiled`) a call allocates its
+outputs only.
 """
 
 from __future__ import annotations
@@ -197,7 +211,8 @@ from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
 __all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces',
-           'combined_forces', 'radii_at', 'relaxation_at', 'slip_stiffness_at']
+           'combined_forces', 'four_wheel_forces', 'four_wheel_springs', 'radii_at',
+           'relaxation_at', 'slip_stiffness_at', 'wheel_forces']
 
 #: Formats evaluated here (TireProperties.file_format).
 _FORMATS: Final[tuple[str, ...]] = ('PAC2002', 'MF52', 'MF61', 'MF62')
@@ -434,10 +449,7 @@ class MagicFormula:
     def fy(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure-slip lateral force Fy0, N, file (TYDEX) convention: alpha > 0 gives Fy < 0."""
         shape, (fz_, alpha_, gamma_) = _flat(fz, alpha, gamma)
-        s = self._mirror
-        loaded, fz_e = _loaded(self._p, fz_)
-        force = s * _pure_lateral(self._p, fz_e, s * alpha_, s * gamma_)
-        return np.where(loaded, force, 0.0).reshape(shape)
+        return _pure_lateral_at(self._p, fz_, alpha_, gamma_, self._mirror).reshape(shape)
 
     def fy_iso(self, fz: ArrayLike, alpha: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """
@@ -450,10 +462,7 @@ class MagicFormula:
     def fx(self, fz: ArrayLike, kappa: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """Pure-slip longitudinal force Fx0, N; kappa > 0 (driving) gives Fx > 0."""
         shape, (fz_, kappa_, gamma_) = _flat(fz, kappa, gamma)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
-        fx0, _ = _longitudinal(p, fz_e, _dfz(p, fz_e), gamma_ * p[LGAX], kappa_, 1.0)
-        return np.where(loaded, fx0, 0.0).reshape(shape)
+        return _pure_longitudinal_at(self._p, fz_, kappa_, gamma_).reshape(shape)
 
     def cornering_stiffness(self, fz: ArrayLike, gamma: ArrayLike = 0.0) -> np.ndarray:
         """
@@ -463,11 +472,8 @@ class MagicFormula:
         where SH_y = 0 it equals K_y = B C D of the Magic Formula.
         """
         shape, (fz_, gamma_) = _flat(fz, gamma)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
         # d/dalpha [s F(s alpha, s gamma)] = s^2 F'(s alpha, s gamma), and s^2 = 1.
-        slope = _lateral_slope_at_zero(p, fz_e, self._mirror * gamma_)
-        return np.where(loaded, slope, 0.0).reshape(shape)
+        return _cornering_stiffness_at(self._p, fz_, self._mirror * gamma_).reshape(shape)
 
     def slip_stiffness(self, fz: ArrayLike) -> np.ndarray:
         """Longitudinal slip stiffness K_xk = B_x C_x D_x = dFx0/dkappa at kappa = -SH_x, N."""
@@ -481,8 +487,7 @@ class MagicFormula:
         mu_y is the peak of |Fy - SV_y| over alpha (reached for C_y > 1, E_y < 1).
         """
         shape, (fz_, gamma_) = _flat(fz, gamma)
-        p = self._p
-        return _mu_y(p, _dfz(p, fz_), gamma_ * p[LGAY]).reshape(shape)
+        return _peak_lateral_friction_at(self._p, fz_, gamma_).reshape(shape)
 
     def lateral_curvature(self, fz: ArrayLike, gamma: ArrayLike = 0.0,
                           slip_sign: ArrayLike = 0.0) -> np.ndarray:
@@ -494,27 +499,28 @@ class MagicFormula:
         symmetric (odd) fit.
         """
         shape, (fz_, gamma_, sign_) = _flat(fz, gamma, slip_sign)
-        p = self._p
-        s = self._mirror
-        return _ey(p, _dfz(p, fz_), s * gamma_ * p[LGAY], s * sign_).reshape(shape)
+        return _lateral_curvature_at(self._p, fz_, gamma_, sign_, self._mirror).reshape(shape)
 
     # --- combined slip -----------------------------------------------------------------
 
     def steady_state(self, fz: ArrayLike, kappa: ArrayLike, alpha: ArrayLike,
                      gamma: ArrayLike = 0.0, vx: ArrayLike = 0.0,
-                     mirror: ArrayLike | None = None, phit: ArrayLike = 0.0) -> TireForces:
+                     mirror: ArrayLike | None = None, phit: ArrayLike = 0.0,
+                     road_friction: ArrayLike = 1.0) -> TireForces:
         """
         Combined-slip forces and moments (module doc), file (TYDEX) convention.
 
         ``fz`` N, ``kappa`` -, ``alpha``/``gamma`` rad, ``vx`` m/s (rolling resistance
         only), ``phit`` 1/m (turn slip, used where USE_MODE asks for it). ``mirror`` (+1 as
         measured, -1 mirrored, per element) overrides the mounting side given at
-        construction, so the four wheels of a car are one call. Off the ground (Fz <= 0)
-        every output is 0.
+        construction, so the four wheels of a car are one call. ``road_friction`` is the
+        road friction, a factor on LMUX and LMUY (module doc, "Road friction"), per element.
+        Off the ground (Fz <= 0) every output is 0.
         """
-        shape, (fz_, kappa_, alpha_, gamma_, vx_, s, phit_) = _flat(
-            fz, kappa, alpha, gamma, vx, self._mirror if mirror is None else mirror, phit)
-        forces = combined_forces(self._p, fz_, kappa_, alpha_, gamma_, vx_, s, phit_)
+        shape, (fz_, kappa_, alpha_, gamma_, vx_, s, phit_, road_) = _flat(
+            fz, kappa, alpha, gamma, vx, self._mirror if mirror is None else mirror, phit,
+            road_friction)
+        forces = combined_forces(self._p, fz_, kappa_, alpha_, gamma_, vx_, s, phit_, road_)
         return TireForces(*(f.reshape(shape) for f in forces))
 
     def pure_aligning_moment(self, fz: ArrayLike, alpha: ArrayLike,
@@ -533,12 +539,8 @@ class MagicFormula:
         torque Mzr is not part of the trail. Off the ground: 0.
         """
         shape, (fz_, gamma_) = _flat(fz, gamma)
-        p = self._p
-        loaded, fz_e = _loaded(p, fz_)
-        gamma_z = self._mirror * gamma_ * p[LGAZ]
-        bt, dt, sht, et = _trail_factors(p, fz_e, _dfz(p, fz_e), gamma_z, 0.0, 1.0)
-        trail = _trail(p, bt, dt, et, sht, np.zeros_like(fz_e))
-        return np.where(loaded, trail, 0.0).reshape(shape)
+        gamma_z = self._mirror * gamma_ * self._p[LGAZ]
+        return _pneumatic_trail_at(self._p, fz_, gamma_z).reshape(shape)
 
     # --- radii, vertical force, relaxation ---------------------------------------------
 
@@ -563,12 +565,9 @@ class MagicFormula:
         """
         self._need_vertical_stiffness()
         shape, (fz_, gamma_, fx_, fy_, omega_) = _flat(fz, gamma, fx, fy, omega)
-        p = self._p
         s = self._mirror
-        fz_ = np.maximum(fz_, 0.0)
-        if p[V62] != 0.0 and (np.any(gamma_ != 0.0) or np.any(fy_ != 0.0)):
-            return _loaded_radius_62(p, fz_, s * gamma_, fx_, s * fy_, omega_).reshape(shape)
-        return _loaded_radius(p, fz_, omega_, fx_, fy_).reshape(shape)
+        return _loaded_radius_at(self._p, np.maximum(fz_, 0.0), s * gamma_, fx_, s * fy_,
+                                 omega_).reshape(shape)
 
     def vertical_force(self, deflection: ArrayLike, gamma: ArrayLike = 0.0,
                        fx: ArrayLike = 0.0, fy: ArrayLike = 0.0,
@@ -582,8 +581,23 @@ class MagicFormula:
         self._need_vertical_stiffness()
         shape, (rho, gamma_, fx_, fy_, omega_) = _flat(deflection, gamma, fx, fy, omega)
         s = self._mirror
-        return _vertical_force(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_,
-                               omega_).reshape(shape)
+        return _vertical_force_at(self._p, np.maximum(rho, 0.0), s * gamma_, fx_, s * fy_,
+                                  omega_).reshape(shape)
+
+    def deflection(self, fz: ArrayLike, omega: ArrayLike = 0.0,
+                   gamma: ArrayLike = 0.0) -> np.ndarray:
+        """
+        Return R0 - R_l, m: the deflection of the full vehicle's tire at load ``fz`` N.
+
+        The deflection at which :func:`four_wheel_springs` gives ``fz`` at spin ``omega``
+        (rad/s), camber ``gamma`` (rad, file convention; it enters MF 6.2 only) and
+        Fx = Fy = 0: MF 6.x the load-deflection curve (R0 minus :meth:`loaded_radius`),
+        PAC2002 / MF 5.2 Fz / C_z.
+        """
+        self._need_vertical_stiffness()
+        shape, (fz_, omega_, gamma_) = _flat(fz, omega, gamma)
+        return _deflection_at(self._p, np.maximum(fz_, 0.0), omega_,
+                              self._mirror * gamma_).reshape(shape)
 
     def relaxation_lengths(self, fz: ArrayLike,
                            gamma: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -655,37 +669,50 @@ def _coefficients(props: TireProperties, pressure: float | None) -> np.ndarray:
     return p
 
 
-# --- the equations (module doc); p is the coefficient vector, every other input an array ---
+# --- the equations (module doc) ------------------------------------------------------
+# Each equation is written once, on floats: p is the coefficient vector, every other input
+# one wheel's value. The array functions further down loop over the wheels and call these;
+# compiled, a loop costs no temporary arrays. ``lmux`` and ``lmuy`` are LMUX and LMUY times
+# the road friction of the wheel ([P] 4.E7, lambda*_mu; module doc, "Road friction").
 
 
 @jit
-def _loaded(p: np.ndarray, fz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Mask of wheels on the ground, and loads safe to evaluate (no 0/0 off the ground)."""
-    loaded = fz > 0.0
-    return loaded, np.where(loaded, fz, p[FZ0P])
+def _at_most_one(x: float) -> float:
+    """min(x, 1) for the curvature factors E <= 1 ([P] 4.E14, 4.E24); nan stays nan."""
+    return _MAX_CURVATURE if x > _MAX_CURVATURE else x
 
 
 @jit
-def _dfz(p: np.ndarray, fz: np.ndarray) -> np.ndarray:
+def _signum(x: float) -> float:
+    """Return sgn x with sgn 0 = 0 (the sgn of [P] 4.E14, 4.E24 and of the rolling moment)."""
+    if x > 0.0:
+        return 1.0
+    if x < 0.0:
+        return -1.0
+    return 0.0 * x  # 0, and nan for nan
+
+
+@jit
+def _sign(x: float) -> float:
+    """Return sgn x with sgn 0 = +1 (equivalent slip angles, [B] A54-A55)."""
+    return -1.0 if x < 0.0 else 1.0
+
+
+@jit
+def _dfz(p: np.ndarray, fz: float) -> float:
     """Return dfz = (Fz - Fz0') / Fz0' ([P] 4.E2a)."""
     return (fz - p[FZ0P]) / p[FZ0P]
 
 
 @jit
-def _magic(b: np.ndarray, c: float, e: np.ndarray, x: np.ndarray | float) -> np.ndarray:
+def _magic(b: float, c: float, e: float, x: float) -> float:
     """C atan(B x - E (B x - atan(B x))): the argument of the Magic Formula's sine / cosine."""
     bx = b * x
     return c * np.arctan(bx - e * (bx - np.arctan(bx)))
 
 
 @jit
-def _sign(x: np.ndarray) -> np.ndarray:
-    """Return sgn x with sgn 0 = +1 (equivalent slip angles, [B] A54-A55)."""
-    return np.where(x < 0.0, -1.0, 1.0)
-
-
-@jit
-def _kxk(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
+def _kxk(p: np.ndarray, fz: float, dfz: float) -> float:
     """Longitudinal slip stiffness Kxk ([P] 4.E15)."""
     dpi = p[DPI]
     return (fz * (p[PKX1] + p[PKX2] * dfz) * np.exp(p[PKX3] * dfz)
@@ -693,68 +720,67 @@ def _kxk(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
 
 
 @jit
-def _longitudinal(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_x: np.ndarray,
-                  kappa: np.ndarray, zeta1: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+def _longitudinal(p: np.ndarray, fz: float, dfz: float, gamma_x: float, kappa: float,
+                  zeta1: float, lmux: float) -> tuple[float, float]:
     """Pure-slip Fx0 and Kxk ([P] 4.E9-4.E18)."""
     dpi = p[DPI]
     cx = p[PCX1] * p[LCX]
     mux = ((p[PDX1] + p[PDX2] * dfz) * (1.0 + p[PPX3] * dpi + p[PPX4] * dpi * dpi)
-           * (1.0 - p[PDX3] * gamma_x * gamma_x) * p[LMUX])
+           * (1.0 - p[PDX3] * gamma_x * gamma_x) * lmux)
     dx = mux * fz * zeta1
     kxk = _kxk(p, fz, dfz)
     bx = kxk / (cx * dx)
     kappa_x = kappa + (p[PHX1] + p[PHX2] * dfz) * p[LHX]
-    ex = np.minimum((p[PEX1] + p[PEX2] * dfz + p[PEX3] * dfz * dfz)
-                    * (1.0 - p[PEX4] * np.sign(kappa_x)) * p[LEX], _MAX_CURVATURE)
-    svx = fz * (p[PVX1] + p[PVX2] * dfz) * p[LVX] * p[LMUX] * zeta1
+    ex = _at_most_one((p[PEX1] + p[PEX2] * dfz + p[PEX3] * dfz * dfz)
+                      * (1.0 - p[PEX4] * _signum(kappa_x)) * p[LEX])
+    svx = fz * (p[PVX1] + p[PVX2] * dfz) * p[LVX] * lmux * zeta1
     return dx * np.sin(_magic(bx, cx, ex, kappa_x)) + svx, kxk
 
 
 @jit
-def _mu_y(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray) -> np.ndarray:
+def _mu_y(p: np.ndarray, dfz: float, gamma_y: float, lmuy: float) -> float:
     """Lateral peak friction muy ([P] 4.E23)."""
     dpi = p[DPI]
     return ((p[PDY1] + p[PDY2] * dfz) * (1.0 + p[PPY3] * dpi + p[PPY4] * dpi * dpi)
-            * (1.0 - p[PDY3] * gamma_y * gamma_y) * p[LMUY])
+            * (1.0 - p[PDY3] * gamma_y * gamma_y) * lmuy)
 
 
 @jit
-def _kya(p: np.ndarray, fz: np.ndarray, gamma_y: ArrayLike, zeta3: ArrayLike) -> np.ndarray:
+def _kya(p: np.ndarray, fz: float, gamma_y: float, zeta3: float) -> float:
     """Cornering stiffness Kya ([P] 4.E25)."""
     dpi = p[DPI]
-    g2 = np.multiply(gamma_y, gamma_y)
-    return (p[PKY1] * p[FZ0P] * (1.0 + p[PPY1] * dpi) * (1.0 - p[PKY3] * np.abs(gamma_y))
+    g2 = gamma_y * gamma_y
+    return (p[PKY1] * p[FZ0P] * (1.0 + p[PPY1] * dpi) * (1.0 - p[PKY3] * abs(gamma_y))
             * np.sin(p[PKY4] * np.arctan(
                 fz / ((p[PKY2] + p[PKY5] * g2) * (1.0 + p[PPY2] * dpi) * p[FZ0P])))
             * zeta3 * p[LKY])
 
 
 @jit
-def _kyg0(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray) -> np.ndarray:
+def _kyg0(p: np.ndarray, fz: float, dfz: float) -> float:
     """Camber stiffness Kyg0 of MF 6.x ([P] 4.E30)."""
     return fz * (p[PKY6] + p[PKY7] * dfz) * (1.0 + p[PPY5] * p[DPI]) * p[LKYC]
 
 
 @jit
-def _ey(p: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray, sign: np.ndarray) -> np.ndarray:
+def _ey(p: np.ndarray, dfz: float, gamma_y: float, sign: float) -> float:
     """Lateral curvature Ey for sgn(alpha_y) = ``sign`` ([P] 4.E24), at most 1."""
-    return np.minimum((p[PEY1] + p[PEY2] * dfz)
-                      * (1.0 + p[PEY5] * gamma_y * gamma_y - (p[PEY3] + p[PEY4] * gamma_y) * sign)
-                      * p[LEY], _MAX_CURVATURE)
+    return _at_most_one((p[PEY1] + p[PEY2] * dfz)
+                        * (1.0 + p[PEY5] * gamma_y * gamma_y
+                           - (p[PEY3] + p[PEY4] * gamma_y) * sign) * p[LEY])
 
 
 @jit
-def _lateral_shifts(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray,
-                    kya: np.ndarray, zeta2: ArrayLike, shyp: ArrayLike
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _lateral_shifts(p: np.ndarray, fz: float, dfz: float, gamma_y: float, kya: float,
+                    zeta2: float, shyp: float, lmuy: float) -> tuple[float, float, float]:
     """
     Return (SHy, SVy, SVyg) ([P] 4.E27-4.E29; [5] for PAC2002 / MF 5.2).
 
     ``shyp`` is the turn-slip shift SHyp of 6.x, applied with zeta0 = 0 when turn slip is
     on (module doc).
     """
-    svyg = fz * (p[PVY3] + p[PVY4] * dfz) * gamma_y * p[LKYC] * p[LMUY] * zeta2
-    svy = fz * (p[PVY1] + p[PVY2] * dfz) * p[LVY] * p[LMUY] * zeta2 + svyg
+    svyg = fz * (p[PVY3] + p[PVY4] * dfz) * gamma_y * p[LKYC] * lmuy * zeta2
+    svy = fz * (p[PVY1] + p[PVY2] * dfz) * p[LVY] * lmuy * zeta2 + svyg
     shy = (p[PHY1] + p[PHY2] * dfz) * p[LHY] + p[PHY3] * gamma_y
     if p[V6] != 0.0:
         if p[TURN] != 0.0:  # zeta0 = 0, zeta4 = 1 + SHyp - SVyg / Kya
@@ -765,33 +791,31 @@ def _lateral_shifts(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.
 
 
 @jit
-def _lateral(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_y: np.ndarray,
-             alpha: np.ndarray, zeta2: ArrayLike, zeta3: ArrayLike, shyp: ArrayLike
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _lateral(p: np.ndarray, fz: float, dfz: float, gamma_y: float, alpha: float,
+             zeta2: float, zeta3: float, shyp: float, lmuy: float
+             ) -> tuple[float, float, float, float, float, float]:
     """Pure-slip Fy0 and its factors (muy, Kya, By, SHy, SVy) ([P] 4.E19-4.E30)."""
     cy = p[PCY1] * p[LCY]
-    mu = _mu_y(p, dfz, gamma_y)
+    mu = _mu_y(p, dfz, gamma_y, lmuy)
     dy = mu * fz * zeta2
     kya = _kya(p, fz, gamma_y, zeta3)
     by = kya / (cy * dy)
-    shy, svy, _ = _lateral_shifts(p, fz, dfz, gamma_y, kya, zeta2, shyp)
+    shy, svy, _ = _lateral_shifts(p, fz, dfz, gamma_y, kya, zeta2, shyp, lmuy)
     alpha_y = alpha + shy
-    ey = _ey(p, dfz, gamma_y, np.sign(alpha_y))
+    ey = _ey(p, dfz, gamma_y, _signum(alpha_y))
     return dy * np.sin(_magic(by, cy, ey, alpha_y)) + svy, mu, kya, by, shy, svy
 
 
 @jit
-def _pure_lateral(p: np.ndarray, fz: np.ndarray, alpha: np.ndarray,
-                  gamma: np.ndarray) -> np.ndarray:
+def _pure_lateral(p: np.ndarray, fz: float, alpha: float, gamma: float) -> float:
     """Fy0 in the file frame: the steady state at kappa = 0, without turn slip input."""
     dfz = _dfz(p, fz)
-    zero = np.zeros_like(fz)
-    _, zeta2, zeta3, _, _, shyp, _, _ = _turn_slip(p, fz, dfz, zero, alpha, gamma, zero)
-    return _lateral(p, fz, dfz, gamma * p[LGAY], alpha, zeta2, zeta3, shyp)[0]
+    _, zeta2, zeta3, _, _, shyp, _, _ = _turn_slip(p, fz, dfz, 0.0, alpha, gamma, 0.0)
+    return _lateral(p, fz, dfz, gamma * p[LGAY], alpha, zeta2, zeta3, shyp, p[LMUY])[0]
 
 
 @jit
-def _lateral_slope_at_zero(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+def _lateral_slope_at_zero(p: np.ndarray, fz: float, gamma: float) -> float:
     """
     dFy0/dalpha at alpha = 0 (x = SHy): D cos(C atan phi) C dphi/dx / (1 + phi^2).
 
@@ -799,15 +823,14 @@ def _lateral_slope_at_zero(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> 
     slope at alpha = 0 is 0 and they enter at their alpha = 0 values.
     """
     dfz = _dfz(p, fz)
-    zero = np.zeros_like(fz)
-    _, zeta2, zeta3, _, _, shyp, _, _ = _turn_slip(p, fz, dfz, zero, zero, gamma, zero)
+    _, zeta2, zeta3, _, _, shyp, _, _ = _turn_slip(p, fz, dfz, 0.0, 0.0, gamma, 0.0)
     gamma_y = gamma * p[LGAY]
     cy = p[PCY1] * p[LCY]
-    dy = _mu_y(p, dfz, gamma_y) * fz * zeta2
+    dy = _mu_y(p, dfz, gamma_y, p[LMUY]) * fz * zeta2
     kya = _kya(p, fz, gamma_y, zeta3)
     by = kya / (cy * dy)
-    x, _, _ = _lateral_shifts(p, fz, dfz, gamma_y, kya, zeta2, shyp)
-    e = _ey(p, dfz, gamma_y, np.sign(x))
+    x, _, _ = _lateral_shifts(p, fz, dfz, gamma_y, kya, zeta2, shyp, p[LMUY])
+    e = _ey(p, dfz, gamma_y, _signum(x))
     bx = by * x
     phi = bx - e * (bx - np.arctan(bx))
     dphi_dx = by * (1.0 - e + e / (1.0 + bx * bx))
@@ -815,32 +838,30 @@ def _lateral_slope_at_zero(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> 
 
 
 @jit
-def _turn_slip(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, kappa: np.ndarray,
-               alpha: np.ndarray, gamma: np.ndarray, phit: np.ndarray
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray,
-                          np.ndarray, np.ndarray, np.ndarray]:
+def _turn_slip(p: np.ndarray, fz: float, dfz: float, kappa: float, alpha: float,
+               gamma: float, phit: float
+               ) -> tuple[float, float, float, float, float, float, float, float]:
     """
     Return (zeta1, zeta2, zeta3, zeta5, zeta6, SHyp, phi, eps_g) (module doc, turn slip).
 
     All ones (and SHyp, phi, eps_g zero) where USE_MODE asks for no turn slip.
     """
-    one = np.ones_like(fz)
     if p[TURN] == 0.0:
-        zero = np.zeros_like(fz)
-        return one, one, one, one, one, zero, zero, zero
+        return 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0
     eps_g = p[PECP1] * (1.0 + p[PECP2] * dfz)
     spin_rate = (1.0 + kappa) * np.cos(alpha) / _effective_radius(p, fz, 0.0)
     phi = phit + (1.0 - eps_g) * np.sin(gamma) * spin_rate
     r0_phi = p[R0] * phi
     zeta1 = np.cos(np.arctan(p[PDXP1] * (1.0 + p[PDXP2] * dfz)
-                             * np.cos(np.arctan(p[PDXP3] * kappa)) * r0_phi))
-    b_yp = p[PDYP1] * (1.0 + p[PDYP2] * dfz) * np.cos(np.arctan(p[PDYP3] * np.tan(alpha)))
-    zeta2 = np.cos(np.arctan(b_yp * (np.abs(r0_phi) + p[PDYP4] * np.sqrt(np.abs(r0_phi)))))
+                               * np.cos(np.arctan(p[PDXP3] * kappa)) * r0_phi))
+    b_yp = (p[PDYP1] * (1.0 + p[PDYP2] * dfz)
+            * np.cos(np.arctan(p[PDYP3] * np.tan(alpha))))
+    zeta2 = np.cos(np.arctan(b_yp * (abs(r0_phi) + p[PDYP4] * np.sqrt(abs(r0_phi)))))
     zeta3 = np.cos(np.arctan(p[PKYP1] * r0_phi * r0_phi))
     kya0 = _kya(p, fz, 0.0, zeta3)
     c_hyp = p[PHYP1]
     d_hyp = p[PHYP2] + p[PHYP3] * dfz
-    e_hyp = np.full_like(fz, min(p[PHYP4], _MAX_CURVATURE))
+    e_hyp = _at_most_one(p[PHYP4])
     b_hyp = _kyg0(p, fz, dfz) / ((1.0 - eps_g) * c_hyp * d_hyp * kya0)
     shyp = d_hyp * np.sin(_magic(b_hyp, c_hyp, e_hyp, r0_phi))
     zeta5 = np.cos(np.arctan(p[QDTP1] * r0_phi))
@@ -849,51 +870,59 @@ def _turn_slip(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, kappa: np.ndarray
 
 
 @jit
-def _weight(b: np.ndarray, c: float, e: np.ndarray, slip: np.ndarray,
-            sh: np.ndarray | float) -> np.ndarray:
+def _weight(b: float, c: float, e: float, slip: float, sh: float) -> float:
     """Combined-slip weighting G = cos(magic(slip + SH)) / cos(magic(SH)) ([P] 4.E51, 4.E59)."""
     return np.cos(_magic(b, c, e, slip + sh)) / np.cos(_magic(b, c, e, sh))
 
 
 @jit
-def _trail_factors(p: np.ndarray, fz: np.ndarray, dfz: np.ndarray, gamma_z: np.ndarray,
-                   sht_alpha: ArrayLike, zeta5: ArrayLike
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _trail_factors(p: np.ndarray, fz: float, dfz: float, gamma_z: float, alpha: float,
+                   zeta5: float, lmuy: float) -> tuple[float, float, float, float]:
     """
     Return (Bt, Dt, alpha_t, Et) of the pneumatic trail ([P] 4.E35-4.E44, [B] A58, A60).
 
-    ``sht_alpha`` is the slip angle alpha; alpha_t = alpha + SHt. Et is evaluated at this
-    pure-slip alpha_t ([P] 4.E44), also where the trail is taken at the equivalent angle.
+    alpha_t = ``alpha`` + SHt. Et is evaluated at this pure-slip alpha_t ([P] 4.E44), also
+    where the trail is taken at the equivalent angle.
     """
     dpi = p[DPI]
     bt = ((p[QBZ1] + p[QBZ2] * dfz + p[QBZ3] * dfz * dfz)
-          * (1.0 + p[QBZ4] * gamma_z + p[QBZ5] * np.abs(gamma_z)) * p[LKY] / p[LMUY])
+          * (1.0 + p[QBZ4] * gamma_z + p[QBZ5] * abs(gamma_z)) * p[LKY] / lmuy)
     dt = (fz * (p[QDZ1] + p[QDZ2] * dfz) * (1.0 - p[PPZ1] * dpi)
           * (1.0 + p[QDZ3] * gamma_z + p[QDZ4] * gamma_z * gamma_z)
           * p[R0] / p[FZN] * p[LTR] * zeta5)
-    alpha_t = sht_alpha + p[QHZ1] + p[QHZ2] * dfz + (p[QHZ3] + p[QHZ4] * dfz) * gamma_z
+    alpha_t = alpha + p[QHZ1] + p[QHZ2] * dfz + (p[QHZ3] + p[QHZ4] * dfz) * gamma_z
     ct = p[QCZ1]
-    et = np.minimum((p[QEZ1] + p[QEZ2] * dfz + p[QEZ3] * dfz * dfz)
-                    * (1.0 + (p[QEZ4] + p[QEZ5] * gamma_z) * (2.0 / np.pi)
-                       * np.arctan(bt * ct * alpha_t)), _MAX_CURVATURE)
+    et = _at_most_one((p[QEZ1] + p[QEZ2] * dfz + p[QEZ3] * dfz * dfz)
+                      * (1.0 + (p[QEZ4] + p[QEZ5] * gamma_z) * (2.0 / np.pi)
+                         * np.arctan(bt * ct * alpha_t)))
     return bt, dt, alpha_t, et
 
 
 @jit
-def _trail(p: np.ndarray, bt: np.ndarray, dt: np.ndarray, et: np.ndarray,
-           alpha_t: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+def _trail(p: np.ndarray, bt: float, dt: float, et: float, alpha_t: float,
+           alpha: float) -> float:
     """Return t = Dt cos(Ct atan(Bt at - Et (Bt at - atan(Bt at)))) cos alpha ([P] 4.E73)."""
     return dt * np.cos(_magic(bt, p[QCZ1], et, alpha_t)) * np.cos(alpha)
 
 
 @jit
-def _equivalent(alpha: np.ndarray, kappa_term: np.ndarray) -> np.ndarray:
+def _equivalent(alpha: float, kappa_term: float) -> float:
     """atan(sqrt(tan^2 alpha + (Kxk/Kya kappa)^2)) sgn(alpha) ([B] A54, A55)."""
-    return np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term * kappa_term)) * _sign(alpha)
+    return (np.arctan(np.sqrt(np.tan(alpha) ** 2 + kappa_term * kappa_term))
+            * _sign(alpha))
 
 
 @jit
-def _effective_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike) -> np.ndarray:
+def _free_radius(p: np.ndarray, omega: float) -> float:
+    """R_omega = R0 (Q_RE0 + Q_V1 (omega R0 / V0)^2) ([B] eq. 1)."""
+    if p[LONGVL] > 0.0:
+        speed = omega * (p[R0] / p[LONGVL])
+        return p[R0] * (p[Q_RE0] + p[Q_V1] * speed * speed)
+    return p[R0] * p[Q_RE0]
+
+
+@jit
+def _effective_radius(p: np.ndarray, fz: float, omega: float) -> float:
     """R_e ([B] eqs. 1, 5, 7)."""
     r_omega = _free_radius(p, omega)
     cz = p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI])
@@ -902,39 +931,31 @@ def _effective_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike) -> np.nda
 
 
 @jit
-def _free_radius(p: np.ndarray, omega: ArrayLike) -> np.ndarray:
-    """R_omega = R0 (Q_RE0 + Q_V1 (omega R0 / V0)^2) ([B] eq. 1)."""
-    if p[LONGVL] > 0.0:
-        speed = np.multiply(omega, p[R0] / p[LONGVL])
-        return p[R0] * (p[Q_RE0] + p[Q_V1] * speed * speed)
-    return p[R0] * p[Q_RE0] + np.multiply(omega, 0.0)
-
-
-@jit
-def _force_factor(p: np.ndarray, omega: ArrayLike, fx: ArrayLike,
-                  fy_term: ArrayLike) -> np.ndarray:
+def _force_factor(p: np.ndarray, omega: float, fx: float, fy_term: float) -> float:
     """Return fc of the vertical force ([P] A3.3, [B] eq. 4): speed, force, pressure terms."""
     scale = p[R0] / p[LONGVL] if p[LONGVL] > 0.0 else 0.0
-    speed = np.abs(np.multiply(omega, scale))
-    fx_term = np.multiply(fx, p[Q_FCX] / p[FNOMIN])
-    return ((1.0 + p[Q_V2] * speed - fx_term * fx_term - np.multiply(fy_term, fy_term))
+    speed = abs(omega * scale)
+    fx_term = fx * (p[Q_FCX] / p[FNOMIN])
+    return ((1.0 + p[Q_V2] * speed - fx_term * fx_term - fy_term * fy_term)
             * (1.0 + p[PFZ1] * p[DPI]))
 
 
 @jit
-def _loaded_radius(p: np.ndarray, fz: np.ndarray, omega: ArrayLike, fx: ArrayLike,
-                   fy: ArrayLike) -> np.ndarray:
+def _loaded_radius(p: np.ndarray, fz: float, omega: float, fx: float, fy: float) -> float:
     """R_omega - rho with rho from Fz = fc (Q_FZ1 x + Q_FZ2 x^2) FNOMIN, x = rho/R0 (6.1)."""
-    fc = _force_factor(p, omega, fx, np.multiply(fy, p[Q_FCY] / p[FNOMIN]))
+    fc = _force_factor(p, omega, fx, fy * (p[Q_FCY] / p[FNOMIN]))
     c = fz / (fc * p[FNOMIN])
     # x = (-Q1 + sqrt(Q1^2 + 4 Q2 c)) / (2 Q2), written without the cancellation
     x = 2.0 * c / (p[Q_FZ1] + np.sqrt(p[Q_FZ1] * p[Q_FZ1] + 4.0 * p[Q_FZ2] * c))
     return _free_radius(p, omega) - x * p[R0]
 
 
-def _vertical_force(p: np.ndarray, rho_free: np.ndarray, gamma: np.ndarray, fx: np.ndarray,
-                    fy: np.ndarray, omega: np.ndarray) -> np.ndarray:
+@jit
+def _vertical_force(p: np.ndarray, rho_free: float, gamma: float, fx: float, fy: float,
+                    omega: float) -> float:
     """Fz at the deflection rho_free = R_omega - R_l ([P] A3.3, [B] eq. 4; 6.2 per [M])."""
+    if not rho_free > 0.0:
+        return 0.0
     r0, fnom = p[R0], p[FNOMIN]
     rho = rho_free
     fy_eff = fy
@@ -944,46 +965,72 @@ def _vertical_force(p: np.ndarray, rho_free: np.ndarray, gamma: np.ndarray, fx: 
         r_l = r_omega - rho_free
         ratio = r_l / r_omega
         fy_eff = fy - (p[Q_FYS1] + p[Q_FYS2] * ratio + p[Q_FYS3] * ratio * ratio) * gamma
-        rho = np.maximum(rho_free + _camber_deflection(p, r_l, r_omega, rho_free, gamma), 0.0)
-        base = np.where(rho > 0.0, rho / r0, 1.0)
-        fy_factor = np.where(rho > 0.0, base ** p[Q_FCY2], 0.0) * p[Q_FCY] / fnom
+        rho = max(rho_free + _camber_deflection(p, r_l, r_omega, rho_free, gamma), 0.0)
+        fy_factor = (rho / r0) ** p[Q_FCY2] * p[Q_FCY] / fnom if rho > 0.0 else 0.0
     x = rho / r0
     fz = (_force_factor(p, omega, fx, fy_factor * fy_eff) * (p[Q_FZ1] * x + p[Q_FZ2] * x * x)
           * fnom)
     if p[BOTTOM_STIFF] > 0.0 and p[RIM_RADIUS] > 0.0:
         start = _free_radius(p, omega) - p[RIM_RADIUS] - p[BOTTOM_OFFST]
-        fz = fz + p[BOTTOM_STIFF] * np.maximum(rho_free - start, 0.0)
-    return np.where(rho_free > 0.0, fz, 0.0)
+        fz = fz + p[BOTTOM_STIFF] * max(rho_free - start, 0.0)
+    return fz
 
 
-def _camber_deflection(p: np.ndarray, r_l: np.ndarray, r_omega: np.ndarray,
-                       rho_free: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+@jit
+def _camber_deflection(p: np.ndarray, r_l: float, r_omega: float, rho_free: float,
+                       gamma: float) -> float:
     """Deflection of the 6.2 tire from camber ([M] calculateFz62: Q_CAM1-3, tread width)."""
     tread = (1.075 - 0.5 * p[ASPECT_RATIO]) * p[WIDTH]
     loaded = p[Q_CAM1] * r_l + p[Q_CAM2] * r_l * r_l
     free = p[Q_CAM1] * r_omega + p[Q_CAM2] * r_omega * r_omega
-    shape = np.where(free != 0.0, loaded / np.where(free != 0.0, free, 1.0), 0.0)
-    return (shape * shape * tread / 8.0 * np.abs(np.tan(gamma))
-            - p[Q_CAM3] * rho_free * np.abs(gamma))
+    shape = loaded / free if free != 0.0 else 0.0
+    return (shape * shape * tread / 8.0 * abs(np.tan(gamma))
+            - p[Q_CAM3] * rho_free * abs(gamma))
 
 
-def _loaded_radius_62(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray, fx: np.ndarray,
-                      fy: np.ndarray, omega: np.ndarray) -> np.ndarray:
+@jit
+def _loaded_radius_62(p: np.ndarray, fz: float, gamma: float, fx: float, fy: float,
+                      omega: float) -> float:
     """R_l of the 6.2 vertical model with camber, by bisection on the deflection."""
-    r_omega = _free_radius(p, omega) + np.zeros_like(fz)
-    low = np.zeros_like(fz)
-    high = r_omega.copy()
+    r_omega = _free_radius(p, omega)
+    low = 0.0
+    high = r_omega
     for _ in range(_RADIUS_ITERATIONS):
         mid = 0.5 * (low + high)
-        above = _vertical_force(p, mid, gamma, fx, fy, omega) > fz
-        high = np.where(above, mid, high)
-        low = np.where(above, low, mid)
+        if _vertical_force(p, mid, gamma, fx, fy, omega) > fz:
+            high = mid
+        else:
+            low = mid
     return r_omega - 0.5 * (low + high)
 
 
 @jit
-def _relaxation(p: np.ndarray, fz: np.ndarray,
-                gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _tire_spring(p: np.ndarray, deflection: float, gamma: float, fx: float, fy: float,
+                 omega: float) -> float:
+    """
+    Fz of the tire at ``deflection`` = R0 - R_l, the full vehicle's vertical tire (module doc).
+
+    MF 6.x: the load-deflection curve of :func:`_vertical_force` at R_omega - R_l; PAC2002 /
+    MF 5.2: the linear C_z (1 + PFZ1 dpi) deflection (negative for a negative deflection).
+    """
+    if p[V6] != 0.0:
+        return _vertical_force(p, deflection + (_free_radius(p, omega) - p[R0]), gamma, fx, fy,
+                               omega)
+    return p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]) * deflection
+
+
+@jit
+def _deflection(p: np.ndarray, fz: float, omega: float, gamma: float) -> float:
+    """R0 - R_l at which :func:`_tire_spring` carries ``fz`` >= 0 at Fx = Fy = 0."""
+    if p[V62] != 0.0 and gamma != 0.0:
+        return p[R0] - _loaded_radius_62(p, fz, gamma, 0.0, 0.0, omega)
+    if p[V6] != 0.0:
+        return p[R0] - _loaded_radius(p, fz, omega, 0.0, 0.0)
+    return fz / (p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]))
+
+
+@jit
+def _relaxation(p: np.ndarray, fz: float, gamma: float) -> tuple[float, float]:
     """(sigma_kappa, sigma_alpha): [5] from PTX/PTY, 6.x from Kxk, Kya and [STRUCTURAL]."""
     dfz = _dfz(p, fz)
     if p[V6] != 0.0:
@@ -992,42 +1039,45 @@ def _relaxation(p: np.ndarray, fz: np.ndarray,
               * (1.0 + p[PCFX3] * dpi))
         cy = (p[LATERAL_STIFFNESS] * (1.0 + p[PCFY1] * dfz + p[PCFY2] * dfz * dfz)
               * (1.0 + p[PCFY3] * dpi))
-        kxk = np.abs(_kxk(p, fz, dfz))
-        kya = np.abs(_kya(p, fz, gamma, 1.0))
-        sigma_k = np.where(cx > 0.0, kxk / np.where(cx > 0.0, cx, 1.0), 0.0)
-        sigma_a = np.where(cy > 0.0, kya / np.where(cy > 0.0, cy, 1.0), 0.0)
+        sigma_k = abs(_kxk(p, fz, dfz)) / cx if cx > 0.0 else 0.0
+        sigma_a = abs(_kya(p, fz, gamma, 1.0)) / cy if cy > 0.0 else 0.0
         return sigma_k, sigma_a
     fz0 = p[FZ0P]
     sigma_k = (fz * (p[PTX1] + p[PTX2] * dfz) * np.exp(-p[PTX3] * dfz) * p[R0] / fz0
                * p[LSGKP])
-    sigma_a = (p[PTY1] * np.sin(2.0 * np.arctan(fz / (p[PTY2] * fz0)))
-               if p[PTY2] != 0.0 else np.zeros_like(fz))
-    sigma_a = sigma_a * (1.0 - p[PKY3] * np.abs(gamma)) * p[R0] * p[LFZO] * p[LSGAL]
+    sigma_a = p[PTY1] * np.sin(2.0 * np.arctan(fz / (p[PTY2] * fz0))) if p[PTY2] != 0.0 else 0.0
+    sigma_a = sigma_a * (1.0 - p[PKY3] * abs(gamma)) * p[R0] * p[LFZO] * p[LSGAL]
     return sigma_k, sigma_a
 
 
 @jit
-def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.ndarray,
-                  gamma: np.ndarray, vx: np.ndarray, phit: np.ndarray
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Combined-slip (Fx, Fy, Mx, My, Mz) in the file frame, loads > 0 (module doc)."""
+def _steady_state(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: float,
+                  vx: float, phit: float, road_friction: float
+                  ) -> tuple[float, float, float, float, float]:
+    """
+    Combined-slip (Fx, Fy, Mx, My, Mz) in the file frame, load > 0 (module doc).
+
+    ``road_friction`` is lambda*_mu / LMU ([P] 4.E7; module doc, "Road friction").
+    """
+    lmux = p[LMUX] * road_friction
+    lmuy = p[LMUY] * road_friction
     dfz = _dfz(p, fz)
     gamma_y = gamma * p[LGAY]
     gamma_z = gamma * p[LGAZ]
-    one = np.ones_like(fz)
     zeta1, zeta2, zeta3, zeta5, zeta6, shyp, phi, eps_g = _turn_slip(p, fz, dfz, kappa, alpha,
                                                                      gamma, phit)
-    fy0, mu_y, kya, by, shy, svy = _lateral(p, fz, dfz, gamma_y, alpha, zeta2, zeta3, shyp)
-    fx0, kxk = _longitudinal(p, fz, dfz, gamma * p[LGAX], kappa, zeta1)
+    fy0, mu_y, kya, by, shy, svy = _lateral(p, fz, dfz, gamma_y, alpha, zeta2, zeta3, shyp,
+                                            lmuy)
+    fx0, kxk = _longitudinal(p, fz, dfz, gamma * p[LGAX], kappa, zeta1, lmux)
     # combined slip ([P] 4.E50-4.E67)
     if p[COMBINED] != 0.0:
         g2 = gamma * gamma
         b_xa = (p[RBX1] + p[RBX3] * g2) * np.cos(np.arctan(p[RBX2] * kappa)) * p[LXAL]
-        e_xa = np.minimum(p[REX1] + p[REX2] * dfz, _MAX_CURVATURE)
+        e_xa = _at_most_one(p[REX1] + p[REX2] * dfz)
         fx = _weight(b_xa, p[RCX1], e_xa, alpha, p[RHX1]) * fx0
         b_yk = ((p[RBY1] + p[RBY4] * g2) * np.cos(np.arctan(p[RBY2] * (alpha - p[RBY3])))
                 * p[LYKA])
-        e_yk = np.minimum(p[REY1] + p[REY2] * dfz, _MAX_CURVATURE)
+        e_yk = _at_most_one(p[REY1] + p[REY2] * dfz)
         g_yk = _weight(b_yk, p[RCY1], e_yk, kappa, p[RHY1] + p[RHY2] * dfz)
         sv_yk = (mu_y * fz * (p[RVY1] + p[RVY2] * dfz + p[RVY3] * gamma)
                  * np.cos(np.arctan(p[RVY4] * alpha)) * zeta2
@@ -1035,43 +1085,41 @@ def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.nd
         kappa_c = kappa
     else:
         fx = fx0
-        g_yk = one
-        sv_yk = np.zeros_like(fz)
-        kappa_c = np.zeros_like(fz)
+        g_yk = 1.0
+        sv_yk = 0.0
+        kappa_c = 0.0
     fy = g_yk * fy0 + sv_yk
     # aligning moment ([P] 4.E31-4.E49, 4.E71-4.E78; [B] A54-A60)
-    ratio = kxk / np.where(kya != 0.0, kya, 1.0) * (kya != 0.0) * kappa_c
-    bt, dt, alpha_t, et = _trail_factors(p, fz, dfz, gamma_z, alpha, zeta5)
+    ratio = kxk / kya * kappa_c if kya != 0.0 else 0.0
+    bt, dt, alpha_t, et = _trail_factors(p, fz, dfz, gamma_z, alpha, zeta5, lmuy)
     t = _trail(p, bt, dt, et, _equivalent(alpha_t, ratio), alpha)
-    alpha_r = alpha + shy + svy / np.where(kya != 0.0, kya, 1.0) * (kya != 0.0)
+    alpha_r = alpha + shy + (svy / kya if kya != 0.0 else 0.0)
     zeta0 = 0.0 if p[TURN] != 0.0 else 1.0
-    zeta7 = zeta8 = one
+    zeta7 = zeta8 = 1.0
     if p[TURN] != 0.0:
-        mz_inf = np.abs(p[QCRP1] * np.abs(mu_y) * p[R0] * fz * np.sqrt(fz / p[FZ0P]) * p[LMP])
+        mz_inf = abs(p[QCRP1] * abs(mu_y) * p[R0] * fz * np.sqrt(fz / p[FZ0P]) * p[LMP])
         c_drp = p[QDRP1]
         d_drp = mz_inf / np.sin(0.5 * np.pi * c_drp)
         kzg_r0 = (fz * p[R0] * (p[QDZ8] + p[QDZ9] * dfz) * (1.0 + p[PPZ2] * p[DPI])
                   * p[LKZC])
         b_drp = kzg_r0 / (c_drp * d_drp * (1.0 - eps_g))
         d_rp = d_drp * np.sin(c_drp * np.arctan(b_drp * p[R0] * phi))
-        mz_90 = mz_inf * (2.0 / np.pi) * np.arctan(p[QCRP2] * p[R0] * np.abs(phit)) * g_yk
-        size = np.abs(d_rp)
-        share = np.where(size > _TINY_MOMENT, mz_90 / np.where(size > _TINY_MOMENT, size, 1.0),
-                         0.0)
-        zeta7 = (2.0 / np.pi) * np.arccos(np.clip(share, -1.0, 1.0))
+        mz_90 = mz_inf * (2.0 / np.pi) * np.arctan(p[QCRP2] * p[R0] * abs(phit)) * g_yk
+        size = abs(d_rp)
+        share = mz_90 / size if size > _TINY_MOMENT else 0.0
+        zeta7 = (2.0 / np.pi) * np.arccos(min(max(share, -1.0), 1.0))
         zeta8 = 1.0 + d_rp
-    b_r = (p[QBZ9] * p[LKY] / p[LMUY] + p[QBZ10] * by * p[PCY1] * p[LCY]) * zeta6
+    b_r = (p[QBZ9] * p[LKY] / lmuy + p[QBZ10] * by * p[PCY1] * p[LCY]) * zeta6
     d_r = (fz * p[R0] * ((p[QDZ6] + p[QDZ7] * dfz) * p[LRES] * zeta2
                          + ((p[QDZ8] + p[QDZ9] * dfz) * (1.0 + p[PPZ2] * p[DPI])
-                            + (p[QDZ10] + p[QDZ11] * dfz) * np.abs(gamma_z))
+                            + (p[QDZ10] + p[QDZ11] * dfz) * abs(gamma_z))
                          * gamma_z * p[LKZC] * zeta0)
-           * p[LMUY] * np.cos(alpha) + zeta8 - 1.0)
+           * lmuy * np.cos(alpha) + zeta8 - 1.0)
     m_zr = d_r * np.cos(zeta7 * np.arctan(b_r * _equivalent(alpha_r, ratio)))
     arm = (p[R0] * (p[SSZ1] + p[SSZ2] * fy / p[FZN] + (p[SSZ3] + p[SSZ4] * dfz) * gamma_z)
            * p[LS])
     if p[V6] != 0.0:  # Fy' = Gyk Fy0 at zero camber ([P] 4.E74)
-        zero = np.zeros_like(fz)
-        fy_lever = g_yk * _lateral(p, fz, dfz, zero, alpha, 1.0, 1.0, 0.0)[0]
+        fy_lever = g_yk * _lateral(p, fz, dfz, 0.0, alpha, 1.0, 1.0, 0.0, lmuy)[0]
     else:
         fy_lever = fy - sv_yk
     mz = -t * fy_lever + m_zr + arm * fx * p[COMBINED]
@@ -1081,15 +1129,15 @@ def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.nd
     couple = (p[QSX1] * p[LVMX] - p[QSX2] * gamma * (1.0 + p[PPMX1] * p[DPI])
               + p[QSX3] * fy / fnom)
     if p[QSX4] != 0.0 or p[QSX10] != 0.0 or p[QSX12] != 0.0:  # terms 0 without them
-        couple = (couple - p[QSX12] * gamma * np.abs(gamma)
+        couple = (couple - p[QSX12] * gamma * abs(gamma)
                   + p[QSX4] * np.cos(p[QSX5] * np.arctan((p[QSX6] * fz / fnom) ** 2))
                   * np.sin(p[QSX7] * gamma + p[QSX8] * np.arctan(p[QSX9] * fy / fnom))
                   + p[QSX10] * np.arctan(p[QSX11] * fz / fnom) * gamma)
     mx = r0 * fz * p[LMX] * couple
     if p[QSX13] != 0.0 or p[QSX14] != 0.0:
-        mx = mx + r0 * fy * p[LMX] * (p[QSX13] + p[QSX14] * np.abs(gamma))
-    v_rel = vx / p[LONGVL] if p[LONGVL] > 0.0 else np.zeros_like(vx)
-    rolling = (p[QSY1] + p[QSY2] * fx / fnom + p[QSY3] * np.abs(v_rel)
+        mx = mx + r0 * fy * p[LMX] * (p[QSX13] + p[QSX14] * abs(gamma))
+    v_rel = vx / p[LONGVL] if p[LONGVL] > 0.0 else 0.0
+    rolling = (p[QSY1] + p[QSY2] * fx / fnom + p[QSY3] * abs(v_rel)
                + p[QSY4] * v_rel ** 4)
     if p[V6] != 0.0:
         load = fz / fnom
@@ -1097,52 +1145,220 @@ def _steady_state(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.nd
                    * load ** p[QSY7] * p[PRATIO] ** p[QSY8] * fnom)
     else:
         rolling = rolling * fz
-    my = -np.sign(vx) * r0 * rolling * p[LMY]
+    my = -_signum(vx) * r0 * rolling * p[LMY]
     return (fx * p[FX_ON], fy * p[FY_ON], mx * p[FY_ON], my * p[FX_ON], mz * p[FY_ON])
 
 
 @jit
+def wheel_forces(p: np.ndarray, fz: float, kappa: float, alpha: float, gamma: float,
+                 vx: float, mirror: float, phit: float, road_friction: float
+                 ) -> tuple[float, float, float, float, float]:
+    """
+    (Fx, Fy, Mx, My, Mz) of one wheel: the kernel of :func:`combined_forces` (floats).
+
+    ``mirror`` +1 as measured, -1 mirrored; ``road_friction`` (module doc,
+    "Road friction"), 1 for the file's; 0 everything off the ground (Fz <= 0).
+    """
+    if not fz > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    fx, fy, mx, my, mz = _steady_state(p, fz, kappa, mirror * alpha, mirror * gamma, vx,
+                                       mirror * phit, road_friction)
+    return fx, mirror * fy, mirror * mx, my, mirror * mz
+
+
+@jit
+def four_wheel_forces(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
+                      alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray,
+                      mirror: np.ndarray, road_friction: np.ndarray | float = 1.0) -> np.ndarray:
+    """
+    (5, 4) Fx, Fy, Mx, My, Mz of a car's wheels FL FR RL RR, ``front`` tire on FL FR.
+
+    Inputs (4,) as :func:`wheel_forces` takes them per wheel (no turn slip); ``road_friction``
+    per wheel or for all. The evaluation of the compiled vehicle step: one output array.
+    """
+    friction = np.empty(4)
+    friction[:] = road_friction
+    out = np.empty((5, 4))
+    for w in range(4):
+        p = front if w < 2 else rear
+        out[0, w], out[1, w], out[2, w], out[3, w], out[4, w] = wheel_forces(
+            p, fz[w], kappa[w], alpha[w], gamma[w], vx[w], mirror[w], 0.0, friction[w])
+    return out
+
+
+@jit
+def four_wheel_springs(front: np.ndarray, rear: np.ndarray, deflection: np.ndarray,
+                       gamma: np.ndarray, fx: np.ndarray, fy: np.ndarray, omega: np.ndarray,
+                       mirror: np.ndarray) -> np.ndarray:
+    """
+    (4,) vertical tire forces of a car's wheels FL FR RL RR, N, ``front`` tire on FL FR.
+
+    ``deflection`` = R0 - R_l (m), ``gamma`` rad, ``fx``, ``fy`` N (the forces of the 6.x
+    stiffening, as :func:`four_wheel_forces` returns them), ``omega`` spin rad/s, ``mirror``
+    per wheel. MF 6.x: the 6.x load-deflection curve (module doc, "Radii and vertical
+    stiffness"); PAC2002 / MF 5.2: the linear C_z (1 + PFZ1 dpi). No damping.
+    """
+    out = np.empty(4)
+    for w in range(4):
+        p = front if w < 2 else rear
+        s = mirror[w]
+        out[w] = _tire_spring(p, deflection[w], s * gamma[w], fx[w], s * fy[w], omega[w])
+    return out
+
+
+# --- the same equations over arrays of wheels (the numpy interface) -----------------
+
+
+@jit
 def combined_forces(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray, alpha: np.ndarray,
-                    gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray, phit: np.ndarray
+                    gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray, phit: np.ndarray,
+                    road_friction: np.ndarray | float = 1.0
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """
     (Fx, Fy, Mx, My, Mz) of :meth:`MagicFormula.steady_state` for coefficients ``p``.
 
-    Arrays (n,); ``mirror`` +1 as measured, -1 mirrored, per element; 0 off the ground.
+    Arrays (n,); ``mirror`` +1 as measured, -1 mirrored, per element; ``road_friction`` per
+    element or for all (module doc, "Road friction"); 0 off the ground.
     """
-    loaded, fz_e = _loaded(p, fz)
-    fx, fy, mx, my, mz = _steady_state(p, fz_e, kappa, mirror * alpha, mirror * gamma, vx,
-                                       mirror * phit)
-    return (np.where(loaded, fx, 0.0), np.where(loaded, mirror * fy, 0.0),
-            np.where(loaded, mirror * mx, 0.0), np.where(loaded, my, 0.0),
-            np.where(loaded, mirror * mz, 0.0))
+    n = fz.size
+    friction = np.empty(n)
+    friction[:] = road_friction
+    fx, fy, mx = np.empty(n), np.empty(n), np.empty(n)
+    my, mz = np.empty(n), np.empty(n)
+    for i in range(n):
+        fx[i], fy[i], mx[i], my[i], mz[i] = wheel_forces(
+            p, fz[i], kappa[i], alpha[i], gamma[i], vx[i], mirror[i], phit[i], friction[i])
+    return fx, fy, mx, my, mz
+
+
+@jit
+def _pure_lateral_at(p: np.ndarray, fz: np.ndarray, alpha: np.ndarray, gamma: np.ndarray,
+                     s: float) -> np.ndarray:
+    """Fy0 of :meth:`MagicFormula.fy` (mirrored by ``s``), (n,), 0 off the ground."""
+    out = np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            out[i] = s * _pure_lateral(p, fz[i], s * alpha[i], s * gamma[i])
+    return out
+
+
+@jit
+def _pure_longitudinal_at(p: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
+                          gamma: np.ndarray) -> np.ndarray:
+    """Fx0 of :meth:`MagicFormula.fx`, (n,), 0 off the ground."""
+    out = np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            out[i] = _longitudinal(p, fz[i], _dfz(p, fz[i]), gamma[i] * p[LGAX], kappa[i],
+                                   1.0, p[LMUX])[0]
+    return out
+
+
+@jit
+def _cornering_stiffness_at(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+    """dFy0/dalpha at alpha = 0, (n,), 0 off the ground."""
+    out = np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            out[i] = _lateral_slope_at_zero(p, fz[i], gamma[i])
+    return out
+
+
+@jit
+def _peak_lateral_friction_at(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+    """mu_y ([P] 4.E23), (n,)."""
+    out = np.empty(fz.size)
+    for i in range(fz.size):
+        out[i] = _mu_y(p, _dfz(p, fz[i]), gamma[i] * p[LGAY], p[LMUY])
+    return out
+
+
+@jit
+def _lateral_curvature_at(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray,
+                          sign: np.ndarray, s: float) -> np.ndarray:
+    """E_y of :meth:`MagicFormula.lateral_curvature` (mirrored by ``s``), (n,)."""
+    out = np.empty(fz.size)
+    for i in range(fz.size):
+        out[i] = _ey(p, _dfz(p, fz[i]), s * gamma[i] * p[LGAY], s * sign[i])
+    return out
+
+
+@jit
+def _pneumatic_trail_at(p: np.ndarray, fz: np.ndarray, gamma_z: np.ndarray) -> np.ndarray:
+    """Trail at alpha = 0 of :meth:`MagicFormula.pneumatic_trail`, (n,), 0 off the ground."""
+    out = np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            bt, dt, sht, et = _trail_factors(p, fz[i], _dfz(p, fz[i]), gamma_z[i], 0.0, 1.0,
+                                             p[LMUY])
+            out[i] = _trail(p, bt, dt, et, sht, 0.0)
+    return out
+
+
+@jit
+def _loaded_radius_at(p: np.ndarray, fz: np.ndarray, gamma: np.ndarray, fx: np.ndarray,
+                      fy: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """R_l of :meth:`MagicFormula.loaded_radius` (file frame), (n,), loads >= 0."""
+    out = np.empty(fz.size)
+    for i in range(fz.size):
+        if p[V62] != 0.0 and (gamma[i] != 0.0 or fy[i] != 0.0):
+            out[i] = _loaded_radius_62(p, fz[i], gamma[i], fx[i], fy[i], omega[i])
+        else:
+            out[i] = _loaded_radius(p, fz[i], omega[i], fx[i], fy[i])
+    return out
+
+
+@jit
+def _vertical_force_at(p: np.ndarray, rho: np.ndarray, gamma: np.ndarray, fx: np.ndarray,
+                       fy: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """Fz of :meth:`MagicFormula.vertical_force` (file frame), (n,)."""
+    out = np.empty(rho.size)
+    for i in range(rho.size):
+        out[i] = _vertical_force(p, rho[i], gamma[i], fx[i], fy[i], omega[i])
+    return out
+
+
+@jit
+def _deflection_at(p: np.ndarray, fz: np.ndarray, omega: np.ndarray,
+                   gamma: np.ndarray) -> np.ndarray:
+    """R0 - R_l of :meth:`MagicFormula.deflection` (file frame), (n,), loads >= 0."""
+    out = np.empty(fz.size)
+    for i in range(fz.size):
+        out[i] = _deflection(p, fz[i], omega[i], gamma[i])
+    return out
 
 
 @jit
 def radii_at(p: np.ndarray, fz: np.ndarray,
-               omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+             omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(R_l, R_e) of :meth:`MagicFormula.radii`, arrays (n,), m."""
-    fz_ = np.maximum(fz, 0.0)
-    loaded = _loaded_radius(p, fz_, omega, 0.0, 0.0)
-    if p[RE_LINEAR] != 0.0:
-        return loaded, loaded
-    return loaded, _effective_radius(p, fz_, omega)
+    loaded, effective = np.empty(fz.size), np.empty(fz.size)
+    for i in range(fz.size):
+        fz_ = max(fz[i], 0.0)
+        loaded[i] = _loaded_radius(p, fz_, omega[i], 0.0, 0.0)
+        effective[i] = loaded[i] if p[RE_LINEAR] != 0.0 else _effective_radius(p, fz_, omega[i])
+    return loaded, effective
 
 
 @jit
 def relaxation_at(p: np.ndarray, fz: np.ndarray,
-                       gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                  gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(sigma_kappa, sigma_alpha) of :meth:`MagicFormula.relaxation_lengths`, (n,), m."""
-    loaded, fz_e = _loaded(p, fz)
-    sigma_k, sigma_a = _relaxation(p, fz_e, gamma)
-    return np.where(loaded, sigma_k, 0.0), np.where(loaded, sigma_a, 0.0)
+    sigma_k, sigma_a = np.zeros(fz.size), np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            sigma_k[i], sigma_a[i] = _relaxation(p, fz[i], gamma[i])
+    return sigma_k, sigma_a
 
 
 @jit
 def slip_stiffness_at(p: np.ndarray, fz: np.ndarray) -> np.ndarray:
     """K_xk of :meth:`MagicFormula.slip_stiffness`, (n,), N."""
-    loaded, fz_e = _loaded(p, fz)
-    return np.where(loaded, _kxk(p, fz_e, _dfz(p, fz_e)), 0.0)
+    out = np.zeros(fz.size)
+    for i in range(fz.size):
+        if fz[i] > 0.0:
+            out[i] = _kxk(p, fz[i], _dfz(p, fz[i]))
+    return out
 
 
 def _flat(*values: ArrayLike) -> tuple[tuple[int, ...], tuple[np.ndarray, ...]]:

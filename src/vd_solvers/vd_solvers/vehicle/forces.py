@@ -6,7 +6,7 @@ The full vehicle's force evaluation of one step, as one compiled function on arr
 :func:`vehicle_forces` is the physics of :meth:`.model.VehicleModel.forces` (the equations
 are stated in :mod:`.model`'s doc): wheel kinematics from the body state, steer and camber
 from the suspension maps and the compliances, tire loads, slips and their first-order
-transients, the Magic Formula (:func:`vd_solvers.tire.magic_formula.combined_forces`, the
+transients, the Magic Formula (:func:`vd_solvers.tire.magic_formula.four_wheel_forces`, the
 one implementation), the contact wrenches mapped to the generalised forces, the linearly
 implicit wheel spin, springs, anti-roll bars, dampers and jacking, and the aerodynamic
 drag and lift (:mod:`vd_solvers.chassis.aero`'s equations on the body's x speed). It is
@@ -21,7 +21,12 @@ from typing import NamedTuple
 import numpy as np
 
 from vd_solvers.compiled import jit
-from vd_solvers.tire.magic_formula import combined_forces, radii_at, relaxation_at
+from vd_solvers.tire.magic_formula import (
+    four_wheel_forces,
+    four_wheel_springs,
+    radii_at,
+    relaxation_at,
+)
 
 from .maps import grid_lookup, half_difference
 
@@ -135,18 +140,16 @@ def wheel_radii(front: np.ndarray, rear: np.ndarray,
 
 @jit
 def wheel_tires(front: np.ndarray, rear: np.ndarray, fz: np.ndarray, kappa: np.ndarray,
-                alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray,
-                mirror: np.ndarray) -> np.ndarray:
-    """(5, 4) Fx, Fy, Mx, My, Mz of the four wheels (file convention, ``mirror`` per wheel)."""
-    out = np.empty((5, 4))
-    phit = np.zeros(2)
-    for axle in range(2):
-        p = front if axle == 0 else rear
-        w = slice(2 * axle, 2 * axle + 2)
-        forces = combined_forces(p, fz[w], kappa[w], alpha[w], gamma[w], vx[w], mirror[w], phit)
-        for k in range(5):
-            out[k, w] = forces[k]
-    return out
+                alpha: np.ndarray, gamma: np.ndarray, vx: np.ndarray, mirror: np.ndarray,
+                road_friction: np.ndarray | float = 1.0) -> np.ndarray:
+    """
+    (5, 4) Fx, Fy, Mx, My, Mz of the four wheels (file convention, ``mirror`` per wheel).
+
+    ``road_friction`` is the road friction per wheel (or for all), the factor on the tire's
+    LMUX and LMUY (:mod:`vd_solvers.tire.magic_formula`, "Road friction"); 1 is the tire's
+    own.
+    """
+    return four_wheel_forces(front, rear, fz, kappa, alpha, gamma, vx, mirror, road_friction)
 
 
 @jit
@@ -164,7 +167,7 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     (len(UPDATE_ROWS), 4).
     """
     side = c.wheel[0]
-    r0, cz, cd, mirror = c.wheel[1], c.wheel[2], c.wheel[3], c.wheel[4]
+    r0, cd, mirror = c.wheel[1], c.wheel[3], c.wheel[4]
     unsprung, spin_inertia, unsprung_arm = c.wheel[5], c.wheel[6], c.wheel[7]
     slip_stiffness_static, static_load = c.wheel[8], c.wheel[9]
     comp = c.compliance
@@ -225,8 +228,13 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     vy = -v_world[:, 0] * sh + v_world[:, 1] * ch
     height = np.ascontiguousarray(p_world[:, 2])
     if road:
-        fz = np.maximum(cz * (r0 - height) - cd * v_world[:, 2], 0.0)
-        fz = np.where(height < r0, fz, 0.0)
+        # the tire's vertical force at its deflection: the 6.x load-deflection curve (with
+        # the previous step's Fx, Fy) or the linear C_z, plus damping, >= 0 in contact
+        tire_fx = previous[0] if has_previous else np.zeros(4)
+        tire_fy = previous[1] if has_previous else np.zeros(4)
+        spring = four_wheel_springs(c.tire_front, c.tire_rear, r0 - height, gamma, tire_fx,
+                                    tire_fy, spin, mirror)
+        fz = np.where(spring > 0.0, np.maximum(spring - cd * v_world[:, 2], 0.0), 0.0)
     else:
         fz = np.zeros(4)
     r_e = wheel_radii(c.tire_front, c.tire_rear, fz)[1]

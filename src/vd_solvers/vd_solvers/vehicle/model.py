@@ -234,22 +234,32 @@ class VehicleModel:
         """
         q = pin.neutral(self.model)
         fz_static = self.static_loads()
-        # body height and pitch at which the tires carry the static loads at zero travel
-        sink = (self.r0 - fz_static / self.cz) - self.wheel_centres[:, 2]
-        x_f, x_r = self.wheel_centres[0, 0], self.wheel_centres[2, 0]
-        pitch = (sink[2] - sink[0]) / (x_f - x_r)  # ISO pitch: z = q_z - x pitch
-        q[2] = sink[0] + pitch * x_f
-        q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(0.0, pitch, 0.0)).coeffs()
+        _, r_e = self.tire_radii(fz_static)
         v = np.zeros(self.model.nv)
         v[0] = speed
         # kinematic cornering (no rear slip): the rear axle moves along the heading, the
         # origin ahead of it sideways at yaw_rate times the distance
         v[1] = yaw_rate * (-self.wheel_centres[2:, 0].mean())
         v[5] = yaw_rate
-        _, r_e = self.tire_radii(fz_static)
         # wheel-centre speeds of a body yawing about its origin
         vx_wheel = speed - yaw_rate * self.wheel_centres[:, 1]
         v[7::2] = vx_wheel / r_e
+        # body height and pitch at which the tires carry the static loads at zero travel;
+        # an MF 6.2 tire's deflection depends on its camber: a second pass at the camber of
+        # the first
+        gamma = np.zeros(4)
+        for i in range(2 if any(t.props.file_format == 'MF62' for t in self.tires) else 1):
+            if i > 0:
+                gamma = self.forces(q, v, 0.0, np.zeros(4), np.zeros((2, 4)), None, STEP)[1].gamma
+            deflection = np.concatenate([
+                self.tires[k // 2].deflection(fz_static[k:k + 2], v[7 + 2 * k:11 + 2 * k:2],
+                                              self.mirror[k:k + 2] * gamma[k:k + 2])
+                for k in (0, 2)])
+            sink = (self.r0 - deflection) - self.wheel_centres[:, 2]
+            x_f, x_r = self.wheel_centres[0, 0], self.wheel_centres[2, 0]
+            pitch = (sink[2] - sink[0]) / (x_f - x_r)  # ISO pitch: z = q_z - x pitch
+            q[2] = sink[0] + pitch * x_f
+            q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(0.0, pitch, 0.0)).coeffs()
         return q, v
 
     def static_loads(self) -> np.ndarray:
