@@ -137,6 +137,9 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
     kappa_row = WHEEL_ROWS.index('kappa')
     last = None  # the previous step's wheel state (its transient slips feed the ABS)
     actuate = WheelTorques(model.chassis, drive_front, brake_front)
+    # what the brakes and driveline did, recorded when the configuration has them (the
+    # same channels as the compiled loop otherwise)
+    systems = model.chassis.brakes is not None or model.chassis.driveline is not None
     for step in range(n_steps + 1):
         t = step * h
         obs = observe(model, q, v, t)
@@ -149,8 +152,9 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
         if step % record_every == 0:
             row = record_row(q, v, t, swa, wheel, cog, torque)
             trace.append(row[None], wheel[None])
-            trace.actuation.append((np.array([actuate.throttle, float(actuate.gear)]),
-                                    np.stack([actuate.pressures, torques])))
+            if systems:
+                trace.actuation.append((np.array([actuate.throttle, float(actuate.gear)]),
+                                        np.stack([actuate.pressures, torques])))
             if stop is not None:
                 reason = stop(dict(zip(TRACE, row)))
                 if reason:
