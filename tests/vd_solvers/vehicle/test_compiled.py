@@ -62,7 +62,8 @@ def evaluate(study):
     vx = rng.uniform(-5.0, 60.0, (50, 4))
     a = model.arrays
     out['tires'] = np.array([wheel_tires(a.tire_front, a.tire_rear, fz[i], kappa[i], alpha[i],
-                                         gamma[i], vx[i], model.mirror) for i in range(50)])
+                                         gamma[i], vx[i], model.mirror, np.ones(4))
+                             for i in range(50)])
     out['radii'] = np.array([wheel_radii(a.tire_front, a.tire_rear, np.abs(fz[i]))
                              for i in range(50)])
     return out

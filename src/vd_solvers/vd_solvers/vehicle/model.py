@@ -56,7 +56,15 @@ beyond the K&C compliance steer, wheel-centre fore-aft and lateral motion with t
 (their effect enters through the jacking coefficients), gyroscopic steer moments (the
 wheel's spin inertia is carried about the body y axis: a torque about the spin axis
 reaches the body as one about y, an error of that torque times the steer angle, zero
-for a free-rolling wheel in a steady state), road unevenness.
+for a free-rolling wheel in a steady state).
+
+Road: the tires stand on the :class:`vd_solvers.road.arrays.RoadGrid` given (default the
+flat road of friction 1) through the tandem elliptical cams of :mod:`.forces`; the cams of
+each tire come from its .tir [CONTACT_PATCH] section: half-length a_e = ELLIPS_LENGTH r0,
+height b_e = ELLIPS_HEIGHT r0, order c_e = ELLIPS_ORDER, spacing l_s = ELLIPS_SHIFT 2a
+(defaults 1, 1, 1.8, 0.8), a the contact half-length at the static load,
+a = r0 (Q_RA2 rho / r0 + Q_RA1 sqrt(rho / r0)) of MF 6.1 (rho the static deflection;
+without Q_RA1 / Q_RA2 the chord of the undeformed circle, a = sqrt(2 r0 rho)).
 """
 from __future__ import annotations
 
@@ -74,7 +82,10 @@ from vd_solvers.errors import SolverError
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
-from .forces import COMPLIANCE_ROWS, CONSTANT_ROWS, VehicleArrays, vehicle_forces, wheel_radii
+from vd_solvers.road.arrays import FLAT, RoadGrid
+
+from .forces import (CAM_ROWS, COMPLIANCE_ROWS, CONSTANT_ROWS, VehicleArrays, vehicle_forces,
+                     wheel_radii)
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
 #: integration step, s
@@ -133,8 +144,10 @@ class VehicleModel:
     """The multibody vehicle of one configuration (module doc). Not thread-safe."""
 
     def __init__(self, config: Configuration, fidelity: str = 'rigid',
-                 options: Options = Options(), maps: SuspensionMaps | None = None) -> None:
+                 options: Options = Options(), maps: SuspensionMaps | None = None,
+                 road: RoadGrid = FLAT) -> None:
         self.config = config
+        self.road = road
         self.options = options
         self.maps = maps if maps is not None else suspension_maps(config, fidelity)
         mass = config.group('mass')
@@ -176,6 +189,7 @@ class VehicleModel:
         self._slip_stiffness_static = np.concatenate(
             [self.tires[0].slip_stiffness(self._static[:2]),
              self.tires[1].slip_stiffness(self._static[2:])])
+        self.cam = self._cams()
         self.arrays = self._arrays()
         self._no_previous = np.zeros((4, 4))
 
@@ -270,6 +284,28 @@ class VehicleModel:
             self.options.dampers)
         return tau, WheelState(*wheel), SlipUpdate(*update)
 
+    def _cams(self) -> np.ndarray:
+        """The enveloping cams of the four tires, (len(CAM_ROWS), 4) (module doc)."""
+        out = np.empty((len(CAM_ROWS), 4))
+        for w in range(4):
+            tire = self.tires[0 if w < 2 else 1]
+            props = tire.props
+            r0 = float(self.r0[w])
+            rho = float(self._static[w] / self.cz[w])
+            q1 = props.number('CONTACT_PATCH', 'Q_RA1', 0.0)
+            q2 = props.number('CONTACT_PATCH', 'Q_RA2', 0.0)
+            half = (r0 * (q2 * rho / r0 + q1 * np.sqrt(rho / r0)) if q1 > 0.0 or q2 > 0.0
+                    else np.sqrt(2.0 * r0 * rho))
+            out[:, w] = (props.number('CONTACT_PATCH', 'ELLIPS_LENGTH', 1.0) * r0,
+                         props.number('CONTACT_PATCH', 'ELLIPS_HEIGHT', 1.0) * r0,
+                         props.number('CONTACT_PATCH', 'ELLIPS_ORDER', 1.8),
+                         props.number('CONTACT_PATCH', 'ELLIPS_SHIFT', 0.8) * 2.0 * half)
+        if not np.all(out[[0, 1, 3]] > 0.0) or not np.all(out[2] >= 1.0):
+            raise SolverError(f"configuration '{self.config.name}': the tires' enveloping "
+                              'ellipses need positive ELLIPS_LENGTH, ELLIPS_HEIGHT, '
+                              'ELLIPS_SHIFT and an ELLIPS_ORDER of at least 1')
+        return out
+
     def _arrays(self) -> VehicleArrays:
         """Return the constant inputs of the compiled force evaluation (:mod:`.forces`)."""
         maps = self.maps
@@ -300,7 +336,9 @@ class VehicleModel:
             damper_front_x=c(maps.damper_x[0]), damper_front_y=c(maps.damper_y[0]),
             damper_rear_x=c(maps.damper_x[1]), damper_rear_y=c(maps.damper_y[1]),
             steer_swa=c(maps.steer_swa), steer_left=c(maps.steer_angle[:, 0]),
-            steer_right=c(maps.steer_angle[:, 1]))
+            steer_right=c(maps.steer_angle[:, 1]),
+            road_axes=c(self.road.axes), road_height=c(self.road.height),
+            road_friction=c(self.road.friction), cam=c(self.cam))
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         """Pinocchio ABA: generalised accelerations (nv,)."""
