@@ -55,6 +55,7 @@ _LARGEST_INT = 10**308
 #: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
 SI_UNITS: Mapping[str, str] = {
     'length': 'm',
+    'road_length': 'm',
     'angle': 'rad',
     'force': 'N',
     'mass': 'kg',
@@ -92,6 +93,7 @@ _DERIVED: Mapping[str, str] = {
     'area': '{length}^2',
     'area_moment': '{length}^4',
     'rack_ratio': '{length}/revolution',
+    'road_length': '{length}',
 }
 
 #: the abbreviations printed to users for SI units

@@ -20,8 +20,7 @@ from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
 from vd_solvers.road.arrays import FLAT, flat, road_grid
 from vd_solvers.road.surface import TrackProfile
-from vd_solvers.vehicle.forces import (CAM_POINTS, cam_height, grid_value, road_contact,
-                                       wheel_tires)
+from vd_solvers.vehicle.forces import CAM_POINTS, cam_height, grid_value, road_contact, wheel_tires
 from vd_solvers.vehicle.model import VehicleModel
 
 
@@ -80,8 +79,8 @@ def test_tandem_cams_on_a_long_sine_filter_it_as_two_points():
     # effective height is A cos(pi l / L) sin(k x) and the slope A k sinc cos(k x)
     amp, wave, spacing = 0.01, 5.0, 0.12
     k = 2.0 * math.pi / wave
-    surface = TrackProfile(np.arange(0.0, 20.0, 0.01), amp * np.sin(k * np.arange(0.0, 20.0, 0.01)),
-                           amp * np.sin(k * np.arange(0.0, 20.0, 0.01)), 1.6)
+    xs = np.arange(0.0, 20.0, 0.01)
+    surface = TrackProfile(xs, amp * np.sin(k * xs), amp * np.sin(k * xs), 1.6)
     road = road_grid(surface, 0.0, 20.0, -0.8, 0.8, 0.01, 1.6)
     cam = np.array([[0.35] * 4, [0.35] * 4, [1.8] * 4, [spacing] * 4])
     x = np.array([5.3, 7.1, 9.9, 12.45])

@@ -65,7 +65,7 @@ def road_grid(surface: Surface, x0: float, x1: float, y0: float, y1: float, dx: 
 
 def flat(friction: float = 1.0, friction_left: float | None = None,
          split_y: float = 0.0) -> RoadGrid:
-    """The flat road z = 0 with a uniform or split friction factor."""
+    """Return the flat road z = 0 with a uniform or split friction factor."""
     f_axes, f_grid = friction_grid(friction, friction_left, split_y)
     what = (f'flat road, friction {friction:g}' if f_grid[0, 0] == f_grid[0, 1] else
             f'flat road, friction {friction:g} right / {friction_left:g} left of y = '

@@ -21,6 +21,10 @@ peak / steady - 1; steady values are means over the last STEADY_WINDOW s.
 
 sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
 :mod:`.sine_with_dwell`.
+
+ride, bump, lane_change (ISO 2631-1 ride on the road, a single obstacle, ISO 3888-2): see
+:mod:`.ride_events`. Every event drives on the configuration's road
+(:mod:`vd_solvers.road.from_config`).
 """
 from __future__ import annotations
 
@@ -28,6 +32,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle
 from vd_solvers.analytical.from_config import vehicle_params
@@ -35,7 +40,9 @@ from vd_solvers.constants import DEG
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
+from vd_solvers.road.from_config import road_of
 
+from . import ride_events
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
 from .constant_radius import PARAMS as CRT_PARAMS
 from .drivers import OpenLoopSteering, SpeedController
@@ -73,6 +80,9 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
                              maximum=1.0),
     },
     'sine_with_dwell': SWD_PARAMS,
+    'ride': ride_events.RIDE_PARAMS,
+    'bump': ride_events.BUMP_PARAMS,
+    'lane_change': ride_events.LANE_CHANGE_PARAMS,
 }
 EVENTS = tuple(EVENT_PARAMS)
 
@@ -89,8 +99,8 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
     if progress is not None:
         progress(0.0, 'K&C suspension maps')
     try:
-        model = VehicleModel(config, fidelity)
-    except SolverError as err:
+        model = VehicleModel(config, fidelity, road=road_of(config))
+    except (SolverError, DataError, ValueError) as err:
         raise SolverError(f'{label}: {err}') from err
     if event == 'sine_with_dwell':
         try:
@@ -98,6 +108,12 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         except SolverError as err:
             if config.name in str(err):
                 raise
+            raise SolverError(f'{label}: {err}') from err
+    elif event in ride_events.RUNNERS:
+        try:
+            metrics, channels, notes = ride_events.RUNNERS[event](model, values, progress,
+                                                                  _channels)
+        except SolverError as err:
             raise SolverError(f'{label}: {err}') from err
     elif event == 'constant_radius_turn':
         metrics, channels, notes = run_constant_radius(model, values, progress, _channels)

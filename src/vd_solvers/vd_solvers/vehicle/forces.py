@@ -151,7 +151,7 @@ def road_contact(table: np.ndarray, friction: np.ndarray, axes: np.ndarray, cam:
 
 @jit
 def _scaled_friction(p: np.ndarray, factor: float) -> np.ndarray:
-    """The coefficient vector ``p`` with LMUX and LMUY scaled by ``factor``."""
+    """Return the coefficient vector ``p`` with LMUX and LMUY scaled by ``factor``."""
     out = p.copy()
     out[LMUX] *= factor
     out[LMUY] *= factor

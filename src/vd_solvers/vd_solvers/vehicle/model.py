@@ -79,13 +79,18 @@ from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
+from vd_solvers.road.arrays import FLAT, RoadGrid
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
-from vd_solvers.road.arrays import FLAT, RoadGrid
-
-from .forces import (CAM_ROWS, COMPLIANCE_ROWS, CONSTANT_ROWS, VehicleArrays, vehicle_forces,
-                     wheel_radii)
+from .forces import (
+    CAM_ROWS,
+    COMPLIANCE_ROWS,
+    CONSTANT_ROWS,
+    VehicleArrays,
+    vehicle_forces,
+    wheel_radii,
+)
 from .maps import WHEELS, SuspensionMaps, suspension_maps
 
 #: integration step, s
@@ -285,7 +290,7 @@ class VehicleModel:
         return tau, WheelState(*wheel), SlipUpdate(*update)
 
     def _cams(self) -> np.ndarray:
-        """The enveloping cams of the four tires, (len(CAM_ROWS), 4) (module doc)."""
+        """Return the enveloping cams of the four tires, (len(CAM_ROWS), 4) (module doc)."""
         out = np.empty((len(CAM_ROWS), 4))
         for w in range(4):
             tire = self.tires[0 if w < 2 else 1]
