@@ -72,7 +72,7 @@ BUMP_PARAMS: Mapping[str, Param] = {
 }
 LANE_CHANGE_PARAMS: Mapping[str, Param] = {
     'speed': Param('velocity', 60.0 / 3.6, 'entry speed, held', minimum=5.0, maximum=50.0),
-    'preview_time': Param('time', 0.5, "the driver's preview time", minimum=0.1,
+    'preview_time': Param('time', 0.3, "the driver's preview time", minimum=0.1,
                           maximum=3.0),
 }
 
