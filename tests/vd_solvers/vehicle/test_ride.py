@@ -35,8 +35,12 @@ from vd_solvers.road.surface import TrackProfile
 from vd_solvers.standards import iso3888
 from vd_solvers.vehicle.drivers import OpenLoopSteering, SpeedController
 from vd_solvers.vehicle.model import VehicleModel
-from vd_solvers.vehicle.ride_events import (APPROACH, LANE_CHANGE_PARAMS, course_path,
-                                            run_lane_change)
+from vd_solvers.vehicle.ride_events import (
+    APPROACH,
+    LANE_CHANGE_PARAMS,
+    course_path,
+    run_lane_change,
+)
 from vd_solvers.vehicle.simulation import simulate
 
 SPEED = 20.0  # m/s
