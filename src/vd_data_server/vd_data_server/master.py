@@ -202,9 +202,10 @@ class GroupCache:
         path = self.master.data_root / rel
         if not inside(self.master.data_root, path):
             raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
-                            file=data.file, key='file')
+                            file=data.file, key='data.file')
         if not _is_file(path):
-            raise DataError(f"road file '{rel}' does not exist", file=data.file, key='file')
+            raise DataError(f"road file '{rel}' does not exist", file=data.file,
+                            key='data.file')
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
 
     def _with_tire(self, data: GroupData) -> GroupData:
