@@ -14,7 +14,8 @@ VDV (6.3.2) and crest factor (6.2) over the evaluated stretch: from where the fr
 has passed the road's blend-in (``FADE_IN`` m, ISO 8608 roads) to the end of ``distance``.
 The wheel-load variation is the standard deviation of each wheel's load over its static
 load (the road-holding measure), per axle the mean of its two wheels. The acceleration
-is taken at the CoG, not at a seat.
+is taken at the CoG, not at a seat; the unweighted accelerations are the channels
+``vertical_acceleration`` and ``pitch_acceleration`` (also of the bump event).
 
 bump (a single obstacle, the configuration's ``obstacle`` road): at constant ``speed``
 over the obstacle; the peaks of the body's vertical and pitch accelerations and of the
@@ -96,6 +97,11 @@ def _accelerations(trace: Trace) -> tuple[np.ndarray, np.ndarray, np.ndarray, fl
     return t, vertical, pitch, rate
 
 
+def _acceleration_channels(vertical: np.ndarray, pitch: np.ndarray) -> dict[str, Channel]:
+    return {'vertical_acceleration': Channel('m/s^2', vertical),
+            'pitch_acceleration': Channel('rad/s^2', pitch)}
+
+
 def _straight(model: VehicleModel, speed: float, duration: float, event: str, progress,
               channels_of) -> tuple[Trace, dict[str, Channel]]:
     trace = simulate(model, OpenLoopSteering(lambda t: 0.0), _controller(model, speed), duration,
@@ -114,6 +120,7 @@ def run_ride(model: VehicleModel, v: Mapping[str, float], progress: Callable | N
                           f'({float(length):g} m)')
     trace, channels = _straight(model, speed, distance / speed, 'ride', progress, channels_of)
     t, vertical, pitch, rate = _accelerations(trace)
+    channels = {**channels, **_acceleration_channels(vertical, pitch)}
     x_front = trace.channels()['x'] + model.wheel_centres[0, 0]
     window = x_front >= from_config.FADE_IN + 5.0
     if np.count_nonzero(window) < 2.0 * rate:
@@ -157,6 +164,7 @@ def run_bump(model: VehicleModel, v: Mapping[str, float], progress: Callable | N
     duration = (end - x_rear) / speed + v['after']
     trace, channels = _straight(model, speed, duration, 'bump', progress, channels_of)
     t, vertical, pitch, rate = _accelerations(trace)
+    channels = {**channels, **_acceleration_channels(vertical, pitch)}
     x = trace.channels()['x']
     reach = np.nonzero(x + x_front >= start - 0.5)[0]
     if reach.size == 0:
