@@ -84,6 +84,12 @@ HEADLINE = (
     Headline('anti_squat', 'anti-squat', '{:.0f}'),
     Headline('steering_ratio', 'steering ratio', '{:.1f}'),
     Headline('ackermann', 'Ackermann', '{:.0f}'),
+    Headline('vertical_acceleration_rms_wk', 'a_w,z', '{:.3f}'),
+    Headline('wheel_load_variation_front', 'dFz/Fz front', '{:.3f}'),
+    Headline('peak_vertical_acceleration', 'a_z,peak', '{:.2f}'),
+    Headline('settling_time', 'settling', '{:.2f}'),
+    Headline('passed', 'cones passed', '{:.0f}'),
+    Headline('smallest_margin', 'margin', '{:.2f}'),
 )
 HEADLINE_NAMES = tuple(h.name for h in HEADLINE)
 
