@@ -240,4 +240,5 @@ def test_unknown_event_is_an_error(sedan):
         run_vehicle_event(sedan['baseline'], 'double_lane_change')
     assert str(err.value) == ("configuration 'baseline', event 'double_lane_change': the "
                               "full-vehicle model has no event 'double_lane_change' (events: "
-                              "constant_radius_turn, step_steer, sine_with_dwell)")
+                              "constant_radius_turn, step_steer, sine_with_dwell, ride, "
+                              "bump, lane_change)")
