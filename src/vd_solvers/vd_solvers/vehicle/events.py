@@ -40,7 +40,6 @@ from vd_solvers.constants import DEG
 from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
-from vd_solvers.road.from_config import road_of
 
 from . import ride_events
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
@@ -99,7 +98,7 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
     if progress is not None:
         progress(0.0, 'K&C suspension maps')
     try:
-        model = VehicleModel(config, fidelity, road=road_of(config))
+        model = VehicleModel(config, fidelity)  # on the configuration's road
     except (SolverError, DataError, ValueError) as err:
         raise SolverError(f'{label}: {err}') from err
     if event == 'sine_with_dwell':

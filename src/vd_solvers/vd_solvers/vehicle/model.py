@@ -59,10 +59,11 @@ reaches the body as one about y, an error of that torque times the steer angle, 
 for a free-rolling wheel in a steady state).
 
 Road: the tires stand on the :class:`vd_solvers.road.arrays.RoadGrid` given (default the
-flat road of friction 1) through the tandem elliptical cams of :mod:`.forces`; the cams of
-each tire come from its .tir [CONTACT_PATCH] section: half-length a_e = ELLIPS_LENGTH r0,
-height b_e = ELLIPS_HEIGHT r0, order c_e = ELLIPS_ORDER, spacing l_s = ELLIPS_SHIFT 2a
-(defaults 1, 1, 1.8, 0.8), a the contact half-length at the static load,
+configuration's road, :func:`vd_solvers.road.from_config.road_of`: without a ``road``
+group the flat road of friction 1) through the tandem elliptical cams of :mod:`.forces`;
+the cams of each tire come from its .tir [CONTACT_PATCH] section: half-length
+a_e = ELLIPS_LENGTH r0, height b_e = ELLIPS_HEIGHT r0, order c_e = ELLIPS_ORDER, spacing
+l_s = ELLIPS_SHIFT 2a (defaults 1, 1, 1.8, 0.8), a the contact half-length at the static load,
 a = r0 (Q_RA2 rho / r0 + Q_RA1 sqrt(rho / r0)) of MF 6.1 (rho the static deflection;
 without Q_RA1 / Q_RA2 the chord of the undeformed circle, a = sqrt(2 r0 rho)).
 """
@@ -79,7 +80,8 @@ from vd_data_server.tire_group import tire_properties
 from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
-from vd_solvers.road.arrays import FLAT, RoadGrid
+from vd_solvers.road.arrays import RoadGrid
+from vd_solvers.road.from_config import road_of
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
@@ -150,9 +152,9 @@ class VehicleModel:
 
     def __init__(self, config: Configuration, fidelity: str = 'rigid',
                  options: Options = Options(), maps: SuspensionMaps | None = None,
-                 road: RoadGrid = FLAT) -> None:
+                 road: RoadGrid | None = None) -> None:
         self.config = config
-        self.road = road
+        self.road = road if road is not None else road_of(config)
         self.options = options
         self.maps = maps if maps is not None else suspension_maps(config, fidelity)
         mass = config.group('mass')
