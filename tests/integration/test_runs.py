@@ -110,7 +110,8 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
     (('run', 'nope'), "unknown event 'nope' (events: steady_state_circular, handling_diagram, "
      "step_steer, parallel_wheel_travel, opposite_wheel_travel, lateral_force, "
      "longitudinal_force, steering, aligning_torque, constant_radius_turn, sine_with_dwell, "
-     "straight_line_braking, brake_in_turn, power_off_in_turn, straight_line_acceleration)"),
+     "straight_line_braking, brake_in_turn, power_off_in_turn, straight_line_acceleration, "
+     "ride, bump, lane_change)"),
     (('run', 'handling_diagram', '--model', 'tricycle'),
      "unknown model 'tricycle' (models: bicycle, two_track, kc, vehicle)"),
     (('run', 'step_steer', '--model', 'two_track'),

@@ -75,6 +75,8 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
         _check_template_points(values, col, raw['data'])
     if expected_kind == 'flex' and not col.errors:
         _check_flex(values, col, raw['data'])
+    if expected_kind == 'road' and not col.errors:
+        _check_road(values, col, raw['data'])
     if expected_kind == 'stabilizer' and 'bar_radius' in values \
             and 'torsion_length' not in values:
         col.add('data.torsion_length', "required with bar_radius (the bar's torsional "
@@ -89,6 +91,37 @@ def parse_group(raw: Any, *, display: str, group: str, variant: str) -> GroupDat
     if errors:
         raise errors[0] if len(errors) == 1 else DataErrors(errors)
     return data
+
+
+#: the keys each road surface needs, and the keys it uses
+ROAD_KEYS = {'flat': ((), ('friction', 'friction_left')),
+             'iso8608': (('road_class', 'seed', 'length'),
+                         ('friction', 'friction_left', 'tracks')),
+             'obstacle': (('obstacle', 'height', 'obstacle_length', 'start', 'length'),
+                          ('friction', 'friction_left', 'side')),
+             'crg': (('file',), ('friction', 'friction_left'))}
+
+
+def _check_road(values: dict[str, Value], col: Collector, data: Any) -> None:
+    """Check that a road names what its surface needs and nothing another surface needs."""
+    surface = values['surface'].text()
+    needed, optional = ROAD_KEYS[surface]
+    for key in needed:
+        if key not in values:
+            col.add(f'data.{key}', f"required for surface '{surface}'", data, 'surface')
+    for key in values:
+        if key != 'surface' and key not in needed and key not in optional:
+            col.add(f'data.{key}', f"not used by surface '{surface}' (it uses: "
+                    f"{', '.join(needed + optional)})", data, key)
+    if 'seed' in values and values['seed'].number() != int(values['seed'].number()):
+        col.add('data.seed', f"the seed must be an integer, found {values['seed'].number():g}",
+                data, 'seed')
+    if surface == 'obstacle' and not col.errors:
+        start, length = values['start'].number(), values['length'].number()
+        end = start + values['obstacle_length'].number()
+        if end >= length:
+            col.add('data.length', f'the road ({length:g} m) must reach beyond the obstacle '
+                    f'(which ends at {end:g} m)', data, 'length')
 
 
 def _walk(spec: schema.Spec, node: Any, path: str, units: UnitSystem, col: Collector,

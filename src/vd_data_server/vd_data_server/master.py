@@ -180,6 +180,8 @@ class GroupCache:
                 data = self._with_tire(data)
             elif data.kind == 'flex':
                 data = self._with_imported(data)
+            elif data.kind == 'road' and data.has('file'):
+                self._road_file(data)
             self._cache[key] = data
         return self._cache[key]
 
@@ -193,6 +195,18 @@ class GroupCache:
 
     def _with_imported(self, data: GroupData) -> GroupData:
         return _read_imported(self, data) if _imported_keys(data) else data
+
+    def _road_file(self, data: GroupData) -> None:
+        """Check an OpenCRG file: inside the data root, present; its hash joins the data's."""
+        rel = data.text('file')
+        path = self.master.data_root / rel
+        if not inside(self.master.data_root, path):
+            raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
+                            file=data.file, key='data.file')
+        if not _is_file(path):
+            raise DataError(f"road file '{rel}' does not exist", file=data.file,
+                            key='data.file')
+        self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
 
     def _with_tire(self, data: GroupData) -> GroupData:
         rel = data.text('file')
@@ -285,6 +299,7 @@ def resolve(master: MasterFile, name: str, cache: GroupCache | None = None,
     tire_files = {g.text('file') for g in groups.values() if g.kind == 'tire'}
     tire_files |= {g.text(k) for g in groups.values() if g.kind == 'flex'
                    for k in _imported_keys(g)}
+    tire_files |= {g.text('file') for g in groups.values() if g.kind == 'road' and g.has('file')}
     hashes = {k: v for k, v in cache.extra_hashes.items() if k in tire_files}
     return Configuration(name=name, master_file=master.display, description=spec.description,
                          groups=groups, flexible=spec.flexible,

@@ -26,6 +26,7 @@ from .units import SI_UNITS
 #: quantity -> (smallest magnitude of a non-zero value, largest magnitude), SI
 LIMITS: Mapping[str, tuple[float, float]] = {
     'length': (0.0, 20.0),
+    'road_length': (0.0, 1e5),  # along a road (its length, an obstacle's place)
     'angle': (0.0, math.pi),
     'force': (0.0, 1e7),
     'mass': (0.01, 1e5),  # a drop link or tie rod weighs under 1 kg

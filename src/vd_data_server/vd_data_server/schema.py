@@ -371,6 +371,36 @@ KINDS: Mapping[str, Section] = {
             }, required=False),
         }), 'flexible components by name (template parts and links, anti_roll_bar)'),
     }),
+    'road': Section({
+        'surface': Text('the road surface: flat, an ISO 8608 random road, a single obstacle '
+                        'or an OpenCRG file', choices=('flat', 'iso8608', 'obstacle', 'crg')),
+        'friction': Scalar('dimensionless', "the road's friction factor (scales the tires' "
+                           'LMUX and LMUY; 1: as measured)', required=False, default=1.0,
+                           positive=True),
+        'friction_left': Scalar('dimensionless', 'split friction: the factor left of the road '
+                                "centre line (y > 0); 'friction' holds right of it",
+                                required=False, positive=True),
+        'road_class': Text('iso8608: the road class', choices=tuple('ABCDEFGH'),
+                           required=False),
+        'seed': Scalar('dimensionless', 'iso8608: seed of the random phases (an integer)',
+                       required=False, minimum=0.0),
+        'length': Scalar('road_length', 'iso8608 and obstacle: length of the road', required=False,
+                         positive=True),
+        'tracks': Text('iso8608: the two wheel tracks alike or independent',
+                       choices=('parallel', 'independent'), required=False),
+        'obstacle': Text('obstacle: its kind', choices=('bump', 'pothole', 'kerb'),
+                         required=False),
+        'height': Scalar('length', 'obstacle: height (depth of a pothole)', required=False,
+                         positive=True),
+        'obstacle_length': Scalar('length', 'obstacle: length along the road (kerb: its ramp)',
+                                  required=False, minimum=0.0),
+        'start': Scalar('road_length', 'obstacle: distance from the start of the run to it',
+                        required=False, minimum=0.0),
+        'side': Text('obstacle: under both wheel tracks or one', choices=('both', 'left',
+                                                                          'right'),
+                     required=False),
+        'file': Text('crg: the OpenCRG file, path relative to the data root', required=False),
+    }),
     'geometry': Section({
         'wheelbase': Scalar('length', 'front to rear axle distance at design', positive=True),
         'track_front': Scalar('length', 'front wheel-centre track at design', positive=True),
@@ -445,7 +475,8 @@ KINDS: Mapping[str, Section] = {
 }
 
 #: vehicle-level groups (no axle prefix)
-VEHICLE_KINDS = ('mass', 'geometry', 'targets', 'steering', 'brakes', 'driveline', 'aero')
+VEHICLE_KINDS = ('mass', 'geometry', 'targets', 'steering', 'brakes', 'driveline', 'aero',
+                 'road')
 #: per-axle groups are named ``front_<kind>`` / ``rear_<kind>``
 AXLE_KINDS = ('hardpoints', 'spring', 'damper', 'bump_stop', 'rebound_stop', 'bushings',
               'stabilizer', 'alignment', 'tire', 'flex')

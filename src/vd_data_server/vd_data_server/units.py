@@ -55,6 +55,7 @@ _LARGEST_INT = 10**308
 #: quantity -> SI unit used inside vd (and in messages and ``--json`` output)
 SI_UNITS: Mapping[str, str] = {
     'length': 'm',
+    'road_length': 'm',
     'angle': 'rad',
     'force': 'N',
     'mass': 'kg',
@@ -94,6 +95,7 @@ _DERIVED: Mapping[str, str] = {
     'area_moment': '{length}^4',
     'rack_ratio': '{length}/revolution',
     'angular_velocity': '{angle}/{time}',
+    'road_length': '{length}',
 }
 
 #: the abbreviations printed to users for SI units

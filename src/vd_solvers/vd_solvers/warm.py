@@ -68,7 +68,10 @@ def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
         roll_step=ones * (grid[1] - grid[0]), roll_table=travel[:2].copy(),
         compliance=np.zeros((len(COMPLIANCE_ROWS), 4)), damper_front_x=curve,
         damper_front_y=curve, damper_rear_x=curve, damper_rear_y=curve, steer_swa=curve,
-        steer_left=curve * 0.1, steer_right=curve * 0.1, aero=np.zeros(len(AERO_ROWS)))
+        steer_left=curve * 0.1, steer_right=curve * 0.1, aero=np.zeros(len(AERO_ROWS)),
+        road_axes=np.array([0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0]),
+        road_height=np.zeros((2, 2)), road_friction=np.array([[1.0, 0.5], [1.0, 0.5]]),
+        cam=np.array([[0.3] * 4, [0.3] * 4, [1.8] * 4, [0.1] * 4]))
     q = np.zeros(15)
     q[6] = 1.0
     v = np.zeros(14)
@@ -79,7 +82,8 @@ def _vehicle(front: np.ndarray, rear: np.ndarray) -> None:
     _dynamics(q, v, arrays)
     fz = np.full(4, 4000.0)
     wheel_radii(front, rear, fz)
-    wheel_tires(front, rear, fz, zeros.copy(), zeros.copy(), zeros.copy(), fz, ones.copy())
+    wheel_tires(front, rear, fz, zeros.copy(), zeros.copy(), zeros.copy(), fz, ones.copy(),
+                ones.copy())
     relaxation_at(front, fz[:2], zeros[:2])
     z = zeros.copy()
     grid_lookup(travel, arrays.travel0, arrays.travel_step, z)

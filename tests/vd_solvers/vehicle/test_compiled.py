@@ -4,7 +4,8 @@
 The compiled force evaluation is the Python one: the same functions, compiled and not.
 
 The full vehicle's forces (``VehicleModel.forces``) and the four-wheel Magic Formula are
-evaluated on random states here, with numba, and in a second process with ``VD_NO_JIT=1``
+evaluated on random states here (on the flat road and on a class C road with split
+friction), with numba, and in a second process with ``VD_NO_JIT=1``
 (the same functions run as Python); both must agree to 1e-10 relative.
 """
 from __future__ import annotations
@@ -29,16 +30,26 @@ RTOL = 1e-10
 EVALUATE = """
 import numpy as np
 from vd_data_server.study import load_study
+from vd_solvers.road.arrays import road_grid
+from vd_solvers.road.iso8608 import random_road
 from vd_solvers.vehicle.forces import wheel_radii, wheel_tires
 from vd_solvers.vehicle.model import VehicleModel
 
 
 def evaluate(study):
-    model = VehicleModel(load_study(study).configurations['baseline'])
+    config = load_study(study).configurations['baseline']
+    model = VehicleModel(config)
+    # a class C road with split friction under the same car
+    road = road_grid(random_road('C', 60.0, 1.6, 3, 0.02), -5.0, 60.0, -3.0, 3.0, 0.02, 0.75,
+                     friction_left=0.4)
+    rough = VehicleModel(config, maps=model.maps, road=road)
     rng = np.random.default_rng(27)
     q0, v0 = model.initial_state(27.8, 0.15)
     out = {}
-    for trial in range(8):
+    for trial in range(12):
+        if trial >= 8:
+            model = rough
+            q0[0] = 20.0 + 3.0 * trial
         q, v = q0.copy(), v0.copy()
         q[:3] += rng.normal(0.0, 0.01, 3)
         q[7::2] += rng.normal(0.0, 0.01, 4)
@@ -60,9 +71,11 @@ def evaluate(study):
     alpha = rng.normal(0.0, 0.2, (50, 4))
     gamma = rng.normal(0.0, 0.05, (50, 4))
     vx = rng.uniform(-5.0, 60.0, (50, 4))
+    friction = np.where(rng.uniform(size=(50, 4)) < 0.5, 1.0, rng.uniform(0.2, 1.2, (50, 4)))
     a = model.arrays
     out['tires'] = np.array([wheel_tires(a.tire_front, a.tire_rear, fz[i], kappa[i], alpha[i],
-                                         gamma[i], vx[i], model.mirror) for i in range(50)])
+                                         gamma[i], vx[i], model.mirror, friction[i])
+                             for i in range(50)])
     out['radii'] = np.array([wheel_radii(a.tire_front, a.tire_rear, np.abs(fz[i]))
                              for i in range(50)])
     return out

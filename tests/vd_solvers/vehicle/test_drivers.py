@@ -16,6 +16,7 @@ from vd_solvers.vehicle.drivers import (
     CurvatureController,
     Observation,
     OpenLoopSteering,
+    PreviewPathFollower,
     ReplaySteering,
     SpeedController,
     wheel_torques,
@@ -29,7 +30,22 @@ def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
 def test_registry_names_every_driver():
     assert DRIVERS == {'open_loop': OpenLoopSteering, 'replay': ReplaySteering,
                        'path_follower': CirclePathFollower, 'curvature': CurvatureController,
-                       'speed': SpeedController}
+                       'preview_path': PreviewPathFollower, 'speed': SpeedController}
+
+
+def test_preview_path_follower_steers_onto_the_arc_through_the_preview_point():
+    # the circle tangent to the heading at the vehicle and through the preview point
+    # (d, e) has the curvature 2 e / (d^2 + e^2); the road wheels steer L times it
+    offset, speed = 0.7, 12.0
+    driver = PreviewPathFollower(np.array([-100.0, 100.0]), np.array([offset, offset]),
+                                 wheelbase=2.8, steering_ratio=16.0, max_angle=10.0,
+                                 preview_time=0.5, min_preview=2.0)
+    d = 0.5 * speed
+    expected = 16.0 * 2.8 * 2.0 * offset / (d * d + offset * offset)
+    assert driver.steering_wheel_angle(_obs(speed=speed), 0.005) == pytest.approx(expected)
+    assert driver.lateral(50.0) == pytest.approx(offset)
+    with pytest.raises(SolverError, match='increasing x'):
+        PreviewPathFollower(np.array([1.0, 0.0]), np.array([0.0, 0.0]), 2.8, 16.0, 10.0)
 
 
 def test_open_loop_table_interpolates_and_holds_its_ends():

@@ -99,6 +99,13 @@ HEADLINE = (
     Headline('lateral_acceleration_ratio', 'a_y(t_n)/a_y,0', '{:.3f}'),
     Headline('heading_deviation', 'heading dev.', '{:.2f}'),
     Headline('path_deviation', 'path dev.', '{:.2f}'),
+    # ride, bump and lane change (vd_solvers.vehicle.ride_events)
+    Headline('vertical_acceleration_rms_wk', 'a_w,z', '{:.3f}'),
+    Headline('wheel_load_variation_front', 'dFz/Fz front', '{:.3f}'),
+    Headline('peak_vertical_acceleration', 'a_z,peak', '{:.2f}'),
+    Headline('settling_time', 'settling', '{:.2f}'),
+    Headline('passed', 'cones passed', '{:.0f}'),
+    Headline('smallest_margin', 'margin', '{:.2f}'),
 )
 HEADLINE_NAMES = tuple(h.name for h in HEADLINE)
 

@@ -21,8 +21,15 @@ from numpy.typing import ArrayLike
 class Surface(Protocol):
     """What a tire needs of the road: the ground height at (x, y) and the friction scale."""
 
-    friction: float
-    description: str
+    @property
+    def friction(self) -> float:
+        """Friction factor of the road (1: the tires as measured)."""
+        ...
+
+    @property
+    def description(self) -> str:
+        """What the road is (class and seed, obstacle, file and hash)."""
+        ...
 
     def height(self, x: ArrayLike, y: ArrayLike) -> np.ndarray:
         """Ground height z (m) at earth-frame points (x, y) (m)."""

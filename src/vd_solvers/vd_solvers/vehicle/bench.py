@@ -140,9 +140,10 @@ def _per_step(model: VehicleModel, swa: float) -> dict[str, float]:
     front, rear = model.arrays.tire_front, model.arrays.tire_rear
     fz, gamma, travel = (np.ascontiguousarray(x) for x in (wheel.fz, wheel.gamma, wheel.travel))
     kappa, alpha = np.ascontiguousarray(wheel.kappa), np.ascontiguousarray(wheel.alpha)
+    friction = np.ones(4)
 
     def tires():
-        wheel_tires(front, rear, fz, kappa, alpha, gamma, vx, model.mirror)
+        wheel_tires(front, rear, fz, kappa, alpha, gamma, vx, model.mirror, friction)
         wheel_radii(front, rear, fz)
         relaxation_at(front, fz[:2], gamma[:2])
         relaxation_at(rear, fz[2:], gamma[2:])

@@ -206,6 +206,54 @@ class CurvatureController:
 
 
 @dataclass
+class PreviewPathFollower:
+    """
+    Pure-pursuit path follower with preview on a path y(x) (earth frame, x increasing).
+
+    The driver aims at the point of the path ``preview_time`` * speed (at least
+    ``min_preview``) ahead of the body origin along x, and steers the road wheels by the
+    pure-pursuit angle L 2 sin(a) / l (a the angle from the heading to that point, l its
+    distance; Coulter, *Implementation of the pure pursuit path tracking algorithm*, CMU-RI-
+    TR-92-01, 1992), times ``gain``. Output in steering-wheel angle through the steering
+    ratio, after a first-order lag ``lag`` (the driver's neuromuscular lag), limited to
+    ``max_angle``; the path is held straight beyond its ends.
+    """
+
+    path_x: np.ndarray
+    path_y: np.ndarray
+    wheelbase: float
+    steering_ratio: float
+    max_angle: float
+    preview_time: float = 0.5
+    min_preview: float = 5.0
+    gain: float = 1.0
+    lag: float = 0.1
+    _output: float | None = field(default=None, init=False)
+
+    def __post_init__(self) -> None:
+        x = np.asarray(self.path_x, dtype=float)
+        if x.ndim != 1 or x.size < 2 or np.any(np.diff(x) <= 0.0) \
+                or np.shape(self.path_y) != x.shape:
+            raise SolverError('a path needs increasing x and one y per x (at least two points)')
+
+    def lateral(self, x: float) -> float:
+        """Return the path's y at x, m."""
+        return float(np.interp(x, self.path_x, self.path_y))
+
+    def steering_wheel_angle(self, obs: Observation, h: float) -> float:
+        preview = max(self.preview_time * obs.speed, self.min_preview)
+        tx = obs.x + preview
+        dx, dy = preview, self.lateral(tx) - obs.y
+        angle = math.atan2(dy, dx) - obs.yaw
+        wanted = (self.gain * self.wheelbase * 2.0 * math.sin(angle) / math.hypot(dx, dy)
+                  * self.steering_ratio)
+        if self._output is None:
+            self._output = wanted
+        self._output += (wanted - self._output) * (1.0 - math.exp(-h / self.lag))
+        return float(np.clip(self._output, -self.max_angle, self.max_angle))
+
+
+@dataclass
 class SpeedController:
     """
     PI speed controller on drive/brake torque with feed-forward of the reference slope.
@@ -335,10 +383,11 @@ DRIVERS: Mapping[str, type] = {
     'replay': ReplaySteering,
     'path_follower': CirclePathFollower,
     'curvature': CurvatureController,
+    'preview_path': PreviewPathFollower,
     'speed': SpeedController,
 }
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
-           'CurvatureController',
+           'CurvatureController', 'PreviewPathFollower',
            'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
            'BRAKE_SPIN_SCALE']

@@ -24,6 +24,9 @@ sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
 
 straight_line_braking (ISO 21994), brake_in_turn (ISO 7975), power_off_in_turn (ISO 9816)
 and straight_line_acceleration: see :mod:`.longitudinal_events`.
+ride, bump, lane_change (ISO 2631-1 ride on the road, a single obstacle, ISO 3888-2): see
+:mod:`.ride_events`. Every event drives on the configuration's road
+(:mod:`vd_solvers.road.from_config`).
 """
 from __future__ import annotations
 
@@ -31,6 +34,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration
 from vd_solvers.analytical import bicycle
 from vd_solvers.analytical.from_config import vehicle_params
@@ -39,6 +43,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
+from . import ride_events
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
 from .constant_radius import PARAMS as CRT_PARAMS
 from .drivers import OpenLoopSteering, SpeedController
@@ -81,6 +86,9 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
     'brake_in_turn': LONGITUDINAL_EVENTS['brake_in_turn'][0],
     'power_off_in_turn': LONGITUDINAL_EVENTS['power_off_in_turn'][0],
     'straight_line_acceleration': LONGITUDINAL_EVENTS['straight_line_acceleration'][0],
+    'ride': ride_events.RIDE_PARAMS,
+    'bump': ride_events.BUMP_PARAMS,
+    'lane_change': ride_events.LANE_CHANGE_PARAMS,
 }
 EVENTS = tuple(EVENT_PARAMS)
 
@@ -97,8 +105,8 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
     if progress is not None:
         progress(0.0, 'K&C suspension maps')
     try:
-        model = VehicleModel(config, fidelity)
-    except SolverError as err:
+        model = VehicleModel(config, fidelity)  # on the configuration's road
+    except (SolverError, DataError, ValueError) as err:
         raise SolverError(f'{label}: {err}') from err
     if event == 'sine_with_dwell':
         try:
@@ -106,6 +114,12 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         except SolverError as err:
             if config.name in str(err):
                 raise
+            raise SolverError(f'{label}: {err}') from err
+    elif event in ride_events.RUNNERS:
+        try:
+            metrics, channels, notes = ride_events.RUNNERS[event](model, values, progress,
+                                                                  _channels)
+        except SolverError as err:
             raise SolverError(f'{label}: {err}') from err
     elif event == 'constant_radius_turn':
         metrics, channels, notes = run_constant_radius(model, values, progress, _channels)

@@ -12,6 +12,22 @@ implicit wheel spin, springs, anti-roll bars, dampers and jacking, and the aerod
 drag and lift (:mod:`vd_solvers.chassis.aero`'s equations on the body's x speed). It is
 compiled with numba (:mod:`vd_solvers.compiled`); ``VD_NO_JIT=1`` runs it as Python.
 
+The road (:func:`road_contact`) is a regular grid of heights z(x, y) over the earth plane
+with bilinear interpolation (constant beyond its border) and a second grid of the friction
+factor, both constant arrays of :class:`VehicleArrays` (:mod:`vd_solvers.road.arrays`
+builds them from a surface). The tire meets the road through the tandem elliptical cam
+enveloping model of Schmeitz (Schmeitz, Besselink & Jansen 2007, Vehicle System Dynamics
+45 sup. 1; Pacejka, *Tire and Vehicle Dynamics*, 3rd ed. 2012, section 10.2): two cams
+of half-length a_e, height b_e and order c_e, l_s apart along the wheel's heading, each
+resting on the road (its lowest point at max over s of z(s) - b_e (1 - (1 - |s / a_e|^c_e)
+^(1 / c_e))); the effective road height is their mean and the effective forward slope
+their difference over l_s. The tire deflection and its damping are taken against the
+effective height (the road's vertical speed under the wheel is the slope times V_x), and
+the contact forces act in the effective road plane (F_z along its normal, F_x along its
+forward line), which gives a short obstacle its longitudinal force. The friction factor at
+the contact point scales the tire's LMUX and LMUY. The flat road (zero heights, friction
+factor 1) gives every operation exactly the flat-road values.
+
 Wheel order FL FR RL RR; SI; body frame ISO 8855 / REP 103 (x forward, y left, z up).
 """
 from __future__ import annotations
@@ -43,6 +59,15 @@ CONSTANT_ROWS = ('side', 'r0', 'cz', 'cd', 'mirror', 'unsprung', 'spin_inertia',
 #: braking / traction
 COMPLIANCE_ROWS = ('steer_y', 'camber_y', 'steer_mz', 'steer_x_braking', 'steer_x_traction',
                    'jacking_y', 'jacking_x_braking', 'jacking_x_traction')
+#: rows of the enveloping-cam array: half-length a_e (m), height b_e (m), order c_e,
+#: spacing l_s of the two cams (m)
+CAM_ROWS = ('half_length', 'height', 'order', 'spacing')
+#: road samples along each half of a cam
+CAM_POINTS = 24
+#: entries of the road-grid axes array: the height grid's x0, y0, dx, dy and the friction
+#: grid's x0, y0, dx, dy (m)
+ROAD_AXES = ('height_x0', 'height_y0', 'height_dx', 'height_dy',
+             'friction_x0', 'friction_y0', 'friction_dx', 'friction_dy')
 
 
 #: the aerodynamic constants (:class:`VehicleArrays` ``aero``): 1/2 rho C_d A (kg/m),
@@ -76,6 +101,66 @@ class VehicleArrays(NamedTuple):
     steer_left: np.ndarray
     steer_right: np.ndarray
     aero: np.ndarray  # (len(AERO_ROWS),)
+    road_axes: np.ndarray  # (len(ROAD_AXES),) the road grids' origins and spacings, m
+    road_height: np.ndarray  # (nx, ny) road heights, m, earth frame
+    road_friction: np.ndarray  # (mx, my) friction factor (1: the tire as measured)
+    cam: np.ndarray  # (len(CAM_ROWS), 4) the enveloping cams of each wheel
+
+
+@jit
+def grid_value(table: np.ndarray, x0: float, y0: float, dx: float, dy: float, x: float,
+               y: float) -> float:
+    """Bilinear value of a regular grid ``table`` (nx, ny) at (x, y), held beyond its border."""
+    nx, ny = table.shape
+    u = min(max((x - x0) / dx, 0.0), nx - 1.0)
+    w = min(max((y - y0) / dy, 0.0), ny - 1.0)
+    i = min(int(u), nx - 2)
+    j = min(int(w), ny - 2)
+    fu = u - i
+    fw = w - j
+    low = table[i, j] + fu * (table[i + 1, j] - table[i, j])
+    high = table[i, j + 1] + fu * (table[i + 1, j + 1] - table[i, j + 1])
+    return low + fw * (high - low)
+
+
+@jit
+def cam_height(table: np.ndarray, axes: np.ndarray, x: float, y: float, ch: float, sh: float,
+               half_length: float, height: float, order: float) -> float:
+    """Height of the lowest point of an elliptical cam centred at (x, y) resting on the road."""
+    x0, y0, dx, dy = axes[0], axes[1], axes[2], axes[3]
+    best = grid_value(table, x0, y0, dx, dy, x, y)
+    for k in range(1, CAM_POINTS + 1):
+        s = half_length * k / CAM_POINTS
+        drop = height * (1.0 - (1.0 - (s / half_length) ** order) ** (1.0 / order))
+        ahead = grid_value(table, x0, y0, dx, dy, x + s * ch, y + s * sh) - drop
+        behind = grid_value(table, x0, y0, dx, dy, x - s * ch, y - s * sh) - drop
+        best = max(best, ahead, behind)
+    return best
+
+
+@jit
+def road_contact(table: np.ndarray, friction: np.ndarray, axes: np.ndarray, cam: np.ndarray,
+                 x: np.ndarray, y: np.ndarray, ch: np.ndarray, sh: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Effective road height (m), forward slope and friction factor under the four wheels.
+
+    (x, y) the wheel centres' earth positions, (ch, sh) their headings' cosine and sine;
+    the tandem cams of ``cam`` (module doc).
+    """
+    ground = np.empty(4)
+    slope = np.empty(4)
+    mu = np.empty(4)
+    for w in range(4):
+        a_e, b_e, c_e, l_s = cam[0, w], cam[1, w], cam[2, w], cam[3, w]
+        ox, oy = 0.5 * l_s * ch[w], 0.5 * l_s * sh[w]
+        front = cam_height(table, axes, x[w] + ox, y[w] + oy, ch[w], sh[w], a_e, b_e, c_e)
+        rear = cam_height(table, axes, x[w] - ox, y[w] - oy, ch[w], sh[w], a_e, b_e, c_e)
+        ground[w] = 0.5 * (front + rear)
+        slope[w] = (front - rear) / l_s
+        mu[w] = grid_value(friction, axes[4], axes[5], axes[6], axes[7], x[w], y[w])
+    return ground, slope, mu
+
 
 
 @jit
@@ -226,7 +311,9 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     ch, sh = axis[:, 1] / level, -axis[:, 0] / level
     vx = v_world[:, 0] * ch + v_world[:, 1] * sh
     vy = -v_world[:, 0] * sh + v_world[:, 1] * ch
-    height = np.ascontiguousarray(p_world[:, 2])
+    ground, slope, mu = road_contact(c.road_height, c.road_friction, c.road_axes, c.cam,
+                                     p_world[:, 0], p_world[:, 1], ch, sh)
+    height = p_world[:, 2] - ground  # wheel centre above the effective road
     if road:
         # the tire's vertical force at its deflection: the 6.x load-deflection curve (with
         # the previous step's Fx, Fy) or the linear C_z, plus damping, >= 0 in contact
@@ -234,7 +321,9 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
         tire_fy = previous[1] if has_previous else np.zeros(4)
         spring = four_wheel_springs(c.tire_front, c.tire_rear, r0 - height, gamma, tire_fx,
                                     tire_fy, spin, mirror)
-        fz = np.where(spring > 0.0, np.maximum(spring - cd * v_world[:, 2], 0.0), 0.0)
+        # damping of the deflection rate, against the road's vertical speed under the wheel
+        fz = np.where(spring > 0.0,
+                      np.maximum(spring - cd * (v_world[:, 2] - slope * vx), 0.0), 0.0)
     else:
         fz = np.zeros(4)
     r_e = wheel_radii(c.tire_front, c.tire_rear, fz)[1]
@@ -260,16 +349,20 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
     update[3] = r_e
     update[4] = vx
     update[5] = denom
-    f = wheel_tires(c.tire_front, c.tire_rear, fz, k_t, a_t, gamma, vx, mirror)
+    f = wheel_tires(c.tire_front, c.tire_rear, fz, k_t, a_t, gamma, vx, mirror, mu)
     f_x, f_y, m_x, m_y, m_z = f[0], f[1], f[2], f[3], f[4]
     wheel = np.empty((9, 4))
     wheel[0], wheel[1], wheel[2], wheel[3] = fz, f_x, f_y, m_z
     wheel[4], wheel[5], wheel[6], wheel[7], wheel[8] = k_t, a_t, gamma, steer, z
-    # --- tire wrench (world) at the contact point, moment about the wheel centre
+    # --- tire wrench (world) at the contact point, moment about the wheel centre; F_x
+    # along the effective road plane's forward line, F_z along its normal
+    cos_b = 1.0 / np.sqrt(1.0 + slope * slope)
+    sin_b = slope * cos_b
+    forward = f_x * cos_b - fz * sin_b
     force = np.empty((4, 3))
-    force[:, 0] = f_x * ch - f_y * sh
-    force[:, 1] = f_x * sh + f_y * ch
-    force[:, 2] = fz
+    force[:, 0] = forward * ch - f_y * sh
+    force[:, 1] = forward * sh + f_y * ch
+    force[:, 2] = f_x * sin_b + fz * cos_b
     # (contact point - wheel centre) x force, the lever being (0, 0, -height)
     moment = np.empty((4, 3))
     moment[:, 0] = height * force[:, 1] + m_x * ch - m_y * sh
@@ -336,5 +429,5 @@ def vehicle_forces(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.nd
 
 
 __all__ = ['vehicle_forces', 'wheel_radii', 'wheel_tires', 'VehicleArrays', 'WHEEL_ROWS',
-           'AERO_ROWS',
-           'UPDATE_ROWS', 'CONSTANT_ROWS', 'COMPLIANCE_ROWS']
+           'AERO_ROWS', 'UPDATE_ROWS', 'CONSTANT_ROWS', 'COMPLIANCE_ROWS', 'CAM_ROWS',
+           'CAM_POINTS', 'ROAD_AXES', 'grid_value', 'cam_height', 'road_contact']

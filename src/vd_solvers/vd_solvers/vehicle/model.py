@@ -63,7 +63,16 @@ beyond the K&C compliance steer, wheel-centre fore-aft and lateral motion with t
 (their effect enters through the jacking coefficients), gyroscopic steer moments (the
 wheel's spin inertia is carried about the body y axis: a torque about the spin axis
 reaches the body as one about y, an error of that torque times the steer angle, zero
-for a free-rolling wheel in a steady state), road unevenness.
+for a free-rolling wheel in a steady state).
+
+Road: the tires stand on the :class:`vd_solvers.road.arrays.RoadGrid` given (default the
+configuration's road, :func:`vd_solvers.road.from_config.road_of`: without a ``road``
+group the flat road of friction 1) through the tandem elliptical cams of :mod:`.forces`;
+the cams of each tire come from its .tir [CONTACT_PATCH] section: half-length
+a_e = ELLIPS_LENGTH r0, height b_e = ELLIPS_HEIGHT r0, order c_e = ELLIPS_ORDER, spacing
+l_s = ELLIPS_SHIFT 2a (defaults 1, 1, 1.8, 0.8), a the contact half-length at the static load,
+a = r0 (Q_RA2 rho / r0 + Q_RA1 sqrt(rho / r0)) of MF 6.1 (rho the static deflection;
+without Q_RA1 / Q_RA2 the chord of the undeformed circle, a = sqrt(2 r0 rho)).
 """
 from __future__ import annotations
 
@@ -79,12 +88,15 @@ from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.chassis.from_config import chassis_systems
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
+from vd_solvers.road.arrays import RoadGrid
+from vd_solvers.road.from_config import road_of
 from vd_solvers.tire.magic_formula import MagicFormula
 from vd_solvers.vehicle_data import static_wheel_loads, wheel_centres
 
 from .dynamics import kappa_next, multibody_arrays, vehicle_step
 from .forces import (
     AERO_ROWS,
+    CAM_ROWS,
     COMPLIANCE_ROWS,
     CONSTANT_ROWS,
     VehicleArrays,
@@ -148,8 +160,10 @@ class VehicleModel:
     """The multibody vehicle of one configuration (module doc). Not thread-safe."""
 
     def __init__(self, config: Configuration, fidelity: str = 'rigid',
-                 options: Options = Options(), maps: SuspensionMaps | None = None) -> None:
+                 options: Options = Options(), maps: SuspensionMaps | None = None,
+                 road: RoadGrid | None = None) -> None:
         self.config = config
+        self.road = road if road is not None else road_of(config)
         self.options = options
         self.maps = maps if maps is not None else suspension_maps(config, fidelity)
         mass = config.group('mass')
@@ -192,6 +206,7 @@ class VehicleModel:
         self._slip_stiffness_static = np.concatenate(
             [self.tires[0].slip_stiffness(self._static[:2]),
              self.tires[1].slip_stiffness(self._static[2:])])
+        self.cam = self._cams()
         self.arrays = self._arrays()
         self.multibody = multibody_arrays(self.model)
         self._no_previous = np.zeros((4, 4))
@@ -316,6 +331,28 @@ class VehicleModel:
             has_previous, float(h), self.arrays, self.vx_floor, self.total_mass,
             self.options.road, self.options.dampers, self.multibody)
 
+    def _cams(self) -> np.ndarray:
+        """Return the enveloping cams of the four tires, (len(CAM_ROWS), 4) (module doc)."""
+        out = np.empty((len(CAM_ROWS), 4))
+        for w in range(4):
+            tire = self.tires[0 if w < 2 else 1]
+            props = tire.props
+            r0 = float(self.r0[w])
+            rho = float(self._static[w] / self.cz[w])
+            q1 = props.number('CONTACT_PATCH', 'Q_RA1', 0.0)
+            q2 = props.number('CONTACT_PATCH', 'Q_RA2', 0.0)
+            half = (r0 * (q2 * rho / r0 + q1 * np.sqrt(rho / r0)) if q1 > 0.0 or q2 > 0.0
+                    else np.sqrt(2.0 * r0 * rho))
+            out[:, w] = (props.number('CONTACT_PATCH', 'ELLIPS_LENGTH', 1.0) * r0,
+                         props.number('CONTACT_PATCH', 'ELLIPS_HEIGHT', 1.0) * r0,
+                         props.number('CONTACT_PATCH', 'ELLIPS_ORDER', 1.8),
+                         props.number('CONTACT_PATCH', 'ELLIPS_SHIFT', 0.8) * 2.0 * half)
+        if not np.all(out[[0, 1, 3]] > 0.0) or not np.all(out[2] >= 1.0):
+            raise SolverError(f"configuration '{self.config.name}': the tires' enveloping "
+                              'ellipses need positive ELLIPS_LENGTH, ELLIPS_HEIGHT, '
+                              'ELLIPS_SHIFT and an ELLIPS_ORDER of at least 1')
+        return out
+
     def _arrays(self) -> VehicleArrays:
         """Return the constant inputs of the compiled force evaluation (:mod:`.forces`)."""
         maps = self.maps
@@ -346,7 +383,9 @@ class VehicleModel:
             damper_front_x=c(maps.damper_x[0]), damper_front_y=c(maps.damper_y[0]),
             damper_rear_x=c(maps.damper_x[1]), damper_rear_y=c(maps.damper_y[1]),
             steer_swa=c(maps.steer_swa), steer_left=c(maps.steer_angle[:, 0]),
-            steer_right=c(maps.steer_angle[:, 1]), aero=c(self._aero()))
+            steer_right=c(maps.steer_angle[:, 1]), aero=c(self._aero()),
+            road_axes=c(self.road.axes), road_height=c(self.road.height),
+            road_friction=c(self.road.friction), cam=c(self.cam))
 
     def _aero(self) -> np.ndarray:
         """Return the aerodynamic constants of :data:`.forces.AERO_ROWS` (zeros: none)."""
