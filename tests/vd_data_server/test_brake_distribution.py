@@ -4,17 +4,20 @@
 Every sample brake set against the braking-distribution rules of UN Regulation No. 13.
 
 UN R13, Annex 10 ("Distribution of braking among the axles of vehicles"; the same text as
-Directive 71/320/EEC, Annex II, Appendix, point 3), paragraph 2 (symbols): P the vehicle
+Directive 71/320/EEC, Annex II, Appendix, as consolidated at legislation.gov.uk/eudr/1971/320,
+whose numbering is used here), paragraph 2 (symbols): P the vehicle
 mass, P1 and P2 the static axle loads, h the centre-of-gravity height, E the wheelbase,
 z the braking rate (deceleration over g), T1 and T2 the axles' brake forces at the road,
 N1 = P1 g + z P g h / E and N2 = P2 g - z P g h / E the normal reactions when braking,
 f_i = T_i / N_i the adhesion utilised by axle i, k the tyre-road adhesion coefficient.
 
-* paragraph 3.1.1: for k between 0.2 and 0.8 the braking rate reached before any axle
-  uses more than k must be z >= 0.10 + 0.85 (k - 0.20);
-* paragraph 3.1.1 (category M1; the front-locks-first condition, verified with the
-  formulae of paragraph 3.1.3): for all braking rates between 0.15 and 0.8 the adhesion
-  utilisation curve of the front axle lies above that of the rear axle, f1 >= f2.
+* paragraph 3.1.1, first part (all categories): for k between 0.2 and 0.8 the braking
+  rate reached before any axle uses more than k must be z >= 0.10 + 0.85 (k - 0.20);
+* paragraph 3.1.1, second part (for all states of load; the range of category M1), with
+  the formulae of paragraph 3.1.3 (f1 = T1 / N1, f2 = T2 / N2): for all braking rates
+  between 0.15 and 0.8 the adhesion utilisation curve of the front axle lies above that
+  of the rear axle, f1 >= f2 (the inversion M1 may have between z 0.3 and 0.45 is not
+  used).
 
 The brake forces are worked here from the group files alone, not through the brake model:
 line pressure p to torque T = 2 mu p (n pi d^2 / 4) r_e per wheel (Limpert, Brake Design
