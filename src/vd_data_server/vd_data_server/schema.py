@@ -453,6 +453,9 @@ KINDS: Mapping[str, Section] = {
                               maximum=50.0),
         'efficiency': Scalar('dimensionless', 'gearbox and final-drive efficiency',
                              required=False, default=0.92, positive=True, maximum=1.0),
+        'inertia': Scalar('inertia', 'rotational inertia turning at engine speed (crankshaft, '
+                          'flywheel, converter, gearbox input); 0: none', required=False,
+                          default=0.0, minimum=0.0),
         'shift_speed': Scalar('angular_velocity', 'engine speed of a full-throttle upshift '
                               "(default: the curve's last speed)", required=False,
                               positive=True),

@@ -59,6 +59,23 @@ def test_wheel_torques_through_gears_and_split():
         line.ratio(4)
 
 
+def test_the_engine_speed_inertia_takes_j_i2_eta_of_the_drive_torque():
+    """J i^2 eta dw/dt by hand; none while the clutch slips; taken off before the split."""
+    line = Driveline(ENGINE, gears=(3.5, 2.0, 1.3), final_drive=4.0, efficiency=0.9,
+                     front_share=0.4, inertia=1.5)
+    wheels = (30.0, 30.0, 30.0, 30.0)
+    # second gear, i = 8: 1.5 x 64 x 0.9 x 2 rad/s^2
+    assert line.inertia_torque(2, wheels, 2.0) == pytest.approx(1.5 * 64.0 * 0.9 * 2.0)
+    # the engine held at its first speed (80 rad/s > 14 x 5 rad/s) does not spin up
+    assert line.inertia_torque(1, (5.0, 5.0, 5.0, 5.0), 2.0) == 0.0
+    full = sum(line.wheel_torques(1.0, 2, wheels))
+    less = line.wheel_torques(1.0, 2, wheels, 100.0)
+    assert sum(less) == pytest.approx(full - 100.0)
+    assert less[2] / less[0] == pytest.approx(0.6 / 0.4)
+    with pytest.raises(ValueError, match='inertia must not be negative'):
+        Driveline(ENGINE, gears=(3.5,), final_drive=4.0, inertia=-1.0)
+
+
 def test_automatic_gear_and_the_slipping_clutch_at_launch():
     line = Driveline(ENGINE, gears=(3.5, 2.0, 1.3), final_drive=4.0, efficiency=0.9,
                      front_share=0.4)

@@ -9,6 +9,10 @@ The driveline: engine map, gears, axle split and a differential per axle.
   the torque at the driven wheels is T_e i eta, the engine turns at i times the driven
   wheels' mean speed, but not below the map's first speed: pulling away, the clutch (or
   converter) slips and holds the engine there.
+* **Driveline inertia**: the parts that turn at engine speed (crankshaft, flywheel,
+  converter, gearbox input) take J i^2 eta dw/dt of the drive torque at the wheels while
+  the driven wheels' mean speed w rises at dw/dt (:meth:`Driveline.inertia_torque`; none
+  while the clutch slips and holds the engine at its first speed).
 * **Automatic gear choice** (:meth:`Driveline.gear`): the lowest gear in which the engine
   stays at or below the upshift speed.
 * **Axle split**: a fixed front share of the drive torque (0 rear-wheel drive, 1
@@ -100,8 +104,11 @@ class Driveline:
     front_share: float = 0.0  # of the drive torque to the front axle
     front: Differential = field(default_factory=Differential)
     rear: Differential = field(default_factory=Differential)
+    inertia: float = 0.0  # kg m^2 turning at engine speed
 
     def __post_init__(self) -> None:
+        if not self.inertia >= 0.0:
+            raise ValueError(f'the driveline inertia must not be negative (got {self.inertia})')
         if not self.gears or any(not g > 0.0 for g in self.gears) or not self.final_drive > 0.0:
             raise ValueError('the gear and final-drive ratios must be positive')
         if not 0.0 < self.efficiency <= 1.0:
@@ -141,11 +148,27 @@ class Driveline:
         return (self.engine.torque(self.engine_speed(gear, wheel_speeds), 1.0)
                 * self.ratio(gear) * self.efficiency)
 
+    def inertia_torque(self, gear: int, wheel_speeds: tuple[float, float, float, float],
+                       driven_acceleration: float) -> float:
+        """
+        Drive torque at the wheels that spinning up the engine-speed inertia takes, N m.
+
+        J i^2 eta dw/dt with dw/dt the driven wheels' mean angular acceleration (rad/s^2):
+        the engine turns at i w and its inertia takes J i dw/dt of its torque, which
+        reaches the wheels times i eta. None while the clutch slips (the engine held at
+        its map's first speed does not accelerate with the wheels).
+        """
+        i = self.ratio(gear)
+        if i * self.driven_speed(wheel_speeds) < float(self.engine.speeds[0]):
+            return 0.0
+        return self.inertia * i * i * self.efficiency * driven_acceleration
+
     def wheel_torques(self, throttle: float, gear: int,
-                      wheel_speeds: tuple[float, float, float, float]
-                      ) -> tuple[float, float, float, float]:
-        """Drive torque of each wheel (FL, FR, RL, RR), N m."""
-        total = float(np.clip(throttle, 0.0, 1.0)) * self.available_torque(gear, wheel_speeds)
+                      wheel_speeds: tuple[float, float, float, float],
+                      inertia_torque: float = 0.0) -> tuple[float, float, float, float]:
+        """Drive torque of each wheel (FL, FR, RL, RR), N m, less ``inertia_torque``."""
+        total = (float(np.clip(throttle, 0.0, 1.0)) * self.available_torque(gear, wheel_speeds)
+                 - inertia_torque)
         fl, fr = self.front.split(self.front_share * total, wheel_speeds[0], wheel_speeds[1])
         rl, rr = self.rear.split((1.0 - self.front_share) * total, wheel_speeds[2],
                                  wheel_speeds[3])

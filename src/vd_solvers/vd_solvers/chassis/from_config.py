@@ -80,7 +80,7 @@ def chassis_systems(config: Configuration) -> Chassis:
                 gears=tuple(float(r) for r in g.curve('gears')[1]),
                 final_drive=g.scalar('final_drive'), efficiency=g.scalar('efficiency'),
                 front_share=share, front=_differential(g, 'front'),
-                rear=_differential(g, 'rear'))
+                rear=_differential(g, 'rear'), inertia=g.scalar('inertia'))
             shift = g.get_scalar('shift_speed') or float(speeds[-1])
         if 'aero' in groups:
             g = groups['aero']

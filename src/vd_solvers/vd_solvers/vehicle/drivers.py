@@ -292,6 +292,10 @@ def speed_law(reference: float, reference_next: float, speed: float, integral: f
 
 #: spin speed over which a brake's torque reverses with the wheel's rotation, rad/s
 BRAKE_SPIN_SCALE = 0.1
+#: time constant of the vehicle acceleration the driveline inertia is taken at, s
+ACCELERATION_FILTER = 0.05
+#: vehicle speed below which the driveline inertia is left out (dv/dt / v undefined), m/s
+INERTIA_SPEED_FLOOR = 0.1
 
 
 @jit
@@ -328,6 +332,13 @@ class WheelTorques:
     fixed shares ``drive_front`` and ``brake_front`` (:func:`wheel_torques`). After a
     call, ``throttle``, ``gear`` and ``pressures`` (the four brakes' line pressures, Pa)
     say what it did.
+
+    While the engine drives (throttle open) the driveline's inertia takes its share of the
+    drive torque (:meth:`.Driveline.inertia_torque`) at the driven wheels' angular
+    acceleration, taken as their speed times the vehicle's relative acceleration
+    (dv/dt / v, the slip held), with dv/dt the speed's change over the previous step
+    smoothed over ACCELERATION_FILTER: the body's acceleration, not the wheels' stiff spin,
+    so the lagged feedback stays below one (J i^2 / r^2 under the vehicle's mass).
     """
 
     def __init__(self, chassis: Chassis | None, drive_front: float = 0.5,
@@ -338,11 +349,17 @@ class WheelTorques:
         self.throttle = 0.0
         self.gear = 0
         self.pressures = np.zeros(4)
+        self._speed: float | None = None  # the previous call's vehicle speed
+        self._acceleration = 0.0  # its smoothed rate of change, m/s^2
 
     def __call__(self, request: float | Pedals, spin: np.ndarray, kappa: np.ndarray,
                  speed: float, h: float) -> np.ndarray:
         """Torques FL FR RL RR (N*m) at wheel spin speeds ``spin`` and slips ``kappa``."""
         c = self.chassis
+        if self._speed is not None and h > 0.0:
+            rate = (speed - self._speed) / h
+            self._acceleration += min(h / ACCELERATION_FILTER, 1.0) * (rate - self._acceleration)
+        self._speed = speed
         wanted = 0.0  # the drive torque the throttle is opened for
         if isinstance(request, Pedals):
             throttle, pressure = request
@@ -362,7 +379,11 @@ class WheelTorques:
             if throttle < 0.0:
                 available = line.available_torque(self.gear, wheels)
                 throttle = min(wanted / available, 1.0) if available > 0.0 else 0.0
-            torques += line.wheel_torques(throttle, self.gear, wheels)
+            inertia = 0.0
+            if throttle > 0.0 and line.inertia > 0.0 and speed > INERTIA_SPEED_FLOOR:
+                spin_up = line.driven_speed(wheels) * self._acceleration / speed
+                inertia = line.inertia_torque(self.gear, wheels, spin_up)
+            torques += line.wheel_torques(throttle, self.gear, wheels, inertia)
         self.throttle = max(throttle, 0.0)
         if c.brakes is not None:
             rear = c.brakes.rear_pressure(pressure)
@@ -390,4 +411,4 @@ DRIVERS: Mapping[str, type] = {
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
            'CurvatureController', 'PreviewPathFollower',
            'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
-           'BRAKE_SPIN_SCALE']
+           'BRAKE_SPIN_SCALE', 'ACCELERATION_FILTER', 'INERTIA_SPEED_FLOOR']
