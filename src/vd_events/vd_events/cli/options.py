@@ -9,9 +9,6 @@ from pathlib import Path
 import sys
 from typing import Any, TypeVar
 
-from rich.console import Console
-from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn
-
 from vd_data_server.paths import default_master
 from vd_data_server.ros.names import DEFAULT_NAMESPACE, check_namespace
 from vd_data_server.study import Study
@@ -49,6 +46,10 @@ class ProgressBar:
     """
 
     def __init__(self) -> None:
+        # imported here: without a terminal (--json, scripts) there is no bar to import
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn
+
         self.progress = Progress(TextColumn('{task.description}'), BarColumn(),
                                  TaskProgressColumn(), TextColumn('{task.fields[stage]}'),
                                  console=Console(stderr=True), transient=False)
