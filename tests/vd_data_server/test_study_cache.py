@@ -10,10 +10,10 @@ import threading
 from numpy.testing import assert_allclose
 import pytest
 
-from vd_data_server import study_cache
+from vd_data_server import disk_cache, study_cache
 from vd_data_server.errors import DataError
 from vd_data_server.study import load_study
-from vd_data_server.study_cache import cache_folder, cached_study
+from vd_data_server.study_cache import cached_study
 from vdtest import replace_once
 
 TIRE = 'tires/Sedan_Pac02Tire.tir'
@@ -53,7 +53,8 @@ def test_the_cached_study_is_the_loaded_study(sedan_master: Path, loads: list[Pa
     first = cached_study(sedan_master)
     second = cached_study(sedan_master)
     assert loads == [sedan_master]  # the second came from the cache
-    assert cache_folder() == private_cache and len(list(private_cache.glob('*.pickle'))) == 1
+    assert disk_cache.folder('studies') == private_cache
+    assert len(list(private_cache.glob('*.pickle'))) == 1
     _same(second, load_study(sedan_master))
     _same(first, second)
 
