@@ -89,3 +89,12 @@ if [ "$(cat "$ROOT/install/.vd-jit" 2>/dev/null)" != "$jit_hash" ]; then
         say "compiling the numerical kernels failed"; exit 1; }
     echo "$jit_hash" > "$ROOT/install/.vd-jit"
 fi
+
+# 5. the bytecode of the workspace's Python sources, written here so a command reads it instead
+#    of compiling every module it imports (worth a tenth of a second of CPU per command where
+#    PYTHONDONTWRITEBYTECODE keeps Python from writing it itself); again whenever a source changes.
+pyc_hash=$(find src -name '*.py' -printf '%p %T@\n' | sort | sha256sum | cut -c1-16)
+if [ "$(cat "$ROOT/install/.vd-pyc" 2>/dev/null)" != "$pyc_hash" ]; then
+    "$VENV/bin/python" -m compileall -q src >/dev/null || say "byte-compiling the sources failed"
+    echo "$pyc_hash" > "$ROOT/install/.vd-pyc"
+fi

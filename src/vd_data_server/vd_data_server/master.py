@@ -38,6 +38,7 @@ from .datafile import _check_range, load_group_file, parse_override
 from .errors import DataError, DataErrors
 from .model import Configuration, GroupData, Value
 from .plausibility import check_point
+from .reads import note_read
 from .shape import PLAIN_NAME, Collector, check
 from .shared import check_shared_facts
 from .tir import read_tir
@@ -215,7 +216,9 @@ class GroupCache:
             raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
                             file=data.file, key='file')
         props = read_tir(path)
-        self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
+        raw = path.read_bytes()
+        note_read(path, raw)
+        self.extra_hashes[rel] = hashlib.sha256(raw).hexdigest()[:16]
         return with_tire(data, props, rel)
 
 
@@ -243,6 +246,7 @@ def _read_imported(cache: "GroupCache", data: GroupData) -> GroupData:
             raise DataError(f"reduced stiffness file '{rel}' does not exist", file=data.file,
                             key=key)
         raw = path.read_bytes()
+        note_read(path, raw)
         if len(raw) > IMPORTED_MAX_BYTES:
             raise DataError(f"reduced stiffness file '{rel}' is larger than "
                             f"{IMPORTED_MAX_BYTES // 1_000_000} MB", file=data.file, key=key)

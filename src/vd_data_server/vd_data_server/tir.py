@@ -48,10 +48,9 @@ import re
 from types import MappingProxyType
 from typing import Final
 
-import pint
-
 from vd_data_server.errors import DataError, DataErrors
-from vd_data_server.units import UREG
+from vd_data_server.reads import note_read
+from vd_data_server.units import ureg
 from vd_data_server.yamlio import MAX_FILE_BYTES
 
 __all__ = [
@@ -253,7 +252,6 @@ _TABLE_HEADER_RE: Final = re.compile(r'\{([^{}]*)\}')
 # A unit is one name; pint's expression parser would accept 'm,' or 'm=1'.
 _UNIT_NAME_RE: Final = re.compile(r'[A-Za-z][A-Za-z_]*')
 
-_UREG: Final[pint.UnitRegistry[float]] = UREG
 
 
 class _Required(enum.Enum):
@@ -384,6 +382,7 @@ def read_tir(path: str | Path) -> TireProperties:
         raise DataError(
             f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file', file=str(file)
         )
+    note_read(file, data)
     try:
         text = data.decode('utf-8-sig')
     except UnicodeDecodeError:
@@ -678,16 +677,19 @@ def _unit_factor(quantity: str, name: str, si_unit: str) -> float | None:
     """Factor from unit ``name`` to ``si_unit``, None if ``name`` is no unit of that kind."""
     if not _UNIT_NAME_RE.fullmatch(name):
         return None
+    from pint.errors import UndefinedUnitError
+
+    units = ureg()
     # Exact spelling first: 'N' is newton, while 'n' is not a unit.
     for candidate in dict.fromkeys((name, name.lower())):
         try:
-            unit = _UREG.Unit(candidate)
-        except pint.errors.UndefinedUnitError:
+            unit = units.Unit(candidate)
+        except UndefinedUnitError:
             continue
         if quantity == 'ANGLE' and str(unit) not in _ANGLE_UNITS:
             continue
         if unit.is_compatible_with(si_unit):
-            return float(_UREG.Quantity(1.0, unit).to(si_unit).magnitude)
+            return float(units.Quantity(1.0, unit).to(si_unit).magnitude)
     return None
 
 

@@ -10,7 +10,10 @@ damping, inertia, ...) follow from them unless the block names them too, as
 Adams does. A single value may also carry its own unit as a string
 (``"36.9 N/mm"``); master-file overrides always do.
 
-Conversion and dimension checks use the ``pint`` library.
+Conversion and dimension checks use the ``pint`` library, imported at the first
+conversion (:func:`ureg`): importing it and building its registry costs about half a
+second of CPU, which a command that converts nothing (a study read from the cache of
+``vd_data_server.study_cache``) does not pay.
 """
 from __future__ import annotations
 
@@ -20,22 +23,28 @@ import math
 from pathlib import Path
 import re
 import sys
-from typing import cast
-
-import pint
+from typing import TYPE_CHECKING, cast
 
 from .errors import DataError
 
+if TYPE_CHECKING:
+    import pint
 
-def _registry() -> pint.UnitRegistry:
+
+@lru_cache(maxsize=1)
+def ureg() -> pint.UnitRegistry:
     """
-    Build the unit registry, its parsed definitions cached on disk (~7x faster after the first).
+    Return the one unit registry of vd, built at the first call.
+
+    Its parsed definitions are cached on disk (~7x faster after the first).
 
     The cache lives in this Python environment (``<prefix>/var/cache/vd-pint``), not in
     the user's cache folder: pint's cache records the paths of the definition files, so a
     cache shared between environments breaks when the one that wrote it is removed.
     Without a writable folder the registry is built without a cache.
     """
+    import pint
+
     folder = Path(sys.prefix) / 'var' / 'cache' / 'vd-pint'
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -43,9 +52,6 @@ def _registry() -> pint.UnitRegistry:
     except OSError:
         return pint.UnitRegistry()
 
-
-#: the one unit registry of vd
-UREG: pint.UnitRegistry = _registry()
 #: "40m", "-1.5deg", "3e4 N/m": a number and an optional unit, with or without a space
 _NUMBER_UNIT = re.compile(r'^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z%].*)?$')
 
@@ -111,9 +117,11 @@ SI_SYMBOLS: Mapping[str, str] = {
 @lru_cache(maxsize=512)
 def parse_unit(text: str) -> pint.Unit:
     """Parse a unit string; raise ``ValueError`` with a readable message."""
+    from pint.errors import UndefinedUnitError
+
     try:
-        return UREG.parse_units(text)
-    except pint.errors.UndefinedUnitError as err:
+        return ureg().parse_units(text)
+    except UndefinedUnitError as err:
         raise ValueError(f"unknown unit '{text}'") from err
     except Exception as err:  # noqa: BLE001 - pint's parser fails in many ways on bad text
         # (SyntaxError, ZeroDivisionError for 'N/(mm*0)', OverflowError, RecursionError...)
@@ -127,17 +135,20 @@ def si_factor(unit: str, quantity: str) -> float:
 
     Raises ``ValueError`` for an unknown unit or one of the wrong dimension.
     """
+    from pint.errors import DimensionalityError
+
     target = SI_UNITS[quantity]
-    src = parse_unit(unit) if unit else UREG.dimensionless
-    dst = parse_unit(target) if target else UREG.dimensionless
+    units = ureg()
+    src = parse_unit(unit) if unit else units.dimensionless
+    dst = parse_unit(target) if target else units.dimensionless
     wrong = ValueError(f"unit '{unit}' is not {_a(quantity)} unit (expected e.g. "
                        f"'{target or '-'}')")
     # pint counts angles as dimensionless, so only the radian power tells '%' from 'deg'
     if _radian_power(src) != _radian_power(dst):
         raise wrong
     try:
-        factor = float(UREG.Quantity(1.0, src).to(dst).magnitude)
-    except pint.errors.DimensionalityError as err:
+        factor = float(units.Quantity(1.0, src).to(dst).magnitude)
+    except DimensionalityError as err:
         raise wrong from err
     except (ArithmeticError, ValueError) as err:  # 'mm*0' scales by zero, '1e999 m' by inf
         raise ValueError(f"invalid unit '{unit}'") from err
@@ -147,7 +158,7 @@ def si_factor(unit: str, quantity: str) -> float:
 
 
 def _radian_power(unit: pint.Unit) -> int:
-    powers = dict(UREG.Quantity(1.0, unit).to_root_units().unit_items())
+    powers = dict(ureg().Quantity(1.0, unit).to_root_units().unit_items())
     # pint types the exponents as any number; those of a unit are whole numbers
     return int(cast(float, powers.get('radian', 0)))
 

@@ -17,6 +17,7 @@ from typing import Any
 import yaml
 
 from .errors import DataError
+from .reads import note_read
 
 #: largest file read (data, master, plan, .tir), bytes; the sample files are < 20 kB
 MAX_FILE_BYTES = 1 << 20
@@ -155,6 +156,7 @@ def read_bytes(path: Path, *, display: str) -> bytes:
     if len(data) > MAX_FILE_BYTES:
         raise DataError(f'exceeds the limit of {MAX_FILE_BYTES >> 20} MiB per file',
                         file=display)
+    note_read(path, data)
     return data
 
 

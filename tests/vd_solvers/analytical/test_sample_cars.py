@@ -18,7 +18,7 @@ import pytest
 
 from conftest import SAMPLE_DATA
 from vd_data_server.study import load_study
-from vd_data_server.units import UREG
+from vd_data_server.units import ureg
 from vd_solvers.analytical.budget import RANGE_TERMS, TERMS
 from vd_solvers.analytical.events import run_event
 from vd_solvers.constants import STANDARD_GRAVITY as G
@@ -90,7 +90,7 @@ def test_sedan_budget_terms_are_the_k_and_c_metrics_of_the_same_data(sedan_bicyc
 
 
 def _rad_per_newton(metric) -> float:
-    return float(UREG.Quantity(metric.value, metric.unit).to('rad/N').magnitude)
+    return float(ureg().Quantity(metric.value, metric.unit).to('rad/N').magnitude)
 
 
 def test_result_does_not_depend_on_what_ran_before() -> None:

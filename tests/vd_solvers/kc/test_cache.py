@@ -15,9 +15,45 @@ from vd_solvers.kc.from_config import suspension_input
 
 
 @pytest.fixture
-def baseline(sedan_master):
+def baseline(sedan_master, tmp_path, monkeypatch):
     cache.clear()
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))  # never the user's cache
     return load_study(sedan_master).configurations['baseline']
+
+
+def _no_solving(*args, **kwargs):
+    raise AssertionError('solved again')
+
+
+def test_a_new_process_reads_the_result_from_the_disk(baseline, monkeypatch):
+    first = cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    direct = KCModel(suspension_input(baseline, 'front')).run('parallel_wheel_travel', steps=11)
+    cache.clear()  # what a new process holds
+    monkeypatch.setattr(cache, 'kc_model', _no_solving)
+    again = cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    assert again is not first
+    assert again.channels.keys() == direct.channels.keys()
+    for name, values in direct.channels.items():
+        np.testing.assert_array_equal(again.channels[name], values)  # to the last bit
+    assert again.params == direct.params
+
+
+def test_other_data_or_other_code_is_solved_again(baseline, monkeypatch):
+    cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    cache.clear()
+    solved = []
+    real = cache.kc_model
+    monkeypatch.setattr(cache, 'kc_model', lambda *a, **k: solved.append(a) or real(*a, **k))
+    cambered = with_overrides(baseline, parse_set(['front_alignment.camber=-2 deg']))
+    cache.kc_result(cambered, 'front', 'parallel_wheel_travel', steps=11)
+    assert len(solved) == 1
+    cache.clear()
+    cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=12)  # other parameters
+    assert len(solved) == 2
+    cache.clear()
+    monkeypatch.setattr(cache, '_code', lambda: 'the sources after an edit')
+    cache.kc_result(baseline, 'front', 'parallel_wheel_travel', steps=11)
+    assert len(solved) == 3
 
 
 def test_result_equals_a_direct_run_and_is_reused(baseline):

@@ -24,7 +24,7 @@ from scipy.optimize import minimize_scalar
 from vd_data_server.errors import DataError
 from vd_data_server.tir import TireProperties, parse_tir_text, read_tir
 from vd_solvers.errors import SolverError
-from vd_solvers.tire.magic_formula import MagicFormula
+from vd_solvers.tire.magic_formula import MagicFormula, vertical_stiffness
 
 DATA_DIR = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'tires'
 SEDAN = DATA_DIR / 'Sedan_Pac02Tire.tir'
@@ -395,10 +395,11 @@ def test_mirroring_a_symmetric_tire_changes_nothing() -> None:
 # --- bad input ------------------------------------------------------------------------------
 
 
-def test_an_unknown_format_is_refused(sedan: TireProperties) -> None:
+@pytest.mark.parametrize('build', [MagicFormula, vertical_stiffness])
+def test_an_unknown_format_is_refused(sedan: TireProperties, build) -> None:
     props = dataclasses.replace(sedan, file_format='MF70', path='mf70.tir')
     with pytest.raises(SolverError) as info:
-        MagicFormula(props)
+        build(props)
     assert (
         str(info.value)
         == 'mf70.tir: MagicFormula evaluates PAC2002, MF 5.2, 6.1 and 6.2 files, '

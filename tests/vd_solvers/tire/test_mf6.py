@@ -28,7 +28,7 @@ import numpy.testing as npt
 import pytest
 
 from vd_data_server.tir import TireProperties, parse_tir_text, read_tir
-from vd_solvers.tire.magic_formula import MagicFormula
+from vd_solvers.tire.magic_formula import MagicFormula, vertical_stiffness
 
 if __package__:
     from .mf6_reference import Mf6
@@ -159,6 +159,16 @@ def test_vertical_stiffness_is_the_files_at_the_nominal_load_and_pressure() -> N
         npt.assert_allclose(slope, 322913.0 * (1 + 0.8156607 * dpi), rtol=1e-6)
         npt.assert_allclose(tire.vertical_stiffness, 322913.0 * (1 + 0.8156607 * dpi),
                             rtol=1e-12)
+
+
+def test_the_vertical_stiffness_without_the_model_follows_the_closed_form() -> None:
+    """vertical_stiffness(): C_z = VERTICAL_STIFFNESS (1 + PFZ1 dpi) (eq. 5), no model built."""
+    props = TIRES['MF61']()
+    npt.assert_allclose(vertical_stiffness(props), 322913.0, rtol=1e-12)
+    for pressure in PRESSURES:
+        dpi = (pressure - 2.6e5) / 2.6e5
+        npt.assert_allclose(vertical_stiffness(props, pressure),
+                            322913.0 * (1 + 0.8156607 * dpi), rtol=1e-12)
 
 
 def test_pressure_factors_follow_the_closed_forms() -> None:

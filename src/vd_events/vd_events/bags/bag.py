@@ -37,17 +37,6 @@ from rclpy.qos import (
     ReliabilityPolicy,
 )
 from rclpy.serialization import serialize_message
-from rosbags.interfaces import (
-    Qos,
-    QosDurability,
-    QosHistory,
-    QosLiveliness,
-    QosReliability,
-    QosTime,
-)
-from rosbags.rosbag2 import CompressionFormat, CompressionMode, Reader, StoragePlugin, Writer
-from rosbags.rosbag2.storage_mcap import McapWriter
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 from vd_data_server.errors import DataError
 from vd_data_server.yamlio import load_file
@@ -73,6 +62,8 @@ _ROSBAGS_DISTRO = 'ros_distro: rosbags'
 @lru_cache(maxsize=1)
 def typestore() -> Typestore:
     """Jazzy's types plus every vd_interfaces message, from the installed .msg files."""
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
     store = get_typestore(Stores.ROS2_JAZZY)
     msg_dir = Path(get_package_share_directory(INTERFACES)) / 'msg'
     types: dict[str, Any] = {}
@@ -125,6 +116,9 @@ def _partial_is_live(partial: Path) -> bool:
 @lru_cache(maxsize=1)
 def _writer_class() -> type:
     """Return rosbags' Writer whose metadata names the Jazzy distribution."""
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.rosbag2.storage_mcap import McapWriter
+
     class JazzyMcapWriter(McapWriter):
         """rosbags' MCAP storage, with the metadata record naming the Jazzy distribution."""
 
@@ -146,6 +140,15 @@ def _writer_class() -> type:
 
 def qos_record(profile) -> Qos:
     """Return the bag's record of an rclpy QoSProfile (the same enumerations, by value)."""
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
     def duration(d) -> QosTime:
         ns = d.nanoseconds
         return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
@@ -225,6 +228,7 @@ class BagWriter:
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
         # imported before the partial folder exists: a signal during the import
         # leaves nothing behind
+        from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
 
         writer_class = _writer_class()
         self.path = Path(path)
@@ -329,6 +333,8 @@ def read_bag(path: str | Path, topics: set[str] | None = None) -> Iterator[BagMe
     A bag that cannot be read whole (a truncated ``.mcap``, a broken ``metadata.yaml``,
     a message that does not deserialise) raises :class:`BagError` naming the bag.
     """
+    from rosbags.rosbag2 import Reader
+
     path = Path(path)
     bag_metadata(path)
     store = typestore()

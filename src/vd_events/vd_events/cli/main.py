@@ -7,10 +7,10 @@ Bad input never ends in a traceback: every expected error is printed as
 ``file: key: message`` lines (or ``{"error": ...}`` with ``--json``) and the
 exit code is 2. Nothing is written before the inputs are validated.
 
-The one place of lazy imports in vd: a verb's module is imported when the verb runs
-(:func:`load_handler`), so ``vd data status`` does not pay for rclpy, Pinocchio,
-matplotlib and plotly, which the run, report and sweep verbs import (docs/architecture.md
-gives the measured start-up times).
+A verb's module is imported when the verb runs (:func:`load_handler`), so ``vd data
+status`` does not pay for rclpy, Pinocchio, matplotlib and plotly, which the run, report
+and sweep verbs import (docs/architecture.md lists this and the other deliberate late
+imports).
 """
 from __future__ import annotations
 

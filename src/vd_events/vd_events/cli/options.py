@@ -9,12 +9,10 @@ from pathlib import Path
 import sys
 from typing import Any, TypeVar
 
-from rich.console import Console
-from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn
-
 from vd_data_server.paths import default_master
 from vd_data_server.ros.names import DEFAULT_NAMESPACE, check_namespace
-from vd_data_server.study import Study, load_study
+from vd_data_server.study import Study
+from vd_data_server.study_cache import cached_study
 from vd_events.orchestration.runner import RunRequest
 
 T = TypeVar('T')
@@ -26,9 +24,13 @@ def master_path(master: str | None) -> Path:
 
 
 def study(master: str | None) -> tuple[Path, Study]:
-    """Return the path and the loaded study of ``--master``."""
+    """
+    Return the path and the loaded study of ``--master``.
+
+    Cached while its files are unchanged (``vd_data_server.study_cache``).
+    """
     path = master_path(master)
-    return path, load_study(path)
+    return path, cached_study(path)
 
 
 def namespace(args: argparse.Namespace) -> str:
@@ -44,6 +46,10 @@ class ProgressBar:
     """
 
     def __init__(self) -> None:
+        # imported here: without a terminal (--json, scripts) there is no bar to import
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn
+
         self.progress = Progress(TextColumn('{task.description}'), BarColumn(),
                                  TaskProgressColumn(), TextColumn('{task.fields[stage]}'),
                                  console=Console(stderr=True), transient=False)

@@ -8,10 +8,7 @@ import json
 from pathlib import Path
 import time
 
-from rich.table import Table
-
 from vd_data_server.errors import DataError
-from vd_data_server.overview import console
 from vd_events.cli import options
 from vd_events.errors import BagError, RunError
 from vd_events.orchestration.runner import (
@@ -77,6 +74,11 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def _print_outcome(result: RunOutcome) -> None:
+    # imported here: a run with --json prints no table and need not import rich
+    from rich.table import Table
+
+    from vd_data_server.overview import console
+
     outcome = result.outcome
     assert outcome is not None
     table = Table(title=f'{outcome.event} - {outcome.configuration} - {outcome.model}',

@@ -34,7 +34,7 @@ from typing import Any, cast
 
 import yaml
 
-from vd_data_server.units import UREG, parse_unit
+from vd_data_server.units import parse_unit, ureg
 from vd_events.errors import InputError
 from vd_solvers.kc.channels import UNITS as KC_BASE_UNITS
 
@@ -155,13 +155,13 @@ def unit_factor(unit: str, target: str) -> tuple[float, float]:
     """
     text = _UNIT_ALIASES.get(unit.strip(), unit.strip())
     text = text.replace('°', 'deg').replace('²', '^2').replace('³', '^3')
-    src = parse_unit(text) if text else UREG.dimensionless
-    dst = parse_unit(target) if target else UREG.dimensionless
+    src = parse_unit(text) if text else ureg().dimensionless
+    dst = parse_unit(target) if target else ureg().dimensionless
     if _radian_power(src) != _radian_power(dst):
         raise ValueError(f"unit '{unit}' cannot be converted to '{target or '-'}'")
     try:
-        zero = float(UREG.Quantity(0.0, src).to(dst).magnitude)
-        one = float(UREG.Quantity(1.0, src).to(dst).magnitude)
+        zero = float(ureg().Quantity(0.0, src).to(dst).magnitude)
+        one = float(ureg().Quantity(1.0, src).to(dst).magnitude)
     except Exception as err:  # noqa: BLE001 - pint's DimensionalityError and offset errors
         raise ValueError(f"unit '{unit}' cannot be converted to '{target or '-'}'") from err
     if not (math.isfinite(one) and math.isfinite(zero)) or one == zero:
@@ -170,7 +170,7 @@ def unit_factor(unit: str, target: str) -> tuple[float, float]:
 
 
 def _radian_power(unit) -> int:
-    return cast(int, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+    return cast(int, dict(ureg().Quantity(1.0, unit).to_root_units().unit_items()).get(
         'radian', 0))
 
 

@@ -15,11 +15,12 @@ from __future__ import annotations
 from functools import lru_cache
 import math
 import re
-from typing import NamedTuple, cast
+from typing import TYPE_CHECKING, NamedTuple, cast
 
-import pint
+from vd_data_server.units import ureg
 
-from vd_data_server.units import UREG
+if TYPE_CHECKING:
+    import pint
 
 #: SI unit -> display unit (pint expression; ``g`` = standard gravity)
 DISPLAY_UNITS = {
@@ -113,13 +114,13 @@ HEADLINE_NAMES = tuple(h.name for h in HEADLINE)
 @lru_cache(maxsize=256)
 def _unit(text: str) -> pint.Unit | None:
     try:
-        return UREG.parse_units(_GRAVITY.sub('g_0', text)) if text else None
+        return ureg().parse_units(_GRAVITY.sub('g_0', text)) if text else None
     except Exception:  # noqa: BLE001 - not a pint unit ('-', '%'-like labels): shown as is
         return None
 
 
 def _radians(unit: pint.Unit) -> float:
-    return cast(float, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+    return cast(float, dict(ureg().Quantity(1.0, unit).to_root_units().unit_items()).get(
         'radian', 0))
 
 
@@ -149,9 +150,11 @@ def display(value: float, unit: str, name: str = '') -> tuple[float, str]:
     src, dst = _unit(unit), _unit(shown)
     if src is None or dst is None:
         return float(value), unit
+    from pint.errors import DimensionalityError
+
     try:
-        return float(UREG.Quantity(float(value), src).to(dst).magnitude), shown
-    except pint.errors.DimensionalityError:
+        return float(ureg().Quantity(float(value), src).to(dst).magnitude), shown
+    except DimensionalityError:
         return float(value), unit
 
 

@@ -50,7 +50,7 @@ from vd_data_server.errors import DataError
 from vd_data_server.model import Configuration, Value
 from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
-from vd_data_server.units import SI_UNITS, UREG, parse_unit, si_factor
+from vd_data_server.units import SI_UNITS, parse_unit, si_factor, ureg
 from vd_data_server.yamlio import load_file
 from vd_solvers.families import event_model
 
@@ -178,17 +178,17 @@ def convert(value: float, unit: str, to: str) -> float:
     if _radians(src) != _radians(dst):
         raise ValueError(f"unit '{unit or '-'}' cannot be converted to '{to or '-'}'")
     try:
-        return float(UREG.Quantity(value, src).to(dst).magnitude)
+        return float(ureg().Quantity(value, src).to(dst).magnitude)
     except Exception as err:  # noqa: BLE001 - pint's DimensionalityError and kin
         raise ValueError(f"unit '{unit or '-'}' cannot be converted to '{to or '-'}'") from err
 
 
 def _unit(text: str):
-    return UREG.dimensionless if text in ('', '-') else parse_unit(text)
+    return ureg().dimensionless if text in ('', '-') else parse_unit(text)
 
 
 def _radians(unit) -> int:
-    return cast(int, dict(UREG.Quantity(1.0, unit).to_root_units().unit_items()).get(
+    return cast(int, dict(ureg().Quantity(1.0, unit).to_root_units().unit_items()).get(
         'radian', 0))
 
 

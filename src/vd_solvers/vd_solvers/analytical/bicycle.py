@@ -43,7 +43,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import signal
 
 from vd_solvers.analytical.budget import effective_axle_cornering_stiffness
 from vd_solvers.analytical.params import VehicleParams
@@ -324,6 +323,10 @@ def steer_step_response(
         raise ValueError(f'duration must be positive, got {duration!r}')
     if samples < 2:
         raise ValueError(f'samples must be at least 2, got {samples!r}')
+    # imported here: scipy.signal (with scipy.stats) costs over a second of CPU, which the
+    # steady-state events, and a command line that never asks for a step, need not pay
+    from scipy import signal
+
     ss = state_space(p, speed)
     time = np.linspace(0.0, duration, samples)
     _, y, x = signal.lsim((ss.a, ss.b, ss.c, ss.d), U=np.full(samples, float(steer)), T=time)

@@ -16,12 +16,25 @@ returned.
 
 The key is (data hash, axle, fidelity, event, sorted parameters); the cache
 holds at most ``MAX_ENTRIES`` results (least recently used go first).
+
+Results are also kept on disk (:mod:`vd_data_server.disk_cache`, kind ``kc``, at most
+``DISK_ENTRIES``), so a new process (every ``vd run`` of the bicycle or two-track, whose
+understeer budget takes twelve K&C events) reads them instead of solving again: the key
+adds the hash of the sources of vd_solvers and vd_data_server and the numpy and scipy
+versions, so other code never reads a result of this one. The result read is the pickled
+result computed from the same data by the same code: the same to the last bit.
 """
 from __future__ import annotations
 
 from collections import OrderedDict
+from functools import lru_cache
+from pathlib import Path
 from threading import Lock
 
+import numpy as np
+import scipy
+
+from vd_data_server import disk_cache
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
 from vd_solvers.results import FIDELITIES
@@ -31,6 +44,10 @@ from .model import without_bar
 
 #: results kept per process
 MAX_ENTRIES = 256
+#: results kept on disk (module doc)
+DISK_ENTRIES = 1024
+#: the kind of the disk entries (:func:`vd_data_server.disk_cache.folder`)
+KIND = 'kc'
 
 #: the opposite-wheel-travel run without the anti-roll bar (roll stiffness split)
 NO_BAR = 'opposite_wheel_travel_no_bar'
@@ -82,6 +99,11 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rig
         if hit is not None:
             _results.move_to_end(key)
             return hit
+    stored_as = disk_cache.key_of(_code(), repr(key))
+    stored = disk_cache.load(KIND, stored_as)
+    if isinstance(stored, EventResult):
+        with _lock:
+            return _remember(_results, key, stored)
     model = kc_model(config, axle, fidelity)
     if event == NO_BAR:
         if model.inp.stabilizer is None:
@@ -90,12 +112,20 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rig
         result = bare.run('opposite_wheel_travel', None, **params)
     else:
         result = model.run(event, None, **params)
+    disk_cache.store(KIND, stored_as, result, DISK_ENTRIES)
     with _lock:
         return _remember(_results, key, result)
 
 
+@lru_cache(maxsize=1)
+def _code() -> str:
+    """Return what besides the data decides a result: the sources and the numerics' versions."""
+    packages = Path(__file__).resolve().parents[1], Path(disk_cache.__file__).resolve().parent
+    return f'{disk_cache.sources_hash(*packages)} numpy {np.__version__} scipy {scipy.__version__}'
+
+
 def clear() -> None:
-    """Forget every cached model and result (tests)."""
+    """Forget every cached model and result of this process (tests; the disk keeps its own)."""
     with _lock:
         _results.clear()
         _models.clear()

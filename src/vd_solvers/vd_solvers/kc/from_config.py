@@ -30,7 +30,7 @@ from vd_solvers.flex import section as sec
 from vd_solvers.flex.component import ShapePoint
 from vd_solvers.flex.imported import from_dmig, from_plain
 from vd_solvers.results import FIDELITIES, Channel, EventOutcome, Metric
-from vd_solvers.tire.magic_formula import MagicFormula
+from vd_solvers.tire.magic_formula import vertical_stiffness
 from vd_solvers.vehicle_data import mass_properties, static_wheel_loads
 
 from .channels import UNITS, bushing_unit
@@ -145,7 +145,7 @@ def suspension_input(config: Configuration, axle: str, fidelity: str = 'rigid') 
     return SuspensionInput(
         template=hp.text('template'), axle=corner, hardpoints=points, spring=spring,
         tire_radius=points['wheel_centre'][2],
-        tire_vertical_stiffness=MagicFormula(tire_properties(tire)).vertical_stiffness,
+        tire_vertical_stiffness=vertical_stiffness(tire_properties(tire)),
         corner_load=front_load if axle == 'front' else rear_load,
         damper=damper, bump_stop=stops['bump_stop'], rebound_stop=stops['rebound_stop'],
         bushings=bushings, stabilizer=stabilizer, steering=steering,

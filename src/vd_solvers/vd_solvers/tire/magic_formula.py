@@ -212,7 +212,7 @@ from vd_solvers.errors import SolverError
 
 __all__ = ['ALIGNING_NORMALISATIONS', 'COEFFICIENTS', 'MagicFormula', 'TireForces',
            'combined_forces', 'four_wheel_forces', 'four_wheel_springs', 'radii_at',
-           'relaxation_at', 'slip_stiffness_at', 'wheel_forces']
+           'relaxation_at', 'slip_stiffness_at', 'vertical_stiffness', 'wheel_forces']
 
 #: Formats evaluated here (TireProperties.file_format).
 _FORMATS: Final[tuple[str, ...]] = ('PAC2002', 'MF52', 'MF61', 'MF62')
@@ -358,15 +358,7 @@ class MagicFormula:
 
     def __post_init__(self) -> None:
         props = self.props
-        if props.file_format not in _FORMATS:
-            raise SolverError(
-                f'{props.path}: MagicFormula evaluates PAC2002, MF 5.2, 6.1 and 6.2 files, '
-                f'this one is {props.file_format}'
-            )
-        if props.aligning_normalisation not in ALIGNING_NORMALISATIONS:
-            raise DataError(
-                f"aligning_normalisation must be one of {', '.join(ALIGNING_NORMALISATIONS)}, "
-                f'found {props.aligning_normalisation!r}', file=props.path)
+        _check_evaluated(props)
         # Frozen dataclass: derived fields are set once, here.
         object.__setattr__(self, '_p', _coefficients(props, self.pressure))
         object.__setattr__(self, '_mirror', -1.0 if self._mirrored() else 1.0)
@@ -432,7 +424,7 @@ class MagicFormula:
     @property
     def vertical_stiffness(self) -> float:
         """C_z = VERTICAL_STIFFNESS (1 + PFZ1 dpi), N/m: the tangent at FNOMIN (0 if absent)."""
-        return float(self._p[VERTICAL_STIFFNESS] * (1.0 + self._p[PFZ1] * self._p[DPI]))
+        return _vertical_stiffness(self._p)
 
     @property
     def vertical_damping(self) -> float:
@@ -617,6 +609,36 @@ class MagicFormula:
 
 
 # --- the coefficient vector ----------------------------------------------------------
+
+
+def vertical_stiffness(props: TireProperties, pressure: float | None = None) -> float:
+    """
+    C_z of :attr:`MagicFormula.vertical_stiffness`, N/m, without building the model.
+
+    For the K&C models, which take the tire's vertical stiffness and nothing else: the
+    file must be one evaluated here, but the forces are not computed, so neither is their
+    check over the working range (``vd data check`` builds the model and makes it).
+    """
+    _check_evaluated(props)
+    return _vertical_stiffness(_coefficients(props, pressure))
+
+
+def _vertical_stiffness(p: np.ndarray) -> float:
+    """C_z = VERTICAL_STIFFNESS (1 + PFZ1 dpi), N/m, of the coefficient vector ``p``."""
+    return float(p[VERTICAL_STIFFNESS] * (1.0 + p[PFZ1] * p[DPI]))
+
+
+def _check_evaluated(props: TireProperties) -> None:
+    """Raise SolverError / DataError unless ``props`` is a file evaluated here."""
+    if props.file_format not in _FORMATS:
+        raise SolverError(
+            f'{props.path}: MagicFormula evaluates PAC2002, MF 5.2, 6.1 and 6.2 files, '
+            f'this one is {props.file_format}'
+        )
+    if props.aligning_normalisation not in ALIGNING_NORMALISATIONS:
+        raise DataError(
+            f"aligning_normalisation must be one of {', '.join(ALIGNING_NORMALISATIONS)}, "
+            f'found {props.aligning_normalisation!r}', file=props.path)
 
 
 def _coefficients(props: TireProperties, pressure: float | None) -> np.ndarray:
