@@ -71,29 +71,29 @@ def test_the_variable_step_follows_the_converged_reference(vehicle):
 
 
 def test_a_steady_run_costs_few_steps():
-    """Straight ahead at 100 km/h: 10 s more of it cost 10 s / h_max steps, none repeated."""
+    """Straight ahead at 100 km/h: 10 s more of it cost 10 s / h_max steps, one repeated at most."""
     model = _model('sedan.yaml')
 
     def straight(duration: float):
         steering = OpenLoopSteering(times=[0.0, duration], angles=[0.0, 0.0])
         return simulate(model, steering, None, duration, event='straight', initial_speed=SPEED,
-                        record_every=2, h=0.005, tolerance=TOLERANCE, h_max=0.02)
+                        record_every=2, h=0.005, tolerance=TOLERANCE, h_max=0.04)
 
     short, long = straight(10.0), straight(20.0)
-    assert long.steps - short.steps <= 10.0 / 0.02 + 2
+    assert long.steps - short.steps <= 10.0 / 0.04 + 2
     assert long.rejected - short.rejected <= 1
     ch = long.channels()
     assert ch['time'].size == 2001
     assert np.max(np.abs(ch['yaw_rate'])) < 1e-9
 
 
-def test_twenty_millisecond_steps_are_stable_where_the_explicit_step_diverges():
-    """Sedan: fixed 20 ms steps diverge (wheel hop); the linearly implicit travel holds."""
+def test_forty_millisecond_steps_are_stable_where_the_explicit_step_diverges():
+    """Sedan: fixed 20 ms steps diverge (wheel hop); with the travel linearly implicit 40 ms hold."""
     model = _model('sedan.yaml')
     with pytest.raises(SolverError, match='non-finite'):
         _step_steer(model, 0.02)
     reference = _converged(model)
-    ch = _step_steer(model, 0.005, tolerance=TOLERANCE, h_min=0.02, h_max=0.02).channels()
+    ch = _step_steer(model, 0.005, tolerance=TOLERANCE, h_min=0.04, h_max=0.04).channels()
     assert np.all(np.isfinite(ch['wheel_travel']))
     # the steady state does not depend on the step
     steady = ch['time'] >= DURATION - 1.0

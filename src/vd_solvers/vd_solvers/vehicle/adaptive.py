@@ -35,8 +35,10 @@ velocities (m/s and rad/s) over ``tolerance``; a step with a norm over 1 is repe
 with a smaller one (above ``h_min``), and the next step is h SAFETY / sqrt(norm),
 within GROWTH of the last (not larger right after a repeated step), ``h_min`` and
 ``h_max``, kept unchanged inside the
-HOLD band (a changed step needs the forces again: the wheel spin's implicit term and
-the speed controller depend on it). Steps end on the breakpoints of the inputs (the
+HOLD band (a changed step needs the forces again: the wheel spin's implicit term, the
+travel's and the speed controller depend on it). The evaluation at a step's end is made
+with the next step guessed from the last error norm, and serves the next step when the
+new norm's step is within HOLD of the guess. Steps end on the breakpoints of the inputs (the
 corners of a steering table) so a ramp's start is never stepped over, and the step after
 a breakpoint starts again from ``h_min``.
 
@@ -147,7 +149,12 @@ def _evaluate(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.ndarr
     stiffness, damping = travel_rates(q, v, c, road, dampers)
     for w in range(4):
         m = mb.carrier_mass[w]
-        a[6 + 2 * w] /= 1.0 + h * damping[w] / m + h * h * stiffness[w] / m
+        # the body's acceleration at the carrier's joint, along the travel (body z)
+        r = mb.offsets[w]
+        x, y = r[0], r[1]
+        body = a[2] + a[3] * y - a[4] * x
+        carrier = a[6 + 2 * w] + body
+        a[6 + 2 * w] = carrier / (1.0 + h * damping[w] / m + h * h * stiffness[w] / m) - body
     return a, wheel, update, steer, torque, integral
 
 
@@ -197,14 +204,17 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
     ``next_output`` go into ``rows`` / ``wheels`` (as :func:`.dynamics.run_open_loop`)
     until they are full or ``t_end`` is reached. Returns (q, v, slip, previous,
     has_previous, t, the next step, the next output index, rows recorded, the
-    controller's integral, steps accepted, steps repeated, the time a step became
-    non-finite or -1).
+    controller's integral, steps accepted, steps repeated, force evaluations, the time a
+    step became non-finite or -1).
     """
     capacity = rows.shape[0]
     n = 0
     accepted = 0
     rejected = 0
     repeated = False
+    last_norm = 0.0
+    evaluations = 0
+    evaluations += 1
     a, wheel, update, steer, torque, integral_end = _evaluate(
         q, v, slip, previous, has_previous, integral, t, h, h_base, swa, reference,
         speed_gains, drive_front, brake_front, c, vx_floor, total_mass, road, dampers, mb)
@@ -219,11 +229,11 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
             next_output += 1
         if t >= t_end - span:
             return (q, v, slip, previous, has_previous, t, h, next_output, n, integral,
-                    accepted, rejected, -1.0)
+                    accepted, rejected, evaluations, -1.0)
         # room for the rows the longest step can give
         if n + int(h_max / output_period) + 2 > capacity:
             return (q, v, slip, previous, has_previous, t, h, next_output, n, integral,
-                    accepted, rejected, -1.0)
+                    accepted, rejected, evaluations, -1.0)
         # the step, cut at the next breakpoint and at the end
         stop = t_end
         for b in breakpoints:
@@ -235,6 +245,7 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
             step_new = stop - t if t + step > stop - span else 0.5 * (stop - t)
             if step_new != h:
                 step = step_new
+                evaluations += 1
                 a, wheel, update, steer, torque, integral_end = _evaluate(
                     q, v, slip, previous, has_previous, integral, t, step, h_base, swa,
                     reference, speed_gains, drive_front, brake_front, c, vx_floor,
@@ -243,12 +254,18 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
         q1, v1, slip1 = advance(q, v, a, update, step)
         if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(v1))):
             return (q, v, slip, previous, has_previous, t, h, next_output, n, integral,
-                    accepted, rejected, t + step)
+                    accepted, rejected, evaluations, t + step)
         previous1 = np.empty((4, 4))
         for j in range(4):
             previous1[j] = wheel[PREVIOUS_ROWS[j]]
+        # the next step guessed from the last error, so that the evaluation serves both
+        # the estimate and the next step when the guess holds
+        guess = min(h_max, max(h_min, _next_step(step, last_norm)))
+        if repeated:
+            guess = min(guess, step)
+        evaluations += 1
         a1, wheel1, update1, steer1, torque1, integral1 = _evaluate(
-            q1, v1, slip1, previous1, True, integral_end, t + step, step, h_base, swa,
+            q1, v1, slip1, previous1, True, integral_end, t + step, guess, h_base, swa,
             reference, speed_gains, drive_front, brake_front, c, vx_floor, total_mass, road,
             dampers, mb)
         norm = error_norm(a, a1, step, tolerance)
@@ -257,6 +274,7 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
             repeated = True
             h = (max(h_min, step * max(SHRINK, SAFETY / np.sqrt(norm))) if np.isfinite(norm)
                  else max(h_min, SHRINK * step))
+            evaluations += 1
             a, wheel, update, steer, torque, integral_end = _evaluate(
                 q, v, slip, previous, has_previous, integral, t, h, h_base, swa, reference,
                 speed_gains, drive_front, brake_front, c, vx_floor, total_mass, road,
@@ -278,13 +296,17 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
         h_next = min(h_max, max(h_min, _next_step(step, norm)))
         if repeated:
             h_next = min(h_next, step)  # no growth right after a repeated step
+        if HOLD[0] * guess <= h_next <= HOLD[1] * guess:
+            h_next = guess
         repeated = False
+        last_norm = norm
         if stop < t_end and abs(t - stop) <= span:
             h_next = h_min  # an input's corner: the response starts afresh
         a, wheel, update, steer, torque, integral_end = a1, wheel1, update1, steer1, torque1, \
             integral1
         row = row1
-        if h_next != step:
+        if h_next != guess:
+            evaluations += 1
             a, wheel, update, steer, torque, integral_end = _evaluate(
                 q, v, slip, previous, has_previous, integral, t, h_next, h_base, swa,
                 reference, speed_gains, drive_front, brake_front, c, vx_floor, total_mass,

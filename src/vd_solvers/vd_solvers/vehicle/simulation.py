@@ -67,7 +67,7 @@ BLOCK_ROWS = 50
 #: default bounds of a variable step, s: the largest keeps the tire's relaxation and the
 #: speed controller resolved (docs/models.md, "Variable step")
 H_MIN = 2.5e-4
-H_MAX = 0.02
+H_MAX = 0.04
 
 
 @dataclass
@@ -79,8 +79,9 @@ class Trace:
     #: the compiled loop ran (no brakes or driveline to report)
     actuation: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     steps: int = 0
-    #: steps repeated with a smaller step (variable step only)
+    #: steps repeated with a smaller step, and force evaluations (variable step only)
     rejected: int = 0
+    evaluations: int = 0
     stop_reason: str = ''
 
     def append(self, rows: np.ndarray, wheels: np.ndarray) -> None:
@@ -268,13 +269,14 @@ def _adaptive(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
         if progress is not None:
             progress(t / max(t_end, h), 'simulating')
         (q, v, slip, previous, has_previous, t, step, output, n, integral, accepted,
-         rejected, failed) = run_adaptive(
+         rejected, evaluations, failed) = run_adaptive(
             q, v, slip, previous, has_previous, t, step, t_end, period, output, breakpoints,
             tolerance, h_min, h_max, h, swa, reference, gains, integral, drive_front,
             brake_front, model.arrays, model.vx_floor, model.total_mass, model.options.road,
             model.options.dampers, model.multibody, cog, rows, wheels)
         trace.steps += accepted
         trace.rejected += rejected
+        trace.evaluations += evaluations
         for i in range(n):
             if stop is not None:
                 reason = stop(dict(zip(TRACE, rows[i])))
