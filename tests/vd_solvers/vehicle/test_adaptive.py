@@ -71,7 +71,7 @@ def test_the_variable_step_follows_the_converged_reference(vehicle):
 
 
 def test_a_steady_run_costs_few_steps():
-    """Straight ahead at 100 km/h: 10 s more of it cost 10 s / h_max steps, one repeated at most."""
+    """Straight ahead at 100 km/h: 10 s more cost 10 s / h_max steps, one repeated at most."""
     model = _model('sedan.yaml')
 
     def straight(duration: float):
@@ -88,7 +88,7 @@ def test_a_steady_run_costs_few_steps():
 
 
 def test_forty_millisecond_steps_are_stable_where_the_explicit_step_diverges():
-    """Sedan: fixed 20 ms steps diverge (wheel hop); with the travel linearly implicit 40 ms hold."""
+    """Sedan: fixed 20 ms steps diverge (wheel hop); the travel linearly implicit holds 40 ms."""
     model = _model('sedan.yaml')
     with pytest.raises(SolverError, match='non-finite'):
         _step_steer(model, 0.02)

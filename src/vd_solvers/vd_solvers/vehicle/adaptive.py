@@ -57,7 +57,6 @@ from vd_solvers.compiled import jit
 from .drivers import speed_law, wheel_torques
 from .dynamics import (
     PREVIOUS_ROWS,
-    ROW_SIZE,
     MultibodyArrays,
     accelerations,
     advance,
@@ -87,7 +86,7 @@ YAW = 3
 def travel_rates(q: np.ndarray, v: np.ndarray, c: VehicleArrays, road: bool, dampers: bool
                  ) -> tuple[np.ndarray, np.ndarray]:
     """
-    The carriers' own vertical stiffness K (N/m) and damping D (N*s/m) at a state (4,).
+    Return the carriers' own vertical stiffness K (N/m) and damping D (N*s/m), (4,) each.
 
     K: the tire's C_z (in contact, ``road``) plus the slope of the wheel-force map; D: the
     tire's damping plus the damper's slope at its speed times the motion ratio squared
@@ -160,7 +159,7 @@ def _evaluate(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.ndarr
 
 @jit
 def error_norm(a_start: np.ndarray, a_end: np.ndarray, h: float, tolerance: float) -> float:
-    """The local error estimate of a step of the body's velocities over ``tolerance``."""
+    """Return the local error estimate of a step in the body's velocities over ``tolerance``."""
     worst = 0.0
     for k in range(6):
         worst = max(worst, abs(a_end[k] - a_start[k]))
@@ -169,7 +168,7 @@ def error_norm(a_start: np.ndarray, a_end: np.ndarray, h: float, tolerance: floa
 
 @jit
 def _next_step(h: float, norm: float) -> float:
-    """The step after one of ``h`` with an error ``norm`` (before the limits)."""
+    """Return the step after one of ``h`` with an error ``norm`` (before the limits)."""
     if norm <= 0.0:
         return GROWTH * h
     factor = min(GROWTH, max(SHRINK, SAFETY / np.sqrt(norm)))

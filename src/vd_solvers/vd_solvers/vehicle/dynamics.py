@@ -298,7 +298,7 @@ def vehicle_step(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.ndar
 def advance(q: np.ndarray, v: np.ndarray, a: np.ndarray, update: np.ndarray, h: float
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """
-    The update of a step from its accelerations ``a``: (q, v, slip) at its end.
+    Return (q, v, slip) at the end of a step from its accelerations ``a``.
 
     Semi-implicit Euler, ``v+ = v + h a``, ``q+ = integrate(q, h v+)``; kappa' with the
     spin rates reached, alpha' as ``update`` (:func:`.forces.vehicle_forces`) says.
@@ -389,4 +389,4 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
 
 
 __all__ = ['MultibodyArrays', 'multibody_arrays', 'accelerations', 'integrate', 'kappa_next',
-           'vehicle_step', 'observation', 'record_row', 'run_open_loop', 'PREVIOUS_ROWS']
+           'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop', 'PREVIOUS_ROWS']

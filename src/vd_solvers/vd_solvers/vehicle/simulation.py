@@ -33,6 +33,7 @@ import numpy as np
 
 from vd_solvers.errors import SolverError
 
+from .adaptive import run_adaptive
 from .drivers import (
     Observation,
     OpenLoopSteering,
@@ -42,7 +43,6 @@ from .drivers import (
     SteeringDriver,
     WheelTorques,
 )
-from .adaptive import run_adaptive
 from .dynamics import PREVIOUS_ROWS, ROW_SIZE, observation, record_row, run_open_loop
 from .forces import WHEEL_ROWS
 from .model import STEP, VehicleModel
@@ -238,7 +238,7 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
 
 
 def _inputs(steering, speed, n_steps: int, h: float):
-    """The drivers' inputs on the grid of ``h``: swa, reference, reference at t + h, gains."""
+    """Return the drivers' inputs on the grid of ``h``: swa, reference, at t + h, gains."""
     times = [k * h for k in range(n_steps + 1)]
     swa = np.ascontiguousarray(steering.schedule(times), dtype=float)
     if speed is not None:
