@@ -389,4 +389,5 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
 
 
 __all__ = ['MultibodyArrays', 'multibody_arrays', 'accelerations', 'integrate', 'kappa_next',
-           'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop', 'PREVIOUS_ROWS']
+           'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop',
+           'PREVIOUS_ROWS']
