@@ -9,12 +9,16 @@ step: 2 y(h/2) - y(h) removes that term), on the output grid both share.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 from vd_data_server.study import load_study
+from vd_solvers import compiled
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.drivers import OpenLoopSteering, SpeedController
 from vd_solvers.vehicle.model import VehicleModel
@@ -105,3 +109,45 @@ def test_a_variable_step_needs_a_positive_tolerance():
     model = _model('sedan.yaml')
     with pytest.raises(SolverError, match="event 'step_steer'.*positive tolerance"):
         _step_steer(model, 0.005, tolerance=0.0)
+
+
+# a short step steer with the variable step, run here (compiled) and in a child with
+# VD_NO_JIT=1 (the same functions as Python)
+SHORT = """
+import sys
+import numpy as np
+from vd_data_server.study import load_study
+from vd_solvers.vehicle.drivers import OpenLoopSteering, SpeedController
+from vd_solvers.vehicle.model import VehicleModel
+from vd_solvers.vehicle.simulation import simulate
+
+
+def short(study):
+    model = VehicleModel(load_study(study).configurations['baseline'])
+    steering = OpenLoopSteering(times=[0.0, 0.2, 0.3, 0.6], angles=[0.0, 0.0, 0.4, 0.4])
+    speed = SpeedController(lambda t: 27.8, model.total_mass, 0.3)
+    trace = simulate(model, steering, speed, 0.6, event='step_steer', initial_speed=27.8,
+                     record_every=2, h=0.005, tolerance=3e-5)
+    ch = trace.channels()
+    return np.concatenate([ch[k] for k in ('time', 'yaw_rate', 'roll', 'speed')]
+                          + [[trace.steps, trace.rejected, trace.evaluations]])
+"""
+
+
+@pytest.mark.skipif(not compiled.ENABLED, reason='VD_NO_JIT is set: nothing compiled to compare')
+def test_the_variable_step_runs_uncompiled_as_compiled(tmp_path):
+    """VD_NO_JIT=1: the same steps and channels (1e-9) as the compiled loop."""
+    scope: dict[str, object] = {}
+    exec(SHORT, scope)  # noqa: S102  (the same code the child runs)
+    fast = scope['short'](STUDIES / 'sedan.yaml')  # type: ignore[operator]
+    out = tmp_path / 'slow.npy'
+    code = (SHORT + '\nfrom vd_solvers import compiled\nassert not compiled.ENABLED\n'
+            'np.save(sys.argv[2], short(sys.argv[1]))\n')
+    env = dict(os.environ, VD_NO_JIT='1')
+    env['PYTHONPATH'] = os.pathsep.join(
+        [str(Path(p).resolve()) for p in sys.path if p] + [env.get('PYTHONPATH', '')])
+    subprocess.run([sys.executable, '-c', code, str(STUDIES / 'sedan.yaml'), str(out)],
+                   env=env, check=True)
+    slow = np.load(out)
+    np.testing.assert_array_equal(fast[-3:], slow[-3:])
+    np.testing.assert_allclose(fast, slow, rtol=1e-9, atol=1e-12)

@@ -314,7 +314,9 @@ def print_bench(results: dict[str, Any]) -> None:
         rows.append(('CommonRoad MB peer', cr['unavailable'], ''))
     else:
         for key, label in (('default', 'default tolerances'),
-                           ('matched', f"rtol = atol = {cr['matched']['tolerance']:g}")):
+                           ('matched', f"rtol = atol = {cr['matched']['tolerance']:g}"
+                                       + ('' if cr.get('matched_error_met', True)
+                                          else ", vd's error not reached"))):
             run = cr[key]
             rows.append((f"CommonRoad MB ({cr['states']} states, odeint, {label}): "
                          '10 s step steer',
