@@ -197,7 +197,7 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
                  road: bool, dampers: bool, mb: MultibodyArrays, cog: np.ndarray,
                  rows: np.ndarray, wheels: np.ndarray):
     """
-    Advance from ``t`` towards ``t_end`` with steps of ``tolerance`` (module doc).
+    Advance from ``t`` towards ``t_end``, each step's error held to ``tolerance`` (module doc).
 
     ``h`` the first step; rows at the output times ``k output_period`` from k =
     ``next_output`` go into ``rows`` / ``wheels`` (as :func:`.dynamics.run_open_loop`)
@@ -212,8 +212,7 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
     rejected = 0
     repeated = False
     last_norm = 0.0
-    evaluations = 0
-    evaluations += 1
+    evaluations = 1
     a, wheel, update, steer, torque, integral_end = _evaluate(
         q, v, slip, previous, has_previous, integral, t, h, h_base, swa, reference,
         speed_gains, drive_front, brake_front, c, vx_floor, total_mass, road, dampers, mb)
