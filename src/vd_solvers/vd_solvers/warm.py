@@ -20,7 +20,7 @@ from vd_data_server.study import load_study
 from vd_data_server.tire_group import tire_properties
 from vd_solvers import compiled
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
-from vd_solvers.vehicle import dynamics
+from vd_solvers.vehicle import adaptive, dynamics
 from vd_solvers.vehicle.drivers import speed_law, wheel_torques
 from vd_solvers.vehicle.forces import (
     AERO_ROWS,
@@ -109,6 +109,10 @@ def _dynamics(q: np.ndarray, v: np.ndarray, arrays: VehicleArrays) -> None:
                                0.005, swa, swa, swa, gains, 0.0, 0.5, 0.65, arrays, 1.0, 1500.0,
                                True, True, mb, np.zeros(3), np.empty((3, 16)),
                                np.empty((3, 9, 4)))
+        adaptive.run_adaptive(q, v, np.zeros((2, 4)), np.zeros((4, 4)), False, 0.0, 0.005,
+                              0.01, 0.01, 0, np.array([0.005]), 1e-4, 2.5e-4, 0.02, 0.005,
+                              swa, swa, gains, 0.0, 0.5, 0.65, arrays, 1.0, 1500.0, True,
+                              True, mb, np.zeros(3), np.empty((8, 16)), np.empty((8, 9, 4)))
 
 
 def clear() -> None:

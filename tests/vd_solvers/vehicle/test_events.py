@@ -209,7 +209,18 @@ def test_unknown_event_parameter_is_a_data_error(sedan):
         run_vehicle_event(sedan['baseline'], 'step_steer', ['diameter=3 m'])
     assert str(err.value) == ("event step_steer: unknown parameter 'diameter' (parameters of "
                               "step_steer: speed, lateral_acceleration, ramp_time, duration, "
-                              "time_step, drive_front, brake_front)")
+                              "time_step, step_tolerance, drive_front, brake_front)")
+
+
+def test_the_step_steer_with_a_variable_step_has_the_fixed_steps_steady_state(sedan, step):
+    """step_tolerance: the steady gains of the 5 ms run within 0.5 %, the same time base."""
+    variable = run_vehicle_event(sedan['baseline'], 'step_steer', ['step_tolerance=3e-5 m/s'])
+    assert any('variable step (tolerance 3e-05' in note for note in variable.notes)
+    np.testing.assert_array_equal(variable.channels['time'].values,
+                                  step.channels['time'].values)
+    for key in ('yaw_rate_gain', 'lateral_acceleration_gain', 'sideslip_gain', 'roll_gain'):
+        np.testing.assert_allclose(variable.metrics[key].value, step.metrics[key].value,
+                                   rtol=0.005, err_msg=key)
 
 
 def test_a_step_beyond_the_steering_lock_is_an_error(sedan):

@@ -6,8 +6,11 @@ Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the Com
 * ``step_steer_10s``: a 10 s step steer (100 km/h, steering-wheel ramp at 1 s to the
   angle of 4 m/s^2) on the sedan baseline, the simulation alone (model built before):
   wall and CPU time, and its accuracy, the largest yaw-rate error over the run against the
-  same model at REFERENCE_STEP (converged: the error is first order in the step), in % of
-  the steady yaw rate.
+  same model converged (Richardson extrapolation of the runs at 2 REFERENCE_STEP and
+  REFERENCE_STEP, the error being first order in the step), in % of the steady yaw rate.
+* ``step_steer_10s_variable``: the same with the variable step of :mod:`.adaptive`
+  (VARIABLE_TOLERANCE, steps up to VARIABLE_H_MAX): also the steps taken and repeated and
+  the force evaluations.
 * ``constant_radius_turn``: the ISO 4138 event with its defaults (``run_vehicle_event``,
   K&C maps cached), simulated time over wall time.
 * ``per_step``: microseconds per call, on a state in the middle of the step steer, of the
@@ -21,9 +24,10 @@ Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the Com
   100 Hz; its own steer step to the same steady yaw rate, over the same ramp. Its
   yaw-rate error is measured as vd's, against a converged odeint run (rtol = atol =
   REFERENCE_TOLERANCE). Timed at odeint's default tolerances and at matched accuracy: the
-  loosest of TOLERANCES (rtol = atol) whose error is at most vd's. ``ratio_vs_commonroad_cpu``
-  is the peer's CPU time at matched accuracy over vd's (> 1: vd faster); when the package
-  does not import, ``commonroad`` says so.
+  loosest of TOLERANCES (rtol = atol) whose error is at most vd's with the variable step
+  (``matched_error_met`` False: none of them, the tightest timed).
+  ``ratio_vs_commonroad_cpu`` is the peer's CPU time at matched accuracy over vd's with the
+  variable step (> 1: vd faster); when the package does not import, ``commonroad`` says so.
 """
 from __future__ import annotations
 
@@ -52,8 +56,11 @@ RAMP = 0.1
 MICRO_CALLS = 500
 #: step of the converged reference of the step steer, s
 REFERENCE_STEP = 0.0005
+#: local error tolerance (m/s, rad/s) and largest step (s) of the variable-step run
+VARIABLE_TOLERANCE = 3e-5
+VARIABLE_H_MAX = 0.04
 #: odeint tolerances (rtol = atol) tried for the peer's run at vd's accuracy, loosest first
-TOLERANCES = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 1e-6)
+TOLERANCES = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8)
 #: odeint tolerance of the peer's converged reference
 REFERENCE_TOLERANCE = 1e-10
 #: sampling period of the compared yaw rates, s
@@ -77,27 +84,34 @@ def bench_vehicle(config) -> dict[str, Any]:
     swa = 0.4  # rad, about 4 m/s^2 at 100 km/h on the sample sedan (steering ratio 15.8)
     _, r_e = model.tire_radii(model.static_loads())
 
-    def step_steer(h: float = STEP):
+    def step_steer(h: float = STEP, tolerance: float | None = None):
         steering = OpenLoopSteering(times=[0.0, STEP_TIME, STEP_TIME + RAMP, DURATION],
                                     angles=[0.0, 0.0, swa, swa])
         speed = SpeedController(lambda t: SPEED, model.total_mass, float(np.mean(r_e)))
         return simulate(model, steering, speed, DURATION, event='step_steer',
-                        initial_speed=SPEED, record_every=round(SAMPLE / h), h=h)
+                        initial_speed=SPEED, record_every=round(SAMPLE / h), h=h,
+                        tolerance=tolerance, h_max=VARIABLE_H_MAX)
 
-    trace = step_steer()  # untimed: first calls
-    wall = median_time(step_steer)
-    cpu = median_cpu_time(step_steer)
-    yaw_rate = trace.channels()['yaw_rate']
-    reference = step_steer(REFERENCE_STEP).channels()['yaw_rate']
-    out: dict[str, Any] = {
-        'step_s': STEP, 'model_build_s': build,
-        'step_steer_10s': {'wall_s': wall, 'cpu_s': cpu, 'real_time_factor': DURATION / wall,
-                           'steps': trace.steps,
-                           'us_per_step': wall / trace.steps * 1e6,
-                           'cpu_us_per_step': cpu / trace.steps * 1e6,
-                           'yaw_rate_error_pct': _error_pct(yaw_rate, reference),
-                           'reference_step_s': REFERENCE_STEP},
-    }
+    fine = step_steer(REFERENCE_STEP).channels()['yaw_rate']
+    reference = 2.0 * fine - step_steer(2.0 * REFERENCE_STEP).channels()['yaw_rate']
+    out: dict[str, Any] = {'step_s': STEP, 'model_build_s': build}
+    for key, tolerance in (('step_steer_10s', None),
+                           ('step_steer_10s_variable', VARIABLE_TOLERANCE)):
+
+        def run(tolerance=tolerance):
+            return step_steer(tolerance=tolerance)
+
+        trace = run()  # untimed: first calls
+        wall = median_time(run)
+        cpu = median_cpu_time(run)
+        yaw_rate = trace.channels()['yaw_rate']
+        out[key] = {'wall_s': wall, 'cpu_s': cpu, 'real_time_factor': DURATION / wall,
+                    'steps': trace.steps, 'rejected': trace.rejected,
+                    'evaluations': trace.evaluations or trace.steps,
+                    'us_per_step': wall / trace.steps * 1e6,
+                    'cpu_us_per_step': cpu / trace.steps * 1e6,
+                    'yaw_rate_error_pct': _error_pct(yaw_rate, reference),
+                    'reference_step_s': REFERENCE_STEP, 'tolerance': tolerance}
     t0 = time.perf_counter()
     crt = run_vehicle_event(config, 'constant_radius_turn')
     crt_wall = time.perf_counter() - t0
@@ -109,16 +123,17 @@ def bench_vehicle(config) -> dict[str, Any]:
     # the same manoeuvre for the peer: its own steer step to the same steady lateral
     # acceleration (ISO 7401, 4 m/s^2 at 100 km/h), not our road-wheel angle (the peer's
     # BMW understeers less: our 2.3 deg would take it beyond its limit)
-    out['step_steer_10s']['steady_yaw_rate'] = float(yaw_rate[-1])
+    variable = out['step_steer_10s_variable']
+    variable['steady_yaw_rate'] = float(yaw_rate[-1])
     try:
         out['commonroad'] = bench_commonroad(float(yaw_rate[-1]),
-                                             out['step_steer_10s']['yaw_rate_error_pct'])
+                                             variable['yaw_rate_error_pct'])
     except ImportError as err:
         out['commonroad'] = {'unavailable': f'commonroad-vehicle-models does not import: {err}'}
         return out
-    out['ratio_vs_commonroad'] = (out['step_steer_10s']['real_time_factor']
+    out['ratio_vs_commonroad'] = (variable['real_time_factor']
                                   / out['commonroad']['real_time_factor'])
-    out['ratio_vs_commonroad_cpu'] = out['commonroad']['matched']['cpu_s'] / cpu
+    out['ratio_vs_commonroad_cpu'] = out['commonroad']['matched']['cpu_s'] / variable['cpu_s']
     return out
 
 
@@ -206,9 +221,11 @@ def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:
                            'integrator': 'scipy.integrate.odeint (LSODA)',
                            'parameters': 'parameters_vehicle2 (BMW 320i)'}
     matched = TOLERANCES[-1]
+    out['matched_error_met'] = False
     for trial in TOLERANCES:
         if _error_pct(run(angle, trial), reference) <= error_pct:
             matched = trial
+            out['matched_error_met'] = True
             break
     for key, tolerance in (('default', None), ('matched', matched)):
         wall = median_time(lambda: run(angle, tolerance))

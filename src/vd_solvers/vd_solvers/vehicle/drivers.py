@@ -80,6 +80,11 @@ class OpenLoopSteering:
             signal = self._table
         self.signal: Callable[[Any], Any] = signal
 
+    @property
+    def table_points(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The table's (times s, angles rad), None for a signal."""
+        return self._table_points
+
     def _table(self, t: float) -> float:
         assert self._table_points is not None
         return float(np.interp(t, *self._table_points))

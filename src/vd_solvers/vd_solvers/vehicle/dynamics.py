@@ -290,12 +290,25 @@ def vehicle_step(q: np.ndarray, v: np.ndarray, swa: float, wheel_torque: np.ndar
     """
     tau, wheel, update = vehicle_forces(q, v, swa, wheel_torque, slip, previous, has_previous,
                                         h, c, vx_floor, total_mass, road, dampers)
-    v_next = v + h * accelerations(q, v, tau, mb)
+    q_next, v_next, slip_next = advance(q, v, accelerations(q, v, tau, mb), update, h)
+    return q_next, v_next, slip_next, wheel
+
+
+@jit
+def advance(q: np.ndarray, v: np.ndarray, a: np.ndarray, update: np.ndarray, h: float
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return (q, v, slip) at the end of a step from its accelerations ``a``.
+
+    Semi-implicit Euler, ``v+ = v + h a``, ``q+ = integrate(q, h v+)``; kappa' with the
+    spin rates reached, alpha' as ``update`` (:func:`.forces.vehicle_forces`) says.
+    """
+    v_next = v + h * a
     q_next = integrate(q, h * v_next)
     slip_next = np.empty((2, 4))
     slip_next[0] = kappa_next(update, np.ascontiguousarray(v_next[7::2]))
     slip_next[1] = update[0]
-    return q_next, v_next, slip_next, wheel
+    return q_next, v_next, slip_next
 
 
 @jit
@@ -376,4 +389,5 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
 
 
 __all__ = ['MultibodyArrays', 'multibody_arrays', 'accelerations', 'integrate', 'kappa_next',
-           'vehicle_step', 'observation', 'record_row', 'run_open_loop', 'PREVIOUS_ROWS']
+           'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop',
+           'PREVIOUS_ROWS']

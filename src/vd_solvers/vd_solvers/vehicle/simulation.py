@@ -17,6 +17,12 @@ When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, non
 run is one compiled loop (:func:`.dynamics.run_open_loop`, in blocks of recorded rows when
 there is a ``stop`` or a ``progress``); otherwise each step asks the drivers in Python and
 calls the compiled step (:meth:`.model.VehicleModel.step`). Both give the same trace.
+
+With a ``tolerance`` the compiled loop takes variable steps (:mod:`.adaptive`: large where
+the car is steady, small where it is not, the error of each step estimated and held to
+the tolerance) between ``h_min`` and ``h_max``, the drivers' inputs sampled at the step
+times and the rows still on the fixed grid of ``record_every`` steps of ``h``; the
+per-step loop (closed-loop drivers, brakes, driveline) keeps the fixed step ``h``.
 """
 from __future__ import annotations
 
@@ -27,6 +33,7 @@ import numpy as np
 
 from vd_solvers.errors import SolverError
 
+from .adaptive import run_adaptive
 from .drivers import (
     Observation,
     OpenLoopSteering,
@@ -57,6 +64,10 @@ _WHEEL_ROW = dict(zip(PER_WHEEL, (WHEEL_ROWS.index(k) for k in (
     'fz', 'travel', 'alpha', 'kappa', 'gamma', 'fx', 'fy', 'steer', 'mz'))))
 #: recorded rows per call of the compiled loop when a stop or progress needs to see them
 BLOCK_ROWS = 50
+#: default bounds of a variable step, s: the largest keeps the tire's relaxation and the
+#: speed controller resolved (docs/models.md, "Variable step")
+H_MIN = 2.5e-4
+H_MAX = 0.04
 
 
 @dataclass
@@ -68,6 +79,9 @@ class Trace:
     #: the compiled loop ran (no brakes or driveline to report)
     actuation: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     steps: int = 0
+    #: steps repeated with a smaller step, and force evaluations (variable step only)
+    rejected: int = 0
+    evaluations: int = 0
     stop_reason: str = ''
 
     def append(self, rows: np.ndarray, wheels: np.ndarray) -> None:
@@ -111,19 +125,32 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
              brake_front: float = 0.65,
              stop: Callable[[dict[str, float]], str] | None = None,
              progress: Callable[[float, str], None] | None = None,
-             compiled_loop: bool = True) -> Trace:
+             compiled_loop: bool = True, tolerance: float | None = None,
+             h_min: float = H_MIN, h_max: float = H_MAX) -> Trace:
     """
     Integrate from straight-ahead motion at ``initial_speed`` (module doc).
 
     ``compiled_loop`` False asks the drivers step by step in Python whatever they are.
+    ``tolerance`` (m/s and rad/s, the local error of the body's velocities per step) asks
+    the compiled loop for variable steps in [``h_min``, ``h_max``] (s).
     """
     q, v = model.initial_state(initial_speed, initial_yaw_rate)
     cog = np.array(model.config.group('mass').point('sprung_cog'), dtype=float)
     n_steps = int(round(duration / h))
     chassis = model.chassis
-    run = (_open_loop if compiled_loop and isinstance(steering, OpenLoopSteering)
-           and (speed is None or type(speed) is SpeedController)
-           and chassis.brakes is None and chassis.driveline is None else _per_step)
+    compiled = (compiled_loop and isinstance(steering, OpenLoopSteering)
+                and (speed is None or type(speed) is SpeedController)
+                and chassis.brakes is None and chassis.driveline is None)
+    if compiled and tolerance is not None:
+        if not (tolerance > 0.0 and 0.0 < h_min <= h_max):
+            raise SolverError(f'{model.label(event, 0.0)}: a variable step needs a positive '
+                              f'tolerance and 0 < h_min <= h_max (got {tolerance}, {h_min}, '
+                              f'{h_max})')
+        return _adaptive(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
+                         record_every=record_every, drive_front=drive_front,
+                         brake_front=brake_front, stop=stop, progress=progress,
+                         tolerance=tolerance, h_min=h_min, h_max=h_max)
+    run = _open_loop if compiled else _per_step
     return run(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
                record_every=record_every, drive_front=drive_front, brake_front=brake_front,
                stop=stop, progress=progress)
@@ -174,16 +201,8 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
 def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
                drive_front, brake_front, stop, progress) -> Trace:
     trace = Trace()
-    times = [k * h for k in range(n_steps + 1)]
-    swa = np.ascontiguousarray(steering.schedule(times), dtype=float)
-    if speed is not None:
-        reference = np.array([float(speed.reference(t)) for t in times])
-        reference_next = np.array([float(speed.reference(t + h)) for t in times])
-        gains = np.array([speed.mass, speed.wheel_radius, speed.kp, speed.ki], dtype=float)
-        integral = float(speed._integral)
-    else:
-        reference = reference_next = gains = np.zeros(0)
-        integral = 0.0
+    swa, reference, reference_next, gains = _inputs(steering, speed, n_steps, h)
+    integral = float(speed._integral) if speed is not None else 0.0
     slip, previous, has_previous = np.zeros((2, 4)), np.zeros((4, 4)), False
     block = (record_every * BLOCK_ROWS if stop is not None or progress is not None
              else n_steps + 1)
@@ -213,6 +232,63 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
             raise SolverError(f'{model.label(event, failed * h + h)}: the state became '
                               'non-finite')
         trace.steps = min(step, n_steps)
+    if speed is not None:
+        speed._integral = integral
+    return trace
+
+
+def _inputs(steering, speed, n_steps: int, h: float):
+    """Return the drivers' inputs on the grid of ``h``: swa, reference, at t + h, gains."""
+    times = [k * h for k in range(n_steps + 1)]
+    swa = np.ascontiguousarray(steering.schedule(times), dtype=float)
+    if speed is not None:
+        reference = np.array([float(speed.reference(t)) for t in times])
+        reference_next = np.array([float(speed.reference(t + h)) for t in times])
+        gains = np.array([speed.mass, speed.wheel_radius, speed.kp, speed.ki], dtype=float)
+    else:
+        reference = reference_next = gains = np.zeros(0)
+    return swa, reference, reference_next, gains
+
+
+def _adaptive(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
+              drive_front, brake_front, stop, progress, tolerance, h_min, h_max) -> Trace:
+    trace = Trace()
+    swa, reference, _, gains = _inputs(steering, speed, n_steps, h)
+    integral = float(speed._integral) if speed is not None else 0.0
+    table = steering.table_points
+    t_end = n_steps * h
+    breakpoints = (np.ascontiguousarray(table[0][(table[0] > 0.0) & (table[0] < t_end)])
+                   if table is not None else np.zeros(0))
+    slip, previous, has_previous = np.zeros((2, 4)), np.zeros((4, 4)), False
+    period = record_every * h
+    capacity = (BLOCK_ROWS if stop is not None or progress is not None
+                else n_steps // record_every + 1) + int(h_max / period) + 2
+    rows, wheels = np.empty((capacity, ROW_SIZE)), np.empty((capacity, len(WHEEL_ROWS), 4))
+    t, step, output = 0.0, min(h, h_max), 0
+    while True:
+        if progress is not None:
+            progress(t / max(t_end, h), 'simulating')
+        (q, v, slip, previous, has_previous, t, step, output, n, integral, accepted,
+         rejected, evaluations, failed) = run_adaptive(
+            q, v, slip, previous, has_previous, t, step, t_end, period, output, breakpoints,
+            tolerance, h_min, h_max, h, swa, reference, gains, integral, drive_front,
+            brake_front, model.arrays, model.vx_floor, model.total_mass, model.options.road,
+            model.options.dampers, model.multibody, cog, rows, wheels)
+        trace.steps += accepted
+        trace.rejected += rejected
+        trace.evaluations += evaluations
+        for i in range(n):
+            if stop is not None:
+                reason = stop(dict(zip(TRACE, rows[i])))
+                if reason:
+                    trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
+                    trace.stop_reason = reason
+                    return trace
+        trace.append(rows[:n].copy(), wheels[:n].copy())
+        if failed >= 0.0:
+            raise SolverError(f'{model.label(event, failed)}: the state became non-finite')
+        if n == 0 or t >= t_end - 1e-9 * max(h_max, t_end):
+            break
     if speed is not None:
         speed._integral = integral
     return trace
