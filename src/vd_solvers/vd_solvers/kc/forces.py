@@ -17,6 +17,7 @@ Conventions: a spring's or bump stop's *compression* force is positive;
 from __future__ import annotations
 
 from dataclasses import dataclass
+import functools
 from typing import Protocol
 
 import numpy as np
@@ -110,9 +111,16 @@ class SpringLaw:
 
     def evaluate(self, delta: np.ndarray) -> Triple:
         c = self.design_compression - delta
-        force, slope = self.force(c)
-        work = self._work(c) - self._work(np.array(self.design_compression))
-        return work, -force, slope
+        if self.curve is not None:
+            work, force, slope = self.curve.evaluate(c)  # one segment search for all three
+        else:
+            force, slope = self.force(c)
+            work = self._work(c)
+        return work - self._design_work, -force, slope
+
+    @functools.cached_property
+    def _design_work(self) -> np.ndarray:
+        return self._work(np.array(self.design_compression))
 
 
 def spring_law(spec: SpringSpec, design_length: float) -> SpringLaw:

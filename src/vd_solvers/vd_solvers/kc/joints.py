@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+import functools
 from typing import Literal, Union
 
 import numpy as np
@@ -222,8 +223,12 @@ def joint_constraints(
 _EYE = np.eye(3)
 
 
+@functools.lru_cache(maxsize=64)
 def _eye(n: int, scale: float = 1.0) -> np.ndarray:
-    return np.broadcast_to(scale * _EYE, (n, 3, 3))
+    """``scale`` I stacked n times, read-only and shared (a kernel's constant Hessian)."""
+    out = np.broadcast_to(scale * _EYE, (n, 3, 3))
+    out.flags.writeable = False
+    return out
 
 
 def kernel(

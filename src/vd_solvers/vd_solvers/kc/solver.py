@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
+import scipy.linalg.lapack
 
 from vd_solvers.errors import SolverError
 
@@ -46,6 +46,8 @@ MAX_TRANSLATION_STEP = 0.05  # m per Newton iteration and part
 MAX_ROTATION_STEP = 0.2  # rad per Newton iteration and part
 MAX_STEP_ROTATION = 0.15  # rad of any part between converged neighbours: guards branch jumps
 SINGULAR_PIVOT_RATIO = 1e-13  # smallest/largest LU pivot of the scaled KKT matrix
+
+_GETRF, _GETRS = scipy.linalg.lapack.get_lapack_funcs(('getrf', 'getrs'), (np.zeros(1),))
 
 
 @dataclass(frozen=True)
@@ -118,10 +120,10 @@ def newton(system: System, state: State, load: LoadCase) -> tuple[State, Evaluat
                 'singular equilibrium equations: the mechanism is locked (at a '
                 'singular position) or a part is unrestrained'
             )
-        lu, piv, s = factors
+        s = factors[2]
         n = j.shape[1]
         rhs = np.concatenate((-(residual - j.T @ state.lam), -s * ev.g))
-        sol = scipy.linalg.lu_solve((lu, piv), rhs, check_finite=False)
+        sol = _lu_solve(factors, rhs)
         dq = sol[:n].reshape(-1, 6)
         longest = max(
             float(np.max(np.linalg.norm(dq[:, :3], axis=1), initial=0.0)) / MAX_TRANSLATION_STEP,
@@ -287,10 +289,9 @@ def sensitivity(system: System, state: State, load: LoadCase, ahead: LoadCase,
     factors = _kkt(ev.tangent(state.lam), ev.jacobian)
     if factors is None:
         raise SolverError('sensitivity: singular equilibrium equations at the state')
-    lu, piv, s = factors
+    s = factors[2]
     n = ev.jacobian.shape[1]
-    sol = scipy.linalg.lu_solve((lu, piv), -np.concatenate((d_force, s * d_g)),
-                                check_finite=False)
+    sol = _lu_solve(factors, -np.concatenate((d_force, s * d_g)))
     return Sensitivity(sol[:n].reshape(-1, 6), s * sol[n:])
 
 
@@ -305,15 +306,25 @@ def _kkt(k: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] |
     """
     s = max(float(np.max(np.abs(k))), 1.0)
     n, m = k.shape[0], j.shape[0]
-    kkt = np.zeros((n + m, n + m))
+    # Fortran order: LAPACK factors it in place, with no copy
+    kkt = np.zeros((n + m, n + m), order='F')
     kkt[:n, :n] = k
     kkt[:n, n:] = s * j.T
     kkt[n:, :n] = s * j
-    lu, piv = scipy.linalg.lu_factor(kkt, check_finite=False)
+    # getrf directly (the inputs are finite): scipy's lu_factor only adds checks around it
+    lu, piv, _ = _GETRF(kkt, overwrite_a=True)
     pivots = np.abs(np.diag(lu))
     if not np.all(np.isfinite(pivots)) or pivots.min() < SINGULAR_PIVOT_RATIO * pivots.max():
         return None
     return lu, piv, s
+
+
+def _lu_solve(factors: tuple[np.ndarray, np.ndarray, float], rhs: np.ndarray) -> np.ndarray:
+    """Solve the scaled KKT system factored by :func:`_kkt` for ``rhs`` (getrs)."""
+    x, info = _GETRS(factors[0], factors[1], rhs)
+    if info != 0:
+        raise SolverError(f'internal: getrs rejected its argument {-info}')
+    return x
 
 
 def _pads_only(load: LoadCase, other: LoadCase) -> bool:

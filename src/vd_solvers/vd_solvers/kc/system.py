@@ -24,6 +24,7 @@ local pose coordinates (dp, dtheta) per part.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import functools
 
 import numpy as np
 import scipy.sparse
@@ -188,6 +189,11 @@ class System:
         self.coupled = [(idx, law.matrix) for law, idx in laws if isinstance(law, MatrixLaw)]
         self.coupled_max = max((float(np.max(np.abs(k))) for _, k in self.coupled), default=0.0)
         self.outputs = outputs
+        wheels = outputs.wheels
+        self._upright = np.array([w.part for w in wheels])
+        self._wheel_centre = np.array([w.centre for w in wheels])
+        self._wheel_axis = np.array([w.axis for w in wheels])
+        self._wheel_radius = np.array([w.radius for w in wheels])
         self.n_prim = c_g.shape[1]
         self.n_con = c_g.shape[0]
         self._build_scatter(pt_part, pt_local, vec_part, vec_local)
@@ -195,12 +201,14 @@ class System:
         self._e_product = self._build_product(self.c_e)
         # per coupled law: the DOFs its measures touch (its nodes' parts), so its
         # tangent block is assembled on those columns only
+        # (slices where the rows and columns are contiguous, as the builder numbers them:
+        # views instead of fancy-index copies)
         self._coupled_cols = []
         for idx, _ in self.coupled:
             prims = np.unique(self.c_e[idx].indices)
             cols = np.unique(self._d_cols[np.isin(self._d_rows, prims)])
             cols = cols[cols < self.n_dof]
-            self._coupled_cols.append((np.ix_(idx, cols), np.ix_(cols, cols)))
+            self._coupled_cols.append((_block(idx, cols), _block(cols, cols)))
         x0 = self.primitive_values(self.design_state())
         self.g_design = c_g @ x0
         self.e_design = c_e @ x0
@@ -340,14 +348,6 @@ class System:
         d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
 
         d_flat = d_vals.ravel()
-        if hess:
-            ja = j_slot[self._pair_a]
-            blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)),
-                               j_slot[self._pair_b])
-        else:
-            blocks = np.zeros((0, 6, 6))
-        chart = _chart(g_slot, lever[self._slot_marker])
-        so_vals = np.concatenate((blocks.ravel(), chart.ravel()))
         g = self._c_g_dense @ x - self.g_design - self._constraint_offset(load)
         jacobian = self._product(self._g_product, d_flat)
         measure_jacobian = self._product(self._e_product, d_flat)
@@ -357,9 +357,26 @@ class System:
             energy[idx], d1[idx], d2[idx] = law.evaluate(y[idx])
         n_pt = self._n_points
         q_ext, k_ext = self._applied(state, world[:n_pt], world[n_pt:], load)
-        return Evaluation(
-            self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext, so_vals
-        )
+        return Evaluation(self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext,
+                          (g_slot, j_slot, hess, lever))
+
+    def _second_order_blocks(self, g_slot: np.ndarray, j_slot: np.ndarray,
+                             hess: list[np.ndarray], lever: np.ndarray) -> np.ndarray:
+        """
+        Return the unweighted second-order blocks of the primitives (for :meth:`second_order`).
+
+        From the slot gradients ``g_slot`` (S, 3), the slots' marker pose Jacobians
+        ``j_slot`` (S, 3, 6), the pair Hessians ``hess`` of the kernels and the markers'
+        rotation levers ``lever`` (M, 3).
+        """
+        if hess:
+            ja = j_slot[self._pair_a]
+            blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)),
+                               j_slot[self._pair_b])
+        else:
+            blocks = np.zeros((0, 6, 6))
+        chart = _chart(g_slot, lever[self._slot_marker])
+        return np.concatenate((blocks.ravel(), chart.ravel()))
 
     def second_order(self, so_vals: np.ndarray, weights: np.ndarray) -> np.ndarray:
         """
@@ -392,11 +409,8 @@ class System:
 
     def _contact(self, world: np.ndarray,
                  vec: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        wheels = self.outputs.wheels
-        centre = np.array([world[w.centre] for w in wheels])
-        axis = np.array([vec[w.axis] for w in wheels])
-        radius = np.array([w.radius for w in wheels])
-        return centre, axis, centre + radius[:, None] * contact_direction(axis)
+        centre, axis = world[self._wheel_centre], vec[self._wheel_axis]
+        return centre, axis, centre + self._wheel_radius[:, None] * contact_direction(axis)
 
     def _applied(
         self, state: State, world: np.ndarray, vec: np.ndarray, load: LoadCase
@@ -411,21 +425,23 @@ class System:
         """
         q = np.zeros(self.n_dof)
         k = np.zeros((self.n_dof, self.n_dof))
-        if not (np.any(load.contact_force) or np.any(load.centre_force)
-                or np.any(load.contact_moment)):
+        if not (load.contact_force.any() or load.centre_force.any()
+                or load.contact_moment.any()):
             return q, k
         centre, _, contact = self._contact(world, vec)
-        for s, wheel in enumerate(self.outputs.wheels):
-            u = wheel.part
-            # a pure moment, fixed in the vehicle axes: no lever, no tangent term
-            q[6 * u + 3 : 6 * u + 6] += load.contact_moment[s]
-            for at, force in ((contact[s], load.contact_force[s]),
-                              (centre[s], load.centre_force[s])):
-                lever = at - state.p[u]
-                q[6 * u : 6 * u + 3] += force
-                q[6 * u + 3 : 6 * u + 6] += np.cross(lever, force)
-                rot = slice(6 * u + 3, 6 * u + 6)
-                k[rot, rot] += _chart(-force[None], lever[None])[0]
+        # both sides at once: (side, point of application: contact, centre)
+        upright = self._upright
+        at = np.stack((contact, centre), axis=1)
+        force = np.stack((load.contact_force, load.centre_force), axis=1)
+        lever = at - state.p[upright][:, None, :]
+        moment = _cross(lever, force)
+        chart = _chart(-force.reshape(-1, 3), lever.reshape(-1, 3)).reshape(2, 2, 3, 3)
+        # a pure moment, fixed in the vehicle axes: no lever, no tangent term
+        rot = load.contact_moment + moment[:, 0] + moment[:, 1]
+        for s, u in enumerate(upright):
+            q[6 * u : 6 * u + 3] += force[s, 0] + force[s, 1]
+            q[6 * u + 3 : 6 * u + 6] += rot[s]
+            k[6 * u + 3 : 6 * u + 6, 6 * u + 3 : 6 * u + 6] += chart[s, 0] + chart[s, 1]
         return q, k
 
 
@@ -455,7 +471,14 @@ class Evaluation:
     d2: np.ndarray  # V_e'' (n_e,)
     q_ext: np.ndarray  # applied generalised force (n_dof,)
     k_ext: np.ndarray  # tangent of -q_ext (n_dof, n_dof)
-    so_vals: np.ndarray  # unweighted second-order blocks of the primitives
+    #: what the primitives' second-order blocks are formed from, when a tangent is asked for
+    #: (an evaluation that only checks convergence never needs them)
+    slots: tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray]
+
+    @functools.cached_property
+    def so_vals(self) -> np.ndarray:
+        """Unweighted second-order blocks of the primitives (:meth:`System.second_order`)."""
+        return self.system._second_order_blocks(*self.slots)
 
     def force_residual(self, lam: np.ndarray) -> np.ndarray:
         """Grad V - Q + J^T lambda (n_dof,), N and N*m."""
@@ -472,6 +495,30 @@ class Evaluation:
             block = e[rows]
             k[square] += block.T @ matrix @ block
         return k
+
+
+Block = tuple[slice | np.ndarray, slice | np.ndarray]
+
+
+def _block(rows: np.ndarray, cols: np.ndarray) -> Block:
+    """Index of the block (rows, cols) of a matrix: slices where both are contiguous."""
+    def ranged(i: np.ndarray) -> slice | None:
+        contiguous = i.size > 0 and np.array_equal(i, np.arange(i[0], i[0] + i.size))
+        return slice(int(i[0]), int(i[0]) + i.size) if contiguous else None
+    r, c = ranged(rows), ranged(cols)
+    if r is not None and c is not None:
+        return r, c
+    open_rows, open_cols = np.ix_(rows, cols)
+    return open_rows, open_cols
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross products of stacked 3-vectors (..., 3), written out (no np.cross overhead)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
 
 
 def _skew(w: np.ndarray) -> np.ndarray:
