@@ -111,7 +111,7 @@ def test_distributed_run_matches_embedded(capsys, tmp_path, sedan_master):
      "step_steer, parallel_wheel_travel, opposite_wheel_travel, lateral_force, "
      "longitudinal_force, steering, aligning_torque, constant_radius_turn, sine_with_dwell, "
      "straight_line_braking, brake_in_turn, power_off_in_turn, straight_line_acceleration, "
-     "ride, bump, lane_change)"),
+     "ride, bump, lane_change, lane_change_limit)"),
     (('run', 'handling_diagram', '--model', 'tricycle'),
      "unknown model 'tricycle' (models: bicycle, two_track, kc, vehicle)"),
     (('run', 'step_steer', '--model', 'two_track'),

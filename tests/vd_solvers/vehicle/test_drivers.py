@@ -13,6 +13,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.drivers import (
     DRIVERS,
     CirclePathFollower,
+    CoastingSpeed,
     CurvatureController,
     Observation,
     OpenLoopSteering,
@@ -33,19 +34,45 @@ def test_registry_names_every_driver():
                        'preview_path': PreviewPathFollower, 'speed': SpeedController}
 
 
-def test_preview_path_follower_steers_onto_the_arc_through_the_preview_point():
-    # the circle tangent to the heading at the vehicle and through the preview point
-    # (d, e) has the curvature 2 e / (d^2 + e^2); the road wheels steer L times it
-    offset, speed = 0.7, 12.0
-    driver = PreviewPathFollower(np.array([-100.0, 100.0]), np.array([offset, offset]),
-                                 wheelbase=2.8, steering_ratio=16.0, max_angle=10.0,
+def test_on_a_steady_circle_the_feed_forward_is_the_ackermann_plus_understeer_angle():
+    # the vehicle on a left circle of radius R, tangent to it: no error to compensate,
+    # and the road wheels steer L / R + K a_y with a_y = V^2 / R (Gillespie eq. 6-15)
+    radius, speed, wheelbase, ratio, k = 60.0, 15.0, 2.8, 16.0, 0.004
+    x = np.linspace(-0.9, 0.9, 3601) * radius
+    y = radius - np.sqrt(radius**2 - x**2)
+    driver = PreviewPathFollower(x, y, wheelbase, ratio, 10.0, understeer_gradient=k,
+                                 anticipation=0.0)
+    at = 0.3 * radius
+    heading = math.atan(at / math.sqrt(radius**2 - at**2))
+    obs = Observation(t=0.0, x=at, y=radius - math.sqrt(radius**2 - at**2), yaw=heading,
+                      speed=speed, course=heading)
+    expected = ratio * (wheelbase / radius + k * speed**2 / radius)
+    assert driver.steering_wheel_angle(obs, 0.005) == pytest.approx(expected, rel=1e-3)
+
+
+def test_a_lateral_offset_asks_for_the_arc_that_closes_it_over_the_preview():
+    # a straight path e to the left: the arc from the vehicle's heading through the point
+    # e aside at the preview distance d has the curvature 2 e / d^2 (small e)
+    offset, speed, wheelbase, ratio, k = 0.05, 12.0, 2.8, 16.0, 0.003
+    driver = PreviewPathFollower(np.array([-100.0, 0.0, 100.0]), np.full(3, offset),
+                                 wheelbase, ratio, 10.0, understeer_gradient=k,
                                  preview_time=0.5, min_preview=2.0)
     d = 0.5 * speed
-    expected = 16.0 * 2.8 * 2.0 * offset / (d * d + offset * offset)
+    expected = ratio * (wheelbase + k * speed**2) * 2.0 * offset / d**2
     assert driver.steering_wheel_angle(_obs(speed=speed), 0.005) == pytest.approx(expected)
     assert driver.lateral(50.0) == pytest.approx(offset)
     with pytest.raises(SolverError, match='increasing x'):
-        PreviewPathFollower(np.array([1.0, 0.0]), np.array([0.0, 0.0]), 2.8, 16.0, 10.0)
+        PreviewPathFollower(np.array([1.0, 0.0, 2.0]), np.zeros(3), 2.8, 16.0, 10.0)
+
+
+def test_coasting_speed_holds_the_controller_to_the_gate_and_no_torque_after():
+    driver = CoastingSpeed(SpeedController(lambda t: 20.0, 1500.0, 0.3), gate=10.0)
+    assert driver.wheel_torque(_obs(x=0.0, speed=19.0), 0.01) > 0.0
+    assert driver.released_at is None
+    assert driver.wheel_torque(_obs(t=0.5, x=10.0, speed=19.5), 0.01) == 0.0
+    assert driver.released_at == 0.5 and driver.speed_at_release == 19.5
+    # released for good, even back behind the gate
+    assert driver.wheel_torque(_obs(t=0.6, x=9.0, speed=15.0), 0.01) == 0.0
 
 
 def test_open_loop_table_interpolates_and_holds_its_ends():

@@ -253,4 +253,5 @@ def test_unknown_event_is_an_error(sedan):
                               "full-vehicle model has no event 'double_lane_change' (events: "
                               "constant_radius_turn, step_steer, sine_with_dwell, "
                               "straight_line_braking, brake_in_turn, power_off_in_turn, "
-                              "straight_line_acceleration, ride, bump, lane_change)")
+                              "straight_line_acceleration, ride, bump, lane_change, "
+                              "lane_change_limit)")

@@ -32,15 +32,8 @@ from vd_solvers.road.arrays import road_grid
 from vd_solvers.road.crg import read_crg
 from vd_solvers.road.iso8608 import random_road
 from vd_solvers.road.surface import TrackProfile
-from vd_solvers.standards import iso3888
 from vd_solvers.vehicle.drivers import OpenLoopSteering, SpeedController
 from vd_solvers.vehicle.model import VehicleModel
-from vd_solvers.vehicle.ride_events import (
-    APPROACH,
-    LANE_CHANGE_PARAMS,
-    course_path,
-    run_lane_change,
-)
 from vd_solvers.vehicle.simulation import simulate
 
 SPEED = 20.0  # m/s
@@ -220,28 +213,3 @@ def test_a_written_crg_road_drives_like_the_same_track_profiles(tmp_path, baseli
     # the bump doubles the front loads; both descriptions of the road agree to 0.5 %
     assert np.max(loads[0][:, 0]) > 1.5 * static[0]
     np.testing.assert_allclose(loads[0], loads[1], atol=0.005 * static.max())
-
-
-def test_the_lane_change_passes_at_a_moderate_speed_and_hits_cones_when_too_fast(base_model):
-    def run(speed):
-        values = {k: p.default for k, p in LANE_CHANGE_PARAMS.items()}
-        values['speed'] = speed
-        metrics, _, notes = run_lane_change(base_model, values, None,
-                                            lambda m, trace: {})
-        return metrics, notes
-
-    slow, notes = run(30.0 / 3.6)
-    assert slow['passed'].value == 1.0 and slow['cones_hit'].value == 0.0, notes
-    assert slow['smallest_margin'].value > 0.0
-    fast, notes = run(90.0 / 3.6)
-    assert fast['passed'].value == 0.0 and fast['cones_hit'].value > 0.0, notes
-
-
-def test_the_lane_change_path_runs_along_the_gated_sections_centre_lines():
-    track = iso3888.course(1.8)
-    x, y = course_path(track, APPROACH)
-    starts = np.concatenate([[0.0], np.cumsum(track.lengths)]) + APPROACH
-    for section, (a, b) in zip((1, 3, 5), ((starts[0], starts[1]), (starts[2], starts[3]),
-                                          (starts[4], starts[5]))):
-        inside = np.linspace(a, b, 7)
-        np.testing.assert_allclose(np.interp(inside, x, y), track.centre(section), atol=1e-12)

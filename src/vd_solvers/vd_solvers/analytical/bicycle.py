@@ -158,6 +158,20 @@ def understeer_gradient_deg_per_g(p: VehicleParams) -> float:
     return to_deg_per_g(understeer_gradient(p), p.g)
 
 
+def curvature_steer_angle(wheelbase: float, gradient: float, curvature: ArrayLike,
+                          speed: ArrayLike) -> np.ndarray:
+    """
+    Steady-state road-wheel angle for a path ``curvature`` (1/m, + left), rad (eq. 1).
+
+    (L + K V^2) kappa: the Ackermann angle plus the understeer angle K a_y at
+    a_y = V^2 kappa, with K = ``gradient`` in rad/(m/s^2). The form of :func:`steer_angle`
+    that takes a curvature (zero on a straight) and bare numbers, for a driver's
+    feed-forward. Both arrays broadcast.
+    """
+    v = np.asarray(speed, dtype=float)
+    return (wheelbase + gradient * v * v) * np.asarray(curvature, dtype=float)
+
+
 def steer_angle(p: VehicleParams, radius: ArrayLike, speed: ArrayLike) -> np.ndarray:
     """
     Steady-state road-wheel steer angle, rad (thesis eq. 1).
@@ -168,7 +182,7 @@ def steer_angle(p: VehicleParams, radius: ArrayLike, speed: ArrayLike) -> np.nda
     """
     radius = _nonzero_radius(radius)
     speed = _non_negative_speed(speed)
-    return p.wheelbase / radius + understeer_gradient(p) * speed**2 / radius
+    return curvature_steer_angle(p.wheelbase, understeer_gradient(p), 1.0 / radius, speed)
 
 
 def characteristic_speed(p: VehicleParams) -> float:

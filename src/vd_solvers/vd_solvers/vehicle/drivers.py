@@ -22,6 +22,7 @@ from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
+from vd_solvers.analytical.bicycle import curvature_steer_angle
 from vd_solvers.chassis import antilock
 from vd_solvers.chassis.from_config import Chassis
 from vd_solvers.compiled import jit
@@ -213,15 +214,28 @@ class CurvatureController:
 @dataclass
 class PreviewPathFollower:
     """
-    Pure-pursuit path follower with preview on a path y(x) (earth frame, x increasing).
+    Two-level path follower on a path y(x) (earth frame, x increasing): Donges' driver.
 
-    The driver aims at the point of the path ``preview_time`` * speed (at least
-    ``min_preview``) ahead of the body origin along x, and steers the road wheels by the
-    pure-pursuit angle L 2 sin(a) / l (a the angle from the heading to that point, l its
-    distance; Coulter, *Implementation of the pure pursuit path tracking algorithm*, CMU-RI-
-    TR-92-01, 1992), times ``gain``. Output in steering-wheel angle through the steering
-    ratio, after a first-order lag ``lag`` (the driver's neuromuscular lag), limited to
-    ``max_angle``; the path is held straight beyond its ends.
+    Donges, *A two-level model of driver steering behavior*, Human Factors 20(6), 1978:
+    an anticipatory (open-loop) level steers for the curvature of the path ahead, a
+    compensatory (closed-loop) level corrects the lateral and heading errors. Here the
+    anticipatory level takes the path's curvature kappa_a ``anticipation`` * speed ahead of
+    the body origin; the compensatory level asks for the curvature of the arc that
+    would close the path's lateral error e (m, path left of the vehicle positive) and
+    heading error dpsi (path heading less the direction of the point's velocity, from the
+    body origin's velocity and the yaw rate of the last step) over the preview
+    distance d = ``preview_time`` * speed (at least ``min_preview``), both at the point
+    ``behind`` m behind the body origin along the body (the rear axle: without tire slip
+    it moves along the body's heading, and its path's curvature is tan(delta) / L at every
+    instant):
+    kappa_c = ``gain`` (2 e / d^2 + 2 dpsi / d) (the pure-pursuit law linearised, Coulter,
+    CMU-RI-TR-92-01, 1992). The road wheels steer by the vehicle's steady-state angle for
+    kappa_a + kappa_c, (L + K V^2) kappa (:func:`.analytical.bicycle.curvature_steer_angle`
+    with the configuration's understeer gradient K, rad/(m/s^2)): on a steady circle the
+    anticipatory level alone gives the angle L / R + K a_y. Output in steering-wheel angle
+    through the steering ratio, after a first-order lag ``lag`` (the driver's
+    neuromuscular lag), limited to ``max_angle``; the path is held straight beyond its
+    ends. Heading and curvature are the path's own (finite differences of the samples).
     """
 
     path_x: np.ndarray
@@ -229,33 +243,91 @@ class PreviewPathFollower:
     wheelbase: float
     steering_ratio: float
     max_angle: float
+    understeer_gradient: float = 0.0  # rad/(m/s^2)
     preview_time: float = 0.5
     min_preview: float = 5.0
+    anticipation: float = 0.2  # s
+    behind: float = 0.0  # m
     gain: float = 1.0
+    curvature_gain: float = 0.0
     lag: float = 0.1
     _output: float | None = field(default=None, init=False)
+    _yaw: float | None = field(default=None, init=False)
+    _heading: np.ndarray = field(default_factory=lambda: np.zeros(0), init=False)
+    _curvature: np.ndarray = field(default_factory=lambda: np.zeros(0), init=False)
 
     def __post_init__(self) -> None:
         x = np.asarray(self.path_x, dtype=float)
-        if x.ndim != 1 or x.size < 2 or np.any(np.diff(x) <= 0.0) \
-                or np.shape(self.path_y) != x.shape:
-            raise SolverError('a path needs increasing x and one y per x (at least two points)')
+        y = np.asarray(self.path_y, dtype=float)
+        if x.ndim != 1 or x.size < 3 or np.any(np.diff(x) <= 0.0) or y.shape != x.shape \
+                or not np.all(np.isfinite(y)):
+            raise SolverError('a path needs increasing x and one finite y per x (at least '
+                              'three points)')
+        self.path_x, self.path_y = x, y
+        slope = np.gradient(y, x)
+        self._heading = np.arctan(slope)
+        self._curvature = np.gradient(slope, x) / (1.0 + slope * slope) ** 1.5
 
     def lateral(self, x: float) -> float:
         """Return the path's y at x, m."""
         return float(np.interp(x, self.path_x, self.path_y))
 
+    def heading(self, x: float) -> float:
+        """Return the path's heading at x, rad (0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._heading, left=0.0, right=0.0))
+
+    def curvature(self, x: float) -> float:
+        """Return the path's curvature at x, 1/m (+ left; 0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._curvature, left=0.0, right=0.0))
+
     def steering_wheel_angle(self, obs: Observation, h: float) -> float:
-        preview = max(self.preview_time * obs.speed, self.min_preview)
-        tx = obs.x + preview
-        dx, dy = preview, self.lateral(tx) - obs.y
-        angle = math.atan2(dy, dx) - obs.yaw
-        wanted = (self.gain * self.wheelbase * 2.0 * math.sin(angle) / math.hypot(dx, dy)
-                  * self.steering_ratio)
+        speed = max(obs.speed, 0.0)
+        preview = max(self.preview_time * speed, self.min_preview)
+        x = obs.x - self.behind * math.cos(obs.yaw)
+        y = obs.y - self.behind * math.sin(obs.yaw)
+        # the reference point's velocity: the body origin's less yaw rate x ``behind``
+        rate = 0.0 if self._yaw is None or h <= 0.0 else \
+            math.remainder(obs.yaw - self._yaw, 2.0 * math.pi) / h
+        self._yaw = obs.yaw
+        slip = obs.course - obs.yaw
+        course = obs.yaw + math.atan2(speed * math.sin(slip) - rate * self.behind,
+                                      max(speed * math.cos(slip), 1e-3))
+        psi = self.heading(x)
+        error = (self.lateral(x) - y) * math.cos(psi)
+        heading_error = math.remainder(psi - course, 2.0 * math.pi)
+        curvature_error = self.curvature(x) - rate / max(speed, 1.0)
+        compensatory = self.gain * (2.0 * error / preview**2 + 2.0 * heading_error / preview
+                                    + self.curvature_gain * curvature_error)
+        anticipatory = self.curvature(x + self.anticipation * speed)
+        wanted = self.steering_ratio * float(curvature_steer_angle(
+            self.wheelbase, self.understeer_gradient, anticipatory + compensatory, speed))
         if self._output is None:
             self._output = wanted
         self._output += (wanted - self._output) * (1.0 - math.exp(-h / self.lag))
         return float(np.clip(self._output, -self.max_angle, self.max_angle))
+
+
+@dataclass
+class CoastingSpeed:
+    """
+    A speed driver up to a gate, then no torque at all: the driver lifts off (ISO 3888-2).
+
+    ``controller`` requests the wheel torque while the body origin is short of ``gate``
+    (m, earth x); from the first step at or beyond it the request is 0 N*m for good.
+    ``released_at`` is then the time of that step, s, and ``speed_at_release`` the speed.
+    """
+
+    controller: SpeedDriver
+    gate: float
+    released_at: float | None = field(default=None, init=False)
+    speed_at_release: float = field(default=math.nan, init=False)
+
+    def wheel_torque(self, obs: Observation, h: float) -> float | Pedals:
+        if self.released_at is None and obs.x >= self.gate:
+            self.released_at, self.speed_at_release = obs.t, obs.speed
+        if self.released_at is not None:
+            return 0.0
+        return self.controller.wheel_torque(obs, h)
 
 
 @dataclass
@@ -414,6 +486,6 @@ DRIVERS: Mapping[str, type] = {
 }
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
-           'CurvatureController', 'PreviewPathFollower',
+           'CurvatureController', 'PreviewPathFollower', 'CoastingSpeed',
            'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
            'BRAKE_SPIN_SCALE', 'ACCELERATION_FILTER', 'INERTIA_SPEED_FLOOR']

@@ -24,8 +24,9 @@ sine_with_dwell (FMVSS 126 / UN R140 / GTR 8, the whole procedure): see
 
 straight_line_braking (ISO 21994), brake_in_turn (ISO 7975), power_off_in_turn (ISO 9816)
 and straight_line_acceleration: see :mod:`.longitudinal_events`.
-ride, bump, lane_change (ISO 2631-1 ride on the road, a single obstacle, ISO 3888-2): see
-:mod:`.ride_events`. Every event drives on the configuration's road
+ride, bump (ISO 2631-1 ride on the road, a single obstacle): see :mod:`.ride_events`;
+lane_change, lane_change_limit (ISO 3888-2 at one entry speed, the highest passing entry
+speed): see :mod:`.lane_change`. Every event drives on the configuration's road
 (:mod:`vd_solvers.road.from_config`).
 """
 from __future__ import annotations
@@ -43,7 +44,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
-from . import ride_events
+from . import lane_change, ride_events
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
 from .constant_radius import PARAMS as CRT_PARAMS
 from .drivers import OpenLoopSteering, SpeedController
@@ -92,7 +93,7 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
     'straight_line_acceleration': LONGITUDINAL_EVENTS['straight_line_acceleration'][0],
     'ride': ride_events.RIDE_PARAMS,
     'bump': ride_events.BUMP_PARAMS,
-    'lane_change': ride_events.LANE_CHANGE_PARAMS,
+    **lane_change.PARAMS,
 }
 EVENTS = tuple(EVENT_PARAMS)
 
@@ -119,10 +120,10 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
             if config.name in str(err):
                 raise
             raise SolverError(f'{label}: {err}') from err
-    elif event in ride_events.RUNNERS:
+    elif event in ride_events.RUNNERS or event in lane_change.RUNNERS:
+        runner = {**ride_events.RUNNERS, **lane_change.RUNNERS}[event]
         try:
-            metrics, channels, notes = ride_events.RUNNERS[event](model, values, progress,
-                                                                  _channels)
+            metrics, channels, notes = runner(model, values, progress, _channels)
         except SolverError as err:
             raise SolverError(f'{label}: {err}') from err
     elif event == 'constant_radius_turn':

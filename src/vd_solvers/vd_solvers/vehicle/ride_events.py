@@ -1,7 +1,7 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
 """
-Ride and lane-change events on the configuration's road.
+Ride events on the configuration's road.
 
 Every event drives on the road of the configuration's ``road`` group
 (:mod:`vd_solvers.road.from_config`; the flat road of friction 1 without one) and names it
@@ -23,15 +23,7 @@ wheel loads over their static values, the smallest wheel load (0: a wheel left t
 ground) and the settling time: from the front wheels reaching the obstacle to the last
 instant the vertical acceleration exceeds SETTLE_FRACTION of its peak.
 
-lane_change (ISO 3888-2:2011 obstacle avoidance): the course of
-:mod:`vd_solvers.standards.iso3888` for the vehicle's width starts APPROACH m ahead; a
-preview path follower (:class:`.drivers.PreviewPathFollower`) follows the sections'
-centre lines joined by half-cosine transitions over sections 2 and 4 (shifted on by
-PATH_SHIFT of the preview distance: the pure pursuit cuts in by about that) while the speed
-controller holds ``speed`` (the standard's driver lifts the throttle at the entry; here
-the speed is held). The cone check of the whole run decides pass or fail. The vehicle's
-plan rectangle is the wheels' outer envelope: the wider track plus a tire width, the
-wheelbase plus two unloaded radii (the data has no body overhangs).
+The ISO 3888-2 lane change is in :mod:`.lane_change`.
 """
 from __future__ import annotations
 
@@ -43,24 +35,14 @@ from vd_solvers.errors import SolverError
 from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
 from vd_solvers.road import from_config
-from vd_solvers.standards import iso2631, iso3888
+from vd_solvers.standards import iso2631
 
-from .drivers import OpenLoopSteering, PreviewPathFollower, SpeedController
-from .model import STEP, VehicleModel
+from .drivers import OpenLoopSteering, SpeedController
+from .model import VehicleModel
 from .simulation import Trace, simulate
 
 #: settling threshold of the bump event, fraction of the peak vertical acceleration
 SETTLE_FRACTION = 0.05
-#: m from the start of the run to the start of the ISO 3888-2 course
-APPROACH = 40.0
-#: m driven beyond the end of the course
-RUN_OUT = 15.0
-#: the lane-change path's transitions lie this share of the preview distance later than
-#: the sections 2 and 4 (a pure-pursuit driver starts turning that much early)
-PATH_SHIFT = 0.5
-#: shortest preview distance of the lane-change driver, m
-MIN_PREVIEW = 2.0
-
 RIDE_PARAMS: Mapping[str, Param] = {
     'speed': Param('velocity', 80.0 / 3.6, 'constant speed', minimum=2.0, maximum=60.0),
     'distance': Param('length', 150.0, 'distance driven (at most the road length)',
@@ -71,18 +53,13 @@ BUMP_PARAMS: Mapping[str, Param] = {
     'after': Param('time', 3.0, 'time simulated after the rear wheels leave the obstacle',
                    minimum=0.5, maximum=20.0),
 }
-LANE_CHANGE_PARAMS: Mapping[str, Param] = {
-    'speed': Param('velocity', 60.0 / 3.6, 'entry speed, held', minimum=5.0, maximum=50.0),
-    'preview_time': Param('time', 0.3, "the driver's preview time", minimum=0.1,
-                          maximum=3.0),
-}
-
-
-def _road_note(model: VehicleModel) -> str:
+def road_note(model: VehicleModel) -> str:
+    """Return the note naming the road a full-vehicle event drove on."""
     return f'road: {model.road.description}'
 
 
-def _controller(model: VehicleModel, speed: float) -> SpeedController:
+def speed_controller(model: VehicleModel, speed: float) -> SpeedController:
+    """Return a speed controller holding ``speed`` (m/s) for the vehicle."""
     _, r_e = model.tire_radii(model.static_loads())
     return SpeedController(lambda t: speed, model.total_mass, float(np.mean(r_e)))
 
@@ -104,8 +81,8 @@ def _acceleration_channels(vertical: np.ndarray, pitch: np.ndarray) -> dict[str,
 
 def _straight(model: VehicleModel, speed: float, duration: float, event: str, progress,
               channels_of) -> tuple[Trace, dict[str, Channel]]:
-    trace = simulate(model, OpenLoopSteering(lambda t: 0.0), _controller(model, speed), duration,
-                     event=event, initial_speed=speed, record_every=1, progress=progress)
+    trace = simulate(model, OpenLoopSteering(lambda t: 0.0), speed_controller(model, speed),
+                     duration, event=event, initial_speed=speed, record_every=1, progress=progress)
     return trace, channels_of(model, trace)
 
 
@@ -142,7 +119,7 @@ def run_ride(model: VehicleModel, v: Mapping[str, float], progress: Callable | N
         'wheel_load_variation_front': Metric(float(variation[:2].mean()), '-'),
         'wheel_load_variation_rear': Metric(float(variation[2:].mean()), '-'),
     }
-    notes = [_road_note(model),
+    notes = [road_note(model),
              f'evaluated from the front axle at {from_config.FADE_IN + 5.0:g} m to '
              f'{distance:g} m: {np.count_nonzero(window) / rate:.1f} s at {rate:g} Hz; '
              'accelerations at the CoG']
@@ -184,86 +161,13 @@ def run_bump(model: VehicleModel, v: Mapping[str, float], progress: Callable | N
     }
     if above.size and above[-1] >= t.size - 2:
         metrics['settling_time'] = Metric(float('nan'), 's')
-    notes = [_road_note(model), f'front wheels at the obstacle at t = {t0:.2f} s; settled: '
+    notes = [road_note(model), f'front wheels at the obstacle at t = {t0:.2f} s; settled: '
              f'|a_z| below {100 * SETTLE_FRACTION:g} % of its peak']
     return metrics, channels, notes
 
 
-def vehicle_rectangle(model: VehicleModel) -> tuple[float, float, float]:
-    """(length, width, distance of the body origin behind the front) of the plan rectangle."""
-    centres = model.wheel_centres
-    tire_width = max(float(t.props.number('DIMENSION', 'WIDTH', 0.25)) for t in model.tires)
-    width = 2.0 * float(np.max(np.abs(centres[:, 1]))) + tire_width
-    r_front, r_rear = float(model.r0[0]), float(model.r0[2])
-    length = float(centres[0, 0] - centres[2, 0]) + r_front + r_rear
-    return length, width, r_front - float(centres[0, 0])
+PARAMS: Mapping[str, Mapping[str, Param]] = {'ride': RIDE_PARAMS, 'bump': BUMP_PARAMS}
+RUNNERS = {'ride': run_ride, 'bump': run_bump}
 
-
-def course_path(track: iso3888.Course, approach: float, shift: float = 0.0
-                ) -> tuple[np.ndarray, np.ndarray]:
-    """Return sections 1, 3, 5's centre lines joined by half-cosines, ``shift`` on (earth)."""
-    starts = np.concatenate([[0.0], np.cumsum(track.lengths)]) + approach + shift
-    y1, y3, y5 = track.centre(1), track.centre(3), track.centre(5)
-    x = [approach - 1000.0, starts[1]]
-    y = [y1, y1]
-    for (xa, xb, ya, yb) in ((starts[1], starts[2], y1, y3), (starts[3], starts[4], y3, y5)):
-        s = np.linspace(0.0, 1.0, 41)[1:]
-        x.extend(xa + s * (xb - xa))
-        y.extend(ya + (yb - ya) * 0.5 * (1.0 - np.cos(np.pi * s)))
-        if xb == starts[2]:
-            x.append(starts[3])
-            y.append(y3)
-    x.append(starts[-1] + 1000.0)
-    y.append(y5)
-    return np.array(x), np.array(y)
-
-
-def run_lane_change(model: VehicleModel, v: Mapping[str, float], progress: Callable | None,
-                    channels_of) -> tuple[dict[str, Metric], dict[str, Channel], list[str]]:
-    """Run the ISO 3888-2 lane change (module doc)."""
-    speed = v['speed']
-    length, width, front = vehicle_rectangle(model)
-    track = iso3888.course(width)
-    preview = v['preview_time'] * speed
-    px, py = course_path(track, APPROACH, PATH_SHIFT * preview)
-    maps = model.maps
-    limit = float(min(-maps.steer_swa[0], maps.steer_swa[-1]))
-    wheelbase = float(model.wheel_centres[0, 0] - model.wheel_centres[2, 0])
-    driver = PreviewPathFollower(px, py, wheelbase, maps.steering_ratio, limit,
-                                 preview_time=v['preview_time'], min_preview=MIN_PREVIEW)
-    duration = (APPROACH + track.length + RUN_OUT) / speed
-    trace = simulate(model, driver, _controller(model, speed), duration, event='lane_change',
-                     initial_speed=speed, record_every=2, h=STEP, progress=progress)
-    channels = channels_of(model, trace)
-    ch = trace.channels()
-    check = iso3888.check_run(track, ch['time'], ch['x'] - APPROACH, ch['y'], ch['yaw'],
-                              length=length, width=width, front=front)
-    finite = [m for m in check.margins.values() if np.isfinite(m)]
-    metrics = {
-        'speed': Metric(speed, 'm/s'),
-        'passed': Metric(1.0 if check.passed else 0.0, '-', 'ISO 3888-2 cone check'),
-        'cones_hit': Metric(float(len(check.hits)), '-'),
-        'smallest_margin': Metric(min(finite) if finite else float('nan'), 'm'),
-        'peak_lateral_acceleration': Metric(float(np.max(np.abs(ch['lateral_acceleration']))),
-                                            'm/s^2'),
-        'peak_steering_wheel_angle': Metric(float(np.max(np.abs(ch['steering_wheel_angle']))),
-                                            'rad'),
-        'peak_yaw_rate': Metric(float(np.max(np.abs(ch['yaw_rate']))), 'rad/s'),
-        'exit_speed': Metric(float(ch['speed'][-1]), 'm/s'),
-    }
-    hits = '; '.join(f'section {s} {side} at {when:.2f} s' for s, side, when in check.hits)
-    verdict = 'passed' if check.passed else 'failed'
-    notes = [_road_note(model),
-             f'ISO 3888-2 course for a vehicle {width:.2f} m wide, {length:.2f} m long '
-             f"(the wheels' envelope); {verdict}"
-             + (f': {hits}' if hits else '') + ('' if check.covered else
-                                                 ' (the run did not clear the course)')]
-    return metrics, channels, notes
-
-
-PARAMS: Mapping[str, Mapping[str, Param]] = {
-    'ride': RIDE_PARAMS, 'bump': BUMP_PARAMS, 'lane_change': LANE_CHANGE_PARAMS}
-RUNNERS = {'ride': run_ride, 'bump': run_bump, 'lane_change': run_lane_change}
-
-__all__ = ['PARAMS', 'RUNNERS', 'run_ride', 'run_bump', 'run_lane_change', 'course_path',
-           'vehicle_rectangle', 'RIDE_PARAMS', 'BUMP_PARAMS', 'LANE_CHANGE_PARAMS']
+__all__ = ['PARAMS', 'RUNNERS', 'run_ride', 'run_bump', 'road_note', 'speed_controller',
+           'RIDE_PARAMS', 'BUMP_PARAMS']
