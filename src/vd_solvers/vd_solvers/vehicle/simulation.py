@@ -219,15 +219,10 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
             drive_front, brake_front, model.arrays, model.vx_floor, model.total_mass,
             model.options.road, model.options.dampers, model.multibody, cog, rows, wheels)
         has_previous = step > 0
-        for i in range(n):
-            if stop is not None:
-                reason = stop(dict(zip(TRACE, rows[i])))
-                if reason:
-                    trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
-                    trace.stop_reason = reason
-                    trace.steps = int(round(rows[i, 0] / h))
-                    return trace
-        trace.append(rows[:n].copy(), wheels[:n].copy())
+        stopped = _append_rows(trace, rows, wheels, n, stop)
+        if stopped is not None:
+            trace.steps = int(round(rows[stopped, 0] / h))
+            return trace
         if failed >= 0:
             raise SolverError(f'{model.label(event, failed * h + h)}: the state became '
                               'non-finite')
@@ -235,6 +230,24 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
     if speed is not None:
         speed._integral = integral
     return trace
+
+
+def _append_rows(trace: Trace, rows: np.ndarray, wheels: np.ndarray, n: int,
+                 stop: Callable[[dict[str, float]], str] | None) -> int | None:
+    """
+    Append the loop's first ``n`` rows to ``trace`` up to the first one ``stop`` stops at.
+
+    Return the index of that row (its reason in ``trace.stop_reason``), None if none.
+    """
+    if stop is not None:
+        for i in range(n):
+            reason = stop(dict(zip(TRACE, rows[i])))
+            if reason:
+                trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
+                trace.stop_reason = reason
+                return i
+    trace.append(rows[:n].copy(), wheels[:n].copy())
+    return None
 
 
 def _inputs(steering, speed, n_steps: int, h: float):
@@ -277,14 +290,8 @@ def _adaptive(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
         trace.steps += accepted
         trace.rejected += rejected
         trace.evaluations += evaluations
-        for i in range(n):
-            if stop is not None:
-                reason = stop(dict(zip(TRACE, rows[i])))
-                if reason:
-                    trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
-                    trace.stop_reason = reason
-                    return trace
-        trace.append(rows[:n].copy(), wheels[:n].copy())
+        if _append_rows(trace, rows, wheels, n, stop) is not None:
+            return trace
         if failed >= 0.0:
             raise SolverError(f'{model.label(event, failed)}: the state became non-finite')
         if n == 0 or t >= t_end - 1e-9 * max(h_max, t_end):
