@@ -9,7 +9,7 @@ import pytest
 from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.study import load_study
 from vd_solvers.errors import SolverError
-from vd_solvers.kc import cache
+from vd_solvers.kc import cache, from_config
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.from_config import suspension_input
 
@@ -86,3 +86,34 @@ def test_no_bar_run_is_softer_in_roll(baseline):
 def test_unknown_fidelity_is_refused(baseline):
     with pytest.raises(SolverError, match="fidelity 'wobbly' is not available"):
         cache.kc_result(baseline, 'front', 'parallel_wheel_travel', fidelity='wobbly')
+
+
+def test_runs_on_the_shared_model_equal_runs_on_fresh_ones(baseline, monkeypatch):
+    """The rigid-limit model assembled once gives every event what a new assembly gives."""
+    built = []
+    real = from_config.build_kc_model
+    monkeypatch.setattr(from_config, 'build_kc_model',
+                        lambda *a, **k: built.append(a) or real(*a, **k))
+    events = ('lateral_force', 'opposite_wheel_travel', 'lateral_force')
+    shared = [from_config.run_kc_event(baseline, e, 'rear', ['steps=11'], fidelity='flexible',
+                                       at_rigid_limit=True, build=cache.kc_model)
+              for e in events]
+    assert len(built) == 1
+    for event, outcome in zip(events, shared):
+        fresh = from_config.run_kc_event(baseline, event, 'rear', ['steps=11'],
+                                         fidelity='flexible', at_rigid_limit=True)
+        assert outcome.channels.keys() == fresh.channels.keys()
+        for name, channel in fresh.channels.items():
+            np.testing.assert_array_equal(outcome.channels[name].values, channel.values)
+        assert outcome.metrics == fresh.metrics
+        assert outcome.notes == fresh.notes
+
+
+def test_a_run_leaves_the_shared_model_as_it_was(baseline):
+    model = cache.kc_model(baseline, 'front', 'rigid', 'the run that built it')
+    inp = model.inp
+    from_config.run_kc_event(baseline, 'lateral_force', 'front', ['steps=5'],
+                             build=cache.kc_model)
+    assert cache.kc_model(baseline, 'front', 'rigid') is model
+    assert model.label == 'the run that built it'
+    assert model.inp is inp

@@ -45,6 +45,7 @@ from vd_events.orchestration.runner import RunRequest, run_embedded, validate
 from vd_interfaces.msg import CapabilityCell, CapabilityTable
 from vd_solvers.constants import DEG
 from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
+from vd_solvers.kc.cache import kc_model
 from vd_solvers.kc.from_config import RIGID_LIMIT_BAR_SCALE, RIGID_LIMIT_SCALE, run_kc_event
 from vd_solvers.results import EventOutcome
 
@@ -342,10 +343,11 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
     for axle in axles:
         mine = [r for r in results if r.request.axle == axle]
         pairs = [(a.outcome, b.outcome) for a, b in zip(mine[0::2], mine[1::2])]
-        # Before any verdict: the flexible model at its rigid limit must be the rigid model.
+        # Before any verdict: the flexible model at its rigid limit must be the rigid model
+        # (assembled once per axle, every event runs on it).
         limit = rigid_limit_cells([
             (rigid, run_kc_event(config, rigid.event, axle, tuple(parameters),
-                                 fidelity='flexible', at_rigid_limit=True))
+                                 fidelity='flexible', at_rigid_limit=True, build=kc_model))
             for rigid, _ in pairs if rigid is not None])
         if any(c.verdict != 'Rigid' for c in limit):
             raise RunError(f"configuration '{configuration}', {axle} axle: "

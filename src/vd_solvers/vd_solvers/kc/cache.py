@@ -15,7 +15,8 @@ returned.
     par.channels["toe"]           # (n, 2) rad
 
 The key is (data hash, axle, fidelity, event, sorted parameters); the cache
-holds at most ``MAX_ENTRIES`` results (least recently used go first).
+holds at most ``MAX_ENTRIES`` results and ``MODEL_ENTRIES`` assembled models (least
+recently used go first); a model's key adds whether it is the flexible model's rigid limit.
 
 Results are also kept on disk (:mod:`vd_data_server.disk_cache`, kind ``kc``, at most
 ``DISK_ENTRIES``), so a new process (every ``vd run`` of the bicycle or two-track, whose
@@ -44,6 +45,9 @@ from .model import without_bar
 
 #: results kept per process
 MAX_ENTRIES = 256
+#: assembled models kept per process (a flexible axle holds about 2 MB): a solver node
+#: asked for many variants of the data keeps the latest
+MODEL_ENTRIES = 32
 #: results kept on disk (module doc)
 DISK_ENTRIES = 1024
 #: the kind of the disk entries (:func:`vd_data_server.disk_cache.folder`)
@@ -57,31 +61,46 @@ _models: OrderedDict[tuple, KCModel] = OrderedDict()
 _lock = Lock()
 
 
-def _remember(store: OrderedDict, key: tuple, value):
+def _remember(store: OrderedDict, key: tuple, value, entries: int = MAX_ENTRIES):
     store[key] = value
     store.move_to_end(key)
-    while len(store) > MAX_ENTRIES:
+    while len(store) > entries:
         store.popitem(last=False)
     return value
 
 
-def kc_model(config: Configuration, axle: str, fidelity: str = 'rigid') -> KCModel:
-    """Return the assembled K&C model of ``axle`` of ``config`` (cached by data hash)."""
-    from .from_config import suspension_input
+def kc_model(config: Configuration, axle: str, fidelity: str = 'rigid', label: str = '',
+             at_rigid_limit: bool = False) -> KCModel:
+    """
+    Return the assembled K&C model of ``axle`` of ``config`` (cached by data hash).
 
-    if fidelity not in FIDELITIES:
+    ``label`` prefixes the messages of a model that cannot be built (default: the
+    configuration and axle); the model returned carries the label of the call that built
+    it. ``at_rigid_limit``: the flexible model at its rigid limit
+    (:func:`.from_config.rigid_limit`). The arguments are those of
+    :func:`.from_config.build_kc_model`, so a run may take either
+    (:func:`.from_config.run_kc_event`). A run leaves the model as it was (its System
+    keeps no state between evaluations), so every run of the same data may share it.
+    """
+    from .from_config import build_kc_model, rigid_limit, suspension_input
+
+    if fidelity not in FIDELITIES and not label:
         raise SolverError(f"configuration '{config.name}', axle '{axle}': K&C fidelity "
                           f"'{fidelity}' is not available (available: {', '.join(FIDELITIES)})")
-    key = (config.data_hash, axle, fidelity)
+    key = (config.data_hash, axle, fidelity, at_rigid_limit)
     with _lock:
         model = _models.get(key)
         if model is not None:
             _models.move_to_end(key)
             return model
-    label = f"configuration '{config.name}', axle '{axle}'"
-    model = KCModel(suspension_input(config, axle, fidelity), label)
+    if label:
+        model = build_kc_model(config, axle, fidelity, label, at_rigid_limit)
+    else:
+        inp = suspension_input(config, axle, fidelity)
+        model = KCModel(rigid_limit(inp) if at_rigid_limit else inp,
+                        f"configuration '{config.name}', axle '{axle}'")
     with _lock:
-        return _remember(_models, key, model)
+        return _remember(_models, key, model, MODEL_ENTRIES)
 
 
 def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rigid',
@@ -131,4 +150,5 @@ def clear() -> None:
         _models.clear()
 
 
-__all__ = ['kc_result', 'kc_model', 'clear', 'MAX_ENTRIES', 'FIDELITIES', 'NO_BAR']
+__all__ = ['kc_result', 'kc_model', 'clear', 'MAX_ENTRIES', 'MODEL_ENTRIES', 'FIDELITIES',
+           'NO_BAR']

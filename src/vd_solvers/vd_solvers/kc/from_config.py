@@ -14,6 +14,7 @@ inflation pressure (VERTICAL_STIFFNESS (1 + PFZ1 dpi), the tangent at FNOMIN).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+import copy
 from dataclasses import replace
 import math
 
@@ -359,13 +360,18 @@ def build_kc_model(config: Configuration, axle: str, fidelity: str, label: str,
 def run_kc_event(config: Configuration, event: str, axle: str,
                  params: Sequence[str] = (),
                  progress: Callable[[float, str], None] | None = None,
-                 fidelity: str = 'rigid', at_rigid_limit: bool = False) -> EventOutcome:
+                 fidelity: str = 'rigid', at_rigid_limit: bool = False,
+                 build: Callable[[Configuration, str, str, str, bool], KCModel] = build_kc_model
+                 ) -> EventOutcome:
     """
     One K&C event on one axle, with the derived metrics that event supports.
 
     ``progress(fraction, stage)`` is called per solved step (it may raise to cancel);
     ``fidelity`` 'rigid' or 'flexible' (see :func:`suspension_input`);
-    ``at_rigid_limit``: the flexible model at its rigid limit (:func:`rigid_limit`).
+    ``at_rigid_limit``: the flexible model at its rigid limit (:func:`rigid_limit`);
+    ``build(config, axle, fidelity, label, at_rigid_limit)`` returns the model to run:
+    :func:`build_kc_model` assembles a new one, :func:`.cache.kc_model` the one this
+    process already assembled from the same data (a run leaves a model as it was).
     """
     label = f"configuration '{config.name}', event '{event}', axle '{axle}'"
     if event not in EVENT_PARAMS:
@@ -374,7 +380,10 @@ def run_kc_event(config: Configuration, event: str, axle: str,
     if axle not in ('front', 'rear'):
         raise SolverError(f'{label}: K&C events need --axle front or rear')
     values = parse_params(event, EVENT_PARAMS[event], params)
-    model = build_kc_model(config, axle, fidelity, label, at_rigid_limit)
+    # a model from a cache carries the label of the run that built it: this run's
+    # messages name its own event
+    model = copy.copy(build(config, axle, fidelity, label, at_rigid_limit))
+    model.label = label
     inp = model.inp
     if event == 'steering' and inp.steering is None:
         raise SolverError(f'{label}: the {axle} axle has no steering')

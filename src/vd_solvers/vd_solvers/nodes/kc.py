@@ -20,6 +20,7 @@ from vd_data_server.ros.qos import TF
 from vd_interfaces.msg import KcState
 from vd_solvers.errors import SolverError
 from vd_solvers.families import TF_TOPIC
+from vd_solvers.kc.cache import kc_model
 from vd_solvers.kc.from_config import run_kc_event
 from vd_solvers.nodes.solver import SolverNode
 from vd_solvers.results import FIDELITIES, EventOutcome
@@ -33,8 +34,9 @@ def _run(config: Configuration, goal, progress) -> EventOutcome:
         raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
                           f"'{goal.fidelity}' is not available (fidelities: "
                           f"{', '.join(FIDELITIES)})")
+    # the node assembles each (data, axle, fidelity) once and runs every goal on it
     return run_kc_event(config, goal.event, goal.axle, list(goal.parameters), progress,
-                        fidelity)
+                        fidelity, build=kc_model)
 
 
 class KCSolver(SolverNode):
