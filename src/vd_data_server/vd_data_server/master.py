@@ -199,22 +199,23 @@ class GroupCache:
 
     def _road_file(self, data: GroupData) -> None:
         """Check an OpenCRG file: inside the data root, present; its hash joins the data's."""
-        rel = data.text('file')
-        path = self.master.data_root / rel
-        if not inside(self.master.data_root, path):
-            raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
-                            file=data.file, key='data.file')
+        rel, path = self._data_file(data, 'data.file')
         if not _is_file(path):
             raise DataError(f"road file '{rel}' does not exist", file=data.file,
                             key='data.file')
         self.extra_hashes[rel] = hashlib.sha256(path.read_bytes()).hexdigest()[:16]
 
-    def _with_tire(self, data: GroupData) -> GroupData:
+    def _data_file(self, data: GroupData, key: str) -> tuple[str, Path]:
+        """Return a group's ``file`` as written and its path, refused outside the data root."""
         rel = data.text('file')
         path = self.master.data_root / rel
         if not inside(self.master.data_root, path):
             raise DataError(f"'{rel}' is outside the data root {self.master.data_root}",
-                            file=data.file, key='file')
+                            file=data.file, key=key)
+        return rel, path
+
+    def _with_tire(self, data: GroupData) -> GroupData:
+        rel, path = self._data_file(data, 'file')
         props = read_tir(path)
         raw = path.read_bytes()
         note_read(path, raw)
