@@ -212,14 +212,13 @@ def test_unknown_event_parameter_is_a_data_error(sedan):
                               "time_step, step_tolerance, drive_front, brake_front)")
 
 
-def test_the_step_steer_with_a_variable_step_has_the_fixed_steps_steady_state(sedan, step):
-    """step_tolerance: the steady gains of the 5 ms run within 0.5 %, the same time base."""
-    variable = run_vehicle_event(sedan['baseline'], 'step_steer', ['step_tolerance=3e-5 m/s'])
-    assert any('variable step (tolerance 3e-05' in note for note in variable.notes)
-    np.testing.assert_array_equal(variable.channels['time'].values,
-                                  step.channels['time'].values)
+def test_the_step_steer_with_the_fixed_step_has_the_variable_steps_steady_state(sedan, step):
+    """step_tolerance=0: the fixed 5 ms step, the default's steady gains (0.5 %), time base."""
+    fixed = run_vehicle_event(sedan['baseline'], 'step_steer', ['step_tolerance=0 m/s'])
+    assert any('step 5 ms' in note for note in fixed.notes)
+    np.testing.assert_array_equal(fixed.channels['time'].values, step.channels['time'].values)
     for key in ('yaw_rate_gain', 'lateral_acceleration_gain', 'sideslip_gain', 'roll_gain'):
-        np.testing.assert_allclose(variable.metrics[key].value, step.metrics[key].value,
+        np.testing.assert_allclose(fixed.metrics[key].value, step.metrics[key].value,
                                    rtol=0.005, err_msg=key)
 
 

@@ -169,4 +169,4 @@ def test_unknown_parameter_is_a_data_error(sedan):
     with pytest.raises(DataError) as err:
         run_vehicle_event(sedan['baseline'], 'sine_with_dwell', ['amplitude=3 deg'])
     assert "unknown parameter 'amplitude'" in str(err.value)
-    assert 'a_reference, max_amplitude, gvwr' in str(err.value)
+    assert 'a_reference, max_amplitude, gvwr, step_tolerance' in str(err.value)

@@ -47,12 +47,19 @@ Inputs and outputs. The drivers' inputs are given on a base grid of step ``h_bas
 rows lie on the fixed output grid (every ``record_every`` base steps), interpolated
 linearly between the two accepted steps around each output time (yaw across the
 +-pi cut), so reports, bags and metrics keep their time base.
+
+Where the events take it. The handling events whose drivers depend on time only (the
+step steer, the sine-with-dwell procedure) run with the variable step by default, their
+``step_tolerance`` parameter (:data:`STEP_TOLERANCE_PARAM`, 0 the fixed step);
+:func:`event_tolerance` turns it into ``simulate``'s ``tolerance``: none on a road with
+relief, whose wheel hop the fixed step resolves and the implicit travel would damp.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from vd_solvers.compiled import jit
+from vd_solvers.event_params import Param
 
 from .drivers import speed_law, wheel_torques
 from .dynamics import (
@@ -65,6 +72,7 @@ from .dynamics import (
 )
 from .forces import VehicleArrays, vehicle_forces
 from .maps import grid_lookup
+from .model import VehicleModel
 
 #: the next step is at most GROWTH times the last
 GROWTH = 2.0
@@ -80,6 +88,22 @@ TRAVEL_DELTA = 1e-3
 SPEED_DELTA = 1e-2
 #: index of the yaw channel in a recorded row (simulation.TRACE)
 YAW = 3
+#: the events' default local error tolerance (m/s, rad/s): the step steer's and the sine
+#: with dwell's yaw rate and lateral acceleration within 1 % of their peaks of the converged
+#: run on the sample cars (tests/vd_solvers/vehicle/test_adaptive.py)
+STEP_TOLERANCE = 3e-5
+#: the events' parameter choosing it
+STEP_TOLERANCE_PARAM = Param(
+    'velocity', STEP_TOLERANCE, "variable step: local error tolerance of the body's velocities "
+    'per step (m/s, and rad/s for the angular ones); 0: the fixed step. On a road with relief '
+    'the fixed step runs whatever it says (the wheel hop)', minimum=0.0, maximum=0.01)
+
+
+def event_tolerance(model: VehicleModel, step_tolerance: float) -> float | None:
+    """Return an event's ``simulate`` tolerance: None (the fixed step) for 0 or a road with relief."""
+    if step_tolerance <= 0.0 or np.any(model.road.height != 0.0):
+        return None
+    return step_tolerance
 
 
 @jit
@@ -313,4 +337,5 @@ def run_adaptive(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.nd
         h = h_next
 
 
-__all__ = ['run_adaptive', 'travel_rates', 'error_norm', 'GROWTH', 'SHRINK', 'SAFETY', 'HOLD']
+__all__ = ['run_adaptive', 'travel_rates', 'error_norm', 'event_tolerance', 'GROWTH', 'SHRINK',
+           'SAFETY', 'HOLD', 'STEP_TOLERANCE', 'STEP_TOLERANCE_PARAM']

@@ -11,11 +11,12 @@ drives the manoeuvre with the drivers of :mod:`.drivers` and returns an
 constant_radius_turn (ISO 4138:2021, constant-radius method, steady state): see
 :mod:`.constant_radius`.
 
-step_steer (ISO 7401:2011, step input): straight at ``speed``, then a steering-wheel
-ramp of ``ramp_time`` to the angle giving ``lateral_acceleration`` in the steady
-state (first guess from the linear bicycle model, then scaled once or twice by the
-ratio aimed/reached), speed held by the PI controller. Response times are measured
-from the instant the steering-wheel angle passes 50 % of its step (ISO 7401 5.3):
+step_steer (ISO 7401:2011, step input; the variable step of :mod:`.adaptive` by
+default): straight at ``speed``, then a steering-wheel ramp of ``ramp_time`` to the
+angle giving ``lateral_acceleration`` in the steady state (first guess from the linear
+bicycle model, then scaled once or twice by the ratio aimed/reached), speed held by the
+PI controller. Response times are measured from the instant the steering-wheel angle
+passes 50 % of its step (ISO 7401 5.3):
 t90 (first reaching 90 % of the steady value) and the peak time; overshoot is
 peak / steady - 1; steady values are means over the last STEADY_WINDOW s.
 
@@ -45,6 +46,7 @@ from vd_solvers.event_params import Param, parse_params
 from vd_solvers.results import Channel, EventOutcome, Metric
 
 from . import lane_change, ride_events
+from .adaptive import STEP_TOLERANCE_PARAM, event_tolerance
 from .constant_radius import LINEAR_RANGE, TURN_STEP, run_constant_radius
 from .constant_radius import PARAMS as CRT_PARAMS
 from .drivers import OpenLoopSteering, SpeedController
@@ -76,10 +78,7 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
         'duration': Param('time', 6.0, 'simulated time', minimum=3.0, maximum=60.0),
         'time_step': Param('time', STEP, 'integration step (the overshoot converges at first '
                            'order in it)', minimum=5e-4, maximum=STEP),
-        'step_tolerance': Param('velocity', 0.0, 'variable step: local error tolerance of the '
-                                "body's velocities per step (m/s, and rad/s for the angular "
-                                'ones; 3e-5 gives about 1 % of the yaw rate); 0: the fixed '
-                                'time_step', minimum=0.0, maximum=0.01),
+        'step_tolerance': STEP_TOLERANCE_PARAM,
         'drive_front': Param('dimensionless', 0.5,
                              'front share of the drive torque (0 rear, 1 front)',
                              minimum=0.0, maximum=1.0),
@@ -140,7 +139,7 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
         metrics, channels, notes = _step_steer(model, values, progress)
     step = (TURN_STEP if event == 'constant_radius_turn' else
             values.get('time_step', STEP))
-    variable = values.get('step_tolerance', 0.0)
+    variable = event_tolerance(model, values.get('step_tolerance', 0.0))
     notes = [*notes, 'integrator: semi-implicit Euler on the articulated-body algorithm, '
              + (f'variable step (tolerance {variable:g}, wheel travel linearly implicit)'
                 if variable else f'step {step * 1e3:g} ms')
@@ -196,7 +195,7 @@ def _step_steer(model: VehicleModel, v: Mapping[str, float], progress):
                          record_every=max(1, round(RECORD_PERIOD / v['time_step'])),
                          h=v['time_step'], drive_front=v['drive_front'],
                          brake_front=v['brake_front'], progress=progress,
-                         tolerance=v['step_tolerance'] or None)
+                         tolerance=event_tolerance(model, v['step_tolerance']))
         ch = trace.channels()
         steady = ch['time'] >= ch['time'][-1] - STEADY_WINDOW
         reached = float(np.mean(ch['lateral_acceleration'][steady]))

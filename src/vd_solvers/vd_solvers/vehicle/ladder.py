@@ -16,7 +16,7 @@ overshoot) where the rung has one:
 * two-track: the wheel-by-wheel steady state (``analytical/cornering.py``); steady
   state only;
 * full vehicle: ``constant_radius_turn`` (steady-state method, linear range) and
-  ``step_steer`` at SPEED to STEP_LATERAL_ACCELERATION with a STEP_TIME_STEP step;
+  ``step_steer`` at SPEED to STEP_LATERAL_ACCELERATION with a fixed STEP_TIME_STEP step;
 * single track of the full vehicle's own axles: the linear single track (mass and yaw
   inertia of the configuration) with the full vehicle's effective axle cornering
   stiffnesses (each axle's yaw moment over its lever arm, the tires' aligning moments
@@ -129,7 +129,7 @@ def ladder(config: Configuration, progress: Callable[[str], None] | None = None)
     say('full vehicle: step steer')
     step = run_vehicle_event(config, 'step_steer', [
         f'speed={SPEED} m/s', f'lateral_acceleration={STEP_LATERAL_ACCELERATION} m/s^2',
-        f'time_step={STEP_TIME_STEP} s', f'duration={STEP_DURATION} s'])
+        f'time_step={STEP_TIME_STEP} s', 'step_tolerance=0 m/s', f'duration={STEP_DURATION} s'])
     reached = step.metrics['steady_lateral_acceleration'].value
     full_step = _identified(step, step.channels['yaw_rate'].values)
     reference = _single_track(config, step)

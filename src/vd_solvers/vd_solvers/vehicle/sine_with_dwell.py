@@ -21,6 +21,9 @@ processing that grades a measured log:
    RECORD_RATE and graded (filters, zeroing, BOS/COS, first local yaw-rate peak,
    ratios, lateral displacement) by :func:`vd_solvers.standards.fmvss126.grade_run`.
 
+Every run takes the variable step of :mod:`.adaptive` by default (``step_tolerance``,
+0 the fixed step of 5 ms), the rows still at 100 Hz.
+
 The vehicle model has no electronic stability control: the procedure grades the
 passive vehicle (the thesis' §3.4 / §4.4.2 manoeuvre), which is what a chassis set-up
 study compares.
@@ -38,6 +41,7 @@ from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
 from vd_solvers.standards import fmvss126 as rule
 
+from .adaptive import STEP_TOLERANCE_PARAM, event_tolerance
 from .drivers import OpenLoopSteering, SpeedController
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
@@ -65,10 +69,12 @@ PARAMS: Mapping[str, Param] = {
                            'verdict says so', minimum=1.0 * DEG, maximum=300.0 * DEG),
     'gvwr': Param('mass', 0.0, 'gross vehicle weight rating deciding the displacement limit '
                   "(S5.2.3); 0 takes the model's total mass", minimum=0.0, maximum=20000.0),
+    'step_tolerance': STEP_TOLERANCE_PARAM,
 }
 
 
-def _sis(model: VehicleModel, direction: int) -> tuple[np.ndarray, np.ndarray, Trace]:
+def _sis(model: VehicleModel, direction: int, tolerance: float | None
+         ) -> tuple[np.ndarray, np.ndarray, Trace]:
     """One slowly-increasing-steer run; filtered, zeroed steering and lateral acceleration."""
     limit = float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
     ramp_end = SIS_START + limit / SIS_RATE
@@ -81,7 +87,8 @@ def _sis(model: VehicleModel, direction: int) -> tuple[np.ndarray, np.ndarray, T
         return 'done' if row['time'] > SIS_START and abs(_ay_estimate(row)) >= SIS_END else ''
 
     trace = simulate(model, steering, speed, ramp_end, event='sine_with_dwell',
-                     initial_speed=SIS_SPEED, record_every=RECORD_EVERY, stop=stop)
+                     initial_speed=SIS_SPEED, record_every=RECORD_EVERY, stop=stop,
+                     tolerance=tolerance)
     ch = trace.channels()
     t = ch['time']
     if trace.stop_reason != 'done':
@@ -103,14 +110,15 @@ def _side(direction: int) -> str:
     return 'left' if direction > 0 else 'right'
 
 
-def _sine_run(model: VehicleModel, amplitude: float, direction: int) -> Trace:
+def _sine_run(model: VehicleModel, amplitude: float, direction: int,
+              tolerance: float | None) -> Trace:
     end = STEER_START + 1.0 / FREQUENCY + DWELL
     duration = end + rule.YAW_TIMES[1] + RECORD_MARGIN
     steering = OpenLoopSteering(
         lambda t: rule.sine_with_dwell(t, amplitude, direction, STEER_START, FREQUENCY, DWELL),
         vectorized=True)
     return simulate(model, steering, None, duration, event='sine_with_dwell',
-                    initial_speed=SWD_SPEED, record_every=RECORD_EVERY)
+                    initial_speed=SWD_SPEED, record_every=RECORD_EVERY, tolerance=tolerance)
 
 
 def run_procedure(model: VehicleModel, values: Mapping[str, float],
@@ -123,6 +131,7 @@ def run_procedure(model: VehicleModel, values: Mapping[str, float],
     limit = float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
     gvwr = values['gvwr'] or model.total_mass
     report = progress or (lambda fraction, stage: None)
+    tolerance = event_tolerance(model, values['step_tolerance'])
     notes: list[str] = []
     sis_values: list[float] = []
     if values['a_reference'] > 0.0:
@@ -132,7 +141,7 @@ def run_procedure(model: VehicleModel, values: Mapping[str, float],
         runs = []
         for k, direction in enumerate((1, -1)):
             report(0.05 * k, f'slowly increasing steer, {_side(direction)}')
-            steer, ay, _ = _sis(model, direction)
+            steer, ay, _ = _sis(model, direction, tolerance)
             runs.append((steer, ay))
             sis_values.append(rule.amplitude_from_sis([(steer, ay)]))
         a_ref = rule.amplitude_from_sis(runs)
@@ -154,7 +163,7 @@ def run_procedure(model: VehicleModel, values: Mapping[str, float],
     for k, (direction, amplitude) in enumerate(order):
         report(0.1 + 0.9 * k / len(order),
                f'sine with dwell {amplitude / DEG:.1f} deg, {_side(direction)} first')
-        trace = _sine_run(model, amplitude, direction)
+        trace = _sine_run(model, amplitude, direction, tolerance)
         ch = trace.channels()
         try:
             grade = rule.grade_run(ch['time'], ch['steering_wheel_angle'], ch['yaw_rate'],
@@ -172,7 +181,7 @@ def run_procedure(model: VehicleModel, values: Mapping[str, float],
     channels.update(_table(grades))
     channels.update(_series(traces))
     metrics = _metrics(verdict, a_ref, gvwr, reduced, decide)
-    table = _notes(verdict, reduced, series, full, decide)
+    table = _notes(verdict, reduced, series, full, decide, tolerance)
     return metrics, channels, [table[0], *notes, *table[1:]]
 
 
@@ -264,7 +273,8 @@ def run_label(grade) -> str:
     return f'{grade.amplitude / DEG:.1f} deg, {_side(grade.direction)} first'
 
 
-def _notes(verdict, reduced: bool, series, full, decide: int) -> list[str]:
+def _notes(verdict, reduced: bool, series, full, decide: int,
+           tolerance: float | None) -> list[str]:
     grades = verdict.runs
     crit = {c.name: c for c in verdict.criteria}
     word = 'PASS' if verdict.passed else ('INVALID' if not verdict.valid else 'FAIL')
@@ -295,8 +305,10 @@ def _notes(verdict, reduced: bool, series, full, decide: int) -> list[str]:
             f'{(g.peak_roll or 0.0) / DEG:5.2f} deg  {"pass" if g.passed else "FAIL"}')
     out.append('* responsiveness not graded below 5A (S5.2.3); stability graded on every run '
                '(S5.2.1, S5.2.2)')
-    out.append(f'integrator step {STEP * 1e3:g} ms, recorded at '
-               f'{1.0 / (STEP * RECORD_EVERY):g} Hz; coasting, no ESC (passive vehicle)')
+    out.append('integrator step ' + (f'variable (tolerance {tolerance:g})' if tolerance else
+                                     f'{STEP * 1e3:g} ms')
+               + f', recorded at {1.0 / (STEP * RECORD_EVERY):g} Hz; coasting, no ESC '
+               '(passive vehicle)')
     return out
 
 
