@@ -115,3 +115,11 @@ def test_the_default_sine_with_dwell_grades_as_the_converged_step(config, amplit
                                rtol=0.01)
     np.testing.assert_allclose(default.peak_yaw_rate, fine.peak_yaw_rate, rtol=0.01)
     assert default.passed == fine.passed
+
+
+def test_a_road_with_relief_keeps_the_fixed_step():
+    """The ISO 8608 road of hmmwv_roads.yaml: the wheel hop needs the fixed step (notes)."""
+    configurations = load_study(STUDIES / 'hmmwv_roads.yaml').configurations
+    out = run_vehicle_event(configurations['baseline'], 'step_steer', ['duration=3 s'])
+    assert any('step 5 ms' in n for n in out.notes)
+    assert not any('variable step' in n for n in out.notes)

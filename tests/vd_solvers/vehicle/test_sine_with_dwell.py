@@ -26,6 +26,7 @@ from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.errors import SolverError
 from vd_solvers.standards import fmvss126 as rule
 from vd_solvers.vehicle import sine_with_dwell as swd
+from vd_solvers.vehicle.adaptive import STEP_TOLERANCE
 from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel
 
@@ -54,7 +55,7 @@ def test_a_from_the_sis_run_is_the_steady_state_steer_at_0_3_g(sedan):
     i_s (L a / v^2 + K a); the two differ by the full vehicle's nonlinearity at 0.3 g.
     """
     model = VehicleModel(sedan['baseline'])
-    steer, ay, trace = swd._sis(model, 1)
+    steer, ay, trace = swd._sis(model, 1, STEP_TOLERANCE)  # as the event runs it
     a_sis = rule.amplitude_from_sis([(steer, ay)])
     config = sedan['baseline']
     kc = kc_inputs(config, static_wheel_loads(config))
