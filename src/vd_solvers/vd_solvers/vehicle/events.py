@@ -76,8 +76,9 @@ EVENT_PARAMS: Mapping[str, Mapping[str, Param]] = {
         'ramp_time': Param('time', 0.1, 'steering-wheel ramp time (ISO 7401: <= 0.15 s)',
                            minimum=0.01, maximum=1.0),
         'duration': Param('time', 6.0, 'simulated time', minimum=3.0, maximum=60.0),
-        'time_step': Param('time', STEP, 'integration step (the overshoot converges at first '
-                           'order in it)', minimum=5e-4, maximum=STEP),
+        'time_step': Param('time', STEP, 'fixed integration step with step_tolerance 0 (the '
+                           'overshoot converges at first order in it)', minimum=5e-4,
+                           maximum=STEP),
         'step_tolerance': STEP_TOLERANCE_PARAM,
         'drive_front': Param('dimensionless', 0.5,
                              'front share of the drive torque (0 rear, 1 front)',
