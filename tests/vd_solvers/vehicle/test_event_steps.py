@@ -85,7 +85,7 @@ def test_the_default_step_steer_metrics_follow_the_converged_step(step_steers):
 
 
 def _sine_run(model: VehicleModel, amplitude: float, h: float, tolerance: float | None):
-    """A sine-with-dwell run of the procedure (S7.9), steered to the left first."""
+    """Run a sine with dwell of the procedure (S7.9), steered to the left first."""
     end = swd.STEER_START + 1.0 / swd.FREQUENCY + swd.DWELL
     steering = OpenLoopSteering(
         lambda t: rule.sine_with_dwell(t, amplitude, 1, swd.STEER_START, swd.FREQUENCY,

@@ -100,7 +100,7 @@ STEP_TOLERANCE_PARAM = Param(
 
 
 def event_tolerance(model: VehicleModel, step_tolerance: float) -> float | None:
-    """Return an event's ``simulate`` tolerance: None (the fixed step) for 0 or a road with relief."""
+    """Return the ``simulate`` tolerance of an event: None (the fixed step) for 0 or relief."""
     if step_tolerance <= 0.0 or np.any(model.road.height != 0.0):
         return None
     return step_tolerance
