@@ -90,7 +90,7 @@ SPEED_DELTA = 1e-2
 YAW = 3
 #: the events' default local error tolerance (m/s, rad/s): the step steer's and the sine
 #: with dwell's yaw rate and lateral acceleration within 1 % of their peaks of the converged
-#: run on the sample cars (tests/vd_solvers/vehicle/test_adaptive.py)
+#: run on the sample cars (tests/vd_solvers/vehicle/test_adaptive.py, test_event_steps.py)
 STEP_TOLERANCE = 3e-5
 #: the events' parameter choosing it
 STEP_TOLERANCE_PARAM = Param(
