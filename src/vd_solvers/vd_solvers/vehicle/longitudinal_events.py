@@ -59,7 +59,14 @@ from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
 from vd_solvers.standards.braking import STANDSTILL, grade_stop
 
-from .drivers import CurvatureController, Observation, OpenLoopSteering, Pedals, SpeedController
+from .drivers import (
+    CurvatureController,
+    Observation,
+    OpenLoopSteering,
+    Pedals,
+    SpeedController,
+    SpeedSchedule,
+)
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
 
@@ -161,9 +168,25 @@ class PedalRamp:
     def wheel_torque(self, obs: Observation, h: float) -> float | Pedals:
         if obs.t < self.start and self.before is not None:
             return self.before.wheel_torque(obs, h)
-        k = min(max((obs.t - self.start) / self.ramp, 0.0), 1.0)
+        return self.pedals(obs.t)
+
+    def pedals(self, t: float) -> Pedals:
+        """The pedals at time ``t`` (s)."""
+        k = min(max((t - self.start) / self.ramp, 0.0), 1.0)
         return Pedals(self.throttle[0] + k * (self.throttle[1] - self.throttle[0]),
                       self.pressure[0] + k * (self.pressure[1] - self.pressure[0]))
+
+    def schedule(self, times: np.ndarray, h: float) -> SpeedSchedule:
+        """The commands at ``times`` (s; steps of ``h``) for the compiled loop."""
+        pedals = np.array([self.pedals(float(t)) for t in times]).reshape(-1, 2)
+        use = np.ones(times.size, dtype=bool)
+        if self.before is None:
+            return SpeedSchedule(use, pedals[:, 0].copy(), pedals[:, 1].copy(), np.zeros(0),
+                                 np.zeros(0), np.zeros(0), None)
+        use = times >= self.start
+        held = self.before.schedule(times, h)
+        return held._replace(pedals=use, throttle=pedals[:, 0].copy(),
+                             pressure=pedals[:, 1].copy())
 
 
 @dataclass
