@@ -11,18 +11,21 @@ shares ``drive_front`` and ``brake_front`` without them). Channels are SI, ISO 8
 signs: roll positive left side up (outward in a left turn), sideslip and yaw rate positive
 to the left.
 
-When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, none or a
-:class:`.drivers.SpeedController`) and the configuration has no brakes or driveline group
-(their anti-lock controllers, gear choice and differentials run in Python), the whole
-run is one compiled loop (:func:`.dynamics.run_open_loop`, in blocks of recorded rows when
-there is a ``stop`` or a ``progress``); otherwise each step asks the drivers in Python and
-calls the compiled step (:meth:`.model.VehicleModel.step`). Both give the same trace.
+When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, and none or a
+speed driver with a ``schedule(times, h)``: the :class:`.drivers.SpeedController`, the
+longitudinal events' pedal ramps), the whole run is one compiled loop
+(:func:`.dynamics.run_open_loop`, in blocks of recorded rows when there is a ``stop`` or a
+``progress``), the brakes, anti-lock controllers and driveline inside it
+(:func:`.drivers.actuate`); otherwise each step asks the drivers in Python and calls the
+same :func:`.drivers.actuate` (through :class:`.drivers.WheelTorques`) and the compiled
+step (:meth:`.model.VehicleModel.step`). Both give the same trace.
 
 With a ``tolerance`` the compiled loop takes variable steps (:mod:`.adaptive`: large where
 the car is steady, small where it is not, the error of each step estimated and held to
 the tolerance) between ``h_min`` and ``h_max``, the drivers' inputs sampled at the step
-times and the rows still on the fixed grid of ``record_every`` steps of ``h``; the
-per-step loop (closed-loop drivers, brakes, driveline) keeps the fixed step ``h``.
+times and the rows still on the fixed grid of ``record_every`` steps of ``h``, when the
+configuration has no brakes or driveline group and the speed driver asks for no pedals;
+otherwise (closed-loop drivers, brakes, driveline) the step stays the fixed ``h``.
 """
 from __future__ import annotations
 
@@ -64,9 +67,9 @@ TRACE = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sidesli
 assert len(TRACE) == ROW_SIZE
 PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclination',
              'tire_force_x', 'tire_force_y', 'wheel_steer', 'aligning_moment')
-#: what the brakes and driveline did per sample (recorded by the per-step loop): throttle
-#: 0..1, gear (0: no driveline), and per wheel the brake line pressure (Pa) and the wheel
-#: torque (N*m)
+#: what the brakes and driveline did per sample (recorded when the configuration has them):
+#: throttle 0..1, gear (0: no driveline), and per wheel the brake line pressure (Pa) and the
+#: wheel torque (N*m)
 ACTUATION = ('throttle', 'gear')
 ACTUATION_WHEEL = ('brake_pressure', 'applied_torque')
 #: the row of the wheels' state (forces.WHEEL_ROWS) each per-wheel channel is
@@ -86,7 +89,7 @@ class Trace:
 
     blocks: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     #: per recorded row: (ACTUATION values (2,), ACTUATION_WHEEL values (2, 4)); empty when
-    #: the compiled loop ran (no brakes or driveline to report)
+    #: the configuration has no brakes or driveline to report
     actuation: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     steps: int = 0
     #: steps repeated with a smaller step, and force evaluations (variable step only)
