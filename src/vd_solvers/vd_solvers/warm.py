@@ -6,9 +6,10 @@ Build the compiled-code cache at setup: ``python -m vd_solvers.warm`` (``make se
 Every compiled function of the full-vehicle step, of the brakes, anti-lock brakes and
 driveline (as their classes and the actuation of a step call them) and of the Magic
 Formula's public methods is called once with the argument types a run passes (contiguous
-float vectors, floats, bools), with the bundled sample tires, so numba writes its cache (:mod:`vd_solvers.compiled`) and the
-first ``vd run`` after setup loads machine code instead of compiling it. No K&C solve is
-needed: the suspension maps are stand-ins of the right shapes, the tires are real.
+float vectors, floats, bools), with the bundled sample tires, so numba writes its cache
+(:mod:`vd_solvers.compiled`) and the first ``vd run`` after setup loads machine code instead
+of compiling it. No K&C solve is needed: the suspension maps are stand-ins of the right
+shapes, the tires are real.
 """
 from __future__ import annotations
 

@@ -58,7 +58,7 @@ def engine_torque(speeds: np.ndarray, torques: np.ndarray, speed: float, throttl
 
 @jit
 def driven_speed(front_share: float, spin: np.ndarray) -> float:
-    """The driven wheels' mean speed (spin FL FR RL RR, rad/s) at a front drive share, rad/s."""
+    """Return the driven wheels' mean speed (spin FL FR RL RR, rad/s) at a front share, rad/s."""
     f = 0.5 * (spin[0] + spin[1])
     r = 0.5 * (spin[2] + spin[3])
     return front_share * f + (1.0 - front_share) * r
@@ -66,7 +66,7 @@ def driven_speed(front_share: float, spin: np.ndarray) -> float:
 
 @jit
 def choose_gear(ratios: np.ndarray, driven: float, shift_speed: float) -> int:
-    """The lowest gear (1-based; total ``ratios``) that keeps the engine at or below ``shift_speed``."""
+    """Return the lowest gear (1-based; total ``ratios``) keeping the engine <= ``shift_speed``."""
     for n in range(ratios.size):
         if ratios[n] * driven <= shift_speed:
             return n + 1
@@ -271,5 +271,5 @@ def _spin(wheel_speeds: tuple[float, float, float, float] | np.ndarray) -> np.nd
 
 
 __all__ = ['SLIP_SCALE', 'KINDS', 'Engine', 'Differential', 'Driveline', 'engine_torque',
-           'engine_speed', 'driven_speed', 'choose_gear', 'available_torque', 'inertia_torque', 'split',
-           'drive_torques']
+           'engine_speed', 'driven_speed', 'choose_gear', 'available_torque', 'inertia_torque',
+           'split', 'drive_torques']

@@ -253,7 +253,7 @@ def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:
 
 def bench_longitudinal(config, repeats: int = 5) -> dict[str, Any]:
     """
-    The stop with anti-lock brakes and the 0-100 km/h run of the longitudinal events.
+    Time the stop with anti-lock brakes and the 0-100 km/h run of the longitudinal events.
 
     ``braking_abs``: :func:`.longitudinal_events.braking_run` with the defaults of
     ``straight_line_braking`` (100 km/h, a 500 N pedal force in 0.15 s, to 1 m/s);

@@ -375,7 +375,7 @@ class SpeedController:
     _integral: float = field(default=0.0, init=False)
 
     def schedule(self, times: np.ndarray, h: float) -> SpeedSchedule:
-        """The requests at ``times`` (s; steps of ``h``) for the compiled loop."""
+        """Return the requests at ``times`` (s; steps of ``h``) for the compiled loop."""
         n = times.size
         return SpeedSchedule(
             pedals=np.zeros(n, dtype=bool), throttle=np.zeros(n), pressure=np.zeros(n),
@@ -484,7 +484,7 @@ def actuate(pedals: bool, request: float, throttle: float, pressure: float, spin
             kappa: np.ndarray, speed: float, h: float, drive_front: float, brake_front: float,
             a: ActuationArrays, state: np.ndarray) -> tuple[np.ndarray, float, int, np.ndarray]:
     """
-    The wheel torques of a step from the driver's command (:class:`WheelTorques`).
+    Return the wheel torques of a step from the driver's command (:class:`WheelTorques`).
 
     The command is ``pedals`` (``throttle`` 0..1, master ``pressure`` Pa) or the total
     wheel torque ``request`` (N m); ``spin`` the wheels' spin speeds (rad/s), ``kappa``
@@ -591,10 +591,12 @@ class WheelTorques:
     def __call__(self, request: float | Pedals, spin: np.ndarray, kappa: np.ndarray,
                  speed: float, h: float) -> np.ndarray:
         """Torques FL FR RL RR (N*m) at wheel spin speeds ``spin`` and slips ``kappa``."""
-        pedals = isinstance(request, Pedals)
-        throttle, pressure = (float(request[0]), float(request[1])) if pedals else (0.0, 0.0)
+        if isinstance(request, Pedals):
+            pedals, total, throttle, pressure = True, 0.0, request[0], request[1]
+        else:
+            pedals, total, throttle, pressure = False, request, 0.0, 0.0
         torques, throttle, gear, self.pressures = actuate(
-            pedals, 0.0 if pedals else float(request), throttle, pressure,
+            pedals, float(total), float(throttle), float(pressure),
             np.ascontiguousarray(spin, dtype=float), np.ascontiguousarray(kappa, dtype=float),
             float(speed), float(h), self.drive_front, self.brake_front, self.arrays,
             self.state)

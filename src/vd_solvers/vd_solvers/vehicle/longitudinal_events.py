@@ -171,13 +171,13 @@ class PedalRamp:
         return self.pedals(obs.t)
 
     def pedals(self, t: float) -> Pedals:
-        """The pedals at time ``t`` (s)."""
+        """Return the pedals at time ``t`` (s)."""
         k = min(max((t - self.start) / self.ramp, 0.0), 1.0)
         return Pedals(self.throttle[0] + k * (self.throttle[1] - self.throttle[0]),
                       self.pressure[0] + k * (self.pressure[1] - self.pressure[0]))
 
     def schedule(self, times: np.ndarray, h: float) -> SpeedSchedule:
-        """The commands at ``times`` (s; steps of ``h``) for the compiled loop."""
+        """Return the commands at ``times`` (s; steps of ``h``) for the compiled loop."""
         pedals = np.array([self.pedals(float(t)) for t in times]).reshape(-1, 2)
         use = np.ones(times.size, dtype=bool)
         if self.before is None:
@@ -264,7 +264,7 @@ def _locked(ch: Mapping[str, np.ndarray], h: float) -> tuple[int, float]:
 
 def braking_run(model: VehicleModel, v: Mapping[str, float], pressure: float, progress=None,
                 compiled_loop: bool = True) -> Trace:
-    """The stop of :func:`straight_line_braking` at a master ``pressure`` (Pa), its trace."""
+    """Run the stop of :func:`straight_line_braking` at a master ``pressure`` (Pa)."""
     pedals = PedalRamp(0.0, v['ramp_time'], (0.0, 0.0), (0.0, pressure))
     return simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],
                     event='straight_line_braking', initial_speed=v['speed'],
@@ -275,7 +275,7 @@ def braking_run(model: VehicleModel, v: Mapping[str, float], pressure: float, pr
 
 def acceleration_run(model: VehicleModel, v: Mapping[str, float], progress=None,
                      compiled_loop: bool = True) -> Trace:
-    """The full-throttle run of :func:`straight_line_acceleration`, its trace."""
+    """Run the full-throttle run of :func:`straight_line_acceleration`."""
     end = v['end_speed']
     pedals = PedalRamp(0.0, 1e-3, (1.0, 1.0), (0.0, 0.0))
     return simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],

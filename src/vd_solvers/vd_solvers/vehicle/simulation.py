@@ -282,7 +282,7 @@ def _append_rows(trace: Trace, rows: np.ndarray, wheels: np.ndarray, n: int,
 def _inputs(steering, speed, n_steps: int, h: float
             ) -> tuple[np.ndarray, SpeedSchedule] | None:
     """
-    The drivers' inputs on the grid of ``h``: (swa, the speed driver's commands).
+    Return the drivers' inputs on the grid of ``h``: (swa, the speed driver's commands).
 
     None when they do not depend on time only (the per-step loop asks them).
     """
