@@ -3,11 +3,13 @@
 """
 Build the compiled-code cache at setup: ``python -m vd_solvers.warm`` (``make setup`` runs it).
 
-Every compiled function of the full-vehicle step and of the Magic Formula's public methods is
-called once with the argument types a run passes (contiguous float vectors, floats, bools),
-with the bundled sample tires, so numba writes its cache (:mod:`vd_solvers.compiled`) and the
-first ``vd run`` after setup loads machine code instead of compiling it. No K&C solve is
-needed: the suspension maps are stand-ins of the right shapes, the tires are real.
+Every compiled function of the full-vehicle step, of the brakes, anti-lock brakes and
+driveline (as their classes and the actuation of a step call them) and of the Magic
+Formula's public methods is called once with the argument types a run passes (contiguous
+float vectors, floats, bools), with the bundled sample tires, so numba writes its cache
+(:mod:`vd_solvers.compiled`) and the first ``vd run`` after setup loads machine code instead
+of compiling it. No K&C solve is needed: the suspension maps are stand-ins of the right
+shapes, the tires are real.
 """
 from __future__ import annotations
 
@@ -19,9 +21,27 @@ from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
 from vd_data_server.tire_group import tire_properties
 from vd_solvers import compiled
+from vd_solvers.chassis.antilock import controller_step
+from vd_solvers.chassis.brakes import master_pressure_for_torque, rear_line_pressure
+from vd_solvers.chassis.driveline import (
+    available_torque,
+    choose_gear,
+    drive_torques,
+    driven_speed,
+    engine_speed,
+    engine_torque,
+    inertia_torque,
+    split,
+)
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
 from vd_solvers.vehicle import adaptive, dynamics
-from vd_solvers.vehicle.drivers import speed_law, wheel_torques
+from vd_solvers.vehicle.drivers import (
+    ACTUATION_STATE,
+    ActuationArrays,
+    actuate,
+    speed_law,
+    wheel_torques,
+)
 from vd_solvers.vehicle.forces import (
     AERO_ROWS,
     COMPLIANCE_ROWS,
@@ -96,23 +116,61 @@ def _dynamics(q: np.ndarray, v: np.ndarray, arrays: VehicleArrays) -> None:
                                   offsets=arrays.centres.copy(), carrier_mass=np.full(4, 40.0),
                                   wheel_inertia=np.full((4, 2), 1.0),
                                   gravity=np.array([0.0, 0.0, -9.81]))
-    zeros = np.zeros(4)
+    zeros, ones = np.zeros(4), np.ones(4)
     dynamics.vehicle_step(q, v, 0.1, zeros.copy(), np.zeros((2, 4)), np.zeros((4, 4)), False,
                           0.005, arrays, 1.0, 1500.0, True, True, mb)
     dynamics.observation(q, v)
     dynamics.record_row(q, v, 0.0, 0.0, np.zeros((9, 4)), np.zeros(3), 0.0)
     wheel_torques(1.0, 0.5, 0.65, zeros.copy())
     speed_law(1.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.005)
+    systems = _chassis()
+    none = np.zeros(0)
+    for actuation in (systems, ActuationArrays(*([none] * 6 + [np.zeros(3)] * 2))):
+        for pedals in (False, True):
+            actuate(pedals, -1.0, 0.5, 1e6, ones.copy(), zeros.copy(), 20.0, 0.005, 0.5, 0.65,
+                    actuation, np.zeros(ACTUATION_STATE))
     swa = np.zeros(3)
+    flags = np.zeros(3, dtype=bool)
     for gains in (np.zeros(0), np.ones(4)):
         dynamics.run_open_loop(q, v, np.zeros((2, 4)), np.zeros((4, 4)), False, 0, 2, 2, 1,
-                               0.005, swa, swa, swa, gains, 0.0, 0.5, 0.65, arrays, 1.0, 1500.0,
-                               True, True, mb, np.zeros(3), np.empty((3, 16)),
-                               np.empty((3, 9, 4)))
+                               0.005, swa, flags, swa, swa, swa, swa, gains, 0.0, 0.5, 0.65,
+                               systems, np.zeros(ACTUATION_STATE), zeros.copy(), arrays, 1.0,
+                               1500.0, True, True, mb, np.zeros(3), np.empty((3, 16)),
+                               np.empty((3, 9, 4)), np.empty((3, dynamics.ACTUATION_SIZE)))
         adaptive.run_adaptive(q, v, np.zeros((2, 4)), np.zeros((4, 4)), False, 0.0, 0.005,
                               0.01, 0.01, 0, np.array([0.005]), 1e-4, 2.5e-4, 0.02, 0.005,
                               swa, swa, gains, 0.0, 0.5, 0.65, arrays, 1.0, 1500.0, True,
                               True, mb, np.zeros(3), np.empty((8, 16)), np.empty((8, 9, 4)))
+
+
+def _chassis() -> ActuationArrays:
+    """
+    Compile the brake, anti-lock and driveline functions as the chassis classes call them.
+
+    Returns stand-in :class:`.drivers.ActuationArrays` of every system.
+    """
+    speeds, torques = np.array([100.0, 300.0, 600.0]), np.array([150.0, 200.0, 180.0])
+    ratios = np.array([12.0, 7.0, 4.0])
+    wheels = np.full(4, 20.0)
+    rear_line_pressure(5e6, 4e6, 0.5)
+    master_pressure_for_torque(1000.0, 1e-4, 5e-5, 4e6, 0.5)
+    controller_step(0.15, 0.08, 1e8, 2e7, 2.0, False, 0.0, 0.005, 5e6, 0.2, 20.0)
+    engine_torque(speeds, torques, 200.0, 1.0)
+    driven = driven_speed(0.5, wheels)
+    choose_gear(ratios, driven, 500.0)
+    engine_speed(100.0, 12.0, driven)
+    available_torque(speeds, torques, 12.0, 0.9, driven)
+    inertia_torque(0.2, 100.0, 12.0, 0.9, driven, 1.0)
+    split(1, 100.0, 1000.0, 500.0, 20.0, 19.0)
+    differential = np.array([1.0, 100.0, 1000.0])
+    drive_torques(speeds, torques, 12.0, 0.9, 0.5, differential, differential, 1.0, wheels,
+                  0.0)
+    return ActuationArrays(brakes=np.array([1e-4, 5e-5, 4e6, 0.5]),
+                           anti_lock=np.array([0.15, 0.08, 1e8, 2e7, 2.0]),
+                           engine_speeds=speeds, engine_torques=torques, ratios=ratios,
+                           driveline=np.array([0.9, 0.5, 0.2, 500.0]),
+                           front_differential=differential,
+                           rear_differential=np.array([0.0, 0.0, 1000.0]))
 
 
 def clear() -> None:

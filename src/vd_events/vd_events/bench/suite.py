@@ -55,7 +55,11 @@ from vd_solvers.kc.bench import bench_kc
 from vd_solvers.kc.events import KCModel
 from vd_solvers.kc.from_config import suspension_input
 from vd_solvers.timing import REPEATS, median_time
-from vd_solvers.vehicle.bench import bench_sine_with_dwell, bench_vehicle
+from vd_solvers.vehicle.bench import bench_longitudinal, bench_sine_with_dwell, bench_vehicle
+
+#: the sample study beside the bundled one whose ``abs`` configuration has anti-lock brakes
+#: and a driveline (the longitudinal bench rows)
+LONGITUDINAL_STUDY = 'sedan_longitudinal.yaml'
 
 
 def machine() -> dict[str, Any]:
@@ -96,6 +100,8 @@ def run_bench() -> dict[str, Any]:
     results['capability_both_axles_s'] = _bench_capability(master)
 
     results['vehicle'] = bench_vehicle(config)
+    results['longitudinal'] = bench_longitudinal(
+        load_study(master.with_name(LONGITUDINAL_STUDY)).configurations['abs'])
     results['lockstep'] = bench_lockstep()
     results['sine_with_dwell'] = bench_sine_with_dwell(study)
     results['embedded_run'] = _bench_embedded(master)
@@ -356,6 +362,15 @@ def print_bench(results: dict[str, Any]) -> None:
         (f"full vehicle: constant radius turn ({crt['simulated_s']:.0f} s simulated)",
          f"{crt['wall_s']:.2f} s, RTF {crt['real_time_factor']:.1f}", ''),
     ]
+    for key, label in (('braking_abs', 'stop from 100 km/h with anti-lock brakes'),
+                       ('acceleration', '0-100 km/h through the gears')):
+        run = results.get('longitudinal', {}).get(key)
+        if run:
+            rows.append((f"full vehicle, {LONGITUDINAL_STUDY} abs: {label} "
+                         f"({run['steps']} steps)",
+                         f"CPU {run['cpu_s']:.3f} s ({run['cpu_us_per_step']:.0f} us/step), "
+                         f"per-step loop {run['per_step_cpu_s']:.3f} s "
+                         f"({run['ratio']:.1f}x)", ''))
     if 'unavailable' in cr:
         rows.append(('CommonRoad MB peer', cr['unavailable'], ''))
     else:

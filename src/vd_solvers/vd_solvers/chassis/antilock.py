@@ -18,11 +18,15 @@ reduced to the wheel slip, which a simulation knows exactly:
   ``min_speed`` (the wheel slip is not measurable at walking pace; the car stops on the
   driver's pressure).
 
-Pressures in Pa, rates in Pa/s, speeds in m/s.
+Pressures in Pa, rates in Pa/s, speeds in m/s. The controller's step is a compiled
+function on floats (:func:`controller_step`), the one definition :func:`step` and the
+compiled vehicle loop (:func:`vd_solvers.vehicle.drivers.actuate`) call.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+from vd_solvers.compiled import jit
 
 
 @dataclass(frozen=True)
@@ -56,24 +60,40 @@ def braking_slip(speed: float, wheel_speed: float, radius: float) -> float:
     return (speed - wheel_speed * radius) / speed if speed > 1e-6 else 0.0
 
 
+@jit
+def controller_step(dump_slip: float, build_slip: float, dump_rate: float, build_rate: float,
+                    min_speed: float, active: bool, pressure: float, dt: float,
+                    driver_pressure: float, slip: float, speed: float) -> tuple[bool, float]:
+    """
+    Advance one wheel's controller by ``dt`` s (module doc; the first five as :class:`AntiLock`).
+
+    ``active`` and ``pressure`` are its state before the step; returns them after it, the
+    pressure being the one for its brake, Pa.
+    """
+    driver = max(driver_pressure, 0.0)
+    if speed < min_speed or (active and driver < pressure):
+        active = False
+    if not active:
+        if slip > dump_slip and speed >= min_speed:
+            active = True
+            pressure = driver
+        else:
+            return False, driver
+    if slip > dump_slip:
+        pressure = max(pressure - dump_rate * dt, 0.0)
+    elif slip < build_slip:
+        pressure = min(pressure + build_rate * dt, driver)
+    return active, pressure
+
+
 def step(abs_: AntiLock, state: WheelState, dt: float, driver_pressure: float,
          slip: float, speed: float) -> float:
     """Advance one wheel's controller by ``dt`` s; return the pressure for its brake."""
-    driver = max(driver_pressure, 0.0)
-    if speed < abs_.min_speed or (state.active and driver < state.pressure):
-        state.active = False
-    if not state.active:
-        if slip > abs_.dump_slip and speed >= abs_.min_speed:
-            state.active = True
-            state.pressure = driver
-        else:
-            state.pressure = driver
-            return driver
-    if slip > abs_.dump_slip:
-        state.pressure = max(state.pressure - abs_.dump_rate * dt, 0.0)
-    elif slip < abs_.build_slip:
-        state.pressure = min(state.pressure + abs_.build_rate * dt, driver)
+    state.active, state.pressure = controller_step(
+        abs_.dump_slip, abs_.build_slip, abs_.dump_rate, abs_.build_rate, abs_.min_speed,
+        state.active, state.pressure, float(dt), float(driver_pressure), float(slip),
+        float(speed))
     return state.pressure
 
 
-__all__ = ['AntiLock', 'WheelState', 'braking_slip', 'step']
+__all__ = ['AntiLock', 'WheelState', 'braking_slip', 'step', 'controller_step']

@@ -12,12 +12,42 @@ master-cylinder pressure up to the knee pressure, then rising with the valve's s
 booster's gain: p = F_pedal i_pedal g_booster / A_master.
 
 Torques are magnitudes (N m) opposing the wheel's rotation; the vehicle model gives them
-their sign.
+their sign. The valve and the pressure of a total brake torque are compiled functions on
+floats (:func:`rear_line_pressure`, :func:`master_pressure_for_torque`), the one
+definition the methods below and the compiled vehicle loop
+(:func:`vd_solvers.vehicle.drivers.actuate`) call.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 import math
+
+from vd_solvers.compiled import jit
+
+
+@jit
+def rear_line_pressure(pressure: float, knee: float, slope: float) -> float:
+    """Rear line pressure (Pa) after a valve with its knee (Pa) and slope (-) (module doc)."""
+    p = max(pressure, 0.0)
+    if p <= knee:
+        return p
+    return knee + slope * (p - knee)
+
+
+@jit
+def master_pressure_for_torque(total: float, front_gain: float, rear_gain: float, knee: float,
+                               slope: float) -> float:
+    """
+    Master pressure (Pa) at which four brakes give ``total`` N m together.
+
+    ``front_gain`` and ``rear_gain`` are one wheel's torque per line pressure (N m / Pa).
+    """
+    front, rear = 2.0 * front_gain, 2.0 * rear_gain
+    total = max(total, 0.0)
+    if total <= (front + rear) * knee:
+        return total / (front + rear)
+    # above the knee: total = front p + rear (p_k + s (p - p_k))
+    return (total - rear * knee * (1.0 - slope)) / (front + rear * slope)
 
 
 @dataclass(frozen=True)
@@ -74,10 +104,7 @@ class BrakeSystem:
 
     def rear_pressure(self, pressure: float) -> float:
         """Rear line pressure after the proportioning valve, Pa."""
-        p = max(pressure, 0.0)
-        if p <= self.knee_pressure:
-            return p
-        return self.knee_pressure + self.knee_slope * (p - self.knee_pressure)
+        return rear_line_pressure(float(pressure), self.knee_pressure, self.knee_slope)
 
     def pressure_from_pedal(self, force: float) -> float:
         """Master-cylinder pressure of a pedal force (N), Pa."""
@@ -90,13 +117,8 @@ class BrakeSystem:
 
     def pressure_for_torque(self, total: float) -> float:
         """Master pressure at which the four brakes together give ``total`` N m, Pa."""
-        front, rear = 2.0 * self.front.gain, 2.0 * self.rear.gain
-        total = max(total, 0.0)
-        if total <= (front + rear) * self.knee_pressure:
-            return total / (front + rear)
-        # above the knee: total = front p + rear (p_k + s (p - p_k))
-        return (total - rear * self.knee_pressure * (1.0 - self.knee_slope)) / (
-            front + rear * self.knee_slope)
+        return master_pressure_for_torque(float(total), self.front.gain, self.rear.gain,
+                                          self.knee_pressure, self.knee_slope)
 
     def front_share(self, pressure: float) -> float:
         """Return the front axle's share of the brake torque at a master pressure, -."""
@@ -105,4 +127,4 @@ class BrakeSystem:
             self.front.gain / (self.front.gain + self.rear.gain)
 
 
-__all__ = ['Caliper', 'BrakeSystem']
+__all__ = ['Caliper', 'BrakeSystem', 'rear_line_pressure', 'master_pressure_for_torque']

@@ -28,10 +28,14 @@ Full-vehicle timings for ``vd bench``: real-time factors, per-step cost, the Com
   (``matched_error_met`` False: none of them, the tightest timed).
   ``ratio_vs_commonroad_cpu`` is the peer's CPU time at matched accuracy over vd's with the
   variable step (> 1: vd faster); when the package does not import, ``commonroad`` says so.
+* ``bench_longitudinal``: a stop with anti-lock brakes and a 0-100 km/h run through the
+  gears (brakes, anti-lock controllers and driveline inside the compiled loop), CPU time
+  and its ratio to the per-step loop.
 """
 from __future__ import annotations
 
 from collections.abc import Callable
+import statistics
 import time
 from typing import Any
 
@@ -46,6 +50,12 @@ from .drivers import OpenLoopSteering, SpeedController
 from .dynamics import accelerations, integrate
 from .events import run_vehicle_event
 from .forces import wheel_radii, wheel_tires
+from .longitudinal_events import (
+    ACCELERATION_PARAMS,
+    BRAKING_PARAMS,
+    acceleration_run,
+    braking_run,
+)
 from .model import STEP, VehicleModel
 from .simulation import simulate
 
@@ -241,7 +251,51 @@ def bench_commonroad(yaw_rate: float, error_pct: float) -> dict[str, Any]:
     return out
 
 
-__all__ = ['bench_vehicle', 'bench_commonroad']
+def bench_longitudinal(config, repeats: int = 5) -> dict[str, Any]:
+    """
+    Time the stop with anti-lock brakes and the 0-100 km/h run of the longitudinal events.
+
+    ``braking_abs``: :func:`.longitudinal_events.braking_run` with the defaults of
+    ``straight_line_braking`` (100 km/h, a 500 N pedal force in 0.15 s, to 1 m/s);
+    ``acceleration``: :func:`.longitudinal_events.acceleration_run` with those of
+    ``straight_line_acceleration`` (full throttle from 0.5 m/s to 100 km/h through the
+    gears), on ``config`` (a configuration with brakes, anti-lock brakes and a driveline),
+    the simulation alone (model built before): CPU time of the compiled loop and of the
+    per-step loop (``compiled_loop`` False), each the median of ``repeats`` runs, the two
+    alternated, and the per-step loop's over the compiled loop's (``ratio``).
+    """
+    model = VehicleModel(config)
+    if model.chassis.brakes is None or model.chassis.anti_lock is None \
+            or model.chassis.driveline is None:
+        raise ValueError(f"configuration '{config.name}' has no anti-lock brakes or no "
+                         'driveline to time')
+    braking = {k: p.default for k, p in BRAKING_PARAMS.items()}
+    pressure = model.chassis.brakes.pressure_from_pedal(braking['pedal_force'])
+    acceleration = {k: p.default for k, p in ACCELERATION_PARAMS.items()}
+    runs: dict[str, Callable[[bool], Any]] = {
+        'braking_abs': lambda compiled: braking_run(model, braking, pressure,
+                                                    compiled_loop=compiled),
+        'acceleration': lambda compiled: acceleration_run(model, acceleration,
+                                                          compiled_loop=compiled),
+    }
+    out: dict[str, Any] = {}
+    for key, run in runs.items():
+        trace = run(True)  # untimed: first calls
+        run(False)
+        cpu: dict[bool, list[float]] = {True: [], False: []}
+        for _ in range(repeats):
+            for compiled in (True, False):
+                t0 = time.process_time()
+                run(compiled)
+                cpu[compiled].append(time.process_time() - t0)
+        fast, slow = statistics.median(cpu[True]), statistics.median(cpu[False])
+        out[key] = {'cpu_s': fast, 'per_step_cpu_s': slow, 'ratio': slow / fast,
+                    'steps': trace.steps, 'simulated_s': trace.steps * STEP,
+                    'cpu_us_per_step': fast / trace.steps * 1e6}
+    return out
+
+
+__all__ = ['bench_vehicle', 'bench_commonroad', 'bench_longitudinal']
 
 
 def bench_sine_with_dwell(study) -> dict[str, Any]:

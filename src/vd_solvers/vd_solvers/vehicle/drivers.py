@@ -23,7 +23,15 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 
 from vd_solvers.analytical.bicycle import curvature_steer_angle
-from vd_solvers.chassis import antilock
+from vd_solvers.chassis.antilock import controller_step
+from vd_solvers.chassis.brakes import master_pressure_for_torque, rear_line_pressure
+from vd_solvers.chassis.driveline import (
+    available_torque,
+    choose_gear,
+    drive_torques,
+    driven_speed,
+    inertia_torque,
+)
 from vd_solvers.chassis.from_config import Chassis
 from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
@@ -330,6 +338,27 @@ class CoastingSpeed:
         return self.controller.wheel_torque(obs, h)
 
 
+class SpeedSchedule(NamedTuple):
+    """
+    A speed driver's commands on the time grid of a run, when they depend on time only.
+
+    Per step: :class:`Pedals` (``throttle``, ``pressure``) where ``pedals`` is True, else
+    the torque of :func:`speed_law` on ``reference`` and ``reference_next`` (v_ref at the
+    step's time and at its end, m/s) with ``gains`` (mass, wheel radius, kp, ki; empty:
+    no controller, no torque) and the integral of ``controller``, which the run carries on.
+    A speed driver whose commands depend on time only has a method ``schedule(times, h)``
+    that returns this (the compiled loop of :mod:`.simulation` takes it).
+    """
+
+    pedals: np.ndarray  # (n,) bool
+    throttle: np.ndarray  # (n,) 0..1
+    pressure: np.ndarray  # (n,) Pa
+    reference: np.ndarray  # (n,) m/s
+    reference_next: np.ndarray  # (n,) m/s
+    gains: np.ndarray  # (4,) or (0,)
+    controller: SpeedController | None
+
+
 @dataclass
 class SpeedController:
     """
@@ -344,6 +373,16 @@ class SpeedController:
     kp: float = 2.0  # 1/s
     ki: float = 1.0  # 1/s^2
     _integral: float = field(default=0.0, init=False)
+
+    def schedule(self, times: np.ndarray, h: float) -> SpeedSchedule:
+        """Return the requests at ``times`` (s; steps of ``h``) for the compiled loop."""
+        n = times.size
+        return SpeedSchedule(
+            pedals=np.zeros(n, dtype=bool), throttle=np.zeros(n), pressure=np.zeros(n),
+            reference=np.array([float(self.reference(t)) for t in times]),
+            reference_next=np.array([float(self.reference(t + h)) for t in times]),
+            gains=np.array([self.mass, self.wheel_radius, self.kp, self.ki], dtype=float),
+            controller=self)
 
     def wheel_torque(self, obs: Observation, h: float) -> float:
         torque, self._integral = speed_law(self.reference(obs.t), self.reference(obs.t + h),
@@ -392,6 +431,123 @@ def wheel_torques(total: float, drive_front: float, brake_front: float, spin: np
     return 0.5 * total * axle * np.tanh(spin / BRAKE_SPIN_SCALE)
 
 
+class ActuationArrays(NamedTuple):
+    """
+    A chassis's brakes, anti-lock brakes and driveline as :func:`actuate` takes them.
+
+    Float vectors; an empty one: the configuration has no such group.
+    """
+
+    brakes: np.ndarray  # (4,) front and rear torque per line pressure (N m / Pa), valve knee
+    # (Pa) and slope (-)
+    anti_lock: np.ndarray  # (5,) AntiLock's dump_slip, build_slip, dump_rate, build_rate,
+    # min_speed
+    engine_speeds: np.ndarray  # (n,) full-load map, rad/s
+    engine_torques: np.ndarray  # (n,) N m
+    ratios: np.ndarray  # (gears,) total ratios i_gear i_final; empty: no driveline
+    driveline: np.ndarray  # (4,) efficiency, front drive share, inertia (kg m^2), upshift
+    # engine speed (rad/s)
+    front_differential: np.ndarray  # (3,) Differential.values()
+    rear_differential: np.ndarray  # (3,)
+
+
+def actuation_arrays(chassis: Chassis) -> ActuationArrays:
+    """Return the :class:`ActuationArrays` of a chassis's systems."""
+    none = np.zeros(0)
+    brakes = anti_lock = speeds = torques = ratios = driveline = none
+    front = rear = np.zeros(3)
+    b, a, line = chassis.brakes, chassis.anti_lock, chassis.driveline
+    if b is not None:
+        brakes = np.array([b.front.gain, b.rear.gain, b.knee_pressure, b.knee_slope])
+    if b is not None and a is not None:
+        anti_lock = np.array([a.dump_slip, a.build_slip, a.dump_rate, a.build_rate,
+                              a.min_speed], dtype=float)
+    if line is not None:
+        speeds, torques, ratios = line.engine.speeds, line.engine.torques, line.ratios
+        driveline = np.array([line.efficiency, line.front_share, line.inertia,
+                              chassis.shift_speed], dtype=float)
+        front, rear = line.front.values(), line.rear.values()
+    return ActuationArrays(brakes, anti_lock, np.ascontiguousarray(speeds, dtype=float),
+                           np.ascontiguousarray(torques, dtype=float), ratios, driveline,
+                           front, rear)
+
+
+#: size of the state :func:`actuate` carries from step to step (a float vector, zero at
+#: the start): whether a previous speed is known (0/1), that speed (m/s), its smoothed rate
+#: of change (m/s^2), then per wheel FL FR RL RR the anti-lock controller's activity (0/1)
+#: and its modulated pressure (Pa)
+ACTUATION_STATE = 11
+
+
+@jit
+def actuate(pedals: bool, request: float, throttle: float, pressure: float, spin: np.ndarray,
+            kappa: np.ndarray, speed: float, h: float, drive_front: float, brake_front: float,
+            a: ActuationArrays, state: np.ndarray) -> tuple[np.ndarray, float, int, np.ndarray]:
+    """
+    Return the wheel torques of a step from the driver's command (:class:`WheelTorques`).
+
+    The command is ``pedals`` (``throttle`` 0..1, master ``pressure`` Pa) or the total
+    wheel torque ``request`` (N m); ``spin`` the wheels' spin speeds (rad/s), ``kappa``
+    their slips at the previous step (-), ``speed`` the vehicle's (m/s), ``h`` the step
+    (s); ``state`` (ACTUATION_STATE) is advanced in place. Returns the torques FL FR RL RR
+    (N m about the spin axes), the throttle 0..1, the gear (0: none) and the four line
+    pressures (Pa).
+    """
+    if state[0] > 0.0 and h > 0.0:
+        rate = (speed - state[1]) / h
+        state[2] += min(h / ACCELERATION_FILTER, 1.0) * (rate - state[2])
+    state[0] = 1.0
+    state[1] = speed
+    has_line = a.ratios.size > 0
+    has_brakes = a.brakes.size > 0
+    wanted = 0.0  # the drive torque the throttle is opened for
+    if not pedals:
+        if request >= 0.0 and has_line:
+            throttle, pressure, wanted = -1.0, 0.0, request
+        elif request < 0.0 and has_brakes:
+            throttle = 0.0
+            pressure = master_pressure_for_torque(-request, a.brakes[0], a.brakes[1],
+                                                  a.brakes[2], a.brakes[3])
+        else:
+            return wheel_torques(request, drive_front, brake_front, spin), 0.0, 0, np.zeros(4)
+    torques = np.zeros(4)
+    gear = 0
+    if has_line:
+        speeds, maps, line = a.engine_speeds, a.engine_torques, a.driveline
+        driven = driven_speed(line[1], spin)
+        gear = choose_gear(a.ratios, driven, line[3])
+        ratio = a.ratios[gear - 1]
+        if throttle < 0.0:
+            available = available_torque(speeds, maps, ratio, line[0], driven)
+            throttle = min(wanted / available, 1.0) if available > 0.0 else 0.0
+        inertia = 0.0
+        if throttle > 0.0 and line[2] > 0.0 and speed > INERTIA_SPEED_FLOOR:
+            spin_up = driven * state[2] / speed
+            inertia = inertia_torque(line[2], speeds[0], ratio, line[0], driven, spin_up)
+        torques += drive_torques(speeds, maps, ratio, line[0], line[1], a.front_differential,
+                                 a.rear_differential, throttle, spin, inertia)
+    pressures = np.zeros(4)
+    if has_brakes:
+        b = a.brakes
+        rear = rear_line_pressure(pressure, b[2], b[3])
+        pressures[0] = pressure
+        pressures[1] = pressure
+        pressures[2] = rear
+        pressures[3] = rear
+        if a.anti_lock.size:
+            c = a.anti_lock
+            for w in range(4):
+                active, line_pressure = controller_step(
+                    c[0], c[1], c[2], c[3], c[4], state[3 + w] > 0.5, state[7 + w], h,
+                    pressures[w], -kappa[w], speed)
+                state[3 + w] = 1.0 if active else 0.0
+                state[7 + w] = line_pressure
+                pressures[w] = line_pressure
+        gains = np.array([b[0], b[0], b[1], b[1]])
+        torques -= gains * pressures * np.tanh(spin / BRAKE_SPIN_SCALE)
+    return torques, max(throttle, 0.0), gear, pressures
+
+
 class WheelTorques:
     """
     The wheel torques of each step from the driver's request and the chassis systems.
@@ -416,62 +572,35 @@ class WheelTorques:
     (dv/dt / v, the slip held), with dv/dt the speed's change over the previous step
     smoothed over ACCELERATION_FILTER: the body's acceleration, not the wheels' stiff spin,
     so the lagged feedback stays below one (J i^2 / r^2 under the vehicle's mass).
+
+    Each call is one call of the compiled :func:`actuate` on the chassis's
+    :class:`ActuationArrays`, the function the compiled loop
+    (:func:`.dynamics.run_open_loop`) calls at each of its steps.
     """
 
     def __init__(self, chassis: Chassis | None, drive_front: float = 0.5,
                  brake_front: float = 0.65) -> None:
         self.chassis = chassis if chassis is not None else Chassis()
-        self.drive_front, self.brake_front = drive_front, brake_front
-        self.states = [antilock.WheelState() for _ in range(4)]
+        self.drive_front, self.brake_front = float(drive_front), float(brake_front)
+        self.arrays = actuation_arrays(self.chassis)
+        self.state = np.zeros(ACTUATION_STATE)
         self.throttle = 0.0
         self.gear = 0
         self.pressures = np.zeros(4)
-        self._speed: float | None = None  # the previous call's vehicle speed
-        self._acceleration = 0.0  # its smoothed rate of change, m/s^2
 
     def __call__(self, request: float | Pedals, spin: np.ndarray, kappa: np.ndarray,
                  speed: float, h: float) -> np.ndarray:
         """Torques FL FR RL RR (N*m) at wheel spin speeds ``spin`` and slips ``kappa``."""
-        c = self.chassis
-        if self._speed is not None and h > 0.0:
-            rate = (speed - self._speed) / h
-            self._acceleration += min(h / ACCELERATION_FILTER, 1.0) * (rate - self._acceleration)
-        self._speed = speed
-        wanted = 0.0  # the drive torque the throttle is opened for
         if isinstance(request, Pedals):
-            throttle, pressure = request
-        elif request >= 0.0 and c.driveline is not None:
-            throttle, pressure, wanted = -1.0, 0.0, float(request)
-        elif request < 0.0 and c.brakes is not None:
-            throttle, pressure = 0.0, c.brakes.pressure_for_torque(-request)
+            pedals, total, throttle, pressure = True, 0.0, request[0], request[1]
         else:
-            self.throttle, self.gear, self.pressures = 0.0, 0, np.zeros(4)
-            return wheel_torques(float(request), self.drive_front, self.brake_front,
-                                 np.ascontiguousarray(spin, dtype=float))
-        torques = np.zeros(4)
-        wheels = (float(spin[0]), float(spin[1]), float(spin[2]), float(spin[3]))
-        line = c.driveline
-        if line is not None:
-            self.gear = line.gear(wheels, c.shift_speed)
-            if throttle < 0.0:
-                available = line.available_torque(self.gear, wheels)
-                throttle = min(wanted / available, 1.0) if available > 0.0 else 0.0
-            inertia = 0.0
-            if throttle > 0.0 and line.inertia > 0.0 and speed > INERTIA_SPEED_FLOOR:
-                spin_up = line.driven_speed(wheels) * self._acceleration / speed
-                inertia = line.inertia_torque(self.gear, wheels, spin_up)
-            torques += line.wheel_torques(throttle, self.gear, wheels, inertia)
-        self.throttle = max(throttle, 0.0)
-        if c.brakes is not None:
-            rear = c.brakes.rear_pressure(pressure)
-            lines = np.array([pressure, pressure, rear, rear])
-            if c.anti_lock is not None:
-                for w in range(4):
-                    lines[w] = antilock.step(c.anti_lock, self.states[w], h, lines[w],
-                                             -float(kappa[w]), speed)
-            gains = np.array([c.brakes.front.gain] * 2 + [c.brakes.rear.gain] * 2)
-            torques -= gains * lines * np.tanh(spin / BRAKE_SPIN_SCALE)
-            self.pressures = lines
+            pedals, total, throttle, pressure = False, request, 0.0, 0.0
+        torques, throttle, gear, self.pressures = actuate(
+            pedals, float(total), float(throttle), float(pressure),
+            np.ascontiguousarray(spin, dtype=float), np.ascontiguousarray(kappa, dtype=float),
+            float(speed), float(h), self.drive_front, self.brake_front, self.arrays,
+            self.state)
+        self.throttle, self.gear = float(throttle), int(gear)
         return torques
 
 
@@ -488,4 +617,5 @@ DRIVERS: Mapping[str, type] = {
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
            'CurvatureController', 'PreviewPathFollower', 'CoastingSpeed',
            'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
+           'ActuationArrays', 'actuation_arrays', 'actuate', 'ACTUATION_STATE', 'SpeedSchedule',
            'BRAKE_SPIN_SCALE', 'ACCELERATION_FILTER', 'INERTIA_SPEED_FLOOR']

@@ -28,7 +28,9 @@ update with ``pin.integrate``.
 flyer's configuration advanced by the SE(3) exponential, its quaternion by the exact
 rotation; the transient slips moved as :class:`.model.SlipUpdate` says).
 :func:`run_open_loop` advances many steps in one call when the drivers depend on time
-only (a steering-wheel angle per step, the speed controller's reference per step) and
+only (a steering-wheel angle per step; per step the pedals or the speed controller's
+reference), the wheel torques through the chassis's brakes, anti-lock brakes and
+driveline (:func:`.drivers.actuate`, the function the per-step loop calls too), and
 records every ``record_every`` steps into preallocated arrays; :func:`record_row` and
 :func:`observation` are the recorded channels and what a driver sees, the same for the
 per-step path of :mod:`.simulation`.
@@ -43,14 +45,19 @@ import pinocchio as pin
 from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
-from .drivers import speed_law, wheel_torques
-from .forces import VehicleArrays, _rotation, vehicle_forces
+from .drivers import ActuationArrays, actuate, speed_law
+from .forces import WHEEL_ROWS, VehicleArrays, _rotation, vehicle_forces
 
 #: rows of the wheel array of :func:`.forces.vehicle_forces` the next step's compliances use
 #: (Fx, Fy, Mz, steer; see ``previous`` there)
 PREVIOUS_ROWS = np.array([1, 2, 3, 7])
 #: number of values of a recorded row (simulation.TRACE)
 ROW_SIZE = 16
+#: row of the wheel array of :func:`.forces.vehicle_forces` the anti-lock brakes read
+KAPPA_ROW = WHEEL_ROWS.index('kappa')
+#: values per recorded row of what the brakes and driveline did: throttle, gear, line
+#: pressures (4), wheel torques (4) (simulation.ACTUATION, ACTUATION_WHEEL)
+ACTUATION_SIZE = 10
 
 
 class MultibodyArrays(NamedTuple):
@@ -341,39 +348,52 @@ def record_row(q: np.ndarray, v: np.ndarray, t: float, swa: float, wheel: np.nda
 @jit
 def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.ndarray,
                   has_previous: bool, start: int, end: int, last: int, record_every: int,
-                  h: float, swa: np.ndarray, reference: np.ndarray, reference_next: np.ndarray,
+                  h: float, swa: np.ndarray, pedals: np.ndarray, throttle: np.ndarray,
+                  pressure: np.ndarray, reference: np.ndarray, reference_next: np.ndarray,
                   speed_gains: np.ndarray, integral: float, drive_front: float,
-                  brake_front: float, c: VehicleArrays, vx_floor: float, total_mass: float,
+                  brake_front: float, systems: ActuationArrays, state: np.ndarray,
+                  kappa: np.ndarray, c: VehicleArrays, vx_floor: float, total_mass: float,
                   road: bool, dampers: bool, mb: MultibodyArrays, cog: np.ndarray,
-                  rows: np.ndarray, wheels: np.ndarray):
+                  rows: np.ndarray, wheels: np.ndarray, actuation: np.ndarray):
     """
     Advance steps ``start`` .. ``end`` - 1 of a run of ``last`` steps (module doc).
 
-    Step k (time k h): the drivers (``swa[k]`` rad; when ``speed_gains`` (mass, radius,
-    kp, ki) is not empty the speed controller's torque law on ``reference[k]`` and
-    ``reference_next[k]``, its value at k h + h, m/s), the forces, a recorded row into
-    ``rows`` / ``wheels`` when k is a multiple of ``record_every``, and, unless k =
-    ``last``, the update. Returns (q, v, slip, previous, the next step, rows recorded,
-    the controller's integral, the first step whose update became non-finite or -1).
+    Step k (time k h): the drivers (``swa[k]`` rad; ``pedals[k]`` True: the pedals
+    ``throttle[k]`` and ``pressure[k]`` Pa, else, when ``speed_gains`` (mass, radius, kp,
+    ki) is not empty, the speed controller's torque law on ``reference[k]`` and
+    ``reference_next[k]``, its value at k h + h, m/s), the wheel torques through the
+    chassis's ``systems`` (:func:`.drivers.actuate`, its ``state`` and the previous step's
+    slips ``kappa`` advanced in place), the forces, a recorded row into ``rows`` /
+    ``wheels`` / ``actuation`` (throttle, gear, four line pressures Pa, four wheel torques
+    N*m) when k is a multiple of ``record_every``, and, unless k = ``last``, the update.
+    Returns (q, v, slip, previous, the next step, rows recorded, the controller's
+    integral, the first step whose update became non-finite or -1).
     """
     n = 0
     k = start
     while k < end:
         t = k * h
-        torque = 0.0
-        if speed_gains.size:
-            speed = observation(q, v)[1]
-            torque, integral = speed_law(reference[k], reference_next[k], speed, integral,
-                                         speed_gains[0], speed_gains[1], speed_gains[2],
-                                         speed_gains[3], h)
+        speed = observation(q, v)[1]
+        request = 0.0
+        if not pedals[k] and speed_gains.size:
+            request, integral = speed_law(reference[k], reference_next[k], speed, integral,
+                                          speed_gains[0], speed_gains[1], speed_gains[2],
+                                          speed_gains[3], h)
         spin = np.ascontiguousarray(v[7::2])
-        torques = wheel_torques(torque, drive_front, brake_front, spin)
+        torques, lever, gear, lines = actuate(pedals[k], request, throttle[k], pressure[k],
+                                              spin, kappa, speed, h, drive_front,
+                                              brake_front, systems, state)
         q_next, v_next, slip_next, wheel = vehicle_step(
             q, v, swa[k], torques, slip, previous, has_previous, h, c, vx_floor, total_mass,
             road, dampers, mb)
         if k % record_every == 0:
+            torque = np.sum(torques) if pedals[k] else request
             rows[n] = record_row(q, v, t, swa[k], wheel, cog, torque)
             wheels[n] = wheel
+            actuation[n, 0] = lever
+            actuation[n, 1] = gear
+            actuation[n, 2:6] = lines
+            actuation[n, 6:10] = torques
             n += 1
         if k == last:
             return q, v, slip, previous, k + 1, n, integral, -1
@@ -383,6 +403,7 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
         previous = np.empty((4, 4))
         for j in range(4):
             previous[j] = wheel[PREVIOUS_ROWS[j]]
+        kappa[:] = wheel[KAPPA_ROW]
         has_previous = True
         k += 1
     return q, v, slip, previous, k, n, integral, -1
@@ -390,4 +411,4 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
 
 __all__ = ['MultibodyArrays', 'multibody_arrays', 'accelerations', 'integrate', 'kappa_next',
            'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop',
-           'PREVIOUS_ROWS']
+           'PREVIOUS_ROWS', 'KAPPA_ROW', 'ROW_SIZE', 'ACTUATION_SIZE']

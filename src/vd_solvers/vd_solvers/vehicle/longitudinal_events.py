@@ -59,7 +59,14 @@ from vd_solvers.event_params import Param
 from vd_solvers.results import Channel, Metric
 from vd_solvers.standards.braking import STANDSTILL, grade_stop
 
-from .drivers import CurvatureController, Observation, OpenLoopSteering, Pedals, SpeedController
+from .drivers import (
+    CurvatureController,
+    Observation,
+    OpenLoopSteering,
+    Pedals,
+    SpeedController,
+    SpeedSchedule,
+)
 from .model import STEP, VehicleModel
 from .simulation import Trace, simulate
 
@@ -161,9 +168,25 @@ class PedalRamp:
     def wheel_torque(self, obs: Observation, h: float) -> float | Pedals:
         if obs.t < self.start and self.before is not None:
             return self.before.wheel_torque(obs, h)
-        k = min(max((obs.t - self.start) / self.ramp, 0.0), 1.0)
+        return self.pedals(obs.t)
+
+    def pedals(self, t: float) -> Pedals:
+        """Return the pedals at time ``t`` (s)."""
+        k = min(max((t - self.start) / self.ramp, 0.0), 1.0)
         return Pedals(self.throttle[0] + k * (self.throttle[1] - self.throttle[0]),
                       self.pressure[0] + k * (self.pressure[1] - self.pressure[0]))
+
+    def schedule(self, times: np.ndarray, h: float) -> SpeedSchedule:
+        """Return the commands at ``times`` (s; steps of ``h``) for the compiled loop."""
+        pedals = np.array([self.pedals(float(t)) for t in times]).reshape(-1, 2)
+        use = np.ones(times.size, dtype=bool)
+        if self.before is None:
+            return SpeedSchedule(use, pedals[:, 0].copy(), pedals[:, 1].copy(), np.zeros(0),
+                                 np.zeros(0), np.zeros(0), None)
+        use = times >= self.start
+        held = self.before.schedule(times, h)
+        return held._replace(pedals=use, throttle=pedals[:, 0].copy(),
+                             pressure=pedals[:, 1].copy())
 
 
 @dataclass
@@ -239,6 +262,29 @@ def _locked(ch: Mapping[str, np.ndarray], h: float) -> tuple[int, float]:
     return int(np.sum(locked.any(axis=0))), longest
 
 
+def braking_run(model: VehicleModel, v: Mapping[str, float], pressure: float, progress=None,
+                compiled_loop: bool = True) -> Trace:
+    """Run the stop of :func:`straight_line_braking` at a master ``pressure`` (Pa)."""
+    pedals = PedalRamp(0.0, v['ramp_time'], (0.0, 0.0), (0.0, pressure))
+    return simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],
+                    event='straight_line_braking', initial_speed=v['speed'],
+                    record_every=_record_every(), progress=progress,
+                    stop=lambda row: 'end speed' if row['speed'] < END_SPEED else '',
+                    compiled_loop=compiled_loop)
+
+
+def acceleration_run(model: VehicleModel, v: Mapping[str, float], progress=None,
+                     compiled_loop: bool = True) -> Trace:
+    """Run the full-throttle run of :func:`straight_line_acceleration`."""
+    end = v['end_speed']
+    pedals = PedalRamp(0.0, 1e-3, (1.0, 1.0), (0.0, 0.0))
+    return simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],
+                    event='straight_line_acceleration', initial_speed=v['start_speed'],
+                    record_every=_record_every(), progress=progress,
+                    stop=lambda row: 'end speed' if row['speed'] >= end else '',
+                    compiled_loop=compiled_loop)
+
+
 def straight_line_braking(model: VehicleModel, v: Mapping[str, float], progress,
                           channels: Channels) -> Outcome:
     """ISO 21994 straight-line stop (module doc)."""
@@ -254,11 +300,7 @@ def straight_line_braking(model: VehicleModel, v: Mapping[str, float], progress,
         aim = f"pedal force {v['pedal_force']:g} N"
     if not pressure > 0.0:
         raise SolverError('straight_line_braking needs a pedal force or a deceleration above 0')
-    pedals = PedalRamp(0.0, v['ramp_time'], (0.0, 0.0), (0.0, pressure))
-    trace = simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],
-                     event='straight_line_braking', initial_speed=speed,
-                     record_every=_record_every(), progress=progress,
-                     stop=lambda row: 'end speed' if row['speed'] < END_SPEED else '')
+    trace = braking_run(model, v, pressure, progress)
     out = _with_actuation(trace, channels(model, trace))
     ch = {**{k: c.values for k, c in out.items()}, 'slip_ratio': trace.channels()['slip_ratio']}
     t, speed_t, distance = finish_stop(ch['time'], ch['speed'])
@@ -406,11 +448,7 @@ def straight_line_acceleration(model: VehicleModel, v: Mapping[str, float], prog
     if not v['end_speed'] > v['start_speed']:
         raise SolverError('straight_line_acceleration: end_speed must lie above start_speed')
     end = v['end_speed']
-    pedals = PedalRamp(0.0, 1e-3, (1.0, 1.0), (0.0, 0.0))
-    trace = simulate(model, OpenLoopSteering(lambda t: 0.0), pedals, v['max_duration'],
-                     event='straight_line_acceleration', initial_speed=v['start_speed'],
-                     record_every=_record_every(), progress=progress,
-                     stop=lambda row: 'end speed' if row['speed'] >= end else '')
+    trace = acceleration_run(model, v, progress)
     out = _with_actuation(trace, channels(model, trace))
     ch = {k: c.values for k, c in out.items()}
     t, speed = ch['time'], ch['speed']
@@ -453,4 +491,5 @@ LONGITUDINAL_EVENTS: Mapping[str, tuple[Mapping[str, Param], Callable[..., Outco
 
 __all__ = ['LONGITUDINAL_EVENTS', 'BRAKING_PARAMS', 'BRAKE_IN_TURN_PARAMS', 'POWER_OFF_PARAMS',
            'ACCELERATION_PARAMS', 'turn_response', 'pressure_for_deceleration',
-           'EVALUATION_TIME', 'LOCK_SLIP', 'LOCK_SPEED']
+           'EVALUATION_TIME', 'LOCK_SLIP', 'LOCK_SPEED', 'PedalRamp', 'braking_run',
+           'acceleration_run']

@@ -11,18 +11,21 @@ shares ``drive_front`` and ``brake_front`` without them). Channels are SI, ISO 8
 signs: roll positive left side up (outward in a left turn), sideslip and yaw rate positive
 to the left.
 
-When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, none or a
-:class:`.drivers.SpeedController`) and the configuration has no brakes or driveline group
-(their anti-lock controllers, gear choice and differentials run in Python), the whole
-run is one compiled loop (:func:`.dynamics.run_open_loop`, in blocks of recorded rows when
-there is a ``stop`` or a ``progress``); otherwise each step asks the drivers in Python and
-calls the compiled step (:meth:`.model.VehicleModel.step`). Both give the same trace.
+When the drivers depend on time only (an :class:`.drivers.OpenLoopSteering`, and none or a
+speed driver with a ``schedule(times, h)``: the :class:`.drivers.SpeedController`, the
+longitudinal events' pedal ramps), the whole run is one compiled loop
+(:func:`.dynamics.run_open_loop`, in blocks of recorded rows when there is a ``stop`` or a
+``progress``), the brakes, anti-lock controllers and driveline inside it
+(:func:`.drivers.actuate`); otherwise each step asks the drivers in Python and calls the
+same :func:`.drivers.actuate` (through :class:`.drivers.WheelTorques`) and the compiled
+step (:meth:`.model.VehicleModel.step`). Both give the same trace.
 
 With a ``tolerance`` the compiled loop takes variable steps (:mod:`.adaptive`: large where
 the car is steady, small where it is not, the error of each step estimated and held to
 the tolerance) between ``h_min`` and ``h_max``, the drivers' inputs sampled at the step
-times and the rows still on the fixed grid of ``record_every`` steps of ``h``; the
-per-step loop (closed-loop drivers, brakes, driveline) keeps the fixed step ``h``.
+times and the rows still on the fixed grid of ``record_every`` steps of ``h``, when the
+configuration has no brakes or driveline group and the speed driver asks for no pedals;
+otherwise (closed-loop drivers, brakes, driveline) the step stays the fixed ``h``.
 """
 from __future__ import annotations
 
@@ -35,15 +38,25 @@ from vd_solvers.errors import SolverError
 
 from .adaptive import run_adaptive
 from .drivers import (
+    ACTUATION_STATE,
     Observation,
     OpenLoopSteering,
     Pedals,
-    SpeedController,
     SpeedDriver,
+    SpeedSchedule,
     SteeringDriver,
     WheelTorques,
+    actuation_arrays,
 )
-from .dynamics import PREVIOUS_ROWS, ROW_SIZE, observation, record_row, run_open_loop
+from .dynamics import (
+    ACTUATION_SIZE,
+    KAPPA_ROW,
+    PREVIOUS_ROWS,
+    ROW_SIZE,
+    observation,
+    record_row,
+    run_open_loop,
+)
 from .forces import WHEEL_ROWS
 from .model import STEP, VehicleModel
 
@@ -54,9 +67,9 @@ TRACE = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sidesli
 assert len(TRACE) == ROW_SIZE
 PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclination',
              'tire_force_x', 'tire_force_y', 'wheel_steer', 'aligning_moment')
-#: what the brakes and driveline did per sample (recorded by the per-step loop): throttle
-#: 0..1, gear (0: no driveline), and per wheel the brake line pressure (Pa) and the wheel
-#: torque (N*m)
+#: what the brakes and driveline did per sample (recorded when the configuration has them):
+#: throttle 0..1, gear (0: no driveline), and per wheel the brake line pressure (Pa) and the
+#: wheel torque (N*m)
 ACTUATION = ('throttle', 'gear')
 ACTUATION_WHEEL = ('brake_pressure', 'applied_torque')
 #: the row of the wheels' state (forces.WHEEL_ROWS) each per-wheel channel is
@@ -76,7 +89,7 @@ class Trace:
 
     blocks: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     #: per recorded row: (ACTUATION values (2,), ACTUATION_WHEEL values (2, 4)); empty when
-    #: the compiled loop ran (no brakes or driveline to report)
+    #: the configuration has no brakes or driveline to report
     actuation: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     steps: int = 0
     #: steps repeated with a smaller step, and force evaluations (variable step only)
@@ -138,22 +151,25 @@ def simulate(model: VehicleModel, steering: SteeringDriver, speed: SpeedDriver |
     cog = np.array(model.config.group('mass').point('sprung_cog'), dtype=float)
     n_steps = int(round(duration / h))
     chassis = model.chassis
-    compiled = (compiled_loop and isinstance(steering, OpenLoopSteering)
-                and (speed is None or type(speed) is SpeedController)
-                and chassis.brakes is None and chassis.driveline is None)
-    if compiled and tolerance is not None:
+    inputs = _inputs(steering, speed, n_steps, h) if compiled_loop else None
+    systems = chassis.brakes is not None or chassis.driveline is not None
+    if inputs is not None and tolerance is not None and not systems \
+            and not inputs[1].pedals.any():
         if not (tolerance > 0.0 and 0.0 < h_min <= h_max):
             raise SolverError(f'{model.label(event, 0.0)}: a variable step needs a positive '
                               f'tolerance and 0 < h_min <= h_max (got {tolerance}, {h_min}, '
                               f'{h_max})')
-        return _adaptive(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
+        return _adaptive(model, steering, inputs, q, v, cog, n_steps, event=event, h=h,
                          record_every=record_every, drive_front=drive_front,
                          brake_front=brake_front, stop=stop, progress=progress,
                          tolerance=tolerance, h_min=h_min, h_max=h_max)
-    run = _open_loop if compiled else _per_step
-    return run(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
-               record_every=record_every, drive_front=drive_front, brake_front=brake_front,
-               stop=stop, progress=progress)
+    if inputs is not None:
+        return _open_loop(model, inputs, q, v, cog, n_steps, event=event, h=h,
+                          record_every=record_every, drive_front=drive_front,
+                          brake_front=brake_front, stop=stop, progress=progress)
+    return _per_step(model, steering, speed, q, v, cog, n_steps, event=event, h=h,
+                     record_every=record_every, drive_front=drive_front,
+                     brake_front=brake_front, stop=stop, progress=progress)
 
 
 def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
@@ -161,7 +177,6 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
     trace = Trace()
     slip = np.zeros((2, 4))
     previous = None
-    kappa_row = WHEEL_ROWS.index('kappa')
     last = None  # the previous step's wheel state (its transient slips feed the ABS)
     actuate = WheelTorques(model.chassis, drive_front, brake_front)
     # what the brakes and driveline did, recorded when the configuration has them (the
@@ -172,7 +187,7 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
         obs = observe(model, q, v, t)
         swa = steering.steering_wheel_angle(obs, h)
         request = speed.wheel_torque(obs, h) if speed is not None else 0.0
-        kappa = last[kappa_row] if last is not None else np.zeros(4)
+        kappa = last[KAPPA_ROW] if last is not None else np.zeros(4)
         torques = actuate(request, np.ascontiguousarray(v[7::2]), kappa, obs.speed, h)
         torque = float(np.sum(torques)) if isinstance(request, Pedals) else float(request)
         q_next, v_next, slip_next, wheel = model.step(q, v, swa, torques, slip, previous, h)
@@ -198,16 +213,20 @@ def _per_step(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
     return trace
 
 
-def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
-               drive_front, brake_front, stop, progress) -> Trace:
+def _open_loop(model, inputs, q, v, cog, n_steps, *, event, h, record_every, drive_front,
+               brake_front, stop, progress) -> Trace:
     trace = Trace()
-    swa, reference, reference_next, gains = _inputs(steering, speed, n_steps, h)
-    integral = float(speed._integral) if speed is not None else 0.0
+    swa, plan = inputs
+    integral = float(plan.controller._integral) if plan.controller is not None else 0.0
     slip, previous, has_previous = np.zeros((2, 4)), np.zeros((4, 4)), False
+    systems = actuation_arrays(model.chassis)
+    state, kappa = np.zeros(ACTUATION_STATE), np.zeros(4)
+    recorded = model.chassis.brakes is not None or model.chassis.driveline is not None
     block = (record_every * BLOCK_ROWS if stop is not None or progress is not None
              else n_steps + 1)
     capacity = -(-block // record_every)
     rows, wheels = np.empty((capacity, ROW_SIZE)), np.empty((capacity, len(WHEEL_ROWS), 4))
+    actuation = np.empty((capacity, ACTUATION_SIZE))
     step = 0
     while step <= n_steps:
         if progress is not None:
@@ -215,11 +234,14 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
         first = step
         q, v, slip, previous, step, n, integral, failed = run_open_loop(
             q, v, slip, previous, has_previous, first, min(first + block, n_steps + 1),
-            n_steps, record_every, h, swa, reference, reference_next, gains, integral,
-            drive_front, brake_front, model.arrays, model.vx_floor, model.total_mass,
-            model.options.road, model.options.dampers, model.multibody, cog, rows, wheels)
+            n_steps, record_every, h, swa, plan.pedals, plan.throttle, plan.pressure,
+            plan.reference, plan.reference_next, plan.gains, integral, float(drive_front),
+            float(brake_front), systems, state, kappa, model.arrays, model.vx_floor,
+            model.total_mass, model.options.road, model.options.dampers, model.multibody, cog,
+            rows, wheels, actuation)
         has_previous = step > 0
-        stopped = _append_rows(trace, rows, wheels, n, stop)
+        stopped = _append_rows(trace, rows, wheels, n, stop,
+                               actuation if recorded else None)
         if stopped is not None:
             trace.steps = int(round(rows[stopped, 0] / h))
             return trace
@@ -227,47 +249,63 @@ def _open_loop(model, steering, speed, q, v, cog, n_steps, *, event, h, record_e
             raise SolverError(f'{model.label(event, failed * h + h)}: the state became '
                               'non-finite')
         trace.steps = min(step, n_steps)
-    if speed is not None:
-        speed._integral = integral
+    if plan.controller is not None:
+        plan.controller._integral = integral
     return trace
 
 
 def _append_rows(trace: Trace, rows: np.ndarray, wheels: np.ndarray, n: int,
-                 stop: Callable[[dict[str, float]], str] | None) -> int | None:
+                 stop: Callable[[dict[str, float]], str] | None,
+                 actuation: np.ndarray | None = None) -> int | None:
     """
     Append the loop's first ``n`` rows to ``trace`` up to the first one ``stop`` stops at.
 
-    Return the index of that row (its reason in ``trace.stop_reason``), None if none.
+    With ``actuation`` (rows of dynamics.ACTUATION_SIZE) its rows go to
+    ``trace.actuation``. Return the index of that row (its reason in
+    ``trace.stop_reason``), None if none.
     """
+    stopped = None
     if stop is not None:
         for i in range(n):
             reason = stop(dict(zip(TRACE, rows[i])))
             if reason:
-                trace.append(rows[:i + 1].copy(), wheels[:i + 1].copy())
+                n, stopped = i + 1, i
                 trace.stop_reason = reason
-                return i
+                break
     trace.append(rows[:n].copy(), wheels[:n].copy())
-    return None
+    if actuation is not None:
+        trace.actuation.extend((a[0:2].copy(), a[2:10].reshape(2, 4).copy())
+                               for a in actuation[:n])
+    return stopped
 
 
-def _inputs(steering, speed, n_steps: int, h: float):
-    """Return the drivers' inputs on the grid of ``h``: swa, reference, at t + h, gains."""
+def _inputs(steering, speed, n_steps: int, h: float
+            ) -> tuple[np.ndarray, SpeedSchedule] | None:
+    """
+    Return the drivers' inputs on the grid of ``h``: (swa, the speed driver's commands).
+
+    None when they do not depend on time only (the per-step loop asks them).
+    """
+    if not isinstance(steering, OpenLoopSteering):
+        return None
     times = [k * h for k in range(n_steps + 1)]
-    swa = np.ascontiguousarray(steering.schedule(times), dtype=float)
-    if speed is not None:
-        reference = np.array([float(speed.reference(t)) for t in times])
-        reference_next = np.array([float(speed.reference(t + h)) for t in times])
-        gains = np.array([speed.mass, speed.wheel_radius, speed.kp, speed.ki], dtype=float)
+    if speed is None:
+        none = np.zeros(0)
+        plan = SpeedSchedule(np.zeros(n_steps + 1, dtype=bool), none, none, none, none, none,
+                             None)
+    elif callable(getattr(speed, 'schedule', None)):
+        plan = speed.schedule(np.array(times), h)
     else:
-        reference = reference_next = gains = np.zeros(0)
-    return swa, reference, reference_next, gains
+        return None
+    return np.ascontiguousarray(steering.schedule(times), dtype=float), plan
 
 
-def _adaptive(model, steering, speed, q, v, cog, n_steps, *, event, h, record_every,
+def _adaptive(model, steering, inputs, q, v, cog, n_steps, *, event, h, record_every,
               drive_front, brake_front, stop, progress, tolerance, h_min, h_max) -> Trace:
     trace = Trace()
-    swa, reference, _, gains = _inputs(steering, speed, n_steps, h)
-    integral = float(speed._integral) if speed is not None else 0.0
+    swa, plan = inputs
+    reference, gains = plan.reference, plan.gains
+    integral = float(plan.controller._integral) if plan.controller is not None else 0.0
     table = steering.table_points
     t_end = n_steps * h
     breakpoints = (np.ascontiguousarray(table[0][(table[0] > 0.0) & (table[0] < t_end)])
@@ -296,8 +334,8 @@ def _adaptive(model, steering, speed, q, v, cog, n_steps, *, event, h, record_ev
             raise SolverError(f'{model.label(event, failed)}: the state became non-finite')
         if n == 0 or t >= t_end - 1e-9 * max(h_max, t_end):
             break
-    if speed is not None:
-        speed._integral = integral
+    if plan.controller is not None:
+        plan.controller._integral = integral
     return trace
 
 
