@@ -123,3 +123,14 @@ def test_a_road_with_relief_keeps_the_fixed_step():
     out = run_vehicle_event(configurations['baseline'], 'step_steer', ['duration=3 s'])
     assert any('step 5 ms' in n for n in out.notes)
     assert not any('variable step' in n for n in out.notes)
+
+
+def test_brakes_and_a_driveline_keep_the_fixed_step():
+    """sedan_longitudinal.yaml's abs: the step steer says it ran the fixed step, and did."""
+    config = load_study(STUDIES / 'sedan_longitudinal.yaml').configurations['abs']
+    default = run_vehicle_event(config, 'step_steer', ['duration=3 s'])
+    fixed = run_vehicle_event(config, 'step_steer', ['duration=3 s', 'step_tolerance=0 m/s'])
+    assert any('step 5 ms' in n for n in default.notes)
+    assert not any('variable step' in n for n in default.notes)
+    for name, channel in fixed.channels.items():
+        np.testing.assert_array_equal(default.channels[name].values, channel.values)

@@ -52,7 +52,9 @@ Where the events take it. The handling events whose drivers depend on time only 
 step steer, the sine-with-dwell procedure) run with the variable step by default, their
 ``step_tolerance`` parameter (:data:`STEP_TOLERANCE_PARAM`, 0 the fixed step);
 :func:`event_tolerance` turns it into ``simulate``'s ``tolerance``: none on a road with
-relief, whose wheel hop the fixed step resolves and the implicit travel would damp.
+relief, whose wheel hop the fixed step resolves and the implicit travel would damp, and
+none with brakes or a driveline (the anti-lock controllers' and the speed filter's state
+advance once per accepted step).
 """
 from __future__ import annotations
 
@@ -100,8 +102,14 @@ STEP_TOLERANCE_PARAM = Param(
 
 
 def event_tolerance(model: VehicleModel, step_tolerance: float) -> float | None:
-    """Return the ``simulate`` tolerance of an event: None (the fixed step) for 0 or relief."""
-    if step_tolerance <= 0.0 or np.any(model.road.height != 0.0):
+    """
+    Return the ``simulate`` tolerance of an event: None (the fixed step) for 0, for a road
+    with relief, and for a configuration with brakes or a driveline (their controllers'
+    state cannot be stepped back when a variable step is rejected).
+    """
+    chassis = model.chassis
+    if step_tolerance <= 0.0 or np.any(model.road.height != 0.0) \
+            or chassis.brakes is not None or chassis.driveline is not None:
         return None
     return step_tolerance
 
