@@ -5,14 +5,14 @@
 
 Names relative to the node's namespace (``/vd`` by default). Action ``vehicle/run_event``
 (vd_interfaces/RunEvent; events constant_radius_turn and step_steer, goal.fidelity
-rigid|flexible passed to the K&C maps, empty: the configuration's flexible switch);
-results on ``vehicle/result``, one ``VehicleState`` per recorded step on
-``vehicle/state`` (named fields, four ``VehicleWheel``s) with header stamps on the
-simulation-time axis (run start + simulated time), and the body pose as ``nav_msgs/Odometry`` on ``vehicle/odom`` (frame ``odom``,
-child ``base_link``, REP 105) and as TF on the global ``/tf`` (``tf2_msgs/TFMessage``),
-stamped alike. Outside the default namespace the frames carry the parameter
-``frame_prefix`` (default: the namespace, ``car2/odom`` -> ``car2/base_link``), so
-several vehicles share one TF tree.
+rigid|flexible passed to the K&C maps, empty: the configuration's flexible switch); results
+on ``vehicle/result``, one ``VehicleState`` per recorded step on ``vehicle/state`` (named
+fields, four ``VehicleWheel``s) with header stamps on the simulation-time axis (run start +
+simulated time), and the body pose as ``nav_msgs/Odometry`` on ``vehicle/odom`` (frame
+``odom``, child ``base_link``, REP 105) and as TF on the global ``/tf``
+(``tf2_msgs/TFMessage``), stamped alike. Outside the default namespace the frames carry the
+parameter ``frame_prefix`` (default: the namespace, ``car2/odom`` -> ``car2/base_link``),
+so several vehicles share one TF tree.
 
 Parameter ``mode``: ``events`` (default, the above), ``lockstep`` or ``free``: the
 co-simulation of :mod:`vd_solvers.nodes.lockstep` -- one vehicle of ``configuration`` driven
