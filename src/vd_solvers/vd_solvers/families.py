@@ -23,7 +23,7 @@ from .errors import SolverError
 from .results import FIDELITIES
 
 if TYPE_CHECKING:
-    from vd_data_server.master import Configuration
+    from vd_data_server.model import Configuration
 
 
 @dataclass(frozen=True)
