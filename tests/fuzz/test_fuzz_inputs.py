@@ -215,7 +215,7 @@ def test_mutated_study_plans(data, root):
     with no_hang():
         try:
             plan = load_plan(plan_file)
-            for request in expand(plan, study.configuration_names, root / 'bags'):
+            for request in expand(plan, study, root / 'bags'):
                 validate(study, request)
         except (DataError, RunError, BagError) as err:
             clean(err)

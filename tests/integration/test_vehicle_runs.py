@@ -133,3 +133,27 @@ def test_constant_radius_turn_defaults_to_the_vehicle_model(capsys, sedan_master
 
     assert event_model('constant_radius_turn') == 'vehicle'
     assert event_model('step_steer') == 'bicycle'
+
+
+def test_vd_run_gives_the_vehicle_its_configurations_fidelity_unless_asked(capsys,
+                                                                           sedan_master):
+    """
+    `vd run --model vehicle` on `sport` (flexible: true): flexible K&C maps by default.
+
+    The default run is the run asked with --fidelity flexible, value for value; the run
+    asked with --fidelity rigid differs.
+    """
+    results = {}
+    for asked in ((), ('--fidelity', 'flexible'), ('--fidelity', 'rigid')):
+        rc, out, err = _vd(capsys, 'run', 'step_steer', '--model', 'vehicle', '--config',
+                           'sport', '--master', str(sedan_master), '--param', 'duration=3 s',
+                           *asked, '--json')
+        assert rc == 0, err
+        results[asked[1] if asked else 'default'] = json.loads(out)
+    default, flexible, rigid = results['default'], results['flexible'], results['rigid']
+    assert (default['fidelity'], flexible['fidelity'], rigid['fidelity']) == (
+        'flexible', 'flexible', 'rigid')
+    assert default['metrics'] == flexible['metrics']
+    assert default['channels']['yaw_rate'] == flexible['channels']['yaw_rate']
+    assert rigid['metrics']['yaw_rate_gain']['value'] != pytest.approx(
+        flexible['metrics']['yaw_rate_gain']['value'], rel=1e-3)

@@ -13,6 +13,8 @@ from pathlib import Path
 import pytest
 
 from vd_data_server.errors import DataError
+from vd_data_server.paths import default_master
+from vd_data_server.study import load_study
 from vd_events.studies.plan import expand, load_plan
 from vdtest import line_no, tree_snapshot
 
@@ -42,11 +44,12 @@ def refused(tmp_path: Path, text: str) -> list[str]:
 def test_a_good_plan_expands_to_one_run_per_model_and_configuration(tmp_path: Path) -> None:
     plan = tmp_path / 'plan.yaml'
     plan.write_text(GOOD)
-    runs = expand(load_plan(plan), ['baseline', 'sport'], tmp_path / 'bags')
+    runs = expand(load_plan(plan), load_study(default_master()), tmp_path / 'bags')
     assert [(r.event, r.model, r.configuration, r.axle, r.fidelity) for r in runs] == [
         ('handling_diagram', 'bicycle', 'baseline', '', 'rigid'),
         ('handling_diagram', 'two_track', 'baseline', '', 'rigid'),
         ('parallel_wheel_travel', 'kc', 'baseline', 'front', 'flexible'),
+        ('parallel_wheel_travel', 'kc', 'stiff_rear', 'front', 'flexible'),
         ('parallel_wheel_travel', 'kc', 'sport', 'front', 'flexible')]
     assert runs[2].bag == tmp_path / 'bags' / 'parallel_wheel_travel_front_kc_baseline_flexible'
 

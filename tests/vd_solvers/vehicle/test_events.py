@@ -254,3 +254,31 @@ def test_unknown_event_is_an_error(sedan):
                               "straight_line_braking, brake_in_turn, power_off_in_turn, "
                               "straight_line_acceleration, ride, bump, lane_change, "
                               "lane_change_limit)")
+
+
+def test_a_flexible_configuration_drives_on_flexible_maps_unless_told_rigid(sedan):
+    """
+    Check: the vehicle follows the configuration's flexible switch by default.
+
+    ``sport`` switches its components flexible in the master file: its vehicle run
+    without a fidelity (and the solver node's goal with an empty one) is the run asked
+    with fidelity 'flexible', value for value, and differs from the one asked 'rigid'.
+    """
+    from types import SimpleNamespace
+
+    from vd_solvers.nodes.vehicle import _run
+
+    sport = sedan['sport']
+    default = run_vehicle_event(sport, 'step_steer')
+    goal = _run(sport, SimpleNamespace(event='step_steer', parameters=[], fidelity=''), None)
+    flex = run_vehicle_event(sport, 'step_steer', [], fidelity='flexible')
+    rigid = run_vehicle_event(sport, 'step_steer', [], fidelity='rigid')
+    assert (default.fidelity, goal.fidelity, flex.fidelity, rigid.fidelity) == (
+        'flexible', 'flexible', 'flexible', 'rigid')
+    for run in (default, goal):
+        assert run.metrics.keys() == flex.metrics.keys()
+        for name, metric in flex.metrics.items():
+            assert run.metrics[name].value == metric.value, name
+        np.testing.assert_array_equal(run.channels['yaw_rate'].values,
+                                      flex.channels['yaw_rate'].values)
+    assert _m(rigid, 'yaw_rate_gain') != pytest.approx(_m(flex, 'yaw_rate_gain'), rel=1e-3)

@@ -45,7 +45,7 @@ def main() -> int:
         shutil.rmtree(OUT)
     term.rule('vd demo: K&C, bicycle and two-track models through the ROS graph')
     plan = load_plan(_plan_path())
-    total = len(expand(plan, load_study(master).configuration_names, OUT / 'bags'))
+    total = len(expand(plan, load_study(master), OUT / 'bags'))
     count = [0]
 
     def done(run) -> None:

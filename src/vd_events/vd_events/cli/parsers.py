@@ -54,8 +54,8 @@ def _run(sub) -> None:
     run.add_argument('--config', default=None,
                      help="configuration (default: the first; 'all': every configuration)")
     run.add_argument('--model', default=None, help='bicycle | two_track | kc | vehicle')
-    run.add_argument('--fidelity', default='', help="rigid | flexible (K&C; default: the "
-                     "configuration's 'flexible' switch in the master file)")
+    run.add_argument('--fidelity', default='', help="rigid | flexible (K&C and vehicle; "
+                     "default: the configuration's 'flexible' switch in the master file)")
     run.add_argument('--axle', default='', help='front | rear (K&C events)')
     run.add_argument('--set', dest='overrides', action='append', default=[],
                      metavar='KEY=VALUE', help="temporary override, e.g. "

@@ -35,13 +35,9 @@ def cmd_run(args: argparse.Namespace) -> int:
                         'its own --bag')
     requests = []
     for config_name in names:
-        fidelity = args.fidelity
-        if not fidelity:
-            config = study.configurations.get(config_name)
-            fidelity = 'flexible' if model == 'kc' and config is not None and \
-                config.flexible else 'rigid'
+        # an empty --fidelity follows the configuration's switch (validate resolves it)
         request = RunRequest(event=args.event, configuration=config_name, model=model,
-                             fidelity=fidelity, axle=args.axle or '',
+                             fidelity=args.fidelity, axle=args.axle or '',
                              overrides=tuple(args.overrides),
                              parameters=tuple(args.parameters),
                              bag=Path(args.bag) if args.bag else None)

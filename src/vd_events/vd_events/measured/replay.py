@@ -76,7 +76,7 @@ def replay_outcomes(config, test: EventOutcome, models: Sequence[str]) -> list[E
         raise InputError('--models', f"replay models are {', '.join(MODELS)}, found "
                          f"{', '.join(unknown) or 'none'}")
     try:
-        vehicle = VehicleModel(config, 'rigid')
+        vehicle = VehicleModel(config)
         yaw_rate0 = float(test.channels['yaw_rate'].values[0]) \
             if 'yaw_rate' in test.channels else 0.0
         out = []

@@ -51,7 +51,7 @@ def run_plan(executor, node: EventRunner) -> int:
         plan = load_plan(Path(plan_path))
         study = load_study(plan.master)
         requests = [type(r)(**{**r.__dict__, 'bag': None})
-                    for r in expand(plan, study.configuration_names, Path('.'))]
+                    for r in expand(plan, study, Path('.'))]
         requests = [validate(study, request) for request in requests]
     except (DataError, RunError) as err:
         print(f'event_runner: {err}', file=sys.stderr)

@@ -63,6 +63,7 @@ from vd_solvers.families import (
     check_request,
     event_params,
     events_for,
+    run_fidelity,
 )
 from vd_solvers.results import EventOutcome
 
@@ -91,7 +92,9 @@ class RunRequest:
     event: str
     configuration: str
     model: str
-    fidelity: str = 'rigid'
+    #: 'rigid' | 'flexible'; "" = the configuration's switch (families.run_fidelity),
+    #: resolved by validate()
+    fidelity: str = ''
     axle: str = ''
     overrides: tuple[str, ...] = ()
     parameters: tuple[str, ...] = ()
@@ -122,7 +125,9 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
     """
     Every check that can be made before starting: raises DataError / RunError / BagError.
 
-    Returns the request with the data hash its result must carry.
+    Returns the request with the fidelity it gets (``families.run_fidelity``: an empty
+    one follows the configuration's ``flexible`` switch) and the data hash its result
+    must carry.
     """
     # the requested model's own table first: the other rungs' modules load only when the
     # event is not one of its events (they weigh seconds on a cold start)
@@ -131,8 +136,6 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
         raise RunError(f"unknown event '{request.event}' (events: {', '.join(all_events())})")
     if request.model not in MODELS:
         raise RunError(f"unknown model '{request.model}' (models: {', '.join(MODELS)})")
-    if not request.fidelity:
-        raise RunError("unknown fidelity '' (rigid, flexible)")
     try:  # the checks the solver's goal callback makes too, in command-line words
         check_request(request.family, request.event, request.model, request.fidelity,
                       request.axle, None, fields=CLI_FIELDS)
@@ -147,7 +150,8 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
             request.axle != 'front' or 'steering' not in config.groups):
         raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
                        f"'{request.configuration}' has no steering")
-    if request.fidelity == 'flexible':
+    fidelity = run_fidelity(request.model, config, request.fidelity)
+    if fidelity == 'flexible':
         for axle in ([request.axle] if request.model == 'kc' else ['front', 'rear']):
             if f'{axle}_flex' not in config.groups:
                 raise RunError(f"configuration '{request.configuration}' has no flexible "
@@ -156,7 +160,7 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
     parse_params(request.event, event_params(request.model, request.event), request.parameters)
     if request.bag is not None:
         check_bag_path(request.bag)
-    return dataclasses.replace(request, data_hash=config.data_hash)
+    return dataclasses.replace(request, fidelity=fidelity, data_hash=config.data_hash)
 
 
 def _ros_args() -> list[str]:

@@ -14,7 +14,8 @@ Plan file::
         parameters: [radius=100 m]   # optional event parameters
         overrides: []                # optional GROUP.KEY=VALUE for these runs
         axle: front                  # optional (K&C events)
-        fidelity: flexible           # optional (K&C: rigid, the default, or flexible)
+        fidelity: flexible           # optional (K&C and vehicle: rigid or flexible;
+                                     # default: the configuration's flexible switch)
     measurements: [path/to/bag]      # optional: bags of vd import, relative to the plan;
                                      # the study report compares them with the runs
 """
@@ -30,10 +31,11 @@ from vd_data_server.errors import DataError
 from vd_data_server.paths import default_master
 from vd_data_server.ros.names import DEFAULT_NAMESPACE
 from vd_data_server.shape import Collector, check
-from vd_data_server.study import load_study
+from vd_data_server.study import Study, load_study
 from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError, RunError
 from vd_events.orchestration.runner import RunRequest, run_distributed, run_embedded, validate
+from vd_solvers.families import run_fidelity
 
 #: a study plan, in the specs of the data files (``vd_data_server.schema``)
 PLAN = schema.Section({
@@ -50,8 +52,8 @@ PLAN = schema.Section({
         'parameters': schema.ListOf(schema.Text('NAME=VALUE'), 'event parameters'),
         'overrides': schema.ListOf(schema.Text('GROUP.KEY=VALUE'), 'overrides of these runs'),
         'axle': schema.Text('axle of a K&C event: front or rear', required=False),
-        'fidelity': schema.Text('K&C fidelity: rigid (the default) or flexible',
-                                required=False),
+        'fidelity': schema.Text("K&C fidelity: rigid or flexible (default: the "
+                                "configuration's flexible switch)", required=False),
     }), 'the runs', what='runs', required=True, non_empty=True),
     'measurements': schema.ListOf(schema.Text('bag path'),
                                   'bags of vd import, relative to the plan', what='bag paths'),
@@ -96,18 +98,25 @@ def _measurements(raw: Mapping[str, Any], path: Path) -> tuple[Path, ...]:
     return bags
 
 
-def expand(plan: Plan, names: list[str], bags: Path) -> list[RunRequest]:
-    """Return the runs of ``plan``: one per model and configuration of each entry."""
+def expand(plan: Plan, study: Study, bags: Path) -> list[RunRequest]:
+    """
+    Return the runs of ``plan``: one per model and configuration of each entry.
+
+    A run without ``fidelity`` gets the configuration's (``families.run_fidelity``);
+    the bag of a flexible run ends in ``_flexible``.
+    """
     requests = []
     for run in plan.runs:
         configs = _get(run, 'configurations', 'all')
-        configs = names if configs == 'all' else list(configs)
+        configs = study.configuration_names if configs == 'all' else list(configs)
         axle = str(_get(run, 'axle', ''))
-        fidelity = str(_get(run, 'fidelity', 'rigid'))
+        asked = str(_get(run, 'fidelity', ''))
         overrides = tuple(str(o) for o in _get(run, 'overrides', []))
         parameters = tuple(str(p) for p in _get(run, 'parameters', []))
         for model in _get(run, 'models', ['two_track']):
             for config in configs:
+                fidelity = run_fidelity(str(model), study.configurations.get(str(config)),
+                                        asked)
                 bag = bags / f"{run['event']}{'_' + axle if axle else ''}_{model}_{config}"
                 if fidelity != 'rigid':
                     bag = bag.with_name(f'{bag.name}_{fidelity}')
@@ -135,7 +144,7 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     reports (``vd_events.reports.report.build_pages``).
     """
     study = load_study(plan.master)
-    requests = expand(plan, study.configuration_names, bags)
+    requests = expand(plan, study, bags)
     seen = set()
     checked = []
     for request in requests:

@@ -107,7 +107,8 @@ class RunSpec:
     event: str
     model: str
     axle: str = ''
-    fidelity: str = 'rigid'
+    #: "" = the configuration's flexible switch (``families.run_fidelity``)
+    fidelity: str = ''
     parameters: tuple[str, ...] = ()
 
     @property
@@ -457,7 +458,7 @@ def _runs(raw: Any, file: str) -> tuple[RunSpec, ...]:
                 raise DataError(f'expected a text, found {run[key]!r}', file=file,
                                 key=f'{where}.{key}')
         spec = RunSpec(event=run['event'], model=run.get('model') or event_model(run['event']),
-                       axle=run.get('axle', ''), fidelity=run.get('fidelity', 'rigid'),
+                       axle=run.get('axle', ''), fidelity=run.get('fidelity', ''),
                        parameters=_texts(run.get('parameters', []), file, f'{where}.parameters'))
         if spec in out:
             raise DataError(f'the run {spec.label} is already in the plan', file=file, key=where)

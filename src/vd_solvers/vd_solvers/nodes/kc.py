@@ -19,7 +19,7 @@ from vd_data_server.ros.node_main import spin_node
 from vd_data_server.ros.qos import TF
 from vd_interfaces.msg import KcState
 from vd_solvers.errors import SolverError
-from vd_solvers.families import TF_TOPIC
+from vd_solvers.families import TF_TOPIC, run_fidelity
 from vd_solvers.kc.cache import kc_model
 from vd_solvers.kc.from_config import run_kc_event
 from vd_solvers.nodes.solver import SolverNode
@@ -29,7 +29,7 @@ FAMILY = 'kc'
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
-    fidelity = goal.fidelity or ('flexible' if config.flexible else 'rigid')
+    fidelity = run_fidelity('kc', config, goal.fidelity)
     if fidelity not in FIDELITIES:
         raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
                           f"'{goal.fidelity}' is not available (fidelities: "

@@ -5,14 +5,14 @@
 
 Names relative to the node's namespace (``/vd`` by default). Action ``vehicle/run_event``
 (vd_interfaces/RunEvent; events constant_radius_turn and step_steer, goal.fidelity
-rigid|flexible passed to the K&C maps); results on ``vehicle/result``, one
-``VehicleState`` per recorded step on ``vehicle/state`` (named fields, four
-``VehicleWheel``s) with header stamps on the simulation-time axis (run start + simulated
-time), and the body pose as ``nav_msgs/Odometry`` on ``vehicle/odom`` (frame ``odom``,
-child ``base_link``, REP 105) and as TF on the global ``/tf`` (``tf2_msgs/TFMessage``),
-stamped alike. Outside the default namespace the frames carry the parameter
-``frame_prefix`` (default: the namespace, ``car2/odom`` -> ``car2/base_link``), so
-several vehicles share one TF tree.
+rigid|flexible passed to the K&C maps, empty: the configuration's flexible switch); results
+on ``vehicle/result``, one ``VehicleState`` per recorded step on ``vehicle/state`` (named
+fields, four ``VehicleWheel``s) with header stamps on the simulation-time axis (run start +
+simulated time), and the body pose as ``nav_msgs/Odometry`` on ``vehicle/odom`` (frame
+``odom``, child ``base_link``, REP 105) and as TF on the global ``/tf``
+(``tf2_msgs/TFMessage``), stamped alike. Outside the default namespace the frames carry the
+parameter ``frame_prefix`` (default: the namespace, ``car2/odom`` -> ``car2/base_link``),
+so several vehicles share one TF tree.
 
 Parameter ``mode``: ``events`` (default, the above), ``lockstep`` or ``free``: the
 co-simulation of :mod:`vd_solvers.nodes.lockstep` -- one vehicle of ``configuration`` driven
@@ -55,7 +55,7 @@ MODES = ('events', 'lockstep', 'free')
 LOCKSTEP_PARAMS = {
     'configuration': ('', "configuration to drive ('' = the study's first)"),
     'master': ('', "master file ('' = the bundled sample study)"),
-    'fidelity': ('rigid', 'K&C maps: rigid | flexible'),
+    'fidelity': ('', "K&C maps: rigid | flexible ('' = the configuration's flexible switch)"),
     'step': (0.005, 'integration step = lock-step, s'),
     'initial_speed': (0.0, 'speed at t = 0, m/s (straight ahead)'),
     'duration': (0.0, 'simulated time after which the session finishes, s (0: no end)'),
@@ -75,8 +75,8 @@ ACTUATOR_PARAMS = ('steering_lag', 'torque_lag', 'speed_gain', 'speed_integral')
 
 
 def _run(config: Configuration, goal, progress) -> EventOutcome:
-    return run_vehicle_event(config, goal.event, list(goal.parameters), goal.fidelity or 'rigid',
-                             progress)
+    # an empty goal.fidelity follows the configuration's switch (families.run_fidelity)
+    return run_vehicle_event(config, goal.event, list(goal.parameters), goal.fidelity, progress)
 
 
 class VehicleSolver(SolverNode, LifecycleNode):

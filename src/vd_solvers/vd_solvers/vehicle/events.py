@@ -99,7 +99,7 @@ EVENTS = tuple(EVENT_PARAMS)
 
 
 def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] = (),
-                      fidelity: str = 'rigid',
+                      fidelity: str = '',
                       progress: Callable[[float, str], None] | None = None) -> EventOutcome:
     """Run a full-vehicle event on ``config`` (module doc). SolverError names both."""
     label = f"configuration '{config.name}', event '{event}'"
@@ -147,7 +147,8 @@ def run_vehicle_event(config: Configuration, event: str, params: Sequence[str] =
              + '; transient slip integrated exactly per step, wheel spin linearly implicit',
              *(f'{k}: {v}' for k, v in sorted(model.maps.provenance.items()))]
     return EventOutcome(event=event, configuration=config.name, model='vehicle',
-                        fidelity=fidelity, axle='', data_hash=config.data_hash, metrics=metrics,
+                        fidelity=model.fidelity, axle='', data_hash=config.data_hash,
+                        metrics=metrics,
                         channels=channels, notes=tuple(notes))
 
 

@@ -16,7 +16,9 @@ overshoot) where the rung has one:
 * two-track: the wheel-by-wheel steady state (``analytical/cornering.py``); steady
   state only;
 * full vehicle: ``constant_radius_turn`` (steady-state method, linear range) and
-  ``step_steer`` at SPEED to STEP_LATERAL_ACCELERATION with a fixed STEP_TIME_STEP step;
+  ``step_steer`` at SPEED to STEP_LATERAL_ACCELERATION with a fixed STEP_TIME_STEP step,
+  on LADDER_FIDELITY K&C maps whatever the configuration's flexible switch (the
+  analytical rungs read the rigid K&C results);
 * single track of the full vehicle's own axles: the linear single track (mass and yaw
   inertia of the configuration) with the full vehicle's effective axle cornering
   stiffnesses (each axle's yaw moment over its lever arm, the tires' aligning moments
@@ -70,6 +72,8 @@ TURN = ('start_lateral_acceleration=1 m/s^2', 'max_lateral_acceleration=3 m/s^2'
         'steady_tolerance=0.004')
 #: averaging window of the step's steady state, s (the event's)
 STEADY_WINDOW = 1.0
+#: the K&C fidelity of the full vehicle's maps on the ladder: that of the analytical rungs
+LADDER_FIDELITY = 'rigid'
 
 
 @dataclass(frozen=True)
@@ -125,11 +129,12 @@ def ladder(config: Configuration, progress: Callable[[str], None] | None = None)
         effects.append(Term(name, gradients.understeer - without.understeer,
                             f'two-track with less without {name}'))
     say('full vehicle: constant radius turn')
-    turn = run_vehicle_event(config, 'constant_radius_turn', TURN)
+    turn = run_vehicle_event(config, 'constant_radius_turn', TURN, fidelity=LADDER_FIDELITY)
     say('full vehicle: step steer')
     step = run_vehicle_event(config, 'step_steer', [
         f'speed={SPEED} m/s', f'lateral_acceleration={STEP_LATERAL_ACCELERATION} m/s^2',
-        f'time_step={STEP_TIME_STEP} s', 'step_tolerance=0 m/s', f'duration={STEP_DURATION} s'])
+        f'time_step={STEP_TIME_STEP} s', 'step_tolerance=0 m/s', f'duration={STEP_DURATION} s'],
+        fidelity=LADDER_FIDELITY)
     reached = step.metrics['steady_lateral_acceleration'].value
     full_step = _identified(step, step.channels['yaw_rate'].values)
     reference = _single_track(config, step)

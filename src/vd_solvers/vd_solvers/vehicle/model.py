@@ -88,6 +88,7 @@ from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.chassis.from_config import chassis_systems
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
+from vd_solvers.families import run_fidelity
 from vd_solvers.road.arrays import RoadGrid
 from vd_solvers.road.from_config import road_of
 from vd_solvers.tire.magic_formula import MagicFormula
@@ -159,13 +160,16 @@ class Options:
 class VehicleModel:
     """The multibody vehicle of one configuration (module doc). Not thread-safe."""
 
-    def __init__(self, config: Configuration, fidelity: str = 'rigid',
+    def __init__(self, config: Configuration, fidelity: str = '',
                  options: Options = Options(), maps: SuspensionMaps | None = None,
                  road: RoadGrid | None = None) -> None:
         self.config = config
         self.road = road if road is not None else road_of(config)
         self.options = options
-        self.maps = maps if maps is not None else suspension_maps(config, fidelity)
+        #: the K&C fidelity of the suspension maps: ``fidelity``, "" = the configuration's
+        #: flexible switch (``families.run_fidelity``)
+        self.fidelity = run_fidelity('vehicle', config, fidelity)
+        self.maps = maps if maps is not None else suspension_maps(config, self.fidelity)
         mass = config.group('mass')
         front_props = tire_properties(config.group('front_tire'))
         rear_props = tire_properties(config.group('rear_tire'))

@@ -55,7 +55,7 @@ def smoothed_speed(t: np.ndarray, speed: np.ndarray) -> Callable[[float], float]
 
 
 def replay_vehicle(config: Configuration, time: np.ndarray, swa: np.ndarray,
-                   speed: np.ndarray, *, event: str = 'vehicle_test', fidelity: str = 'rigid',
+                   speed: np.ndarray, *, event: str = 'vehicle_test', fidelity: str = '',
                    initial_yaw_rate: float = 0.0, model: VehicleModel | None = None,
                    progress: Callable[[float, str], None] | None = None) -> EventOutcome:
     """Drive the full vehicle of ``config`` by the logged steering and speed (module doc)."""
@@ -83,7 +83,7 @@ def replay_vehicle(config: Configuration, time: np.ndarray, swa: np.ndarray,
                                         model.maps.provenance['steering']),
                'duration': Metric(float(t[-1]), 's')}
     return EventOutcome(event=event, configuration=config.name, model='vehicle',
-                        fidelity=fidelity, axle='', data_hash=config.data_hash,
+                        fidelity=model.fidelity, axle='', data_hash=config.data_hash,
                         metrics=metrics, channels=channels, notes=notes)
 
 
