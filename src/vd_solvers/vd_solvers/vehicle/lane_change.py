@@ -28,12 +28,16 @@ axle's centre (:func:`rear_axle_line`): without tire slip the rear axle moves al
 body, so the body's heading is the line's plus the rear axle's slip angle m_r a_y / C_r
 at the run's speed.
 
-**Driver**: :class:`.drivers.PreviewPathFollower` (Donges' two-level driver: the line's
-curvature ahead through the configuration's steady-state steer gain (L + K V^2) kappa, K
-the understeer gradient of the bicycle model with the configuration's K&C compliance and
-roll steer (:func:`.analytical.from_config.vehicle_params` with
-:func:`.analytical.kc_link.kc_inputs`, rigid K&C), plus a compensatory
-lateral and heading error correction over the preview distance).
+**Driver**: :class:`.drivers.OptimalPreviewDriver`, the discrete linear-quadratic preview
+driver of :mod:`.preview_design` (Sharp, Casanova & Symonds, VSD 33(5), 2000): its gains
+come once per run from the configuration's own single track at the entry speed (the
+bicycle model with the K&C compliance and roll steer,
+:func:`.analytical.from_config.vehicle_params` with :func:`.analytical.kc_link.kc_inputs`,
+rigid K&C) with the steering lag ``lag``; it tracks the rear axle on the line, reads the
+line's curvature ``preview_time`` ahead, samples every DRIVER_SAMPLE s and weighs a
+lateral error of ERROR_SCALE m against STEER_SCALE rad of road-wheel angle. The steering
+wheel turns the road wheels through the configuration's steering ratio, limited at the
+lock.
 
 lane_change_limit: the highest passing entry speed by bisection on pass/fail between
 ``lowest`` and ``highest`` to LIMIT_RESOLUTION: first both bounds, then the middle of
@@ -250,7 +254,7 @@ class Run:
 
 def _driver(model: VehicleModel, line: tuple[np.ndarray, np.ndarray],
             v: Mapping[str, float], speed: float) -> OptimalPreviewDriver:
-    """The optimal preview driver on ``line`` with gains for ``speed`` m/s (module doc)."""
+    """Return the optimal preview driver on ``line`` with gains for ``speed`` m/s."""
     maps = model.maps
     limit = float(min(-maps.steer_swa[0], maps.steer_swa[-1]))
     p = _params(model)
