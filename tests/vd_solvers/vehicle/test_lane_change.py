@@ -123,7 +123,7 @@ def test_the_sedan_passes_at_60_km_h_as_a_test_driver_does(base_model):
 
 
 def test_the_hmmwv_passes_at_30_km_h_well_off_the_steering_lock():
-    # the truck's 24:1 steering and slow yaw response once drove a path follower into
+    # the truck's 19.5:1 steering and slow yaw response once drove a path follower into
     # oscillation up to the 720 deg lock at this speed; the preview driver's gains come
     # from the truck's own single track with the steering lag, and the loop stays calm
     study = default_master().parent / 'hmmwv_roads.yaml'

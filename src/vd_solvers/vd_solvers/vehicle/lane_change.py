@@ -90,7 +90,8 @@ LINE_ITERATIONS = 3
 #: sample time of the lane-change driver, s
 DRIVER_SAMPLE = 0.02
 #: the driver's cost: a lateral error of ERROR_SCALE m costs as much as STEER_SCALE rad of
-#: road-wheel angle (the linear closed loop's slowest pole then near 0.2 s on both cars)
+#: road-wheel angle (the linear closed loop's slowest time constant then 0.2-0.3 s on the
+#: sample cars)
 ERROR_SCALE = 0.02
 STEER_SCALE = 0.1
 #: resolution of the highest passing entry speed, m/s (1 km/h)
