@@ -160,3 +160,17 @@ def test_a_mirrored_line_gives_the_mirrored_steering(params):
     npt.assert_allclose(right[4], -left[4], atol=1e-9)
     npt.assert_allclose(right[2], -left[2], atol=1e-9)
     npt.assert_allclose(right[1], left[1], atol=1e-9)
+
+
+def test_the_steering_stops_at_the_lock_and_leaves_it_at_once(params):
+    # 5 m to the right of a straight line the command is far beyond the lock: the steering
+    # wheel holds the lock; back on the line, the wheels turn back from the lock in the
+    # very next step (the lag's state is the wheels' angle, not a wound-up command)
+    lock, speed, h = 2.0, 15.0, 0.005
+    driver = OptimalPreviewDriver(np.array([-100.0, 0.0, 1000.0]), np.zeros(3),
+                                  _gains(params, speed), RATIO, lock, LAG)
+    swa = [driver.steering_wheel_angle(Observation(k * h, k * h * speed, -5.0, 0.0, speed,
+                                                   0.0), h) for k in range(200)]
+    assert max(swa) == pytest.approx(lock) and min(swa) > 0.0
+    back = driver.steering_wheel_angle(Observation(1.0, 15.0, 0.0, 0.0, speed, 0.0), h)
+    assert back < lock

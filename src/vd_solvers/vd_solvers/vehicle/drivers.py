@@ -322,9 +322,9 @@ class OptimalPreviewDriver:
     road-wheel angle, and reads the path's curvature at the stations ``gains.spacing`` * j
     of arc length ahead of the reference point; the command u = -K_x x - K_w w is held over
     the sample. The road-wheel angle follows it through the first-order lag ``lag`` (the
-    one the gains were designed with), and the steering wheel is that angle times the
-    steering ratio, limited to ``max_angle``. Heading and curvature are the path's own
-    (finite differences of the samples), zero beyond its ends.
+    one the gains were designed with) and stops at the lock: the steering wheel is that
+    angle times the steering ratio, at most ``max_angle``. Heading and curvature are the
+    path's own (finite differences of the samples), zero beyond its ends.
     """
 
     def __init__(self, path_x: np.ndarray, path_y: np.ndarray, gains: PreviewGains,
@@ -385,9 +385,11 @@ class OptimalPreviewDriver:
                 self._delta])
             self._command = -float(self.gains.feedback @ state
                                    + self.gains.preview @ self.preview(x))
+        # the lag's state is the road wheels' angle, which stops at the lock
+        lock = self.max_angle / self.steering_ratio
         self._delta += (self._command - self._delta) * (1.0 - math.exp(-h / self.lag))
-        angle = self.steering_ratio * self._delta
-        return float(np.clip(angle, -self.max_angle, self.max_angle))
+        self._delta = min(max(self._delta, -lock), lock)
+        return self.steering_ratio * self._delta
 
 
 @dataclass
