@@ -65,6 +65,8 @@ def test_the_feedback_makes_the_sampled_path_plant_stable(params, kmh):
     block[:5, :5], block[:5, 5] = cont, steer
     held = expm(block * SAMPLE)
     g = _gains(params, u)
+    npt.assert_allclose(g.plant, held[:5, :5], rtol=1e-9, atol=1e-12)
+    npt.assert_allclose(g.steer, held[:5, 5], rtol=1e-9, atol=1e-12)
     closed = held[:5, :5] - np.outer(held[:5, 5], g.feedback)
     assert np.max(np.abs(np.linalg.eigvals(closed))) < 1.0
     # and open loop it is not (two free integrators: position and heading)

@@ -102,9 +102,8 @@ def preview_gains(p: VehicleParams, speed: float, behind: float, lag: float, sam
 
     ``behind`` m (the reference point behind the CoG), ``lag`` s, ``sample`` s,
     ``horizon`` s of preview, ``error_scale`` m and ``steer_scale`` rad (road wheels): the
-    lateral error and the command that cost alike. SolverError when the Riccati equation
-    has no stabilising solution (e.g. a speed at or above an oversteering car's critical
-    speed makes the plant lose the structure it needs).
+    lateral error and the command that cost alike. SolverError for settings out of range
+    or when the Riccati equation has no stabilising solution.
     """
     if not (speed > 0.0 and lag > 0.0 and sample > 0.0 and horizon >= sample
             and error_scale > 0.0 and steer_scale > 0.0):
@@ -143,9 +142,4 @@ def preview_gains(p: VehicleParams, speed: float, behind: float, lag: float, sam
                         preview=gain[STATES:])
 
 
-def closed_loop_radius(g: PreviewGains) -> float:
-    """Return the spectral radius of the sampled plant under its feedback, F - G K_x."""
-    return float(np.max(np.abs(np.linalg.eigvals(g.plant - np.outer(g.steer, g.feedback)))))
-
-
-__all__ = ['STATES', 'PreviewGains', 'continuous_plant', 'preview_gains', 'closed_loop_radius']
+__all__ = ['STATES', 'PreviewGains', 'continuous_plant', 'preview_gains']
