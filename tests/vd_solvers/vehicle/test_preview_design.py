@@ -44,15 +44,21 @@ def _single_track(p):
     return rates
 
 
+@pytest.fixture(scope='module', params=['sedan.yaml', 'hmmwv.yaml'])
+def both_cars(request):
+    study = load_study(default_master().parent / request.param)
+    return vehicle_params(study.configurations['baseline'])
+
+
 @pytest.mark.parametrize('kmh', [20.0, 40.0, 60.0, 80.0, 100.0])
-def test_the_feedback_makes_the_sampled_path_plant_stable(params, kmh):
+def test_the_feedback_makes_the_sampled_path_plant_stable(both_cars, kmh):
     # the plant of lateral offset, heading error, v, r and lagged road-wheel angle, built
     # here from the equations of motion and sampled with the command held; the driver's
     # feedback must put every closed-loop eigenvalue inside the unit circle
     u = kmh / 3.6
-    cf, cr = effective_cornering_stiffness(params)
-    m, izz = params.mass, params.yaw_inertia
-    a, b = params.cog_to_front_axle, params.cog_to_rear_axle
+    cf, cr = effective_cornering_stiffness(both_cars)
+    m, izz = both_cars.mass, both_cars.yaw_inertia
+    a, b = both_cars.cog_to_front_axle, both_cars.cog_to_rear_axle
     cont = np.array([
         [0.0, u, 1.0, -b, 0.0],
         [0.0, 0.0, 0.0, 1.0, 0.0],
@@ -64,12 +70,12 @@ def test_the_feedback_makes_the_sampled_path_plant_stable(params, kmh):
     block = np.zeros((6, 6))
     block[:5, :5], block[:5, 5] = cont, steer
     held = expm(block * SAMPLE)
-    g = _gains(params, u)
+    g = _gains(both_cars, u)
     npt.assert_allclose(g.plant, held[:5, :5], rtol=1e-9, atol=1e-12)
     npt.assert_allclose(g.steer, held[:5, 5], rtol=1e-9, atol=1e-12)
     closed = held[:5, :5] - np.outer(held[:5, 5], g.feedback)
     assert np.max(np.abs(np.linalg.eigvals(closed))) < 1.0
-    # and open loop it is not (two free integrators: position and heading)
+    # open loop it is not asymptotically stable (free integrators: position and heading)
     assert np.max(np.abs(np.linalg.eigvals(held[:5, :5]))) == pytest.approx(1.0, abs=1e-9)
 
 
