@@ -17,6 +17,7 @@ from vd_solvers.vehicle.drivers import (
     CurvatureController,
     Observation,
     OpenLoopSteering,
+    OptimalPreviewDriver,
     PreviewPathFollower,
     ReplaySteering,
     SpeedController,
@@ -31,7 +32,8 @@ def _obs(t=0.0, x=0.0, y=0.0, yaw=0.0, speed=10.0):
 def test_registry_names_every_driver():
     assert DRIVERS == {'open_loop': OpenLoopSteering, 'replay': ReplaySteering,
                        'path_follower': CirclePathFollower, 'curvature': CurvatureController,
-                       'preview_path': PreviewPathFollower, 'speed': SpeedController}
+                       'preview_path': PreviewPathFollower,
+                       'optimal_preview': OptimalPreviewDriver, 'speed': SpeedController}
 
 
 def test_on_a_steady_circle_the_feed_forward_is_the_ackermann_plus_understeer_angle():

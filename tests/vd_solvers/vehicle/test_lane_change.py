@@ -109,6 +109,33 @@ def test_the_lane_change_passes_slowly_coasting_from_the_gate(base_model):
         assert np.all(py[inside] > lo) and np.all(py[inside] < hi)
 
 
+def test_the_sedan_passes_at_60_km_h_as_a_test_driver_does(base_model):
+    # a passenger car with a test driver passes ISO 3888-2 at about 60-75 km/h (the
+    # moose test's best cars 70-80 km/h, docs/events.md); the planned line asks the
+    # sample sedan for about 7.4 m/s^2 there, below its 0.88 g steady-state limit
+    metrics, notes, ch = _run(base_model, 60.0 / 3.6)
+    assert metrics['passed'].value == 1.0 and metrics['cones_hit'].value == 0.0, notes
+    length, width, front = vehicle_rectangle(base_model)
+    px, py = _corner_points(ch['x'] - APPROACH, ch['y'], ch['yaw'], length, width, front)
+    for x0, x1, lo, hi in _lanes(width):
+        inside = (px >= x0) & (px <= x1)
+        assert np.all(py[inside] > lo) and np.all(py[inside] < hi)
+
+
+def test_the_hmmwv_passes_at_30_km_h_well_off_the_steering_lock():
+    # the truck's 19.5:1 steering and slow yaw response once drove a path follower into
+    # oscillation up to the 720 deg lock at this speed; the preview driver's gains come
+    # from the truck's own single track with the steering lag, and the loop stays calm
+    study = default_master().parent / 'hmmwv_roads.yaml'
+    model = VehicleModel(load_study(study).configurations['dry'])
+    metrics, notes, ch = _run(model, 30.0 / 3.6)
+    assert metrics['passed'].value == 1.0, notes
+    lock = float(min(-model.maps.steer_swa[0], model.maps.steer_swa[-1]))
+    assert metrics['peak_steering_wheel_angle'].value < 0.5 * lock
+    # the line asks little at this speed: the car follows it without scrubbing speed
+    assert metrics['exit_speed'].value > 0.8 * metrics['entry_speed'].value
+
+
 def test_the_lane_change_hits_cones_at_an_absurd_speed(base_model):
     metrics, notes, ch = _run(base_model, 90.0 / 3.6)
     assert metrics['passed'].value == 0.0 and metrics['cones_hit'].value > 0.0, notes

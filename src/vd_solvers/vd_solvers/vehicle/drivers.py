@@ -36,6 +36,8 @@ from vd_solvers.chassis.from_config import Chassis
 from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
+from .preview_design import PreviewGains
+
 
 class Observation(NamedTuple):
     """What a driver sees at time t (world frame, SI)."""
@@ -313,6 +315,89 @@ class PreviewPathFollower:
             self._output = wanted
         self._output += (wanted - self._output) * (1.0 - math.exp(-h / self.lag))
         return float(np.clip(self._output, -self.max_angle, self.max_angle))
+
+
+class OptimalPreviewDriver:
+    """
+    Optimal preview path follower on a path y(x) (earth frame, x increasing).
+
+    The discrete linear-quadratic preview control of :mod:`.preview_design` (Sharp,
+    Casanova & Symonds, VSD 33(5), 2000): every ``gains.sample`` s the driver measures the
+    reference point's lateral offset e from the path (m, + left of it; the point ``behind``
+    m behind the body origin along the body, the path's station its x), the yaw angle less
+    the path's heading there, the lateral velocity of the CoG (``cog_ahead`` m ahead of the
+    body origin) and the yaw rate (the yaw's change over the last step), knows its own
+    road-wheel angle, and reads the path's curvature at the stations ``gains.spacing`` * j
+    of arc length ahead of the reference point; the command u = -K_x x - K_w w is held over
+    the sample. The road-wheel angle follows it through the first-order lag ``lag`` (the
+    one the gains were designed with) and stops at the lock: the steering wheel is that
+    angle times the steering ratio, at most ``max_angle``. Heading and curvature are the
+    path's own (finite differences of the samples), zero beyond its ends.
+    """
+
+    def __init__(self, path_x: np.ndarray, path_y: np.ndarray, gains: PreviewGains,
+                 steering_ratio: float, max_angle: float, lag: float, behind: float = 0.0,
+                 cog_ahead: float = 0.0) -> None:
+        x = np.asarray(path_x, dtype=float)
+        y = np.asarray(path_y, dtype=float)
+        if x.ndim != 1 or x.size < 3 or np.any(np.diff(x) <= 0.0) or y.shape != x.shape \
+                or not np.all(np.isfinite(y)):
+            raise SolverError('a path needs increasing x and one finite y per x (at least '
+                              'three points)')
+        self.path_x, self.path_y, self.gains = x, y, gains
+        self.steering_ratio, self.max_angle, self.lag = steering_ratio, max_angle, lag
+        self.behind, self.cog_ahead = behind, cog_ahead
+        slope = np.gradient(y, x)
+        self._heading = np.arctan(slope)
+        self._curvature = np.gradient(slope, x) / (1.0 + slope * slope) ** 1.5
+        # arc length along the path, for the preview stations
+        self._arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+        self._ahead = gains.spacing * np.arange(gains.preview.size)
+        self._delta = 0.0  # road-wheel angle, rad
+        self._command = 0.0
+        self._next = -math.inf  # time of the next sample
+        self._yaw: float | None = None
+
+    def lateral(self, x: float) -> float:
+        """Return the path's y at x, m."""
+        return float(np.interp(x, self.path_x, self.path_y))
+
+    def heading(self, x: float) -> float:
+        """Return the path's heading at x, rad (0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._heading, left=0.0, right=0.0))
+
+    def curvature(self, x: float) -> float:
+        """Return the path's curvature at x, 1/m (+ left; 0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._curvature, left=0.0, right=0.0))
+
+    def preview(self, x: float) -> np.ndarray:
+        """Return the path's curvature at the preview stations from x on, 1/m."""
+        start = np.interp(x, self.path_x, self._arc) + (x - np.clip(x, self.path_x[0],
+                                                                       self.path_x[-1]))
+        return np.interp(start + self._ahead, self._arc, self._curvature, left=0.0, right=0.0)
+
+    def steering_wheel_angle(self, obs: Observation, h: float) -> float:
+        rate = 0.0 if self._yaw is None or h <= 0.0 else \
+            math.remainder(obs.yaw - self._yaw, 2.0 * math.pi) / h
+        self._yaw = obs.yaw
+        if obs.t >= self._next - 1e-9:
+            self._next = obs.t + self.gains.sample
+            x = obs.x - self.behind * math.cos(obs.yaw)
+            y = obs.y - self.behind * math.sin(obs.yaw)
+            psi = self.heading(x)
+            state = np.array([
+                (y - self.lateral(x)) * math.cos(psi),
+                math.remainder(obs.yaw - psi, 2.0 * math.pi),
+                obs.speed * math.sin(obs.course - obs.yaw) + rate * self.cog_ahead,
+                rate,
+                self._delta])
+            self._command = -float(self.gains.feedback @ state
+                                   + self.gains.preview @ self.preview(x))
+        # the lag's state is the road wheels' angle, which stops at the lock
+        lock = self.max_angle / self.steering_ratio
+        self._delta += (self._command - self._delta) * (1.0 - math.exp(-h / self.lag))
+        self._delta = min(max(self._delta, -lock), lock)
+        return self.steering_ratio * self._delta
 
 
 @dataclass
@@ -611,11 +696,13 @@ DRIVERS: Mapping[str, type] = {
     'path_follower': CirclePathFollower,
     'curvature': CurvatureController,
     'preview_path': PreviewPathFollower,
+    'optimal_preview': OptimalPreviewDriver,
     'speed': SpeedController,
 }
 
 __all__ = ['Observation', 'OpenLoopSteering', 'ReplaySteering', 'CirclePathFollower',
-           'CurvatureController', 'PreviewPathFollower', 'CoastingSpeed',
+           'CurvatureController', 'PreviewPathFollower', 'OptimalPreviewDriver',
+           'CoastingSpeed',
            'SpeedController', 'speed_law', 'wheel_torques', 'DRIVERS', 'Pedals', 'WheelTorques',
            'ActuationArrays', 'actuation_arrays', 'actuate', 'ACTUATION_STATE', 'SpeedSchedule',
            'BRAKE_SPIN_SCALE', 'ACCELERATION_FILTER', 'INERTIA_SPEED_FLOOR']

@@ -28,12 +28,16 @@ axle's centre (:func:`rear_axle_line`): without tire slip the rear axle moves al
 body, so the body's heading is the line's plus the rear axle's slip angle m_r a_y / C_r
 at the run's speed.
 
-**Driver**: :class:`.drivers.PreviewPathFollower` (Donges' two-level driver: the line's
-curvature ahead through the configuration's steady-state steer gain (L + K V^2) kappa, K
-the understeer gradient of the bicycle model with the configuration's K&C compliance and
-roll steer (:func:`.analytical.from_config.vehicle_params` with
-:func:`.analytical.kc_link.kc_inputs`, rigid K&C), plus a compensatory
-lateral and heading error correction over the preview distance).
+**Driver**: :class:`.drivers.OptimalPreviewDriver`, the discrete linear-quadratic preview
+driver of :mod:`.preview_design` (Sharp, Casanova & Symonds, VSD 33(5), 2000): its gains
+come once per run from the configuration's own single track at the entry speed (the
+bicycle model with the K&C compliance and roll steer,
+:func:`.analytical.from_config.vehicle_params` with :func:`.analytical.kc_link.kc_inputs`,
+rigid K&C) with the steering lag ``lag``; it tracks the rear axle on the line, reads the
+line's curvature ``preview_time`` ahead, samples every DRIVER_SAMPLE s and weighs a
+lateral error of ERROR_SCALE m against STEER_SCALE rad of road-wheel angle. The steering
+wheel turns the road wheels through the configuration's steering ratio, limited at the
+lock.
 
 lane_change_limit: the highest passing entry speed by bisection on pass/fail between
 ``lowest`` and ``highest`` to LIMIT_RESOLUTION: first both bounds, then the middle of
@@ -54,7 +58,7 @@ import numpy as np
 from scipy import sparse
 from scipy.optimize import linprog
 
-from vd_solvers.analytical.bicycle import effective_cornering_stiffness, understeer_gradient
+from vd_solvers.analytical.bicycle import effective_cornering_stiffness
 from vd_solvers.analytical.from_config import vehicle_params
 from vd_solvers.analytical.kc_link import kc_inputs
 from vd_solvers.analytical.params import VehicleParams
@@ -64,8 +68,9 @@ from vd_solvers.results import Channel, Metric
 from vd_solvers.standards import iso3888
 from vd_solvers.vehicle_data import static_wheel_loads
 
-from .drivers import CoastingSpeed, PreviewPathFollower
+from .drivers import CoastingSpeed, OptimalPreviewDriver
 from .model import STEP, VehicleModel
+from .preview_design import preview_gains
 from .ride_events import road_note, speed_controller
 from .simulation import simulate
 
@@ -82,16 +87,21 @@ RAMP = 3.0
 LEAD = 20.0
 #: sequential linear programmes of the driving line (the rectangle's heading updated)
 LINE_ITERATIONS = 3
-#: shortest preview distance of the lane-change driver, m
-MIN_PREVIEW = 2.0
+#: sample time of the lane-change driver, s
+DRIVER_SAMPLE = 0.02
+#: the driver's cost: a lateral error of ERROR_SCALE m costs as much as STEER_SCALE rad of
+#: road-wheel angle (the linear closed loop's slowest time constant then 0.2-0.3 s on the
+#: sample cars)
+ERROR_SCALE = 0.02
+STEER_SCALE = 0.1
 #: resolution of the highest passing entry speed, m/s (1 km/h)
 LIMIT_RESOLUTION = 1.0 / 3.6
 
 _DRIVER = {
-    'preview_time': Param('time', 0.5, "the driver's compensatory preview time", minimum=0.1,
-                          maximum=3.0),
-    'anticipation': Param('time', 0.2, "how far ahead the driver takes the line's "
-                          'curvature, s of travel', minimum=0.0, maximum=2.0),
+    'preview_time': Param('time', 1.5, "how far ahead the driver reads the line's curvature",
+                          minimum=0.2, maximum=5.0),
+    'lag': Param('time', 0.15, "the driver's and the steering system's first-order lag",
+                 minimum=0.02, maximum=0.5),
     'margin': Param('length', 0.1, "the driving line's clearance to every lane limit",
                     minimum=0.0, maximum=0.5),
 }
@@ -244,14 +254,16 @@ class Run:
 
 
 def _driver(model: VehicleModel, line: tuple[np.ndarray, np.ndarray],
-            v: Mapping[str, float]) -> PreviewPathFollower:
+            v: Mapping[str, float], speed: float) -> OptimalPreviewDriver:
+    """Return the optimal preview driver on ``line`` with gains for ``speed`` m/s."""
     maps = model.maps
     limit = float(min(-maps.steer_swa[0], maps.steer_swa[-1]))
     p = _params(model)
-    return PreviewPathFollower(line[0] + APPROACH, line[1], p.wheelbase, maps.steering_ratio,
-                               limit, understeer_gradient=understeer_gradient(p),
-                               preview_time=v['preview_time'], min_preview=MIN_PREVIEW,
-                               anticipation=v['anticipation'], behind=_behind(model))
+    gains = preview_gains(p, speed, p.cog_to_rear_axle, v['lag'], DRIVER_SAMPLE,
+                          v['preview_time'], ERROR_SCALE, STEER_SCALE)
+    return OptimalPreviewDriver(line[0] + APPROACH, line[1], gains, maps.steering_ratio,
+                                limit, v['lag'], behind=_behind(model),
+                                cog_ahead=p.cog_to_rear_axle - _behind(model))
 
 
 def _at(x: np.ndarray, values: np.ndarray, where: float) -> float:
@@ -268,7 +280,7 @@ def drive(model: VehicleModel, speed: float, v: Mapping[str, float],
     track = iso3888.course(width)
     if line is None:
         line = rear_axle_line(model, track, v['margin'], speed)
-    driver = _driver(model, line, v)
+    driver = _driver(model, line, v, speed)
     speed_driver = CoastingSpeed(speed_controller(model, speed), APPROACH - front)
     # a coasting vehicle takes longer than at the entry speed: a fifth more time
     duration = 1.2 * (APPROACH + track.length + RUN_OUT) / speed
