@@ -307,3 +307,26 @@ def test_a_field_that_cannot_be_rewritten_in_place_is_refused_by_name(fields, me
     with pytest.raises(ValueError) as err:
         InPlaceMessage(Odometry()).slots(fields)
     assert str(err.value) == message
+
+
+def test_a_stamp_is_read_out_of_any_serialised_message_but_not_a_field_after_a_string():
+    """A header's stamp lies before its frame: read from messages with other frames."""
+    from nav_msgs.msg import Odometry
+    from rclpy.serialization import serialize_message
+
+    from vd_solvers.conversions import InPlaceMessage
+
+    packed = InPlaceMessage(Odometry())
+    sec, nanosec = packed.slots(['header.stamp.sec']), packed.slots(['header.stamp.nanosec'])
+    for frame, child, s, n in (('odom', 'base_link', 12, 345), ('car2/odom', 'x', 0, 10**9 - 1),
+                               ('', 'a/very/long/child/frame', 2**31 - 1, 0)):
+        msg = Odometry(child_frame_id=child)
+        msg.header.frame_id = frame
+        msg.header.stamp.sec, msg.header.stamp.nanosec = s, n
+        data = serialize_message(msg)
+        assert sec.read(data).tolist() == [s] and nanosec.read(data).tolist() == [n]
+    after = packed.slots(['pose.pose.position.x'])
+    with pytest.raises(ValueError) as err:
+        after.read(serialize_message(Odometry()))
+    assert str(err.value) == ('fields after a string lie where its length puts them: '
+                              'deserialise the message to read them')

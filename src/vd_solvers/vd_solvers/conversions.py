@@ -492,7 +492,9 @@ class InPlaceMessage:
     own; ``Slots.write`` puts values there, and :meth:`data` is the serialised message,
     for ``Publisher.publish`` (which sends bytes as they are: no conversion, no
     serialisation). The fields are double, int32 or uint32 (IN_PLACE_TYPES), named by
-    their dotted path (``pose.pose.position.x``).
+    their dotted path (``pose.pose.position.x``). ``Slots.read`` takes the same fields
+    out of a received message (a raw subscription's bytes) when no string comes before
+    them: a header's stamp.
     """
 
     def __init__(self, template) -> None:
@@ -518,6 +520,13 @@ class InPlaceMessage:
         if len(data) != len(self._buffer):
             raise ValueError(f'{type(self.template).__name__}: the serialised size depends on '
                              f'the values of {", ".join(fields)}')
+        offsets = self._find(data, fields, sentinels, dtype)
+        _lengthen_strings(probe)  # the offsets of fields after a string move with it
+        fixed = offsets == self._find(serialize_message(probe), fields, sentinels, dtype)
+        return Slots(self._bytes, np.array(offsets), dtype, fixed)
+
+    def _find(self, data: bytes, fields: Sequence[str], sentinels: list,
+              dtype: np.dtype) -> list[int]:
         offsets = []
         for f, value in zip(fields, sentinels):
             pattern = np.array([value], dtype=dtype).tobytes()
@@ -526,7 +535,7 @@ class InPlaceMessage:
                 raise ValueError(f'{type(self.template).__name__}: field {f} not found once '
                                  'in the serialised message')
             offsets.append(at)
-        return Slots(self._bytes, np.array(offsets), dtype)
+        return offsets
 
     def data(self) -> bytes:
         """Return the serialised message with the values written so far."""
@@ -560,14 +569,26 @@ class InPlaceMessage:
         return int(0x5A5A0000 + i) if dtype.kind == 'u' else int(0x3A5A0000 + i)
 
 
+def _lengthen_strings(msg) -> None:
+    """Add characters to every string field of ``msg`` and of the messages it holds."""
+    for name, kind in msg.get_fields_and_field_types().items():
+        value = getattr(msg, name)
+        if kind == 'string':
+            setattr(msg, name, value + 'abcde')
+        elif hasattr(value, 'get_fields_and_field_types'):
+            _lengthen_strings(value)
+
+
 class Slots:
     """The byte positions of a group of fields of an :class:`InPlaceMessage`, one type."""
 
-    def __init__(self, data: np.ndarray, offsets: np.ndarray, dtype: np.dtype) -> None:
+    def __init__(self, data: np.ndarray, offsets: np.ndarray, dtype: np.dtype,
+                 fixed: bool) -> None:
         self._data = data
         self._index = (offsets[:, None] + np.arange(dtype.itemsize)).ravel()
         self._values = np.zeros(len(offsets), dtype=dtype)
         self._raw = self._values.view(np.uint8)
+        self.fixed = fixed  # no string before the fields: the same offsets in every message
 
     def __len__(self) -> int:
         return len(self._values)
@@ -576,6 +597,13 @@ class Slots:
         """Write ``values`` (one per field, in the order of the fields) into the message."""
         self._values[:] = values
         self._data[self._index] = self._raw
+
+    def read(self, data: bytes) -> np.ndarray:
+        """Return the fields' values in ``data``, a serialised message of the same type."""
+        if not self.fixed:
+            raise ValueError('fields after a string lie where its length puts them: '
+                             'deserialise the message to read them')
+        return np.frombuffer(data, dtype=np.uint8)[self._index].view(self._values.dtype)
 
 
 def kc_wheel_frame(axle: str, side: str) -> str:
