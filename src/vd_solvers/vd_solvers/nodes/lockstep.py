@@ -182,10 +182,11 @@ class LockstepSession:
         """
         Serialise the per-step messages once; each step rewrites their numbers in place.
 
-        /clock, the state and the odometry are published every step: built from a message
-        object field by field they cost more than the model step (docs/ros-api.md,
-        timing). Their strings and frames are set here; a wheel field the model does
-        not give is NaN. The row and wheel indices map the Stepper's arrays to the fields.
+        /clock, the state and the odometry are published every step: built from message
+        objects field by field, converted and serialised by rclpy, they cost about as
+        much as the model step (docs/ros-api.md, timing). Their strings and frames are set
+        here; a wheel field the model does not give is NaN. The row and wheel indices map
+        the Stepper's arrays to the fields.
         """
         odom_frame = self.frame_prefix + ODOM_FRAME
         self._clock = InPlaceMessage(Clock())
