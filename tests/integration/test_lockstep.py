@@ -142,6 +142,122 @@ def test_a_command_for_the_current_step_advances_one_step_and_a_stale_one_is_dro
     assert h.session.stepper.step == 2 and h.session.active
 
 
+def _leaves(msg, prefix: str = '') -> dict:
+    """Return every leaf field of a message by its dotted path (arrays as lists)."""
+    out = {}
+    for name in msg.get_fields_and_field_types():
+        value = getattr(msg, name)
+        if hasattr(value, 'get_fields_and_field_types'):
+            out.update(_leaves(value, f'{prefix}{name}.'))
+        else:
+            out[prefix + name] = value.tolist() if hasattr(value, 'tolist') else value
+    return out
+
+
+def _assert_same_fields(got, want, rel: float = 0.0) -> None:
+    """Every field equal (NaN to NaN), floats to ``rel``."""
+    a, b = _leaves(got), _leaves(want)
+    assert a.keys() == b.keys()
+    for key, value in b.items():
+        if isinstance(value, float):
+            assert (math.isnan(a[key]) and math.isnan(value)) or \
+                math.isclose(a[key], value, rel_tol=rel, abs_tol=1e-300), (key, a[key], value)
+        else:
+            assert a[key] == value, (key, a[key], value)
+
+
+def _fresh(session):
+    """
+    Build the session's current /clock, state and odometry as message objects, field by field.
+
+    The reference for the messages the session rewrites in place: the state from the
+    Stepper's named values, the odometry's quaternion from scipy's z-y-x Euler rotation.
+    """
+    from builtin_interfaces.msg import Time
+    from nav_msgs.msg import Odometry
+    from rosgraph_msgs.msg import Clock
+    from scipy.spatial.transform import Rotation
+
+    from vd_interfaces.msg import VehicleState, VehicleWheel
+    from vd_solvers.conversions import VEHICLE_WHEELS, WHEEL_FIELDS
+    from vd_solvers.nodes.lockstep import STATE_FIELDS
+
+    stepper = session.stepper
+    s, wheels = stepper.state(), stepper.wheels()
+    ns = stepper.step * session.h_ns
+    stamp = Time(sec=ns // 10**9, nanosec=ns % 10**9)
+    state = VehicleState(event='lockstep', configuration=session.configuration,
+                         model='vehicle', step=stepper.step)
+    state.header.stamp, state.header.frame_id = stamp, 'odom'
+    for name in STATE_FIELDS:
+        setattr(state, name, s[name])
+    for w, wheel in enumerate(VEHICLE_WHEELS):
+        setattr(state, wheel, VehicleWheel(**{
+            f: float(wheels[c][w]) if c in wheels else math.nan
+            for f, (c, _) in WHEEL_FIELDS.items()}))
+    odom = Odometry(child_frame_id='base_link')
+    odom.header.stamp, odom.header.frame_id = stamp, 'odom'
+    odom.pose.covariance[0] = odom.twist.covariance[0] = -1.0  # unknown (REP 145)
+    p, o = odom.pose.pose.position, odom.pose.pose.orientation
+    p.x, p.y, p.z = s['x'], s['y'], float(stepper.q[2])
+    o.x, o.y, o.z, o.w = Rotation.from_euler(
+        'ZYX', [s['yaw'], s['pitch'], s['roll']]).as_quat().tolist()
+    t = odom.twist.twist
+    t.linear.x = s['speed'] * math.cos(s['sideslip'])
+    t.linear.y = s['speed'] * math.sin(s['sideslip'])
+    t.angular.z = s['yaw_rate']
+    return Clock(clock=stamp), state, odom
+
+
+def test_the_messages_rewritten_in_place_equal_messages_built_fresh_at_every_step(harness):
+    """
+    /clock, the state and the odometry of each step, as a subscriber in the process gets them.
+
+    The session reuses one serialised message per topic; every message received is kept
+    until the end, so a later step's rewrite showing through an earlier message (the
+    publisher's buffer aliased by the subscriber) would fail the comparison.
+    """
+    from nav_msgs.msg import Odometry
+    from rosgraph_msgs.msg import Clock
+
+    from vd_data_server.ros.qos import CLOCK, STATES
+    from vd_interfaces.msg import VehicleState
+
+    h = harness()
+    got: dict[str, list] = {'clock': [], 'state': [], 'odom': []}
+    for key, kind, topic, qos in (('clock', Clock, '/clock', CLOCK),
+                                  ('state', VehicleState, '/vd/vehicle/state', STATES),
+                                  ('odom', Odometry, '/vd/vehicle/odom', STATES)):
+        h.node.create_subscription(kind, topic, got[key].append, qos)
+
+    def received(k: int) -> bool:
+        ns = k * h.session.h_ns
+        return (any(m.step == k for m in got['state'])
+                and any(m.header.stamp.sec * 10**9 + m.header.stamp.nanosec == ns
+                        for m in got['odom'])
+                and any(m.clock.sec * 10**9 + m.clock.nanosec == ns for m in got['clock']))
+
+    h.session.reset()  # step 0 again, now that the subscriptions are there
+    steps, expected = 8, []
+    for k in range(steps + 1):
+        h.spin_until(lambda: received(k))
+        assert received(k), k
+        expected.append(_fresh(h.session))
+        if k < steps:
+            h.command(k * 0.005, steering_wheel_angle=0.04 * k, drive_torque=150.0 * (k % 3),
+                      brake_torque=100.0 * (k == 5))
+    for k, (clock, state, odom) in enumerate(expected):
+        ns = k * h.session.h_ns
+        for m in got['state']:
+            if m.step == k:
+                _assert_same_fields(m, state)
+        for m in got['odom']:
+            if m.header.stamp.sec * 10**9 + m.header.stamp.nanosec == ns:
+                _assert_same_fields(m, odom, rel=1e-12)
+        assert [m for m in got['clock'] if m.clock == clock.clock]
+    assert len({m.step for m in got['state']}) >= steps + 1
+
+
 @pytest.mark.parametrize('fields, t, message', [
     ({'steering_wheel_angle': math.nan}, 0.0,
      'command for t = 0.000000 s refused: steering_wheel_angle is not finite (nan)'),

@@ -230,3 +230,103 @@ def test_kc_outcome_without_wheel_centres_has_no_frames(sedan):
     gap['wheel_centre_x_left'] = Channel('m', values)
     assert not has_wheel_frames({k: c.values for k, c in gap.items()})
     assert outcome_kc_transforms(dataclasses.replace(outcome, channels=gap), START) == []
+
+
+# --- messages rewritten in place -------------------------------------------------
+
+
+def test_a_message_rewritten_in_place_equals_one_built_fresh_with_the_same_values():
+    """
+    The bytes of an InPlaceMessage are those rclpy serialises for a fresh message.
+
+    Several rounds of values (NaN, extremes of the integer types among them) are written
+    into one reused message; each round's bytes deserialise to a message equal, field by
+    field, to an Odometry built fresh with those values (the bytes themselves may differ
+    in the CDR padding, which carries no value).
+    """
+    from nav_msgs.msg import Odometry
+    from rclpy.serialization import deserialize_message
+
+    from vd_solvers.conversions import InPlaceMessage
+
+    doubles = ('pose.pose.position.x', 'pose.pose.orientation.w', 'twist.twist.angular.z',
+               'twist.twist.linear.y')
+    template = Odometry(child_frame_id='car2/base_link')
+    template.header.frame_id = 'car2/odom'
+    template.pose.covariance[0] = -1.0
+    packed = InPlaceMessage(template)
+    values, seconds = packed.slots(doubles), packed.slots(['header.stamp.sec'])
+    nanoseconds = packed.slots(['header.stamp.nanosec'])
+    rng = np.random.default_rng(7)
+    rounds = [(rng.normal(size=4) * 10.0 ** rng.integers(-5, 6, size=4), int(s), int(n))
+              for s, n in zip(rng.integers(0, 2**31, size=5), rng.integers(0, 10**9, size=5))]
+    rounds += [(np.array([np.nan, -0.0, np.inf, 5e-324]), 2**31 - 1, 2**32 - 1),
+               (np.zeros(4), -2**31, 0)]
+    for floats, sec, nanosec in rounds:
+        values.write(floats)
+        seconds.write(sec)
+        nanoseconds.write(nanosec)
+        fresh = Odometry(child_frame_id='car2/base_link')
+        fresh.header.frame_id = 'car2/odom'
+        fresh.header.stamp.sec, fresh.header.stamp.nanosec = sec, nanosec
+        fresh.pose.covariance[0] = -1.0
+        (fresh.pose.pose.position.x, fresh.pose.pose.orientation.w,
+         fresh.twist.twist.angular.z, fresh.twist.twist.linear.y) = floats.tolist()
+        back = deserialize_message(packed.data(), Odometry)
+        assert _flat(back).keys() == _flat(fresh).keys()
+        for key, value in _flat(fresh).items():
+            np.testing.assert_array_equal(_flat(back)[key], value, err_msg=key)
+
+
+def _flat(msg, prefix: str = '') -> dict:
+    """Return every leaf field of a message by its dotted path."""
+    out = {}
+    for name in msg.get_fields_and_field_types():
+        value = getattr(msg, name)
+        if hasattr(value, 'get_fields_and_field_types'):
+            out.update(_flat(value, f'{prefix}{name}.'))
+        else:
+            out[prefix + name] = value
+    return out
+
+
+@pytest.mark.parametrize('fields, message', [
+    (['header.frame_id'], 'Odometry: field header.frame_id is string; in place: double, '
+                          'int32, uint32'),
+    (['pose.pose.position.w'], 'Odometry: field pose.pose.position.w is not a field; in '
+                               'place: double, int32, uint32'),
+    (['header.stamp.sec', 'pose.pose.position.x'],
+     'Odometry: fields header.stamp.sec, pose.pose.position.x are not of one type '
+     '(double, int32)'),
+])
+def test_a_field_that_cannot_be_rewritten_in_place_is_refused_by_name(fields, message):
+    from nav_msgs.msg import Odometry
+
+    from vd_solvers.conversions import InPlaceMessage
+
+    with pytest.raises(ValueError) as err:
+        InPlaceMessage(Odometry()).slots(fields)
+    assert str(err.value) == message
+
+
+def test_a_stamp_is_read_out_of_any_serialised_message_but_not_a_field_after_a_string():
+    """A header's stamp lies before its frame: read from messages with other frames."""
+    from nav_msgs.msg import Odometry
+    from rclpy.serialization import serialize_message
+
+    from vd_solvers.conversions import InPlaceMessage
+
+    packed = InPlaceMessage(Odometry())
+    sec, nanosec = packed.slots(['header.stamp.sec']), packed.slots(['header.stamp.nanosec'])
+    for frame, child, s, n in (('odom', 'base_link', 12, 345), ('car2/odom', 'x', 0, 10**9 - 1),
+                               ('', 'a/very/long/child/frame', 2**31 - 1, 0)):
+        msg = Odometry(child_frame_id=child)
+        msg.header.frame_id = frame
+        msg.header.stamp.sec, msg.header.stamp.nanosec = s, n
+        data = serialize_message(msg)
+        assert sec.read(data).tolist() == [s] and nanosec.read(data).tolist() == [n]
+    after = packed.slots(['pose.pose.position.x'])
+    with pytest.raises(ValueError) as err:
+        after.read(serialize_message(Odometry()))
+    assert str(err.value) == ('fields after a string lie where its length puts them: '
+                              'deserialise the message to read them')

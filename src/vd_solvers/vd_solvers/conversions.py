@@ -18,6 +18,7 @@ leaves out the channels that are NaN at every step.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+import copy
 import math
 import threading
 
@@ -25,6 +26,7 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Point, TransformStamped, Vector3
 from nav_msgs.msg import Odometry
 import numpy as np
+from rclpy.serialization import serialize_message
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
@@ -458,16 +460,150 @@ def _odometry_transforms(odometry: Sequence) -> list:
     return out
 
 
-def set_quaternion(q, roll: float, pitch: float, yaw: float):
-    """Fill the quaternion ``q`` (geometry_msgs) with z-y-x (yaw, pitch, roll) Euler angles."""
+def quaternion(roll: float, pitch: float, yaw: float) -> tuple[float, float, float, float]:
+    """Return the quaternion (x, y, z, w) of z-y-x (yaw, pitch, roll) Euler angles, rad."""
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
     cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
     cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    q.w = cr * cp * cy + sr * sp * sy
-    q.x = sr * cp * cy - cr * sp * sy
-    q.y = cr * sp * cy + sr * cp * sy
-    q.z = cr * cp * sy - sr * sp * cy
+    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+
+
+def set_quaternion(q, roll: float, pitch: float, yaw: float):
+    """Fill the quaternion ``q`` (geometry_msgs) with z-y-x (yaw, pitch, roll) Euler angles."""
+    q.x, q.y, q.z, q.w = quaternion(roll, pitch, yaw)
     return q
+
+
+#: numpy type (little-endian, as the CDR_LE encapsulation says) of the fields that
+#: :class:`InPlaceMessage` rewrites, by ROS type
+IN_PLACE_TYPES = {'double': '<f8', 'int32': '<i4', 'uint32': '<u4'}
+
+
+class InPlaceMessage:
+    """
+    A message serialised once, whose numeric fields are then rewritten in its bytes.
+
+    A message published every step at a high rate costs more to build and to convert
+    (Python attribute by attribute, then CDR) than to send. This one is serialised once,
+    by rclpy, from ``template`` (strings, frames and the other fields stay as they are
+    there); :meth:`slots` gives the byte positions of a group of fields, found by
+    serialising the template with a distinct sentinel in each, so the layout is rclpy's
+    own; ``Slots.write`` puts values there, and :meth:`data` is the serialised message,
+    for ``Publisher.publish`` (which sends bytes as they are: no conversion, no
+    serialisation). The fields are double, int32 or uint32 (IN_PLACE_TYPES), named by
+    their dotted path (``pose.pose.position.x``). ``Slots.read`` takes the same fields
+    out of a received message (a raw subscription's bytes) when no string comes before
+    them: a header's stamp.
+    """
+
+    def __init__(self, template) -> None:
+        self.template = copy.deepcopy(template)
+        self._buffer = bytearray(serialize_message(self.template))
+        if not self._buffer[1] & 1:
+            raise ValueError(f'{type(template).__name__}: serialised big-endian, expected '
+                             'CDR_LE')
+        self._bytes = np.frombuffer(self._buffer, dtype=np.uint8)
+
+    def slots(self, fields: Sequence[str]) -> Slots:
+        """Return where ``fields`` (dotted paths, one ROS type) lie in the message's bytes."""
+        kinds = {self._type_of(f) for f in fields}
+        if len(kinds) != 1:
+            raise ValueError(f'{type(self.template).__name__}: fields {", ".join(fields)} '
+                             f'are not of one type ({", ".join(sorted(kinds))})')
+        dtype = np.dtype(IN_PLACE_TYPES[kinds.pop()])
+        probe = copy.deepcopy(self.template)
+        sentinels = [self._sentinel(dtype, i) for i in range(len(fields))]
+        for f, value in zip(fields, sentinels):
+            self._set(probe, f, value)
+        data = serialize_message(probe)
+        if len(data) != len(self._buffer):
+            raise ValueError(f'{type(self.template).__name__}: the serialised size depends on '
+                             f'the values of {", ".join(fields)}')
+        offsets = self._find(data, fields, sentinels, dtype)
+        _lengthen_strings(probe)  # the offsets of fields after a string move with it
+        fixed = offsets == self._find(serialize_message(probe), fields, sentinels, dtype)
+        return Slots(self._bytes, np.array(offsets), dtype, fixed)
+
+    def _find(self, data: bytes, fields: Sequence[str], sentinels: list,
+              dtype: np.dtype) -> list[int]:
+        offsets = []
+        for f, value in zip(fields, sentinels):
+            pattern = np.array([value], dtype=dtype).tobytes()
+            at = data.find(pattern)
+            if at < 0 or data.find(pattern, at + 1) >= 0:
+                raise ValueError(f'{type(self.template).__name__}: field {f} not found once '
+                                 'in the serialised message')
+            offsets.append(at)
+        return offsets
+
+    def data(self) -> bytes:
+        """Return the serialised message with the values written so far."""
+        return bytes(self._buffer)
+
+    def _type_of(self, path: str) -> str:
+        msg, _, name = self._parent(self.template, path)
+        kind = msg.get_fields_and_field_types().get(name)
+        if kind not in IN_PLACE_TYPES:
+            raise ValueError(f'{type(self.template).__name__}: field {path} is '
+                             f'{kind or "not a field"}; in place: '
+                             f'{", ".join(IN_PLACE_TYPES)}')
+        return kind
+
+    @staticmethod
+    def _parent(msg, path: str):
+        *parents, name = path.split('.')
+        for p in parents:
+            msg = getattr(msg, p)
+        return msg, parents, name
+
+    def _set(self, msg, path: str, value) -> None:
+        parent, _, name = self._parent(msg, path)
+        setattr(parent, name, value)
+
+    @staticmethod
+    def _sentinel(dtype: np.dtype, i: int):
+        """Return the i-th value of a type whose bytes no ordinary message field holds."""
+        if dtype.kind == 'f':
+            return float(np.float64(-1.2345678901234567e-281) * (i + 1))
+        return int(0x5A5A0000 + i) if dtype.kind == 'u' else int(0x3A5A0000 + i)
+
+
+def _lengthen_strings(msg) -> None:
+    """Add characters to every string field of ``msg`` and of the messages it holds."""
+    for name, kind in msg.get_fields_and_field_types().items():
+        value = getattr(msg, name)
+        if kind == 'string':
+            setattr(msg, name, value + 'abcde')
+        elif hasattr(value, 'get_fields_and_field_types'):
+            _lengthen_strings(value)
+
+
+class Slots:
+    """The byte positions of a group of fields of an :class:`InPlaceMessage`, one type."""
+
+    def __init__(self, data: np.ndarray, offsets: np.ndarray, dtype: np.dtype,
+                 fixed: bool) -> None:
+        self._data = data
+        self._index = (offsets[:, None] + np.arange(dtype.itemsize)).ravel()
+        self._values = np.zeros(len(offsets), dtype=dtype)
+        self._raw = self._values.view(np.uint8)
+        self.fixed = fixed  # no string before the fields: the same offsets in every message
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def write(self, values) -> None:
+        """Write ``values`` (one per field, in the order of the fields) into the message."""
+        self._values[:] = values
+        self._data[self._index] = self._raw
+
+    def read(self, data: bytes) -> np.ndarray:
+        """Return the fields' values in ``data``, a serialised message of the same type."""
+        if not self.fixed:
+            raise ValueError('fields after a string lie where its length puts them: '
+                             'deserialise the message to read them')
+        return np.frombuffer(data, dtype=np.uint8)[self._index].view(self._values.dtype)
 
 
 def kc_wheel_frame(axle: str, side: str) -> str:

@@ -119,6 +119,9 @@ def _dynamics(q: np.ndarray, v: np.ndarray, arrays: VehicleArrays) -> None:
     zeros, ones = np.zeros(4), np.ones(4)
     dynamics.vehicle_step(q, v, 0.1, zeros.copy(), np.zeros((2, 4)), np.zeros((4, 4)), False,
                           0.005, arrays, 1.0, 1500.0, True, True, mb)
+    dynamics.cosim_step(q.copy(), v.copy(), np.zeros((2, 4)), np.zeros((4, 4)), False,
+                        np.zeros((9, 4)), np.zeros(dynamics.ROW_SIZE + 2), 0.1, 1.0, 0.0, 0.5,
+                        0.65, 0.005, 0.005, arrays, 1.0, 1500.0, True, True, mb, np.zeros(3))
     dynamics.observation(q, v)
     dynamics.record_row(q, v, 0.0, 0.0, np.zeros((9, 4)), np.zeros(3), 0.0)
     wheel_torques(1.0, 0.5, 0.65, zeros.copy())

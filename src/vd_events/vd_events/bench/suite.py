@@ -402,7 +402,7 @@ def print_bench(results: dict[str, Any]) -> None:
     for name, r in results.get('lockstep', {}).items():
         us = r['us_per_step']
         rows.append((f'lock-step over DDS, events executor ({name})',
-                     f"{r['steps_per_second']:.0f} steps/s", '>= 1000'))
+                     f"{r['steps_per_second']:.0f} steps/s", '>= 2000'))
         rows.append(('  per step: model, messages, DDS + executor + controller',
                      f"{us['model']:.0f} / {us['publish']:.0f} / {us['rest']:.0f} us", ''))
     for name, r in results.get('sine_with_dwell', {}).items():

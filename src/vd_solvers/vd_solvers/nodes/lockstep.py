@@ -50,6 +50,7 @@ from ackermann_msgs.msg import AckermannDriveStamped
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseWithCovarianceStamped, TransformStamped, Twist
 from nav_msgs.msg import Odometry
+import numpy as np
 from rclpy.node import Node
 from rclpy.publisher import Publisher
 from rclpy.service import Service
@@ -63,13 +64,19 @@ from tf2_msgs.msg import TFMessage
 from vd_data_server.ros.names import BODY_FRAME, ODOM_FRAME
 from vd_data_server.ros.qos import CLOCK, COMMANDS, STATES, STATUS, TF_STATIC
 from vd_interfaces.msg import VehicleCommand, VehicleState, VehicleWheel
-from vd_solvers.conversions import WHEEL_FIELDS, covariance_unknown, set_quaternion
+from vd_solvers.conversions import (
+    WHEEL_FIELDS,
+    InPlaceMessage,
+    covariance_unknown,
+    quaternion,
+)
 from vd_solvers.errors import SolverError
 from vd_solvers.vehicle.actuators import Actuators, Setpoint, check_setpoint, twist_setpoint
-from vd_solvers.vehicle.cosim import Command, CommandError, Stepper, check_command
+from vd_solvers.vehicle.cosim import STATE_KEYS, Command, CommandError, Stepper, check_command
 from vd_solvers.vehicle.description import Description, joint_positions
 from vd_solvers.vehicle.description import transform as joint_transform
 from vd_solvers.vehicle.maps import WHEELS
+from vd_solvers.vehicle.simulation import WHEEL_ROW
 
 #: relative: in the node's namespace (/vd/vehicle/command by default)
 COMMAND_TOPIC = 'vehicle/command'
@@ -80,6 +87,11 @@ TWIST_TOPIC = 'cmd_vel'
 STATE_FIELDS = ('time', 'x', 'y', 'yaw', 'roll', 'pitch', 'yaw_rate', 'speed', 'sideslip',
                 'lateral_acceleration', 'longitudinal_acceleration', 'steering_wheel_angle',
                 'wheel_torque')
+#: Odometry fields filled from the Stepper state (:func:`odometry_values`)
+ODOMETRY_FIELDS = ('pose.pose.position.x', 'pose.pose.position.y', 'pose.pose.position.z',
+                   'pose.pose.orientation.x', 'pose.pose.orientation.y',
+                   'pose.pose.orientation.z', 'pose.pose.orientation.w',
+                   'twist.twist.linear.x', 'twist.twist.linear.y', 'twist.twist.angular.z')
 STATUS_TOPIC = 'vehicle/lockstep_status'
 #: the robot description of the vehicle (URDF, latched) and its joints, relative
 ROBOT_DESCRIPTION_TOPIC = 'robot_description'
@@ -148,14 +160,7 @@ class LockstepSession:
                 node.create_subscription(PoseWithCovarianceStamped, INITIAL_POSE_TOPIC,
                                          self._on_initial_pose, COMMANDS)):
             self._own(entity)
-        self._state_msg = VehicleState(event='lockstep', configuration=configuration,
-                                       model='vehicle')
-        self._state_msg.header.frame_id = frame_prefix + ODOM_FRAME
-        self._wheel_msgs = [VehicleWheel() for _ in WHEELS]
-        for wheel, m in zip(WHEELS, self._wheel_msgs):
-            setattr(self._state_msg, wheel, m)
-        self._wheel_msgs = [getattr(self._state_msg, wheel) for wheel in WHEELS]
-        self._odom_msg = covariance_unknown(Odometry())
+        self._messages()
         self._tf_msg = TFMessage(transforms=[TransformStamped()])
         self._tf_readers = 0  # /tf subscriptions matched when /tf was last published
         self.description = description
@@ -172,6 +177,44 @@ class LockstepSession:
         else:
             self.timer = self._own(node.create_timer(REPEAT_PERIOD, self._watchdog))
         self.controllers = self._own(node.create_timer(REPEAT_PERIOD, self._check_controllers))
+
+    def _messages(self) -> None:
+        """
+        Serialise the per-step messages once; each step rewrites their numbers in place.
+
+        /clock, the state and the odometry are published every step: built from message
+        objects field by field, converted and serialised by rclpy, they cost about as
+        much as the model step (docs/ros-api.md, timing). Their strings and frames are set
+        here; a wheel field the model does not give is NaN. The row and wheel indices map
+        the Stepper's arrays to the fields.
+        """
+        odom_frame = self.frame_prefix + ODOM_FRAME
+        self._clock = InPlaceMessage(Clock())
+        state = VehicleState(event='lockstep', configuration=self.configuration,
+                             model='vehicle')
+        state.header.frame_id = odom_frame
+        wheel_fields, wheel_index = [], []
+        for w, wheel in enumerate(WHEELS):
+            msg = VehicleWheel()
+            for f, (channel, _) in WHEEL_FIELDS.items():
+                if channel in WHEEL_ROW:
+                    wheel_fields.append(f'{wheel}.{f}')
+                    wheel_index.append(WHEEL_ROW[channel] * len(WHEELS) + w)
+                else:
+                    setattr(msg, f, math.nan)
+            setattr(state, wheel, msg)
+        self._state = InPlaceMessage(state)
+        self._state_body = self._state.slots(STATE_FIELDS)
+        self._state_wheels = self._state.slots(wheel_fields)
+        self._state_step = self._state.slots(['step'])
+        self._row_index = np.array([STATE_KEYS.index(f) for f in STATE_FIELDS])
+        self._wheel_index = np.array(wheel_index)
+        self._odom_msg = odometry(self.stepper.state(), Time(), None, self.frame_prefix)
+        self._odom = InPlaceMessage(self._odom_msg)
+        self._odom_slots = self._odom.slots(ODOMETRY_FIELDS)
+        self._stamps = [(m.slots([f'{at}.sec']), m.slots([f'{at}.nanosec']))
+                        for m, at in ((self._clock, 'clock'), (self._state, 'header.stamp'),
+                                      (self._odom, 'header.stamp'))]
 
     def _own(self, entity):
         self._entities.append(entity)
@@ -404,31 +447,31 @@ class LockstepSession:
         carries /tf only when a reader joined since it was published (a late joiner).
         """
         c0 = time.perf_counter()
-        stamp = to_stamp(self.now_ns)
-        self.clock_pub.publish(Clock(clock=stamp))
-        s = self.stepper.state()
-        wheels = self.stepper.wheels()
-        # one message object per topic, refilled each step (publish serialises at once)
-        msg = self._state_msg
-        msg.step = self.stepper.step
-        msg.header.stamp = stamp
-        for name in STATE_FIELDS:
-            setattr(msg, name, float(s[name]))
-        for w, wheel in enumerate(self._wheel_msgs):
-            for f, (c, _) in WHEEL_FIELDS.items():  # a field the step lacks stays NaN
-                setattr(wheel, f, float(wheels[c][w]) if c in wheels else math.nan)
-        odom = odometry(s, stamp, self._odom_msg, self.frame_prefix, z=float(self.stepper.q[2]))
-        self.state_pub.publish(msg)
-        self.odom_pub.publish(odom)
+        stepper = self.stepper
+        sec, nanosec = divmod(self.now_ns, 1_000_000_000)
+        for sec_slot, nanosec_slot in self._stamps:
+            sec_slot.write(sec)
+            nanosec_slot.write(nanosec)
+        self._state_step.write(stepper.step)
+        self._state_body.write(stepper.row[self._row_index])
+        self._state_wheels.write(stepper.wheel_rows.ravel()[self._wheel_index])
+        s = stepper.state()
+        z = float(stepper.q[2])
+        self._odom_slots.write(odometry_values(s, z))
+        self.clock_pub.publish(self._clock.data())
+        self.state_pub.publish(self._state.data())
+        self.odom_pub.publish(self._odom.data())
         # the joints and wheel frames only for whom listens (building them costs a step's
         # share); a reader that joins gets the next step, or the repeat below
         tf_readers = self.tf_pub.get_subscription_count()
         tf_due = tf_readers > 0 and (not repeat or tf_readers > self._tf_readers)
         joints_due = self.description is not None and self.joint_pub.get_subscription_count() > 0
         if tf_due or joints_due:
+            stamp = to_stamp(self.now_ns)
+            odom = odometry(s, stamp, self._odom_msg, self.frame_prefix, z)
             tf = transform(odom, self._tf_msg)
-            positions = (joint_positions(self.description, self.stepper.q,
-                                         wheels['wheel_steer'])
+            positions = (joint_positions(self.description, stepper.q,
+                                         stepper.wheels()['wheel_steer'])
                          if self.description is not None else [])
             if joints_due:
                 joints = self._joint_msg
@@ -508,17 +551,23 @@ def odometry(state, stamp, msg: Odometry | None = None, prefix: str = '',
     msg.header.stamp = stamp
     msg.header.frame_id = prefix + ODOM_FRAME
     msg.child_frame_id = prefix + BODY_FRAME
-    msg.pose.pose.position.x = float(state['x'])
-    msg.pose.pose.position.y = float(state['y'])
-    msg.pose.pose.position.z = z
-    set_quaternion(msg.pose.pose.orientation,
-                   *(float(state[k]) for k in ('roll', 'pitch', 'yaw')))
-    # twist in the child frame (REP 105): the CoG's horizontal velocity in yaw axes
-    beta = float(state['sideslip'])
-    msg.twist.twist.linear.x = float(state['speed']) * math.cos(beta)
-    msg.twist.twist.linear.y = float(state['speed']) * math.sin(beta)
-    msg.twist.twist.angular.z = float(state['yaw_rate'])
+    pose, twist = msg.pose.pose, msg.twist.twist
+    (pose.position.x, pose.position.y, pose.position.z, pose.orientation.x,
+     pose.orientation.y, pose.orientation.z, pose.orientation.w, twist.linear.x,
+     twist.linear.y, twist.angular.z) = odometry_values(state, z)
     return msg
+
+
+def odometry_values(state, z: float = 0.0) -> tuple[float, ...]:
+    """
+    Return the ODOMETRY_FIELDS of a Stepper state (:func:`odometry`), SI.
+
+    The twist is in the child frame (REP 105): the CoG's horizontal velocity in yaw axes.
+    """
+    speed, beta = float(state['speed']), float(state['sideslip'])
+    return (float(state['x']), float(state['y']), z,
+            *quaternion(float(state['roll']), float(state['pitch']), float(state['yaw'])),
+            speed * math.cos(beta), speed * math.sin(beta), float(state['yaw_rate']))
 
 
 def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
@@ -535,5 +584,6 @@ def transform(odom: Odometry, msg: TFMessage | None = None) -> TFMessage:
 
 
 __all__ = ['LockstepSession', 'ACKERMANN_TOPIC', 'COMMAND_TOPIC', 'TWIST_TOPIC', 'STATUS_TOPIC',
-           'claim_clock', 'clock_owners', 'command_from_msg', 'odometry', 'stamp_ns',
+           'claim_clock', 'clock_owners', 'command_from_msg', 'odometry', 'odometry_values',
+           'stamp_ns',
            'to_stamp']

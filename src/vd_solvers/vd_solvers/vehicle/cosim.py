@@ -23,10 +23,13 @@ import pinocchio as pin
 
 from vd_solvers.errors import SolverError
 
-from .drivers import wheel_torques
-from .dynamics import PREVIOUS_ROWS, record_row
-from .model import STEP, VehicleModel, WheelState
-from .simulation import PER_WHEEL, TRACE
+from .dynamics import ROW_SIZE, cosim_step, record_row
+from .model import STEP, VehicleModel
+from .simulation import PER_WHEEL, TRACE, WHEEL_ROW
+
+#: the values of :attr:`Stepper.row`: the recorded channels, then the CoG's accelerations
+STATE_KEYS = TRACE + ('longitudinal_acceleration', 'lateral_acceleration')
+_VX, _VY, _YAW = (TRACE.index(k) for k in ('cog_velocity_x', 'cog_velocity_y', 'yaw'))
 
 #: steering modes of a command (the VehicleCommand constants)
 STEERING_ANGLE, STEERING_TORQUE = 0, 1
@@ -73,7 +76,13 @@ def steering_lock(model: VehicleModel) -> float:
 
 
 class Stepper:
-    """The vehicle state advanced one step at a time (module doc). Not thread-safe."""
+    """
+    The vehicle state advanced one step at a time (module doc). Not thread-safe.
+
+    The state lives in arrays updated in place by each step (one compiled call, no Python
+    objects per step): ``q``, ``v``, :attr:`row` (STATE_KEYS) and :attr:`wheel_rows`
+    (forces.WHEEL_ROWS x FL FR RL RR). Copy them to keep a step's values.
+    """
 
     def __init__(self, model: VehicleModel, h: float = STEP, initial_speed: float = 0.0,
                  drive_front: float = 0.5, brake_front: float = 0.65) -> None:
@@ -84,18 +93,23 @@ class Stepper:
         self.drive_front, self.brake_front = drive_front, brake_front
         self.initial_speed = initial_speed
         self.max_angle = steering_lock(model)
-        self.q, self.v = model.initial_state(initial_speed)
+        self.q, self.v = (np.array(a, dtype=float) for a in model.initial_state(initial_speed))
         self.slip = np.zeros((2, 4))
-        self.previous: np.ndarray | None = None  # the last step's wheel rows PREVIOUS_ROWS
         self.step = 0
         self._cog = np.array(model.config.group('mass').point('sprung_cog'), dtype=float)
-        self._last_swa = 0.0
-        self._last_torque = 0.0
-        self._state: dict[str, float] | None = None  # the current state's row, once built
-        self.wheel: WheelState | None = None
+        # the last step's wheel rows dynamics.PREVIOUS_ROWS (none before the first step)
+        self._previous = np.zeros((4, 4))
+        self._has_previous = False
         # the wheel quantities at the initial state, for the first published state
-        _, self.wheel, _ = self.model.forces(self.q, self.v, 0.0, np.zeros(4), self.slip,
-                                             None, h)
+        _, wheel, _ = self.model.forces(self.q, self.v, 0.0, np.zeros(4), self.slip, None, h)
+        self.wheel_rows = np.ascontiguousarray(np.stack(wheel), dtype=float)
+        self.row = np.zeros(len(STATE_KEYS))
+        self._initial_row()
+
+    def _initial_row(self) -> None:
+        self.row[:ROW_SIZE] = record_row(self.q, self.v, self.time, 0.0, self.wheel_rows,
+                                         self._cog, 0.0)
+        self.row[ROW_SIZE:] = 0.0
 
     def place(self, x: float, y: float, yaw: float) -> None:
         """
@@ -110,11 +124,9 @@ class Stepper:
             if not math.isfinite(value):
                 raise SolverError(f'initial pose: {name} is not finite ({value})')
         roll, pitch, _ = pin.rpy.matrixToRpy(pin.Quaternion(self.q[3:7]).matrix())
-        q = self.q.copy()
-        q[0], q[1] = x, y
-        q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw)).coeffs()
-        self.q = q
-        self._state = None
+        self.q[0], self.q[1] = x, y
+        self.q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw)).coeffs()
+        self._initial_row()
 
     @property
     def time(self) -> float:
@@ -124,55 +136,33 @@ class Stepper:
     def advance(self, command: Command) -> None:
         """Apply ``command`` over one step (refused with CommandError, state unchanged)."""
         check_command(command, self.max_angle)
-        model = self.model
-        spin = np.ascontiguousarray(self.v[7::2])
-        torques = (wheel_torques(float(command.drive_torque), self.drive_front,
-                                 self.brake_front, spin)
-                   + wheel_torques(-float(command.brake_torque), self.drive_front,
-                                   self.brake_front, spin))
-        q, v, slip, wheel = model.step(self.q, self.v, command.steering_wheel_angle, torques,
-                                       self.slip, self.previous, self.h)
-        before = self.state()
-        self._state = None
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+        model, row = self.model, self.row
+        vx, vy = row[_VX], row[_VY]
+        if not cosim_step(self.q, self.v, self.slip, self._previous, self._has_previous,
+                          self.wheel_rows, row, float(command.steering_wheel_angle),
+                          float(command.drive_torque), float(command.brake_torque),
+                          self.drive_front, self.brake_front, (self.step + 1) * self.h,
+                          self.h, model.arrays, model.vx_floor, model.total_mass,
+                          model.options.road, model.options.dampers, model.multibody,
+                          self._cog):
             raise SolverError(f"{model.label('lockstep', self.time + self.h)}: the state "
                               'became non-finite')
-        self.q, self.v, self.slip = q, v, slip
-        self.previous = wheel[PREVIOUS_ROWS]
-        self.wheel = WheelState(*wheel)
+        self._has_previous = True
         self.step += 1
-        self._last_swa = command.steering_wheel_angle
-        self._last_torque = command.drive_torque - command.brake_torque
-        after = self._row()
         # lateral and longitudinal acceleration of the CoG over the step (horizontal, yaw axes)
-        ax = (after['cog_velocity_x'] - before['cog_velocity_x']) / self.h
-        ay = (after['cog_velocity_y'] - before['cog_velocity_y']) / self.h
-        c, s = math.cos(after['yaw']), math.sin(after['yaw'])
-        after['longitudinal_acceleration'] = ax * c + ay * s
-        after['lateral_acceleration'] = -ax * s + ay * c
-        self._state = after
+        ax, ay = (row[_VX] - vx) / self.h, (row[_VY] - vy) / self.h
+        c, s = math.cos(row[_YAW]), math.sin(row[_YAW])
+        row[ROW_SIZE] = ax * c + ay * s
+        row[ROW_SIZE + 1] = -ax * s + ay * c
 
     def state(self) -> dict[str, float]:
-        """Return the TRACE quantities of the current state, plus the accelerations (SI)."""
-        if self._state is None:
-            row = self._row()
-            row['longitudinal_acceleration'] = row['lateral_acceleration'] = 0.0
-            self._state = row
-        return dict(self._state)
-
-    def _row(self) -> dict[str, float]:
-        assert self.wheel is not None
-        row = record_row(self.q, self.v, self.time, float(self._last_swa), np.array(self.wheel),
-                         self._cog, float(self._last_torque))
-        return dict(zip(TRACE, row.tolist()))
+        """Return the STATE_KEYS of the current state (SI): TRACE, then the accelerations."""
+        return dict(zip(STATE_KEYS, self.row.tolist()))
 
     def wheels(self) -> dict[str, np.ndarray]:
         """Return the per-wheel quantities of the last step (PER_WHEEL, arrays FL FR RL RR)."""
-        w = self.wheel
-        assert w is not None
-        return dict(zip(PER_WHEEL, (w.fz, w.travel, w.alpha, w.kappa, w.gamma, w.fx, w.fy,
-                                    w.steer, w.mz)))
+        return {key: self.wheel_rows[WHEEL_ROW[key]] for key in PER_WHEEL}
 
 
-__all__ = ['Command', 'CommandError', 'Stepper', 'check_command', 'steering_lock',
+__all__ = ['Command', 'CommandError', 'Stepper', 'STATE_KEYS', 'check_command', 'steering_lock',
            'STEERING_ANGLE', 'STEERING_TORQUE']

@@ -346,6 +346,40 @@ def record_row(q: np.ndarray, v: np.ndarray, t: float, swa: float, wheel: np.nda
 
 
 @jit
+def cosim_step(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.ndarray,
+               has_previous: bool, wheel: np.ndarray, row: np.ndarray, swa: float,
+               drive: float, brake: float, drive_front: float, brake_front: float, t: float,
+               h: float, c: VehicleArrays, vx_floor: float, total_mass: float, road: bool,
+               dampers: bool, mb: MultibodyArrays, cog: np.ndarray) -> bool:
+    """
+    Advance a lock-step state one step in place: :func:`vehicle_step` under a command.
+
+    The command: steering-wheel angle ``swa`` (rad), total ``drive`` and ``brake`` torques
+    (N*m, >= 0) split by :func:`.drivers.wheel_torques`. Updated in place: ``q``, ``v``,
+    ``slip`` (2, 4), ``previous`` (4, 4, the wheel rows PREVIOUS_ROWS), ``wheel``
+    (WHEEL_ROWS, 4: the wheels' state at the step's start) and ``row[:ROW_SIZE]`` (the
+    recorded channels of the new state, whose time is ``t``, as :func:`record_row`).
+    Returns False, and writes nothing, when the new state is not finite.
+    """
+    spin = np.ascontiguousarray(v[7::2])
+    torques = (wheel_torques(drive, drive_front, brake_front, spin)
+               + wheel_torques(-brake, drive_front, brake_front, spin))
+    q_next, v_next, slip_next, wheel_next = vehicle_step(
+        q, v, swa, torques, slip, previous, has_previous, h, c, vx_floor, total_mass, road,
+        dampers, mb)
+    if not (np.all(np.isfinite(q_next)) and np.all(np.isfinite(v_next))):
+        return False
+    row[:ROW_SIZE] = record_row(q_next, v_next, t, swa, wheel_next, cog, drive - brake)
+    q[:] = q_next
+    v[:] = v_next
+    slip[:] = slip_next
+    wheel[:] = wheel_next
+    for j in range(4):
+        previous[j] = wheel_next[PREVIOUS_ROWS[j]]
+    return True
+
+
+@jit
 def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.ndarray,
                   has_previous: bool, start: int, end: int, last: int, record_every: int,
                   h: float, swa: np.ndarray, pedals: np.ndarray, throttle: np.ndarray,
@@ -410,5 +444,5 @@ def run_open_loop(q: np.ndarray, v: np.ndarray, slip: np.ndarray, previous: np.n
 
 
 __all__ = ['MultibodyArrays', 'multibody_arrays', 'accelerations', 'integrate', 'kappa_next',
-           'vehicle_step', 'advance', 'observation', 'record_row', 'run_open_loop',
-           'PREVIOUS_ROWS', 'KAPPA_ROW', 'ROW_SIZE', 'ACTUATION_SIZE']
+           'vehicle_step', 'cosim_step', 'advance', 'observation', 'record_row',
+           'run_open_loop', 'PREVIOUS_ROWS', 'KAPPA_ROW', 'ROW_SIZE', 'ACTUATION_SIZE']

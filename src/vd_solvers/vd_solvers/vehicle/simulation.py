@@ -73,7 +73,7 @@ PER_WHEEL = ('wheel_load', 'wheel_travel', 'slip_angle', 'slip_ratio', 'inclinat
 ACTUATION = ('throttle', 'gear')
 ACTUATION_WHEEL = ('brake_pressure', 'applied_torque')
 #: the row of the wheels' state (forces.WHEEL_ROWS) each per-wheel channel is
-_WHEEL_ROW = dict(zip(PER_WHEEL, (WHEEL_ROWS.index(k) for k in (
+WHEEL_ROW = dict(zip(PER_WHEEL, (WHEEL_ROWS.index(k) for k in (
     'fz', 'travel', 'alpha', 'kappa', 'gamma', 'fx', 'fy', 'steer', 'mz'))))
 #: recorded rows per call of the compiled loop when a stop or progress needs to see them
 BLOCK_ROWS = 50
@@ -105,7 +105,7 @@ class Trace:
         data = np.concatenate([b[0] for b in self.blocks])
         wheels = np.concatenate([b[1] for b in self.blocks])
         out = {name: data[:, i] for i, name in enumerate(TRACE)}
-        for key, row in _WHEEL_ROW.items():
+        for key, row in WHEEL_ROW.items():
             out[key] = np.ascontiguousarray(wheels[:, row, :])
         if self.actuation:
             scalars = np.array([a[0] for a in self.actuation])
