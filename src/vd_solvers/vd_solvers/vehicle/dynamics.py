@@ -45,7 +45,7 @@ import pinocchio as pin
 from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
-from .drivers import ActuationArrays, actuate, speed_law
+from .drivers import ActuationArrays, actuate, speed_law, wheel_torques
 from .forces import WHEEL_ROWS, VehicleArrays, _rotation, vehicle_forces
 
 #: rows of the wheel array of :func:`.forces.vehicle_forces` the next step's compliances use
