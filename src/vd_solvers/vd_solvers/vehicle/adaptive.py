@@ -103,9 +103,10 @@ STEP_TOLERANCE_PARAM = Param(
 
 def event_tolerance(model: VehicleModel, step_tolerance: float) -> float | None:
     """
-    Return the ``simulate`` tolerance of an event: None (the fixed step) for 0, for a road
-    with relief, and for a configuration with brakes or a driveline (their controllers'
-    state cannot be stepped back when a variable step is rejected).
+    Return the ``simulate`` tolerance of an event (None: the fixed step).
+
+    None for 0, for a road with relief, and for a configuration with brakes or a
+    driveline (their controllers' state cannot be stepped back when a step is rejected).
     """
     chassis = model.chassis
     if step_tolerance <= 0.0 or np.any(model.road.height != 0.0) \
