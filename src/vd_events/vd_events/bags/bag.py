@@ -204,6 +204,55 @@ def offered_qos(path: str | Path) -> dict[str, list]:
     return out
 
 
+def as_offered(profile: QoSProfile) -> QoSProfile:
+    """
+    Return ``profile`` as discovery reports a publisher offering it.
+
+    rmw reports a publisher's unset ("system default") liveliness as automatic and its
+    unset deadline, lifespan and liveliness lease as infinite: a bag written without a
+    live publisher records what one recorded from the graph does.
+    """
+    from rclpy.duration import Infinite
+
+    liveliness = profile.liveliness
+    if liveliness == LivelinessPolicy.SYSTEM_DEFAULT:
+        liveliness = LivelinessPolicy.AUTOMATIC
+    out = QoSProfile(history=profile.history, depth=profile.depth,
+                     reliability=profile.reliability, durability=profile.durability,
+                     liveliness=liveliness,
+                     avoid_ros_namespace_conventions=profile.avoid_ros_namespace_conventions)
+    for name in ('deadline', 'lifespan', 'liveliness_lease_duration'):
+        value = getattr(profile, name)
+        setattr(out, name, Infinite if value.nanoseconds == 0 else value)
+    return out
+
+
+#: a run's bag metadata: what wrote it (``vd run``'s recorder, in the graph or not)
+RECORDER_DATA = {'vd.recorder': 'vd_events recorder'}
+
+
+def provenance_data(msg: Any) -> dict[str, str]:
+    """
+    Return a bag's metadata of a run's vd_interfaces/Provenance.
+
+    ``vd.configuration``, ``vd.data_hash``, ``vd.model``, ``vd.fidelity``, ``vd.event``,
+    ``vd.master_file``, ``vd.software_version`` and ``vd.modified`` (the keys the run's
+    overrides and the master file changed, ``group.key=value unit; ...``, or ``none``).
+    """
+    out = {f'vd.{key}': str(getattr(msg, key)) for key in (
+        'configuration', 'data_hash', 'model', 'fidelity', 'event', 'master_file',
+        'software_version')}
+    out['vd.modified'] = '; '.join(
+        f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
+        for g in msg.groups for k in g.modified_keys) or 'none'
+    return out
+
+
+def cannot_write(path: Path, err: OSError) -> BagError:
+    """Return the error of a bag that cannot be written (a full disk, a read-only mount)."""
+    return BagError(f'{path}: cannot write the bag: {err.strerror or err}')
+
+
 def log_time(msg: Any, fallback_ns: int) -> int:
     """
     Return the log time of ``msg`` in a bag.
@@ -259,7 +308,7 @@ class BagWriter:
             if self._lock >= 0:
                 shutil.rmtree(self.partial, ignore_errors=True)
                 self._unlock()
-            raise BagError(f'{self.path}: cannot write the bag: {err.strerror or err}') from None
+            raise cannot_write(self.path, err) from None
         self._connections: dict[str, Any] = {}
         self.count = 0
 
