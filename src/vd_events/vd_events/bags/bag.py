@@ -28,23 +28,15 @@ import shutil
 from typing import TYPE_CHECKING, Any
 
 from ament_index_python.packages import get_package_share_directory
-from rclpy.duration import Duration
-from rclpy.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    LivelinessPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
-from rclpy.serialization import serialize_message
 
 from vd_data_server.errors import DataError
 from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError
 
-# rosbags is imported where a bag is written or read: a run without a bag (and the
-# command line's start) does not pay for it
+# rosbags and rclpy (the QoS profiles, the serialisation) are imported where a bag is
+# written or read: a run without a bag (and the command line's start) does not pay for them
 if TYPE_CHECKING:
+    from rclpy.qos import QoSProfile
     from rosbags.interfaces import Qos
     from rosbags.typesys.store import Typestore
 
@@ -170,6 +162,8 @@ def offered_profiles(node: Any, topic: str, own: QoSProfile) -> list[QoSProfile]
     profile vd publishes the topic with, vd_data_server.ros.qos); with no publisher
     discovered yet, ``[own]``.
     """
+    from rclpy.qos import HistoryPolicy
+
     out = []
     for info in node.get_publishers_info_by_topic(topic):
         q = info.qos_profile
@@ -185,6 +179,14 @@ def offered_qos(path: str | Path) -> dict[str, list]:
 
     What ``ros2 bag play`` publishes with.
     """
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
 
     def duration(d) -> Duration:
         return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
@@ -213,6 +215,7 @@ def as_offered(profile: QoSProfile) -> QoSProfile:
     live publisher records what one recorded from the graph does.
     """
     from rclpy.duration import Infinite
+    from rclpy.qos import LivelinessPolicy, QoSProfile
 
     liveliness = profile.liveliness
     if liveliness == LivelinessPolicy.SYSTEM_DEFAULT:
@@ -277,7 +280,10 @@ class BagWriter:
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
         # imported before the partial folder exists: a signal during the import
         # leaves nothing behind
+        from rclpy.serialization import serialize_message
         from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
+
+        self._serialize = serialize_message
 
         writer_class = _writer_class()
         self.path = Path(path)
@@ -331,7 +337,7 @@ class BagWriter:
                 topic, msgtype, typestore=typestore(),
                 offered_qos_profiles=[qos_record(q) for q in qos])
             self._connections[topic] = conn
-        self._writer.write(conn, int(timestamp_ns), serialize_message(msg))
+        self._writer.write(conn, int(timestamp_ns), self._serialize(msg))
         self.count += 1
 
     def close(self) -> Path:

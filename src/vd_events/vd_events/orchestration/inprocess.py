@@ -24,16 +24,7 @@ import time
 
 from vd_data_server.conversions import configuration_to_msg, study_to_status_msg
 from vd_data_server.ros import names
-from vd_data_server.ros.qos import profile_of
 from vd_data_server.study import Study, load_study
-from vd_events.bags.bag import (
-    RECORDER_DATA,
-    BagWriter,
-    as_offered,
-    cannot_write,
-    log_time,
-    provenance_data,
-)
 from vd_events.errors import BagError, Interrupted, RunError
 from vd_events.orchestration.requests import (
     Phases,
@@ -51,50 +42,6 @@ from vd_solvers.conversions import (
     time_msg,
 )
 from vd_solvers.solve import GoalFailed, provenance_groups, run_function, solve_goal, throttled
-
-
-class RunBag:
-    """
-    One run's bag, written as the recorder writes it from the graph.
-
-    Created as ``<bag>.partial`` (BagError: the path cannot be written); :meth:`start`
-    writes the run's configuration and the data status (the latched topics the recorder
-    receives first), :meth:`finish` the provenance and the run's messages and gives the
-    bag its final name; :meth:`abort` removes the partial bag.
-    """
-
-    def __init__(self, path: Path, namespace: str) -> None:
-        self.namespace = namespace
-        self.writer = BagWriter(path, RECORDER_DATA)
-        self._qos: dict[str, list] = {}
-
-    def start(self, configuration, status) -> None:
-        self._write([(names.CONFIGURATION, configuration), (names.DATA_STATUS, status)])
-
-    def finish(self, provenance, messages: Sequence[tuple[str, object]]) -> Path:
-        """Write the run's provenance and messages, close the bag and return its path."""
-        for key, value in provenance_data(provenance).items():
-            self.writer.set_custom_data(key, value)
-        self._write([(names.PROVENANCE, provenance), *messages])
-        try:
-            return self.writer.close()
-        except OSError as err:
-            raise cannot_write(self.writer.path, err) from None
-
-    def abort(self) -> None:
-        self.writer.abort()
-
-    def _write(self, messages: Sequence[tuple[str, object]]) -> None:
-        try:
-            for topic, msg in messages:
-                bag_topic = topic if topic.startswith('/') else names.resolve(self.namespace,
-                                                                              topic)
-                if bag_topic not in self._qos:  # what the topic's publisher in the graph offers
-                    self._qos[bag_topic] = [as_offered(profile_of(bag_topic))]
-                self.writer.write(bag_topic, msg, log_time(msg, time.time_ns()),
-                                  self._qos[bag_topic])
-        except OSError as err:
-            raise cannot_write(self.writer.path, err) from None
 
 
 def run_inprocess(master: Path, requests: Sequence[RunRequest],
@@ -124,6 +71,9 @@ def run_inprocess(master: Path, requests: Sequence[RunRequest],
         t0 = time.perf_counter()
         try:
             if request.bag is not None:
+                # imported for a run with a bag only: it imports rclpy and rosbags
+                from vd_events.bags.run_bag import RunBag
+
                 bag = RunBag(request.bag, namespace)  # a path refused: no run starts
                 bag.start(configuration_to_msg(base, time_msg(time.time_ns())), status)
             clock.lap('record')
@@ -171,4 +121,4 @@ def run_inprocess(master: Path, requests: Sequence[RunRequest],
     return outcomes
 
 
-__all__ = ['run_inprocess', 'RunBag']
+__all__ = ['run_inprocess']
