@@ -163,11 +163,10 @@ def _bench_embedded(master: Path) -> dict[str, float]:
             'goal_to_result_s': outcome.timings['run']}
 
 
-#: the command ``bench_cli`` times (one K&C event through the embedded ROS graph)
+#: the command ``bench_cli`` times (one K&C event, solved in-process without a ROS graph)
 CLI_RUN = ('run', 'parallel_wheel_travel', '--axle', 'front', '--model', 'kc', '--json')
 #: the phases of ``vd run --json``'s timings, in order (seconds)
-CLI_PHASES = ('load_and_validate', 'imports', 'graph_start', 'discovery', 'record', 'solve',
-              'shutdown')
+CLI_PHASES = ('load_and_validate', 'record', 'solve')
 #: the reference of the command's CPU time: a new Python process that imports rclpy
 RCLPY_IMPORT = ('-c', 'import rclpy')
 
@@ -179,8 +178,8 @@ def bench_cli(repeats: int = REPEATS) -> dict[str, float]:
     A new process each time (the median of ``repeats``): ``total`` is its wall time;
     ``startup`` is what passes before the command starts (interpreter, imports of the
     command line), the other phases come from the run's own timings (``--json``):
-    loading and validating the study, the imports of the ROS side, starting the graph,
-    discovery, recording, the goal (``solve``: goal sent to result received) and shutdown.
+    loading and validating the study, writing the bag (``record``; none here) and solving
+    the goal with its solver's imports (``solve``).
     ``cpu`` is the process's CPU time (user + system), ``rclpy_cpu`` that of
     ``python -c 'import rclpy'`` run right after it, and ``cpu_ratio`` the median of their
     ratios (pairs, so a machine busy with other work weighs on both alike). The first
@@ -309,7 +308,7 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{results['bicycle_steady_state_s']:.4f} s", ''),
         ('two-track handling diagram to the limit, K&C inputs cached',
          f"{results['two_track_handling_diagram_s']:.3f} s", ''),
-        ('embedded run, K&C event with bag, incl. start-up',
+        ('K&C event with bag through the ROS graph in one process, incl. start-up',
          f"{results['embedded_run']['kc_parallel_wheel_travel_with_bag_s']:.2f} s", ''),
         ('  of which goal to result', f"{results['embedded_run']['goal_to_result_s']:.3f} s", ''),
         ('vd run, K&C event, new process (wall)', f"{results['cli_run']['total']:.2f} s",
