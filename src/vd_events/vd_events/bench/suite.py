@@ -141,7 +141,7 @@ def _bench_capability(master: Path) -> float:
     """
     Time the whole capability study of both axles; target: under 20 s.
 
-    22 runs of 101 steps, through the ROS graph, with bags.
+    22 runs of 101 steps, in-process (no ROS graph), into one bag.
     """
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
@@ -297,7 +297,7 @@ def print_bench(results: dict[str, Any]) -> None:
          f"{results['flex']['rear_flexible_s']:.3f} s "
          f"({results['flex']['rear_ratio']:.2f}x rigid)",
          'within 3x rigid'),
-        ('capability study, both axles (22 runs via ROS, one bag)',
+        ('capability study, both axles (22 runs in-process, one bag)',
          f"{results['capability_both_axles_s']:.1f} s", 'under 20 s'),
         ('load + resolve the sample study', f"{results['load_study_s']:.3f} s", ''),
         ('bicycle steady state, K&C inputs computed (empty cache)',
