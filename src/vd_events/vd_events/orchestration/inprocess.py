@@ -88,7 +88,7 @@ def run_inprocess(master: Path, requests: Sequence[RunRequest],
                                 throttled(report))
             report(1.0, 'done')
             # the result as it travels to the runner and the recorder
-            result = outcome_to_msg(solved.outcome, time_msg(time.time_ns()))
+            result = outcome_to_msg(solved.outcome)
             check_result(request, result)
             outcome = outcome_from_msg(result)
             clock.lap('solve')
@@ -102,9 +102,7 @@ def run_inprocess(master: Path, requests: Sequence[RunRequest],
                 clock.lap('record')
             outcomes.append(RunOutcome(request, outcome, path,
                                        timings={'run': time.perf_counter() - t0}))
-        except GoalFailed as err:
-            outcomes.append(RunOutcome(request, None, None, str(err)))
-        except RunError as err:
+        except (GoalFailed, RunError) as err:  # both name the run
             outcomes.append(RunOutcome(request, None, None, str(err)))
         except BagError as err:
             if bag is None:
