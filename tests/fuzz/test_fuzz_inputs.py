@@ -173,11 +173,12 @@ def test_cli_arguments(argv, root, monkeypatch, capsys):
     way to it is.
     """
     from vd_events.cli.main import main
-    from vd_events.orchestration import runner
+    from vd_events.orchestration import inprocess, runner
 
-    def no_graph(master, requests, progress=None):
-        raise runner.RunError('validated; no graph in the fuzz test')
+    def no_graph(master, requests, progress=None, **kwargs):
+        raise runner.RunError('validated; no run in the fuzz test')
 
+    monkeypatch.setattr(inprocess, 'run_inprocess', no_graph)
     monkeypatch.setattr(runner, 'run_embedded', no_graph)
     monkeypatch.setattr(runner, 'run_distributed', no_graph)
     monkeypatch.chdir(root)

@@ -28,6 +28,7 @@ def _vd(capsys, *argv: str) -> tuple[int, str, str]:
 
 def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch, tmp_path,
                                                             sedan_master):
+    """A run through the graph (``--distributed``; an in-process run has no ROS domain)."""
     from vd_events.orchestration.domain import claim_domain
 
     held = claim_domain()  # what a live run holds for its whole life
@@ -36,7 +37,7 @@ def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch,
         bag = tmp_path / 'bag'
         before = tree_snapshot(sedan_master.parents[1])
         rc, out, err = _vd(capsys, 'run', 'handling_diagram', '--master', str(sedan_master),
-                           '--bag', str(bag))
+                           '--bag', str(bag), '--distributed')
         assert (rc, out) == (2, '')
         assert err.strip() == (f"VD_DOMAIN_ID: ROS domain {held.domain} is in use by another "
                                f"vd run or vd launch (pid {__import__('os').getpid()}); unset "
@@ -47,21 +48,24 @@ def test_a_run_does_not_start_on_a_domain_another_run_holds(capsys, monkeypatch,
         held.release()
 
 
-def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_master):
+@pytest.mark.parametrize('way', ['graph', 'inprocess'])
+def test_a_result_of_other_data_is_refused_and_leaves_no_bag(tmp_path, sedan_master, way):
     """
     Answer as another study on the same domain would.
 
     The configuration of the same name, computed from other data (its data hash differs).
     """
     from vd_data_server.study import load_study
-    from vd_events.orchestration.runner import RunRequest, run_embedded, validate
+    from vd_events.orchestration.inprocess import run_inprocess
+    from vd_events.orchestration.requests import RunRequest, validate
+    from vd_events.orchestration.runner import run_embedded
 
     bag = tmp_path / 'bag'
     request = validate(load_study(sedan_master), RunRequest(
         event='handling_diagram', configuration='baseline', model='two_track',
         parameters=('steps=5',), bag=bag))
     other = dataclasses.replace(request, data_hash='0123456789abcdef')
-    (outcome,) = run_embedded(sedan_master, [other])
+    (outcome,) = (run_embedded if way == 'graph' else run_inprocess)(sedan_master, [other])
     assert outcome.outcome is None and outcome.bag is None
     assert outcome.error == (
         "configuration 'baseline', event 'handling_diagram', model 'two_track': the result was "
@@ -96,18 +100,18 @@ def test_embedded_goal_longer_than_the_accept_timeout(monkeypatch, tmp_path, sed
     """
     from vd_data_server.study import load_study
     from vd_events.orchestration import runner
-    import vd_solvers.nodes.analytical as analytical_node
+    import vd_solvers.analytical.events as analytical_events
 
     monkeypatch.setattr(runner, 'ACCEPT_TIMEOUT', 0.3)
     calls = []
-    real = analytical_node.run_event
+    real = analytical_events.run_event
 
     def slow(*args, **kwargs):
         calls.append(time.monotonic())
         time.sleep(4 * runner.ACCEPT_TIMEOUT)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(analytical_node, 'run_event', slow)
+    monkeypatch.setattr(analytical_events, 'run_event', slow)
     request = runner.validate(load_study(sedan_master), runner.RunRequest(
         event='handling_diagram', configuration='baseline', model='two_track',
         parameters=('steps=5',), bag=tmp_path / 'bag'))

@@ -251,7 +251,7 @@ def test_bad_domain_id_is_refused(capsys, monkeypatch, sample_root, sedan_master
                                   value, message):
     monkeypatch.setenv('VD_DOMAIN_ID', value)
     check(capsys, sample_root, sedan_master, message, 'run', 'handling_diagram', '--master',
-          str(sedan_master), '--bag', str(tmp_path / 'bag'))
+          str(sedan_master), '--bag', str(tmp_path / 'bag'), '--distributed')
     assert not list(tmp_path.glob('bag*'))
 
 
@@ -307,7 +307,8 @@ def test_run_in_the_domain_of_a_launch_is_refused(capsys, monkeypatch, sample_ro
         check(capsys, sample_root, sedan_master,
               'VD_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '
               f'{os.getpid()}); unset VD_DOMAIN_ID or choose another', 'run',
-              'handling_diagram', '--master', str(sedan_master), '--bag', str(tmp_path / 'bag'))
+              'handling_diagram', '--master', str(sedan_master), '--bag', str(tmp_path / 'bag'),
+              '--distributed')
         assert not list(tmp_path.glob('bag*'))
         check(capsys, sample_root, sedan_master,
               'ROS_DOMAIN_ID: ROS domain 231 is in use by another vd run or vd launch (pid '

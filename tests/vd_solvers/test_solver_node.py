@@ -189,11 +189,11 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
     from rclpy.parameter import Parameter
 
     from vd_data_server.nodes.data_server import DataServer
+    import vd_solvers.analytical.events as analytical_events
     from vd_solvers.errors import SolverError
-    import vd_solvers.nodes.analytical as analytical_node
     from vd_solvers.nodes.analytical import AnalyticalSolver
 
-    real = analytical_node.run_event
+    real = analytical_events.run_event
 
     def overflowing(config, event, model, parameters):
         np.exp(np.array([1000.0]))  # RuntimeWarning: overflow encountered in exp
@@ -201,7 +201,7 @@ def test_numerical_warnings_are_part_of_the_error_they_explain(ros_domain, sedan
             raise SolverError('the sweep diverged')
         return real(config, event, model, parameters)
 
-    monkeypatch.setattr(analytical_node, 'run_event', overflowing)
+    monkeypatch.setattr(analytical_events, 'run_event', overflowing)
     server = DataServer(parameter_overrides=[Parameter('master_file', value=str(sedan_master)),
                                              Parameter('watch_period', value=0.0)])
     solver = AnalyticalSolver()

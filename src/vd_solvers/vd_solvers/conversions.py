@@ -37,10 +37,12 @@ from vd_interfaces.msg import (
     KcState,
     KcWheel,
     NamedScalar,
+    Provenance,
     VehicleState,
     VehicleWheel,
 )
 from vd_interfaces.msg import Channel as ChannelMsg
+from vd_solvers import __version__
 from vd_solvers.families import FAMILIES, ODOMETRY_TOPIC, TF_TOPIC, message_family
 from vd_solvers.results import Channel, EventOutcome, Metric
 
@@ -149,6 +151,20 @@ def outcome_from_msg(msg) -> EventOutcome:
         channels={c.name: Channel(c.unit, np.asarray(c.values, dtype=float))
                   for c in msg.channels},
         notes=tuple(msg.notes))
+
+
+def provenance_to_msg(outcome: EventOutcome, stamp, master_file: str = '',
+                      groups: Sequence = ()):
+    """
+    vd_interfaces/Provenance of a run of ``outcome``, stamped ``stamp``.
+
+    ``groups``: the GroupStatus of the configuration's input groups (with the run's
+    overrides, ``vd_solvers.solve.provenance_groups``); none for imported measurements.
+    """
+    return Provenance(stamp=stamp, configuration=outcome.configuration,
+                      master_file=master_file, data_hash=outcome.data_hash,
+                      model=outcome.model, fidelity=outcome.fidelity, event=outcome.event,
+                      software_version=__version__, groups=list(groups))
 
 
 # --- the time axis --------------------------------------------------------------

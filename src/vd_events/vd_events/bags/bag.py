@@ -28,23 +28,15 @@ import shutil
 from typing import TYPE_CHECKING, Any
 
 from ament_index_python.packages import get_package_share_directory
-from rclpy.duration import Duration
-from rclpy.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    LivelinessPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
-from rclpy.serialization import serialize_message
 
 from vd_data_server.errors import DataError
 from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError
 
-# rosbags is imported where a bag is written or read: a run without a bag (and the
-# command line's start) does not pay for it
+# rosbags and rclpy (the QoS profiles, the serialisation) are imported where a bag is
+# written or read: a run without a bag (and the command line's start) does not pay for them
 if TYPE_CHECKING:
+    from rclpy.qos import QoSProfile
     from rosbags.interfaces import Qos
     from rosbags.typesys.store import Typestore
 
@@ -170,6 +162,8 @@ def offered_profiles(node: Any, topic: str, own: QoSProfile) -> list[QoSProfile]
     profile vd publishes the topic with, vd_data_server.ros.qos); with no publisher
     discovered yet, ``[own]``.
     """
+    from rclpy.qos import HistoryPolicy
+
     out = []
     for info in node.get_publishers_info_by_topic(topic):
         q = info.qos_profile
@@ -185,6 +179,14 @@ def offered_qos(path: str | Path) -> dict[str, list]:
 
     What ``ros2 bag play`` publishes with.
     """
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
 
     def duration(d) -> Duration:
         return Duration(seconds=int(d['sec']), nanoseconds=int(d['nsec']))
@@ -202,6 +204,56 @@ def offered_qos(path: str | Path) -> dict[str, list]:
             avoid_ros_namespace_conventions=bool(q['avoid_ros_namespace_conventions']))
             for q in topic['offered_qos_profiles']]
     return out
+
+
+def as_offered(profile: QoSProfile) -> QoSProfile:
+    """
+    Return ``profile`` as discovery reports a publisher offering it.
+
+    rmw reports a publisher's unset ("system default") liveliness as automatic and its
+    unset deadline, lifespan and liveliness lease as infinite: a bag written without a
+    live publisher records what one recorded from the graph does.
+    """
+    from rclpy.duration import Infinite
+    from rclpy.qos import LivelinessPolicy, QoSProfile
+
+    liveliness = profile.liveliness
+    if liveliness == LivelinessPolicy.SYSTEM_DEFAULT:
+        liveliness = LivelinessPolicy.AUTOMATIC
+    out = QoSProfile(history=profile.history, depth=profile.depth,
+                     reliability=profile.reliability, durability=profile.durability,
+                     liveliness=liveliness,
+                     avoid_ros_namespace_conventions=profile.avoid_ros_namespace_conventions)
+    for name in ('deadline', 'lifespan', 'liveliness_lease_duration'):
+        value = getattr(profile, name)
+        setattr(out, name, Infinite if value.nanoseconds == 0 else value)
+    return out
+
+
+#: a run's bag metadata: what wrote it (``vd run``'s recorder, in the graph or not)
+RECORDER_DATA = {'vd.recorder': 'vd_events recorder'}
+
+
+def provenance_data(msg: Any) -> dict[str, str]:
+    """
+    Return a bag's metadata of a run's vd_interfaces/Provenance.
+
+    ``vd.configuration``, ``vd.data_hash``, ``vd.model``, ``vd.fidelity``, ``vd.event``,
+    ``vd.master_file``, ``vd.software_version`` and ``vd.modified`` (the keys the run's
+    overrides and the master file changed, ``group.key=value unit; ...``, or ``none``).
+    """
+    out = {f'vd.{key}': str(getattr(msg, key)) for key in (
+        'configuration', 'data_hash', 'model', 'fidelity', 'event', 'master_file',
+        'software_version')}
+    out['vd.modified'] = '; '.join(
+        f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
+        for g in msg.groups for k in g.modified_keys) or 'none'
+    return out
+
+
+def cannot_write(path: Path, err: OSError) -> BagError:
+    """Return the error of a bag that cannot be written (a full disk, a read-only mount)."""
+    return BagError(f'{path}: cannot write the bag: {err.strerror or err}')
 
 
 def log_time(msg: Any, fallback_ns: int) -> int:
@@ -228,7 +280,10 @@ class BagWriter:
     def __init__(self, path: str | Path, custom_data: Mapping[str, str] | None = None) -> None:
         # imported before the partial folder exists: a signal during the import
         # leaves nothing behind
+        from rclpy.serialization import serialize_message
         from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
+
+        self._serialize = serialize_message
 
         writer_class = _writer_class()
         self.path = Path(path)
@@ -259,7 +314,7 @@ class BagWriter:
             if self._lock >= 0:
                 shutil.rmtree(self.partial, ignore_errors=True)
                 self._unlock()
-            raise BagError(f'{self.path}: cannot write the bag: {err.strerror or err}') from None
+            raise cannot_write(self.path, err) from None
         self._connections: dict[str, Any] = {}
         self.count = 0
 
@@ -282,7 +337,7 @@ class BagWriter:
                 topic, msgtype, typestore=typestore(),
                 offered_qos_profiles=[qos_record(q) for q in qos])
             self._connections[topic] = conn
-        self._writer.write(conn, int(timestamp_ns), serialize_message(msg))
+        self._writer.write(conn, int(timestamp_ns), self._serialize(msg))
         self.count += 1
 
     def close(self) -> Path:

@@ -21,9 +21,8 @@ from builtin_interfaces.msg import Time
 from vd_data_server.ros.names import DEFAULT_NAMESPACE
 from vd_data_server.ros.qos import profile_of
 from vd_events.bags.bag import BagWriter, log_time
-from vd_interfaces.msg import Provenance
-from vd_solvers import __version__
 from vd_solvers.conversions import outcome_messages as messages
+from vd_solvers.conversions import provenance_to_msg
 from vd_solvers.results import EventOutcome
 
 
@@ -48,11 +47,8 @@ def write_outcomes(bag: Path, items: Sequence[tuple[EventOutcome, int]],
     """Write every (outcome, start stamp ns) to the new bag ``bag``; return its path."""
     messages = []
     for outcome, stamp_ns in items:
-        provenance = Provenance(stamp=_time(stamp_ns), configuration=outcome.configuration,
-                                master_file=master_file, data_hash=outcome.data_hash,
-                                model=outcome.model, fidelity=outcome.fidelity,
-                                event=outcome.event, software_version=__version__)
-        messages.append(('/vd/provenance', provenance))
+        messages.append(('/vd/provenance',
+                         provenance_to_msg(outcome, _time(stamp_ns), master_file)))
         messages += outcome_messages(outcome, stamp_ns)
     writer = BagWriter(bag, custom_data)
     try:

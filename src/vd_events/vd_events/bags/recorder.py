@@ -35,7 +35,14 @@ from std_srvs.srv import Trigger
 
 from vd_data_server.ros import names
 from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES, TF
-from vd_events.bags.bag import BagWriter, log_time, offered_profiles
+from vd_events.bags.bag import (
+    RECORDER_DATA,
+    BagWriter,
+    cannot_write,
+    log_time,
+    offered_profiles,
+    provenance_data,
+)
 from vd_events.errors import BagError
 from vd_interfaces.msg import Configuration, DataStatus, EventResult, Provenance
 from vd_solvers.conversions import TIME_AXIS, outcome_from_msg, outcome_messages, start_stamp
@@ -112,7 +119,7 @@ class Recorder(Node):
         self._lock = threading.Lock()
         # the bag's partial folder exists from here on: whatever stops the constructor
         # (a signal meanwhile) removes it
-        self.writer = BagWriter(path, {'vd.recorder': 'vd_events recorder'})
+        self.writer = BagWriter(path, RECORDER_DATA)
         try:
             self.create_service(Trigger, FINISH_SERVICE, self._finish)
             self.recorded_pub = self.create_publisher(UInt32, RECORDED_TOPIC, LATEST)
@@ -135,7 +142,7 @@ class Recorder(Node):
                 try:
                     self._record(topic, msg)
                 except OSError as err:
-                    self.error = f'{self.writer.path}: cannot write the bag: {err.strerror or err}'
+                    self.error = str(cannot_write(self.writer.path, err))
                     self.get_logger().error(self.error)
                     self.writer.abort()
         return record
@@ -150,12 +157,8 @@ class Recorder(Node):
         if stamp is not None and stamp < self.start:
             return  # kept by a solver from an earlier run: not this recording's
         if topic == names.PROVENANCE:
-            for key in ('configuration', 'data_hash', 'model', 'fidelity', 'event',
-                        'master_file', 'software_version'):
-                self.writer.set_custom_data(f'vd.{key}', str(getattr(msg, key)))
-            self.writer.set_custom_data('vd.modified', '; '.join(
-                f'{g.group}.{k.key}={k.master_value} {k.unit}'.strip()
-                for g in msg.groups for k in g.modified_keys) or 'none')
+            for key, value in provenance_data(msg).items():
+                self.writer.set_custom_data(key, value)
             self._provenance.add((msg.configuration, msg.event, msg.model))
         if topic in FAMILY_RESULTS:
             outcome = outcome_from_msg(msg)

@@ -6,7 +6,7 @@
 1. The data server serves the sample sedan study; its feedback (the thesis'
    overview tab) is printed as received over ROS.
 2. The demo plan runs the K&C, bicycle and two-track models on every configuration
-   through the ROS graph (embedded), one MCAP bag per run.
+   (``vd study``: in-process, the solver nodes' code without a graph), one MCAP bag per run.
 3. The capability study runs every K&C event rigid and flexible on ``baseline`` and
    says, per axle, which events need the flexible model; the report holds it all.
 Everything goes to ``out/demo/`` (replaced on each run).
@@ -43,7 +43,7 @@ def main() -> int:
     print_status(load_study(master), term)
     if OUT.exists():
         shutil.rmtree(OUT)
-    term.rule('vd demo: K&C, bicycle and two-track models through the ROS graph')
+    term.rule('vd demo: K&C, bicycle and two-track models')
     plan = load_plan(_plan_path())
     total = len(expand(plan, load_study(master), OUT / 'bags'))
     count = [0]

@@ -13,7 +13,7 @@ from vd_data_server.paths import default_master
 from vd_data_server.ros.names import DEFAULT_NAMESPACE, check_namespace
 from vd_data_server.study import Study
 from vd_data_server.study_cache import cached_study
-from vd_events.orchestration.runner import RunRequest
+from vd_events.orchestration.requests import RunRequest
 
 T = TypeVar('T')
 

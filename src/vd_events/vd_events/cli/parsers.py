@@ -65,7 +65,8 @@ def _run(sub) -> None:
     _master(run)
     run.add_argument('--bag', help='bag directory to write (must not exist)')
     run.add_argument('--distributed', action='store_true',
-                     help='one process per node (DDS on loopback) instead of one process')
+                     help='through the ROS graph, one process per node (DDS on loopback), '
+                     'instead of solving in this process without a graph')
     _namespace(run)
     _json(run)
     run.set_defaults(**handler('run:cmd_run'))

@@ -1,6 +1,11 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
-"""``vd run EVENT``: one event on one configuration (or all), through the ROS graph."""
+"""
+``vd run EVENT``: one event on one configuration (or all).
+
+Solved in this process without a ROS graph (orchestration/inprocess.py), or with
+``--distributed`` through the graph, each node its own process (orchestration/runner.py).
+"""
 from __future__ import annotations
 
 import argparse
@@ -11,13 +16,7 @@ import time
 from vd_data_server.errors import DataError
 from vd_events.cli import options
 from vd_events.errors import BagError, RunError
-from vd_events.orchestration.runner import (
-    RunOutcome,
-    RunRequest,
-    run_distributed,
-    run_embedded,
-    validate,
-)
+from vd_events.orchestration.requests import RunOutcome, RunRequest, validate
 from vd_events.reports.display import HEADLINE_NAMES, display
 from vd_solvers.families import event_model
 
@@ -49,10 +48,14 @@ def cmd_run(args: argparse.Namespace) -> int:
     # where the time goes (vd bench reports it): load + validate, then the runner's phases
     timings = {'load_and_validate': time.perf_counter() - t0}
     if args.distributed:
+        from vd_events.orchestration.runner import run_distributed
+
         results = options.with_progress(progress, lambda: run_distributed(
             master, requests, progress, namespace=namespace))
     else:
-        results = options.with_progress(progress, lambda: run_embedded(
+        from vd_events.orchestration.inprocess import run_inprocess
+
+        results = options.with_progress(progress, lambda: run_inprocess(
             master, requests, progress, namespace=namespace, timings=timings, study=study))
     for result in results:
         if result.error:

@@ -15,11 +15,11 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemaining
 from vd_data_server.study import load_study
 from vd_events.errors import Interrupted, RunError
 from vd_events.orchestration.dispatch import Dispatcher, SolverGraph, parse_solvers
-from vd_events.orchestration.runner import MODEL_FAMILY
 from vd_events.reports.sweep import write_outputs
 from vd_events.sweeps.optimize import check_plan, optimize
 from vd_events.sweeps.plan import OptimizeSpec, load_plan, points
 from vd_events.sweeps.sweep import requests_for, sweep
+from vd_solvers.families import MODEL_FAMILY
 
 
 def _solvers(text: str | None, attach: bool = False):

@@ -16,7 +16,8 @@ from vd_data_server.workbench.server import serve
 from vd_data_server.xlsx import export_workbook, import_workbook
 from vd_data_server.yamlio import read_bytes
 from vd_events.errors import RunError
-from vd_events.orchestration.runner import RunRequest, run_embedded, validate
+from vd_events.orchestration.inprocess import run_inprocess
+from vd_events.orchestration.requests import RunRequest, validate
 from vd_events.reports.display import HEADLINE_NAMES, display
 
 #: the events "Update marked" runs for each marked configuration: (event, model)
@@ -45,7 +46,7 @@ def marked_runner(master: Path) -> Callable[[Sequence[str]], Mapping[str, Any]]:
                     raise DataError(str(err)) from None
         results: dict[str, Any] = {n: {'status': 'done', 'metrics': [], 'error': ''}
                                    for n in names}
-        for result in run_embedded(master, requests):
+        for result in run_inprocess(master, requests, study=study):
             entry = results[result.request.configuration]
             if result.error or result.outcome is None:
                 entry['status'] = 'failed'

@@ -8,8 +8,8 @@ runner's action client share one executor in this process. Distributed: each
 node is its own process (the executables ``ros2 run`` starts), talking DDS on
 loopback in a private domain; this process only sends the goals.
 
-Everything a run needs is validated before anything starts, so bad input
-leaves nothing behind. Each run claims its ROS domain (domain.py) for its whole
+Everything a run needs is validated before anything starts (requests.py), so bad
+input leaves nothing behind. Each run claims its ROS domain (domain.py) for its whole
 life, and every result is matched to its request (configuration, event, model,
 axle and the data hash of the configuration validated here) before it counts. A
 bag becomes final only once its result is confirmed; an interrupted or failed
@@ -18,8 +18,6 @@ run removes its partial bag and says so.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-import dataclasses
-from dataclasses import dataclass, field
 import os
 from pathlib import Path
 import shutil
@@ -38,33 +36,27 @@ from rclpy.parameter import Parameter
 from std_msgs.msg import UInt32
 from std_srvs.srv import Trigger
 
-from vd_data_server.errors import DataError
-from vd_data_server.master import parse_set, with_overrides
 from vd_data_server.nodes.data_server import DataServer
 from vd_data_server.ros import names
 from vd_data_server.ros.qos import LATEST
 from vd_data_server.study import Study
-from vd_events.bags.bag import PARTIAL_SUFFIX, check_bag_path, read_bag
+from vd_events.bags.bag import PARTIAL_SUFFIX, read_bag
 from vd_events.bags.recorder import FINISH_SERVICE, RECORDED_TOPIC, Recorder
 from vd_events.errors import BagError, DomainError, Interrupted, RunError
 from vd_events.orchestration import graph
 from vd_events.orchestration.domain import claim_domain
 from vd_events.orchestration.graph import solver_class
+from vd_events.orchestration.requests import (
+    Phases,
+    RunOutcome,
+    RunRequest,
+    check_result,
+    interrupted,
+    validate,
+)
 from vd_interfaces.action import RunEvent
 from vd_solvers.conversions import outcome_from_msg
-from vd_solvers.errors import SolverError
-from vd_solvers.event_params import parse_params
-from vd_solvers.families import (
-    CLI_FIELDS,
-    FAMILIES,
-    MODEL_FAMILY,
-    MODELS,
-    all_events,
-    check_request,
-    event_params,
-    events_for,
-    run_fidelity,
-)
+from vd_solvers.families import FAMILIES, events_for
 from vd_solvers.results import EventOutcome
 
 #: s of silence (no result, no feedback) after which the result is asked for again: a
@@ -81,86 +73,6 @@ NOTICE_PERIOD = 30.0
 #: s: longest wait of one spin while nothing happens (events end it at once); each spin
 #: rebuilds the wait set, which costs the solver's worker thread the GIL
 SPIN_PERIOD = 0.1
-
-
-
-
-
-
-@dataclass(frozen=True)
-class RunRequest:
-    event: str
-    configuration: str
-    model: str
-    #: 'rigid' | 'flexible'; "" = the configuration's switch (families.run_fidelity),
-    #: resolved by validate()
-    fidelity: str = ''
-    axle: str = ''
-    overrides: tuple[str, ...] = ()
-    parameters: tuple[str, ...] = ()
-    bag: Path | None = None
-    #: the data hash of the configuration (with ``overrides``) as validated; a result of
-    #: other data (another study on the same domain) is refused. "" = set by validate()
-    data_hash: str = ''
-
-    @property
-    def family(self) -> str:
-        return MODEL_FAMILY[self.model]
-
-    @property
-    def label(self) -> str:
-        return f"configuration '{self.configuration}', event '{self.event}', model '{self.model}'"
-
-
-@dataclass
-class RunOutcome:
-    request: RunRequest
-    outcome: EventOutcome | None
-    bag: Path | None
-    error: str | None = None
-    timings: dict[str, float] = field(default_factory=dict)
-
-
-def validate(study: Study, request: RunRequest) -> RunRequest:
-    """
-    Every check that can be made before starting: raises DataError / RunError / BagError.
-
-    Returns the request with the fidelity it gets (``families.run_fidelity``: an empty
-    one follows the configuration's ``flexible`` switch) and the data hash its result
-    must carry.
-    """
-    # the requested model's own table first: the other rungs' modules load only when the
-    # event is not one of its events (they weigh seconds on a cold start)
-    served = request.model in MODELS and request.event in events_for(request.model)
-    if not served and request.event not in all_events():
-        raise RunError(f"unknown event '{request.event}' (events: {', '.join(all_events())})")
-    if request.model not in MODELS:
-        raise RunError(f"unknown model '{request.model}' (models: {', '.join(MODELS)})")
-    try:  # the checks the solver's goal callback makes too, in command-line words
-        check_request(request.family, request.event, request.model, request.fidelity,
-                      request.axle, None, fields=CLI_FIELDS)
-    except SolverError as err:
-        raise RunError(str(err)) from None
-    if request.configuration not in study.configurations:
-        raise DataError(f"configuration '{request.configuration}' does not exist (available: "
-                        f"{', '.join(study.configuration_names)})", file=str(study.master.path))
-    config = with_overrides(study.configurations[request.configuration],
-                            parse_set(request.overrides))
-    if request.model == 'kc' and request.event == 'steering' and (
-            request.axle != 'front' or 'steering' not in config.groups):
-        raise RunError(f"event 'steering' needs a steered axle: the {request.axle} axle of "
-                       f"'{request.configuration}' has no steering")
-    fidelity = run_fidelity(request.model, config, request.fidelity)
-    if fidelity == 'flexible':
-        for axle in ([request.axle] if request.model == 'kc' else ['front', 'rear']):
-            if f'{axle}_flex' not in config.groups:
-                raise RunError(f"configuration '{request.configuration}' has no flexible "
-                               f"components on the {axle} axle (no {axle}_flex group in the "
-                               "master file)")
-    parse_params(request.event, event_params(request.model, request.event), request.parameters)
-    if request.bag is not None:
-        check_bag_path(request.bag)
-    return dataclasses.replace(request, fidelity=fidelity, data_hash=config.data_hash)
 
 
 def _ros_args() -> list[str]:
@@ -326,24 +238,6 @@ def _run_goal(executor, client: EventClient, request: RunRequest,
     return outcome_from_msg(result)
 
 
-def check_result(request: RunRequest, result) -> None:
-    """
-    Check that the result answers this request, or raise RunError.
-
-    Its configuration, event, model, axle and data hash must be the ones asked for (a
-    solver of another run on the same domain, or of other data, answers with others).
-    """
-    asked = (request.configuration, request.event, request.model, request.axle)
-    got = (result.configuration, result.event, result.model, result.axle)
-    if got != asked:
-        raise RunError(f"{request.label}: the result is for configuration '{got[0]}', event "
-                       f"'{got[1]}', model '{got[2]}' - another run answered; not used")
-    if request.data_hash and result.data_hash != request.data_hash:
-        raise RunError(f"{request.label}: the result was computed from other data (data hash "
-                       f"{result.data_hash or 'none'}, expected {request.data_hash}) - another "
-                       "study answered on this ROS domain; not used")
-
-
 def run_embedded(master: Path, requests: Sequence[RunRequest],
                  progress: Callable[[RunRequest, float, str], None] | None = None,
                  namespace: str = names.DEFAULT_NAMESPACE, timings: dict | None = None,
@@ -360,7 +254,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
     recorder. ``timings`` (if given) receives the seconds of each phase; ``on_done``
     (if given) hears each run's outcome as soon as it is complete.
     """
-    clock = _Phases(timings)
+    clock = Phases(timings)
 
 
     families = sorted({r.family for r in requests})
@@ -425,7 +319,7 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
                 outcomes.append(RunOutcome(request, None, None, str(err)))
             except KeyboardInterrupt:
                 _cancel_running(executor, client)
-                raise Interrupted(_interrupted(request)) from None
+                raise Interrupted(interrupted(request)) from None
             finally:
                 if recorder is not None:
                     recorder.abort()  # removes the partial bag unless stop() finished it
@@ -447,26 +341,6 @@ def run_embedded(master: Path, requests: Sequence[RunRequest],
 
 #: worker threads of an embedded run: a goal's execute callback + everything else
 EMBEDDED_THREADS = 4
-
-
-class _Phases:
-    """Seconds spent in each phase of a run, accumulated into ``out`` (if given)."""
-
-    def __init__(self, out: dict | None) -> None:
-        self.out = out
-        self.t = time.perf_counter()
-
-    def lap(self, phase: str) -> None:
-        now = time.perf_counter()
-        if self.out is not None:
-            self.out[phase] = self.out.get(phase, 0.0) + now - self.t
-        self.t = now
-
-
-def _interrupted(request: RunRequest) -> str:
-    where = (f'; no bag written ({request.bag}{PARTIAL_SUFFIX} removed)'
-             if request.bag is not None else '')
-    return f'{request.label}: interrupted{where}'
 
 
 def _cancel_running(executor, client: EventClient) -> None:
@@ -579,7 +453,7 @@ def run_distributed(master: Path, requests: Sequence[RunRequest],
     except KeyboardInterrupt:
         if client is not None:
             _cancel_running(executor, client)
-        raise Interrupted(_interrupted(request) if request is not None
+        raise Interrupted(interrupted(request) if request is not None
                           else 'interrupted') from None
     finally:
         if request is not None:

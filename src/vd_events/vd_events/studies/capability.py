@@ -41,7 +41,8 @@ from vd_data_server.ros.qos import RESULTS, profile_of
 from vd_events.bags.bag import BagWriter, check_bag_path, log_time
 from vd_events.bags.outcomes import outcome_messages
 from vd_events.errors import RunError
-from vd_events.orchestration.runner import RunRequest, run_embedded, validate
+from vd_events.orchestration.inprocess import run_inprocess
+from vd_events.orchestration.requests import RunRequest, validate
 from vd_interfaces.msg import CapabilityCell, CapabilityTable
 from vd_solvers.constants import DEG
 from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
@@ -309,9 +310,9 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
 
     ``on_done(RunOutcome)`` hears each run as it completes.
 
-    Through the ROS graph (embedded); both runs of every event -- their EventResults and
-    per-step KcStates and wheel frames as the solver answered the goals, on the process's
-    time axis --
+    Solved in-process (``orchestration.inprocess``, as ``vd run``); both runs of every
+    event -- their EventResults and per-step KcStates and wheel frames as the solver
+    answers a goal, on the process's time axis --
     and each axle's table go to one bag, ``out/capability_<configuration>``.
 
     One bag for the study: a recorder per run would cost more than the runs themselves.
@@ -335,7 +336,7 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
     bag = out / f'capability_{configuration}'
     requests = [validate(study, request) for request in requests]
     check_bag_path(bag)
-    results = run_embedded(Path(master), requests, progress, on_done=on_done)
+    results = run_inprocess(Path(master), requests, progress, study=study, on_done=on_done)
     errors = [r.error for r in results if r.error]
     if errors:
         raise RunError('; '.join(errors))

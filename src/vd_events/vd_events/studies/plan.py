@@ -34,7 +34,8 @@ from vd_data_server.shape import Collector, check
 from vd_data_server.study import Study, load_study
 from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError, RunError
-from vd_events.orchestration.runner import RunRequest, run_distributed, run_embedded, validate
+from vd_events.orchestration.inprocess import run_inprocess
+from vd_events.orchestration.requests import RunRequest, validate
 from vd_solvers.families import run_fidelity
 
 #: a study plan, in the specs of the data files (``vd_data_server.schema``)
@@ -158,11 +159,13 @@ def run_plan(plan: Plan, bags: Path, out: Path, *, distributed: bool = False,
     requests = checked
     ns = namespace or DEFAULT_NAMESPACE
     if distributed:
+        from vd_events.orchestration.runner import run_distributed
+
         results = run_distributed(plan.master, requests, progress, namespace=ns,
                                   on_done=on_done)
     else:
-        results = run_embedded(plan.master, requests, progress, namespace=ns,
-                               on_done=on_done)
+        results = run_inprocess(plan.master, requests, progress, namespace=ns,
+                                study=study, on_done=on_done)
     done = [r for r in results if r.error is None]
     errors = [r.error for r in results if r.error is not None]
     return {

@@ -15,12 +15,10 @@ graph has seen before (``analytical/kc_link.py``).
 """
 from __future__ import annotations
 
-from vd_data_server.model import Configuration
 from vd_data_server.ros.node_main import spin_node
 from vd_interfaces.msg import AnalyticalState
-from vd_solvers.analytical.events import run_event
 from vd_solvers.nodes.solver import SolverNode
-from vd_solvers.results import EventOutcome
+from vd_solvers.solve import run_function
 
 FAMILY = 'steady_state'
 
@@ -31,10 +29,7 @@ class AnalyticalSolver(SolverNode):
     STATE_TYPE = AnalyticalState
 
     def __init__(self, **kwargs) -> None:
-        super().__init__('analytical_solver', FAMILY, self._solve, **kwargs)
-
-    def _solve(self, config: Configuration, goal, progress) -> EventOutcome:
-        return run_event(config, goal.event, goal.model or 'two_track', list(goal.parameters))
+        super().__init__('analytical_solver', FAMILY, run_function(FAMILY), **kwargs)
 
 
 def main(args=None) -> None:

@@ -14,29 +14,14 @@ parameter ``frame_prefix`` outside ``/vd``), so RViz and Foxglove show the wheel
 from __future__ import annotations
 
 from tf2_msgs.msg import TFMessage
-from vd_data_server.model import Configuration
 from vd_data_server.ros.node_main import spin_node
 from vd_data_server.ros.qos import TF
 from vd_interfaces.msg import KcState
-from vd_solvers.errors import SolverError
-from vd_solvers.families import TF_TOPIC, run_fidelity
-from vd_solvers.kc.cache import kc_model
-from vd_solvers.kc.from_config import run_kc_event
+from vd_solvers.families import TF_TOPIC
 from vd_solvers.nodes.solver import SolverNode
-from vd_solvers.results import FIDELITIES, EventOutcome
+from vd_solvers.solve import run_function
 
 FAMILY = 'kc'
-
-
-def _run(config: Configuration, goal, progress) -> EventOutcome:
-    fidelity = run_fidelity('kc', config, goal.fidelity)
-    if fidelity not in FIDELITIES:
-        raise SolverError(f"configuration '{config.name}', event '{goal.event}': fidelity "
-                          f"'{goal.fidelity}' is not available (fidelities: "
-                          f"{', '.join(FIDELITIES)})")
-    # the node assembles each (data, axle, fidelity) once and runs every goal on it
-    return run_kc_event(config, goal.event, goal.axle, list(goal.parameters), progress,
-                        fidelity, build=kc_model)
 
 
 class KCSolver(SolverNode):
@@ -45,7 +30,7 @@ class KCSolver(SolverNode):
     STATE_TYPE = KcState
 
     def __init__(self, **kwargs) -> None:
-        super().__init__('kc_solver', FAMILY, _run, **kwargs)
+        super().__init__('kc_solver', FAMILY, run_function(FAMILY), **kwargs)
         # the wheels move on the rig: base_link -> <axle>_<side>_wheel per step
         self.publishers_by_topic[TF_TOPIC] = self.create_publisher(TFMessage, TF_TOPIC, TF)
 

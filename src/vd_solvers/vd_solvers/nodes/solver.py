@@ -18,10 +18,7 @@ the configuration and event. The node keeps serving.
 """
 from __future__ import annotations
 
-from collections.abc import Callable
-import dataclasses
 import time
-import warnings
 
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
@@ -30,34 +27,35 @@ from rclpy.node import Node
 
 from vd_data_server.conversions import configuration_from_msg
 from vd_data_server.errors import DataError
-from vd_data_server.master import parse_set, with_overrides
+from vd_data_server.master import parse_set
 from vd_data_server.model import Configuration
 from vd_data_server.ros import names
 from vd_data_server.ros.qos import CONFIGURATIONS, LATEST, RESULTS, STATES
-from vd_data_server.study import modified_keys
 from vd_interfaces.action import RunEvent
 from vd_interfaces.msg import Configuration as ConfigurationMsg
-from vd_interfaces.msg import DataStatus, EventResult, ModifiedKey, Provenance
-from vd_interfaces.msg import GroupStatus as GroupStatusMsg
-from vd_solvers import __version__
-from vd_solvers.conversions import outcome_messages, outcome_to_msg, run_stamp
+from vd_interfaces.msg import DataStatus, EventResult, Provenance
+from vd_solvers.conversions import (
+    outcome_messages,
+    outcome_to_msg,
+    provenance_to_msg,
+    run_stamp,
+)
 from vd_solvers.errors import SolverError
 from vd_solvers.families import FAMILIES, check_request
 from vd_solvers.results import EventOutcome
+from vd_solvers.solve import (
+    OVERRIDES_SOURCE,
+    Cancelled,
+    GoalFailed,
+    RunFn,
+    goal_label,
+    provenance_groups,
+    solve_goal,
+    throttled,
+)
 
 #: seconds a goal waits for its configuration to arrive on /vd/configuration
 CONFIGURATION_WAIT = 5.0
-
-#: (configuration, goal, progress(fraction, stage)) -> outcome
-RunFn = Callable[[Configuration, RunEvent.Goal, Callable[[float, str], None]], EventOutcome]
-#: least interval between two feedback messages, s
-FEEDBACK_PERIOD = 0.1
-#: how a goal's overrides are named in messages
-OVERRIDES_SOURCE = 'overrides'
-
-
-class Cancelled(Exception):
-    """The client cancelled the goal while it was being solved."""
 
 
 class SolverNode(Node):
@@ -138,65 +136,43 @@ class SolverNode(Node):
     def _execute(self, goal_handle):
         goal = goal_handle.request
         result = RunEvent.Result()
-        label = f"configuration '{goal.configuration}', event '{goal.event}'"
         feedback = RunEvent.Feedback()
-        # numpy / LAPACK warnings (overflow, a singular matrix) are not printed on their
-        # own: they become part of the error they explain, or a note of the result.
-        # (catch_warnings is process-wide; goals of one runner come one at a time.)
-        caught: list[warnings.WarningMessage] = []
+
+        def publish(fraction: float, stage: str) -> None:
+            feedback.progress, feedback.stage = float(fraction), stage
+            goal_handle.publish_feedback(feedback)
+
+        publish_throttled = throttled(publish)
+
+        def progress(fraction: float, stage: str) -> None:
+            if goal_handle.is_cancel_requested:
+                raise Cancelled
+            publish_throttled(fraction, stage)
+
         try:
-            config = self._wait_for_configuration(goal.configuration)
-            if config is None:
-                raise DataError(f"configuration '{goal.configuration}' is not published "
-                                f"(known: {', '.join(sorted(self.configurations)) or 'none'})")
-            base = config
-            config = with_overrides(config, parse_set(goal.overrides, OVERRIDES_SOURCE),
-                                    OVERRIDES_SOURCE)
-            last = [0.0]
-
-            def progress(fraction: float, stage: str) -> None:
-                if goal_handle.is_cancel_requested:
-                    raise Cancelled
-                now = time.monotonic()
-                if now - last[0] >= FEEDBACK_PERIOD:
-                    last[0] = now
-                    feedback.progress, feedback.stage = float(fraction), stage
-                    goal_handle.publish_feedback(feedback)
-
+            base = self._wait_for_configuration(goal.configuration)
+            if base is None:
+                raise GoalFailed(f"configuration '{goal.configuration}' is not published "
+                                 f"(known: {', '.join(sorted(self.configurations)) or 'none'})")
             progress(0.0, 'solving')
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter('always')
-                outcome = self._run(config, goal, progress)
+            solved = solve_goal(self._run, base, goal, progress)
             if goal_handle.is_cancel_requested:
                 raise Cancelled
         except Cancelled:
             goal_handle.canceled()
-            result.success, result.message = False, f'{label}: cancelled'
+            result.success, result.message = False, f'{goal_label(goal)}: cancelled'
             return result
-        except (DataError, SolverError) as err:
-            message = str(err) if goal.configuration in str(err) else f'{label}: {err}'
-            message += _warnings_text(caught)
-            self.get_logger().error(message)
+        except GoalFailed as err:
+            self.get_logger().error(str(err))
             goal_handle.abort()
-            result.success, result.message = False, message
+            result.success, result.message = False, str(err)
             return result
-        except Exception as err:  # noqa: BLE001 - a solver bug must not kill the node
-            message = (f'{label}: internal solver error {type(err).__name__}: {err}'
-                       f'{_warnings_text(caught)}')
-            self.get_logger().error(message)
-            goal_handle.abort()
-            result.success, result.message = False, message
-            return result
-        if caught:
-            outcome = dataclasses.replace(outcome, notes=(
-                *outcome.notes, 'numerical warnings during the run: ' +
-                '; '.join(_warning_messages(caught))))
-        self.publish_outcome(outcome, config, set_changes(base, config))
-        feedback.progress, feedback.stage = 1.0, 'done'
-        goal_handle.publish_feedback(feedback)
+        outcome = solved.outcome
+        self.publish_outcome(outcome, solved.config, solved.changes)
+        publish(1.0, 'done')
         goal_handle.succeed()
         result.success = True
-        result.message = f'{label}: {outcome.n_steps} steps'
+        result.message = f'{goal_label(goal)}: {outcome.n_steps} steps'
         result.result = outcome_to_msg(outcome, self.get_clock().now().to_msg())
         return result
 
@@ -211,45 +187,13 @@ class SolverNode(Node):
         the last state's stamp.
         """
         stamp = stamp if stamp is not None else self.run_stamp(outcome)
-        provenance = Provenance(stamp=stamp, configuration=config.name,
-                                master_file=config.master_file, data_hash=config.data_hash,
-                                model=outcome.model, fidelity=outcome.fidelity,
-                                event=outcome.event, software_version=__version__)
-        if self.status is not None:
-            changed = {g.group: g for g in changes}
-            provenance.groups = [changed.get(s.group, s) for s in self.status.status
-                                 if s.configuration == config.name]
-        self.provenance_pub.publish(provenance)
+        groups = provenance_groups(self.status.status, config.name, changes) \
+            if self.status is not None else []
+        self.provenance_pub.publish(provenance_to_msg(outcome, stamp, config.master_file,
+                                                      groups))
         for topic, msg in outcome_messages(outcome, stamp, self.frame_prefix):
             self.publishers_by_topic[topic].publish(msg)
 
     def run_stamp(self, outcome: EventOutcome):
         """Claim a run's stamp: now, or after the previous run's time axis if that is later."""
         return run_stamp(outcome, self.get_clock().now().nanoseconds)
-
-
-def _warning_messages(caught) -> list[str]:
-    """Return the caught warnings' messages, each once, at most five."""
-    return list(dict.fromkeys(str(w.message) for w in caught or ()))[:5]
-
-
-def _warnings_text(caught) -> str:
-    """`` (numerical warnings: overflow encountered in exp; ...)``, or ""."""
-    texts = _warning_messages(caught)
-    return f" (numerical warnings: {'; '.join(texts)})" if texts else ''
-
-
-def set_changes(base: Configuration, config: Configuration) -> list:
-    """GroupStatus messages for the groups a run's ``--set`` overrides changed."""
-    out = []
-    for name, group in config.groups.items():
-        keys = modified_keys(base.groups[name].values, group.values)
-        if keys:
-            out.append(GroupStatusMsg(configuration=config.name, group=name,
-                                      variant=group.variant, state=GroupStatusMsg.MODIFIED,
-                                      consistency=GroupStatusMsg.DIFFERS,
-                                      modified_keys=[ModifiedKey(key=k.key,
-                                                                 data_value=k.data_value,
-                                                                 master_value=k.master_value,
-                                                                 unit=k.unit) for k in keys]))
-    return out

@@ -32,7 +32,6 @@ from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 
 from tf2_msgs.msg import TFMessage
 from vd_data_server.errors import DataError
-from vd_data_server.model import Configuration
 from vd_data_server.paths import default_master
 from vd_data_server.ros.node_main import make_executor, run_node
 from vd_data_server.ros.qos import STATES, TF
@@ -42,11 +41,10 @@ from vd_solvers.errors import SolverError
 from vd_solvers.families import ODOMETRY_TOPIC, TF_TOPIC
 from vd_solvers.nodes.lockstep import LockstepSession
 from vd_solvers.nodes.solver import SolverNode
-from vd_solvers.results import EventOutcome
+from vd_solvers.solve import run_function
 from vd_solvers.vehicle.actuators import Actuators, parameters_of
 from vd_solvers.vehicle.cosim import Stepper
 from vd_solvers.vehicle.description import describe_model
-from vd_solvers.vehicle.events import run_vehicle_event
 from vd_solvers.vehicle.model import VehicleModel
 
 FAMILY = 'vehicle'
@@ -74,11 +72,6 @@ LOCKSTEP_PARAMS = {
 ACTUATOR_PARAMS = ('steering_lag', 'torque_lag', 'speed_gain', 'speed_integral')
 
 
-def _run(config: Configuration, goal, progress) -> EventOutcome:
-    # an empty goal.fidelity follows the configuration's switch (families.run_fidelity)
-    return run_vehicle_event(config, goal.event, list(goal.parameters), goal.fidelity, progress)
-
-
 class VehicleSolver(SolverNode, LifecycleNode):
     """
     The full-vehicle solver; the body pose also as odometry and TF.
@@ -94,7 +87,7 @@ class VehicleSolver(SolverNode, LifecycleNode):
     STATE_TYPE = VehicleState
 
     def __init__(self, **kwargs) -> None:
-        super().__init__('vehicle_solver', FAMILY, _run, **kwargs)
+        super().__init__('vehicle_solver', FAMILY, run_function(FAMILY), **kwargs)
         self.odom_pub = self.create_publisher(Odometry, ODOMETRY_TOPIC, STATES)
         # the moving frame for RViz and Foxglove (TF: odom -> base_link, REP 105)
         self.tf_pub = self.create_publisher(TFMessage, TF_TOPIC, TF)
