@@ -7,7 +7,8 @@ Every compiled function of the full-vehicle step and of the Magic Formula's publ
 called once with the argument types a run passes (contiguous float vectors, floats, bools),
 with the bundled sample tires, so numba writes its cache (:mod:`vd_solvers.compiled`) and the
 first ``vd run`` after setup loads machine code instead of compiling it. No K&C solve is
-needed: the suspension maps are stand-ins of the right shapes, the tires are real.
+needed: the suspension maps are stand-ins of the right shapes, the tires are real; the K&C
+solver's compiled parts are called through one evaluation of the sample axle's tangent.
 """
 from __future__ import annotations
 
@@ -19,6 +20,8 @@ from vd_data_server.paths import default_master
 from vd_data_server.study import load_study
 from vd_data_server.tire_group import tire_properties
 from vd_solvers import compiled
+from vd_solvers.kc.from_config import build_kc_model
+from vd_solvers.kc.system import LoadCase
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
 from vd_solvers.vehicle import adaptive, dynamics
 from vd_solvers.vehicle.drivers import speed_law, wheel_torques
@@ -115,6 +118,14 @@ def _dynamics(q: np.ndarray, v: np.ndarray, arrays: VehicleArrays) -> None:
                               True, mb, np.zeros(3), np.empty((8, 16)), np.empty((8, 9, 4)))
 
 
+def _kc(config) -> None:
+    """Compile the K&C solver's parts: one tangent of the flexible (or rigid) front axle."""
+    fidelity = 'flexible' if 'front_flex' in config.groups else 'rigid'
+    system = build_kc_model(config, 'front', fidelity, 'warm-up').system
+    state = system.design_state()
+    system.evaluate(state, LoadCase()).tangent(state.lam)
+
+
 def clear() -> None:
     """
     Remove the package's cached machine code.
@@ -146,6 +157,7 @@ def main() -> int:
         pairs.append(tuple(t.coefficients for t in tires))
     for front, rear in pairs[:1]:
         _vehicle(front, rear)
+    _kc(study.configurations[study.configuration_names[0]])
     return 0
 
 
