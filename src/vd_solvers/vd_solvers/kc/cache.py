@@ -145,9 +145,9 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rig
 def kc_outcome(config: Configuration, event: str, axle: str, params: Sequence[str] = (),
                fidelity: str = 'rigid', at_rigid_limit: bool = False) -> EventOutcome:
     """
-    One K&C event's outcome, as :func:`.from_config.run_kc_event` returns it: from the disk,
-    or run now on this process's model (:func:`kc_model`) and kept there.
+    Return one K&C event's outcome, as :func:`.from_config.run_kc_event` returns it.
 
+    From the disk, or run now on this process's model (:func:`kc_model`) and kept there.
     The key is the configuration's name and data hash, the axle, fidelity, rigid limit,
     event and the parameters as given (``'steps=41'``), beside the code of :func:`_code`.
     """
@@ -179,5 +179,5 @@ def clear() -> None:
         _models.clear()
 
 
-__all__ = ['kc_result', 'kc_model', 'kc_outcome', 'clear', 'MAX_ENTRIES', 'MODEL_ENTRIES', 'FIDELITIES',
-           'NO_BAR']
+__all__ = ['kc_result', 'kc_model', 'kc_outcome', 'clear', 'MAX_ENTRIES', 'MODEL_ENTRIES',
+           'FIDELITIES', 'NO_BAR']
