@@ -33,7 +33,7 @@ from vd_solvers.errors import SolverError
 from vd_solvers.flex.component import Condensed
 
 from .forces import EnergyLaw, MatrixLaw
-from .joints import PAIRS, PrimKind, kernel
+from .joints import N_PAIRS, N_SLOTS, PAIRS, PARAM_WIDTH, PrimKind, primitives
 from .model import SIDES, Side
 
 _EYE = np.eye(3)
@@ -241,15 +241,19 @@ class System:
         world = self._markers(state)[0]
         return world[: self._n_points], world[self._n_points :]
 
-    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
+    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """
+        Return the primitives' values, slot gradients and pair Hessians at ``world``.
+
+        Shapes (n_prim,), (S, 3) and (P, 3, 3), from the markers' world quantities
+        ``world`` (M, 3) (:func:`.joints.primitives`).
+        """
         x = np.empty(self.n_prim)
-        grads: list[np.ndarray] = []
-        hess: list[np.ndarray] = []
-        for b in self._batches:
-            value, g, h = kernel(b.kind, [world[i] for i in b.slot_idx], b.param)
-            x[b.offset : b.offset + value.shape[0]] = value
-            grads.extend(g)
-            hess.extend(h)
+        grads = np.empty((self._slot_marker.shape[0], 3))
+        hess = np.empty((self._pair_a.shape[0], 3, 3))
+        if not primitives(world, self._kinds, self._offsets, self._counts, self._slot_base,
+                          self._pair_base, self._slot_marker, self._param, x, grads, hess):
+            raise SolverError('a link or spring collapsed to zero length')
         return x, grads, hess
 
     def primitive_values(self, state: State) -> np.ndarray:
@@ -293,6 +297,18 @@ class System:
                 pair_b.append(base[j] + np.arange(n))
                 pair_prim.append(rows)
         self._slot_marker = np.concatenate(slot_marker)
+        # the batches as :func:`.joints.primitives` walks them
+        batches = self._batches
+        self._kinds = np.array([b.kind.value for b in batches], dtype=np.int64)
+        self._offsets = np.array([b.offset for b in batches], dtype=np.int64)
+        self._counts = np.array([b.param.shape[0] for b in batches], dtype=np.int64)
+        sizes = self._counts * N_SLOTS[self._kinds]
+        self._slot_base = np.concatenate(([0], np.cumsum(sizes)[:-1])).astype(np.int64)
+        sizes = self._counts * N_PAIRS[self._kinds]
+        self._pair_base = np.concatenate(([0], np.cumsum(sizes)[:-1])).astype(np.int64)
+        self._param = np.zeros((self.n_prim, PARAM_WIDTH))
+        for b in batches:
+            self._param[b.offset: b.offset + b.param.shape[0], : b.param.shape[1]] = b.param
         self._pair_a = np.concatenate(pair_a) if pair_a else np.zeros(0, dtype=int)
         self._pair_b = np.concatenate(pair_b) if pair_b else np.zeros(0, dtype=int)
         parts = self._marker_part[self._slot_marker]
@@ -342,8 +358,7 @@ class System:
     def evaluate(self, state: State, load: LoadCase) -> Evaluation:
         """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
         world, lever, jac = self._markers(state)
-        x, grads, hess = self._kernels(world)
-        g_slot = np.concatenate(grads)
+        x, g_slot, hess = self._kernels(world)
         j_slot = jac[self._slot_marker]
         d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
 
@@ -360,7 +375,7 @@ class System:
         return Evaluation(self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext,
                           (g_slot, j_slot, hess, lever))
 
-    def second_order(self, slots: tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray],
+    def second_order(self, slots: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
                      weights: np.ndarray) -> np.ndarray:
         """
         Return sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof).
@@ -370,8 +385,7 @@ class System:
         levers (M, 3) -- and primitive weights (n_prim,) (:func:`second_order_sum`).
         """
         g_slot, j_slot, hess, lever = slots
-        pairs = np.concatenate(hess) if hess else np.zeros((0, 3, 3))
-        so = second_order_sum(j_slot, pairs, self._pair_a, self._pair_b, g_slot,
+        so = second_order_sum(j_slot, hess, self._pair_a, self._pair_b, g_slot,
                               np.ascontiguousarray(lever[self._slot_marker]), self._so_idx,
                               self._so_prim, weights, self._nc)
         return so[: self.n_dof, : self.n_dof]
@@ -460,7 +474,7 @@ class Evaluation:
     k_ext: np.ndarray  # tangent of -q_ext (n_dof, n_dof)
     #: what the primitives' second-order blocks are formed from, when a tangent is asked for
     #: (an evaluation that only checks convergence never needs them)
-    slots: tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray]
+    slots: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
     def force_residual(self, lam: np.ndarray) -> np.ndarray:
         """Grad V - Q + J^T lambda (n_dof,), N and N*m."""
