@@ -24,7 +24,7 @@ from vd_solvers import compiled
 STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 RTOL = 1e-9
 
-RUN = '''
+RUN = """
 import numpy as np
 from vd_data_server.study import load_study
 from vd_solvers.kc.from_config import run_kc_event
@@ -37,7 +37,7 @@ def run(master):
         for name, channel in outcome.channels.items():
             out[f'{fidelity}/{name}'] = np.asarray(channel.values, dtype=float)
     return out
-'''
+"""
 
 
 def _run_here() -> dict[str, np.ndarray]:
