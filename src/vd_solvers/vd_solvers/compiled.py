@@ -11,9 +11,10 @@ and uncompiled evaluations agree to rounding.
 
 numba is imported, and a function's machine code loaded, at the first call of a compiled
 function, not when a module defining one is imported: importing numba costs about half a
-second of CPU, and a K&C run, which imports the Magic Formula module for the tire's data,
-never calls a compiled function. A compiled function called from another is compiled (or
-loaded from the cache) when that one is.
+second of CPU, which a process that calls none (``vd data``, the reports) never pays. A
+compiled function called from another is compiled (or loaded from the cache) when that one
+is. The K&C solver compiles its per-evaluation loops over the primitives
+(``kc.joints.primitives``, ``kc.system.second_order_sum``).
 
 ``VD_NO_JIT=1`` in the environment (before the first import) runs the same functions as plain
 Python (numba's ``NUMBA_DISABLE_JIT``): for a debugger, a profiler or coverage.

@@ -9,7 +9,8 @@ Formula's public methods is called once with the argument types a run passes (co
 float vectors, floats, bools), with the bundled sample tires, so numba writes its cache
 (:mod:`vd_solvers.compiled`) and the first ``vd run`` after setup loads machine code instead
 of compiling it. No K&C solve is needed: the suspension maps are stand-ins of the right
-shapes, the tires are real.
+shapes, the tires are real; the K&C
+solver's compiled parts are called through one evaluation of the sample axle's tangent.
 """
 from __future__ import annotations
 
@@ -33,6 +34,8 @@ from vd_solvers.chassis.driveline import (
     inertia_torque,
     split,
 )
+from vd_solvers.kc.from_config import build_kc_model
+from vd_solvers.kc.system import LoadCase
 from vd_solvers.tire.magic_formula import MagicFormula, relaxation_at
 from vd_solvers.vehicle import adaptive, dynamics
 from vd_solvers.vehicle.drivers import (
@@ -176,6 +179,14 @@ def _chassis() -> ActuationArrays:
                            rear_differential=np.array([0.0, 0.0, 1000.0]))
 
 
+def _kc(config) -> None:
+    """Compile the K&C solver's parts: one tangent of the flexible (or rigid) front axle."""
+    fidelity = 'flexible' if 'front_flex' in config.groups else 'rigid'
+    system = build_kc_model(config, 'front', fidelity, 'warm-up').system
+    state = system.design_state()
+    system.evaluate(state, LoadCase()).tangent(state.lam)
+
+
 def clear() -> None:
     """
     Remove the package's cached machine code.
@@ -207,6 +218,7 @@ def main() -> int:
         pairs.append(tuple(t.coefficients for t in tires))
     for front, rear in pairs[:1]:
         _vehicle(front, rear)
+    _kc(study.configurations[study.configuration_names[0]])
     return 0
 
 

@@ -117,3 +117,52 @@ def test_a_run_leaves_the_shared_model_as_it_was(baseline):
     assert cache.kc_model(baseline, 'front', 'rigid') is model
     assert model.label == 'the run that built it'
     assert model.inp is inp
+
+
+def _limit_run(config):
+    return cache.kc_outcome(config, 'lateral_force', 'rear', ['steps=5'], 'flexible',
+                            at_rigid_limit=True)
+
+
+def test_an_outcome_is_read_from_the_disk_by_a_new_process(baseline, monkeypatch):
+    first = _limit_run(baseline)
+    direct = from_config.run_kc_event(baseline, 'lateral_force', 'rear', ['steps=5'],
+                                      fidelity='flexible', at_rigid_limit=True)
+    cache.clear()  # what a new process holds
+    monkeypatch.setattr(from_config, 'run_kc_event', _no_solving)
+    again = _limit_run(baseline)
+    assert again is not first
+    assert again.channels.keys() == direct.channels.keys()
+    for name, channel in direct.channels.items():
+        np.testing.assert_array_equal(again.channels[name].values, channel.values)
+    assert again.metrics == direct.metrics
+    assert again.notes == direct.notes
+    assert (again.configuration, again.fidelity, again.axle) == ('baseline', 'flexible', 'rear')
+
+
+def test_an_outcome_of_an_edited_data_file_or_other_code_is_run_again(sedan_master, sample_root,
+                                                                      tmp_path, monkeypatch):
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))
+    cache.clear()
+    solved = []
+    real = from_config.run_kc_event
+    monkeypatch.setattr(from_config, 'run_kc_event',
+                        lambda *a, **k: solved.append(a) or real(*a, **k))
+    before = _limit_run(load_study(sedan_master).configurations['baseline'])
+    cache.clear()
+    _limit_run(load_study(sedan_master).configurations['baseline'])
+    assert len(solved) == 1
+    alignment = sample_root / 'sedan' / 'rear_alignment' / 'X.yaml'
+    alignment.write_text(alignment.read_text().replace('camber: -1.2', 'camber: -2.2'))
+    cache.clear()
+    edited = load_study(sedan_master).configurations['baseline']
+    after = _limit_run(edited)
+    assert len(solved) == 2
+    # the new outcome is of the new data: one degree more negative camber at design
+    at = 2  # design step of a 5-step symmetric sweep
+    change = after.channels['camber_left'].values[at] - before.channels['camber_left'].values[at]
+    assert change == pytest.approx(np.radians(-1.0), abs=np.radians(0.02))
+    cache.clear()
+    monkeypatch.setattr(cache, '_code', lambda: 'the sources after an edit')
+    _limit_run(edited)
+    assert len(solved) == 3

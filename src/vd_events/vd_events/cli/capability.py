@@ -14,7 +14,6 @@ from vd_data_server.errors import DataError
 from vd_data_server.files import numbered_folder
 from vd_data_server.overview import console
 from vd_events.cli import options
-from vd_events.reports.sections import capability_rows
 from vd_events.studies.capability import QUANTITIES, run_study
 
 
@@ -44,6 +43,10 @@ def cmd_capability(args: argparse.Namespace) -> int:
         print(json.dumps({'configuration': name, 'out': str(out),
                           'tables': [t.to_json() for t in tables]}))
         return 0
+    # the report's sections import the measured-data stack (scipy.signal, scipy.stats):
+    # only the table printed needs them, not --json
+    from vd_events.reports.sections import capability_rows
+
     term = console()
     for t in tables:
         table = RichTable(title=f"capability - {t.configuration} - {t.axle} axle "

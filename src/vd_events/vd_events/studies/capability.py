@@ -46,8 +46,8 @@ from vd_events.orchestration.requests import RunRequest, validate
 from vd_interfaces.msg import CapabilityCell, CapabilityTable
 from vd_solvers.constants import DEG
 from vd_solvers.conversions import TIME_AXIS, run_stamp, stamp_ns, time_msg
-from vd_solvers.kc.cache import kc_model
-from vd_solvers.kc.from_config import RIGID_LIMIT_BAR_SCALE, RIGID_LIMIT_SCALE, run_kc_event
+from vd_solvers.kc.cache import kc_outcome
+from vd_solvers.kc.from_config import RIGID_LIMIT_BAR_SCALE, RIGID_LIMIT_SCALE
 from vd_solvers.results import EventOutcome
 
 #: per-step quantities: channel stem(s), SI unit, absolute tolerance (SI; None: wheel load)
@@ -345,10 +345,11 @@ def run_study(master, study, configuration: str, axles: Sequence[str], out,
         mine = [r for r in results if r.request.axle == axle]
         pairs = [(a.outcome, b.outcome) for a, b in zip(mine[0::2], mine[1::2])]
         # Before any verdict: the flexible model at its rigid limit must be the rigid model
-        # (assembled once per axle, every event runs on it).
+        # (assembled once per axle, every event runs on it; the outcomes are kept on disk
+        # per data and code, so a second study of the same data pays nothing for them).
         limit = rigid_limit_cells([
-            (rigid, run_kc_event(config, rigid.event, axle, tuple(parameters),
-                                 fidelity='flexible', at_rigid_limit=True, build=kc_model))
+            (rigid, kc_outcome(config, rigid.event, axle, tuple(parameters),
+                               fidelity='flexible', at_rigid_limit=True))
             for rigid, _ in pairs if rigid is not None])
         if any(c.verdict != 'Rigid' for c in limit):
             raise RunError(f"configuration '{configuration}', {axle} axle: "

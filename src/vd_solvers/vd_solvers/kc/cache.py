@@ -24,10 +24,16 @@ understeer budget takes twelve K&C events) reads them instead of solving again: 
 adds the hash of the sources of vd_solvers and vd_data_server and the numpy and scipy
 versions, so other code never reads a result of this one. The result read is the pickled
 result computed from the same data by the same code: the same to the last bit.
+
+:func:`kc_outcome` keeps whole event outcomes (:func:`.from_config.run_kc_event`, with
+their metrics and notes) there under the same discipline: the capability study's
+rigid-limit check, the flexible model at its rigid limit run on every event of both axles,
+is paid once per data and code, not by every ``vd capability``.
 """
 from __future__ import annotations
 
 from collections import OrderedDict
+from collections.abc import Sequence
 from functools import lru_cache
 from pathlib import Path
 from threading import Lock
@@ -38,7 +44,7 @@ import scipy
 from vd_data_server import disk_cache
 from vd_data_server.model import Configuration
 from vd_solvers.errors import SolverError
-from vd_solvers.results import FIDELITIES
+from vd_solvers.results import FIDELITIES, EventOutcome
 
 from .events import EventResult, KCModel
 from .model import without_bar
@@ -136,6 +142,29 @@ def kc_result(config: Configuration, axle: str, event: str, fidelity: str = 'rig
         return _remember(_results, key, result)
 
 
+def kc_outcome(config: Configuration, event: str, axle: str, params: Sequence[str] = (),
+               fidelity: str = 'rigid', at_rigid_limit: bool = False) -> EventOutcome:
+    """
+    Return one K&C event's outcome, as :func:`.from_config.run_kc_event` returns it.
+
+    From the disk, or run now on this process's model (:func:`kc_model`) and kept there.
+    The key is the configuration's name and data hash, the axle, fidelity, rigid limit,
+    event and the parameters as given (``'steps=41'``), beside the code of :func:`_code`.
+    """
+    from .from_config import run_kc_event
+
+    key = ('outcome', config.name, config.data_hash, axle, fidelity, at_rigid_limit, event,
+           tuple(params))
+    stored_as = disk_cache.key_of(_code(), repr(key))
+    stored = disk_cache.load(KIND, stored_as)
+    if isinstance(stored, EventOutcome):
+        return stored
+    outcome = run_kc_event(config, event, axle, tuple(params), fidelity=fidelity,
+                           at_rigid_limit=at_rigid_limit, build=kc_model)
+    disk_cache.store(KIND, stored_as, outcome, DISK_ENTRIES)
+    return outcome
+
+
 @lru_cache(maxsize=1)
 def _code() -> str:
     """Return what besides the data decides a result: the sources and the numerics' versions."""
@@ -150,5 +179,5 @@ def clear() -> None:
         _models.clear()
 
 
-__all__ = ['kc_result', 'kc_model', 'clear', 'MAX_ENTRIES', 'MODEL_ENTRIES', 'FIDELITIES',
-           'NO_BAR']
+__all__ = ['kc_result', 'kc_model', 'kc_outcome', 'clear', 'MAX_ENTRIES', 'MODEL_ENTRIES',
+           'FIDELITIES', 'NO_BAR']

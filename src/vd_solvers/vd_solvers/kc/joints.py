@@ -29,11 +29,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
-import functools
 from typing import Literal, Union
 
 import numpy as np
 
+from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 
 GROUND = 'body'  # the vehicle body: held by the rig, no degrees of freedom
@@ -216,53 +216,126 @@ def joint_constraints(
 
 
 # --- primitive kernels ------------------------------------------------------
-# Each takes the world quantities of its slots, stacked (n, 3), and returns
-# the values (n,), the slot gradients [(n, 3)] and the second-derivative
-# blocks [(n, 3, 3)] in the order of PAIRS[kind].
+# The value of every primitive, the gradients with respect to its slots' world quantities
+# and the second-derivative blocks of its slot pairs (in the order of PAIRS[kind]), all
+# primitives of a model in one compiled pass (:func:`primitives`); :func:`kernel` is the
+# same for the primitives of one kind, stacked.
 
-_EYE = np.eye(3)
+#: slots and slot pairs per kind, indexed by the kind's value
+N_SLOTS = np.array([len(SLOTS[k]) for k in PrimKind])
+N_PAIRS = np.array([len(PAIRS[k]) for k in PrimKind])
+#: parameters per primitive, at most (COMP: the vector c; CPZ: rho)
+PARAM_WIDTH = 3
+#: a link or spring shorter than this (m) has collapsed: its direction is undefined
+COLLAPSED_LENGTH = 1e-9
 
 
-@functools.lru_cache(maxsize=64)
-def _eye(n: int, scale: float = 1.0) -> np.ndarray:
-    """``scale`` I stacked n times, read-only and shared (a kernel's constant Hessian)."""
-    out = np.broadcast_to(scale * _EYE, (n, 3, 3))
-    out.flags.writeable = False
-    return out
+@jit
+def primitives(world: np.ndarray, kinds: np.ndarray, offsets: np.ndarray,
+               counts: np.ndarray, slot_base: np.ndarray, pair_base: np.ndarray,
+               slot_marker: np.ndarray, param: np.ndarray, x: np.ndarray,
+               g_slot: np.ndarray, hess: np.ndarray) -> bool:
+    """
+    Evaluate the primitives of every batch; return False if a link collapsed.
+
+    Batch b holds ``counts[b]`` primitives of kind ``kinds[b]`` (PrimKind value), whose
+    values go to ``x[offsets[b] + i]`` (n_prim,). Slot k of its primitive i is the marker
+    ``slot_marker[slot_base[b] + k counts[b] + i]`` of ``world`` (M, 3) and its gradient
+    goes to the same row of ``g_slot`` (S, 3); the block of its slot pair t (PAIRS order)
+    to ``hess[pair_base[b] + t counts[b] + i]`` (P, 3, 3). ``param`` (n_prim,
+    PARAM_WIDTH): COMP's c, CPZ's rho in column 0.
+    """
+    for b in range(kinds.shape[0]):
+        kind, n, sb, pb = kinds[b], counts[b], slot_base[b], pair_base[b]
+        for i in range(n):
+            row = offsets[b] + i
+            q0 = world[slot_marker[sb + i]]
+            q1 = world[slot_marker[sb + n + i]]
+            g0, g1 = g_slot[sb + i], g_slot[sb + n + i]
+            if kind == 0:  # COMP: c . (r_a - r_b)
+                value = 0.0
+                for c in range(3):
+                    value += param[row, c] * (q0[c] - q1[c])
+                    g0[c] = param[row, c]
+                    g1[c] = -param[row, c]
+            elif kind == 1:  # DOT: v_a . v_b
+                value = 0.0
+                for c in range(3):
+                    value += q0[c] * q1[c]
+                    g0[c] = q1[c]
+                    g1[c] = q0[c]
+                for t in range(2):
+                    h = hess[pb + t * n + i]
+                    h[:] = 0.0
+                    for c in range(3):
+                        h[c, c] = 1.0
+            elif kind == 2:  # DDOT: (r_b - r_a) . v_c
+                q2 = world[slot_marker[sb + 2 * n + i]]
+                g2 = g_slot[sb + 2 * n + i]
+                value = 0.0
+                for c in range(3):
+                    d = q1[c] - q0[c]
+                    value += d * q2[c]
+                    g0[c] = -q2[c]
+                    g1[c] = q2[c]
+                    g2[c] = d
+                for t in range(4):
+                    h = hess[pb + t * n + i]
+                    h[:] = 0.0
+                    for c in range(3):
+                        h[c, c] = -1.0 if t < 2 else 1.0
+            elif kind == 3:  # DIST: |r_a - r_b|
+                square = 0.0
+                for c in range(3):
+                    square += (q0[c] - q1[c]) * (q0[c] - q1[c])
+                value = np.sqrt(square)
+                if value < COLLAPSED_LENGTH:
+                    return False
+                h0 = hess[pb + i]
+                for c in range(3):
+                    g0[c] = (q0[c] - q1[c]) / value
+                    g1[c] = -g0[c]
+                for r in range(3):
+                    for c in range(3):
+                        h0[r, c] = ((1.0 if r == c else 0.0) - g0[r] * g0[c]) / value
+                hess[pb + n + i] = h0
+                for r in range(3):
+                    for c in range(3):
+                        hess[pb + 2 * n + i, r, c] = -h0[r, c]
+                        hess[pb + 3 * n + i, r, c] = -h0[r, c]
+            else:  # CPZ: r_z - rho sqrt(1 - v_z^2)
+                rho, vz = param[row, 0], q1[2]
+                root = np.sqrt(max(1.0 - vz * vz, 1e-12))
+                value = q0[2] - rho * root
+                g0[:] = 0.0
+                g0[2] = 1.0
+                g1[:] = 0.0
+                g1[2] = rho * vz / root
+                h = hess[pb + i]
+                h[:] = 0.0
+                h[2, 2] = rho / (root * root * root)
+            x[row] = value
+    return True
 
 
 def kernel(
     kind: PrimKind, q: list[np.ndarray], param: np.ndarray
 ) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
-    """Value, slot gradients and pair Hessians of ``kind`` for slot data ``q``."""
-    if kind is PrimKind.COMP:
-        d = q[0] - q[1]
-        return np.einsum('ni,ni->n', param, d), [param, -param], []
-    if kind is PrimKind.DOT:
-        n = q[0].shape[0]
-        return np.einsum('ni,ni->n', q[0], q[1]), [q[1], q[0]], [_eye(n), _eye(n)]
-    if kind is PrimKind.DDOT:
-        n = q[0].shape[0]
-        d = q[1] - q[0]
-        value = np.einsum('ni,ni->n', d, q[2])
-        return value, [-q[2], q[2], d], [_eye(n, -1.0), _eye(n, -1.0), _eye(n), _eye(n)]
-    if kind is PrimKind.DIST:
-        d = q[0] - q[1]
-        length = np.linalg.norm(d, axis=1)
-        if np.any(length < 1e-9):
-            raise SolverError('a link or spring collapsed to zero length')
-        u = d / length[:, None]
-        proj = (_EYE - u[:, :, None] * u[:, None, :]) / length[:, None, None]
-        return length, [u, -u], [proj, proj, -proj, -proj]
-    if kind is PrimKind.CPZ:
-        rho = param[:, 0]
-        vz = q[1][:, 2]
-        s = np.sqrt(np.maximum(1.0 - vz * vz, 1e-12))
-        grad_v = np.zeros_like(q[1])
-        grad_v[:, 2] = rho * vz / s
-        hess = np.zeros((q[1].shape[0], 3, 3))
-        hess[:, 2, 2] = rho / s**3
-        grad_r = np.zeros_like(q[0])
-        grad_r[:, 2] = 1.0
-        return q[0][:, 2] - rho * s, [grad_r, grad_v], [hess]
-    raise SolverError(f'unknown primitive {kind!r}')
+    """
+    Value, slot gradients and pair Hessians of ``kind`` for slot data ``q``.
+
+    ``q``: the world quantities of the slots, each (n, 3); ``param`` (n, w), w <= 3.
+    Returns the values (n,), the slot gradients [(n, 3)] and the second-derivative blocks
+    [(n, 3, 3)] in the order of PAIRS[kind] (:func:`primitives`).
+    """
+    n, slots, pairs = q[0].shape[0], N_SLOTS[kind.value], N_PAIRS[kind.value]
+    padded = np.zeros((n, PARAM_WIDTH))
+    padded[:, : param.shape[1]] = param
+    x, g, h = np.empty(n), np.empty((slots * n, 3)), np.empty((pairs * n, 3, 3))
+    zero = np.zeros(1, dtype=np.int64)
+    if not primitives(np.ascontiguousarray(np.concatenate(q), dtype=float),
+                      np.array([kind.value]), zero, np.array([n]), zero, zero,
+                      np.arange(slots * n), padded, x, g, h):
+        raise SolverError('a link or spring collapsed to zero length')
+    return x, [g[k * n:(k + 1) * n] for k in range(slots)], [h[t * n:(t + 1) * n]
+                                                             for t in range(pairs)]

@@ -24,16 +24,16 @@ local pose coordinates (dp, dtheta) per part.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import functools
 
 import numpy as np
 import scipy.sparse
 
+from vd_solvers.compiled import jit
 from vd_solvers.errors import SolverError
 from vd_solvers.flex.component import Condensed
 
 from .forces import EnergyLaw, MatrixLaw
-from .joints import PAIRS, PrimKind, kernel
+from .joints import N_PAIRS, N_SLOTS, PAIRS, PARAM_WIDTH, PrimKind, primitives
 from .model import SIDES, Side
 
 _EYE = np.eye(3)
@@ -241,15 +241,19 @@ class System:
         world = self._markers(state)[0]
         return world[: self._n_points], world[self._n_points :]
 
-    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]]:
+    def _kernels(self, world: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """
+        Return the primitives' values, slot gradients and pair Hessians at ``world``.
+
+        Shapes (n_prim,), (S, 3) and (P, 3, 3), from the markers' world quantities
+        ``world`` (M, 3) (:func:`.joints.primitives`).
+        """
         x = np.empty(self.n_prim)
-        grads: list[np.ndarray] = []
-        hess: list[np.ndarray] = []
-        for b in self._batches:
-            value, g, h = kernel(b.kind, [world[i] for i in b.slot_idx], b.param)
-            x[b.offset : b.offset + value.shape[0]] = value
-            grads.extend(g)
-            hess.extend(h)
+        grads = np.empty((self._slot_marker.shape[0], 3))
+        hess = np.empty((self._pair_a.shape[0], 3, 3))
+        if not primitives(world, self._kinds, self._offsets, self._counts, self._slot_base,
+                          self._pair_base, self._slot_marker, self._param, x, grads, hess):
+            raise SolverError('a link or spring collapsed to zero length')
         return x, grads, hess
 
     def primitive_values(self, state: State) -> np.ndarray:
@@ -293,6 +297,18 @@ class System:
                 pair_b.append(base[j] + np.arange(n))
                 pair_prim.append(rows)
         self._slot_marker = np.concatenate(slot_marker)
+        # the batches as :func:`.joints.primitives` walks them
+        batches = self._batches
+        self._kinds = np.array([b.kind.value for b in batches], dtype=np.int64)
+        self._offsets = np.array([b.offset for b in batches], dtype=np.int64)
+        self._counts = np.array([b.param.shape[0] for b in batches], dtype=np.int64)
+        sizes = self._counts * N_SLOTS[self._kinds]
+        self._slot_base = np.concatenate(([0], np.cumsum(sizes)[:-1])).astype(np.int64)
+        sizes = self._counts * N_PAIRS[self._kinds]
+        self._pair_base = np.concatenate(([0], np.cumsum(sizes)[:-1])).astype(np.int64)
+        self._param = np.zeros((self.n_prim, PARAM_WIDTH))
+        for b in batches:
+            self._param[b.offset: b.offset + b.param.shape[0], : b.param.shape[1]] = b.param
         self._pair_a = np.concatenate(pair_a) if pair_a else np.zeros(0, dtype=int)
         self._pair_b = np.concatenate(pair_b) if pair_b else np.zeros(0, dtype=int)
         parts = self._marker_part[self._slot_marker]
@@ -342,8 +358,7 @@ class System:
     def evaluate(self, state: State, load: LoadCase) -> Evaluation:
         """Residual ingredients and tangent pieces of the equilibrium in ``state``."""
         world, lever, jac = self._markers(state)
-        x, grads, hess = self._kernels(world)
-        g_slot = np.concatenate(grads)
+        x, g_slot, hess = self._kernels(world)
         j_slot = jac[self._slot_marker]
         d_vals = np.einsum('si,sij->sj', g_slot, j_slot)
 
@@ -360,34 +375,20 @@ class System:
         return Evaluation(self, x, jacobian, measure_jacobian, g, y, energy, d1, d2, q_ext, k_ext,
                           (g_slot, j_slot, hess, lever))
 
-    def _second_order_blocks(self, g_slot: np.ndarray, j_slot: np.ndarray,
-                             hess: list[np.ndarray], lever: np.ndarray) -> np.ndarray:
-        """
-        Return the unweighted second-order blocks of the primitives (for :meth:`second_order`).
-
-        From the slot gradients ``g_slot`` (S, 3), the slots' marker pose Jacobians
-        ``j_slot`` (S, 3, 6), the pair Hessians ``hess`` of the kernels and the markers'
-        rotation levers ``lever`` (M, 3).
-        """
-        if hess:
-            ja = j_slot[self._pair_a]
-            blocks = np.matmul(np.matmul(ja.transpose(0, 2, 1), np.concatenate(hess)),
-                               j_slot[self._pair_b])
-        else:
-            blocks = np.zeros((0, 6, 6))
-        chart = _chart(g_slot, lever[self._slot_marker])
-        return np.concatenate((blocks.ravel(), chart.ravel()))
-
-    def second_order(self, so_vals: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    def second_order(self, slots: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+                     weights: np.ndarray) -> np.ndarray:
         """
         Return sum_k weights_k * d2 x_k / dq2 (n_dof, n_dof).
 
-        From the unweighted blocks ``so_vals`` of an evaluation and primitive
-        weights (n_prim,).
+        From an evaluation's ``slots`` -- the slot gradients (S, 3), the slots' marker pose
+        Jacobians (S, 3, 6), the pair Hessians of the kernels and the markers' rotation
+        levers (M, 3) -- and primitive weights (n_prim,) (:func:`second_order_sum`).
         """
-        nc = self._nc
-        so = np.bincount(self._so_idx, so_vals * weights[self._so_prim], minlength=nc * nc)
-        return so.reshape(nc, nc)[: self.n_dof, : self.n_dof]
+        g_slot, j_slot, hess, lever = slots
+        so = second_order_sum(j_slot, hess, self._pair_a, self._pair_b, g_slot,
+                              np.ascontiguousarray(lever[self._slot_marker]), self._so_idx,
+                              self._so_prim, weights, self._nc)
+        return so[: self.n_dof, : self.n_dof]
 
     def _constraint_offset(self, load: LoadCase) -> np.ndarray:
         off = np.zeros(self.n_con)
@@ -473,12 +474,7 @@ class Evaluation:
     k_ext: np.ndarray  # tangent of -q_ext (n_dof, n_dof)
     #: what the primitives' second-order blocks are formed from, when a tangent is asked for
     #: (an evaluation that only checks convergence never needs them)
-    slots: tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray]
-
-    @functools.cached_property
-    def so_vals(self) -> np.ndarray:
-        """Unweighted second-order blocks of the primitives (:meth:`System.second_order`)."""
-        return self.system._second_order_blocks(*self.slots)
+    slots: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
     def force_residual(self, lam: np.ndarray) -> np.ndarray:
         """Grad V - Q + J^T lambda (n_dof,), N and N*m."""
@@ -490,7 +486,7 @@ class Evaluation:
         weights = self.d1 @ s._c_e_dense + lam @ s._c_g_dense
         stiff = np.nonzero(self.d2)[0]  # measures with a diagonal stiffness
         k = e[stiff].T @ (self.d2[stiff, None] * e[stiff])
-        k += s.second_order(self.so_vals, weights) + self.k_ext
+        k += s.second_order(self.slots, weights) + self.k_ext
         for (_, matrix), (rows, square) in zip(s.coupled, s._coupled_cols):
             block = e[rows]
             k[square] += block.T @ matrix @ block
@@ -527,6 +523,57 @@ def _skew(w: np.ndarray) -> np.ndarray:
     out[..., 1, 0], out[..., 1, 2] = w[..., 2], -w[..., 0]
     out[..., 2, 0], out[..., 2, 1] = -w[..., 1], w[..., 0]
     return out
+
+
+@jit
+def second_order_sum(j_slot: np.ndarray, hess: np.ndarray, pair_a: np.ndarray,
+                     pair_b: np.ndarray, g_slot: np.ndarray, lever: np.ndarray,
+                     so_idx: np.ndarray, so_prim: np.ndarray, weights: np.ndarray,
+                     nc: int) -> np.ndarray:
+    """
+    Return the weighted second derivatives of the primitives, (nc, nc) with the ground.
+
+    Two kinds of terms, each scaled by its primitive's weight and summed into the flat
+    index ``so_idx`` (pose DOFs of both parts, rows and columns):
+
+    * per slot pair t of a kernel, ``J_a^T H_t J_b`` (6, 6): the kernel's Hessian
+      ``hess[t]`` (3, 3) between slots a = ``pair_a[t]`` and b = ``pair_b[t]`` through the
+      slots' marker pose Jacobians ``j_slot`` (S, 3, 6);
+    * per slot s, the rotation chart's own second-order term ``sym(G w^T) - (G.w) I``
+      (:func:`_chart`) of its gradient ``g_slot[s]`` and rotation lever ``lever[s]``.
+
+    ``so_prim`` gives the primitive (index into ``weights``) of every entry.
+    """
+    out = np.zeros(nc * nc)
+    tmp = np.empty((6, 3))
+    t = 0
+    for p in range(pair_a.shape[0]):
+        a, b = pair_a[p], pair_b[p]
+        for r in range(6):
+            for k in range(3):
+                acc = 0.0
+                for i in range(3):
+                    acc += j_slot[a, i, r] * hess[p, i, k]
+                tmp[r, k] = acc
+        for r in range(6):
+            for c in range(6):
+                acc = 0.0
+                for k in range(3):
+                    acc += tmp[r, k] * j_slot[b, k, c]
+                out[so_idx[t]] += acc * weights[so_prim[t]]
+                t += 1
+    for q in range(g_slot.shape[0]):
+        dot = 0.0
+        for i in range(3):
+            dot += g_slot[q, i] * lever[q, i]
+        for r in range(3):
+            for c in range(3):
+                v = 0.5 * (g_slot[q, r] * lever[q, c] + g_slot[q, c] * lever[q, r])
+                if r == c:
+                    v -= dot
+                out[so_idx[t]] += v * weights[so_prim[t]]
+                t += 1
+    return out.reshape(nc, nc)
 
 
 def _chart(g: np.ndarray, w: np.ndarray) -> np.ndarray:
