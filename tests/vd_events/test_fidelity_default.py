@@ -20,7 +20,8 @@ from vd_data_server.study import load_study
 from vd_events.orchestration.runner import RunRequest, validate
 from vd_events.studies.plan import expand, load_plan
 from vd_events.sweeps.plan import RunSpec
-from vd_solvers.families import MODELS, run_fidelity
+from vd_solvers.families import MODELS
+from vd_solvers.results import run_fidelity
 
 #: (event, model, axle) of one run of each model family
 RUNS = (('handling_diagram', 'two_track', ''), ('steady_state_circular', 'bicycle', ''),

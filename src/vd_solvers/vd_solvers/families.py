@@ -17,13 +17,9 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from .errors import SolverError
-from .results import FIDELITIES
-
-if TYPE_CHECKING:
-    from vd_data_server.model import Configuration
+from .results import FIDELITIES, FLEXIBLE_MODELS
 
 
 @dataclass(frozen=True)
@@ -66,9 +62,6 @@ MEASURED_MODEL_FAMILY: Mapping[str, str] = {'test': 'vehicle', 'rig': 'kc'}
 ODOMETRY_TOPIC = 'vehicle/odom'
 #: the TF tree is global (tf2's convention): every vehicle on the domain publishes here
 TF_TOPIC = '/tf'
-#: the models that have flexible components (the full vehicle passes it to its K&C maps)
-FLEXIBLE_MODELS = ('kc', 'vehicle')
-
 #: how the checks name a request's fields: over ROS (goal fields) and on the command line
 GOAL_FIELDS = {'axle': 'axle', 'fidelity': 'fidelity'}
 CLI_FIELDS = {'axle': '--axle', 'fidelity': 'fidelity'}
@@ -121,22 +114,6 @@ def event_params(model: str, event: str):
     else:
         from .analytical.events import EVENT_PARAMS
     return EVENT_PARAMS[event]
-
-
-def run_fidelity(model: str, config: Configuration | None, asked: str = '') -> str:
-    """
-    Return the K&C fidelity a run of ``model`` on ``config`` gets.
-
-    ``asked`` (``--fidelity``, a goal's or a plan's ``fidelity``) when given; else
-    'flexible' for a configuration whose ``flexible`` switch is on and a model with
-    flexible components (FLEXIBLE_MODELS: the K&C model and the full vehicle, whose
-    suspension maps are K&C runs), else 'rigid'. Every model that reads the
-    configuration follows its switch; ``config`` None (not known yet) is rigid.
-    """
-    if asked:
-        return asked
-    flexible = config is not None and config.flexible and model in FLEXIBLE_MODELS
-    return 'flexible' if flexible else 'rigid'
 
 
 def check_request(family: str, event: str, model: str, fidelity: str, axle: str,

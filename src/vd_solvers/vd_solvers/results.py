@@ -11,13 +11,34 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from vd_data_server.model import Configuration
 
 #: the fidelities of the K&C data a result is computed from: the rigid parts, or the
 #: flexible components of the configuration's flex groups
 FIDELITIES = ('rigid', 'flexible')
+#: the models that have flexible components (the full vehicle passes it to its K&C maps)
+FLEXIBLE_MODELS = ('kc', 'vehicle')
+
+
+def run_fidelity(model: str, config: Configuration | None, asked: str = '') -> str:
+    """
+    Return the K&C fidelity a run of ``model`` on ``config`` gets.
+
+    ``asked`` (``--fidelity``, a goal's or a plan's ``fidelity``) when given; else
+    'flexible' for a configuration whose ``flexible`` switch is on and a model with
+    flexible components (FLEXIBLE_MODELS: the K&C model and the full vehicle, whose
+    suspension maps are K&C runs), else 'rigid'. Every model that reads the
+    configuration follows its switch; ``config`` None (not known yet) is rigid.
+    """
+    if asked:
+        return asked
+    flexible = config is not None and config.flexible and model in FLEXIBLE_MODELS
+    return 'flexible' if flexible else 'rigid'
 
 
 @dataclass(frozen=True)

@@ -26,8 +26,8 @@ from vd_data_server.study import modified_keys
 from vd_interfaces.msg import GroupStatus as GroupStatusMsg
 from vd_interfaces.msg import ModifiedKey
 from vd_solvers.errors import SolverError
-from vd_solvers.families import FAMILIES, run_fidelity
-from vd_solvers.results import FIDELITIES, EventOutcome
+from vd_solvers.families import FAMILIES
+from vd_solvers.results import FIDELITIES, EventOutcome, run_fidelity
 
 #: (fraction done, stage) -> None
 Progress = Callable[[float, str], None]
@@ -169,7 +169,7 @@ def _run_kc(config: Configuration, goal, progress: Progress) -> EventOutcome:
 def _run_vehicle(config: Configuration, goal, progress: Progress) -> EventOutcome:
     from vd_solvers.vehicle.events import run_vehicle_event
 
-    # an empty goal.fidelity follows the configuration's switch (families.run_fidelity)
+    # an empty goal.fidelity follows the configuration's switch (results.run_fidelity)
     return run_vehicle_event(config, goal.event, list(goal.parameters), goal.fidelity, progress)
 
 

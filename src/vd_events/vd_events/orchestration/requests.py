@@ -30,9 +30,8 @@ from vd_solvers.families import (
     check_request,
     event_params,
     events_for,
-    run_fidelity,
 )
-from vd_solvers.results import EventOutcome
+from vd_solvers.results import EventOutcome, run_fidelity
 
 
 @dataclass(frozen=True)
@@ -40,7 +39,7 @@ class RunRequest:
     event: str
     configuration: str
     model: str
-    #: 'rigid' | 'flexible'; "" = the configuration's switch (families.run_fidelity),
+    #: 'rigid' | 'flexible'; "" = the configuration's switch (results.run_fidelity),
     #: resolved by validate()
     fidelity: str = ''
     axle: str = ''
@@ -73,7 +72,7 @@ def validate(study: Study, request: RunRequest) -> RunRequest:
     """
     Every check that can be made before starting: raises DataError / RunError / BagError.
 
-    Returns the request with the fidelity it gets (``families.run_fidelity``: an empty
+    Returns the request with the fidelity it gets (``results.run_fidelity``: an empty
     one follows the configuration's ``flexible`` switch) and the data hash its result
     must carry.
     """

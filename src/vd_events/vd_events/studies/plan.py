@@ -36,7 +36,7 @@ from vd_data_server.yamlio import load_file
 from vd_events.errors import BagError, RunError
 from vd_events.orchestration.inprocess import run_inprocess
 from vd_events.orchestration.requests import RunRequest, validate
-from vd_solvers.families import run_fidelity
+from vd_solvers.results import run_fidelity
 
 #: a study plan, in the specs of the data files (``vd_data_server.schema``)
 PLAN = schema.Section({
@@ -103,7 +103,7 @@ def expand(plan: Plan, study: Study, bags: Path) -> list[RunRequest]:
     """
     Return the runs of ``plan``: one per model and configuration of each entry.
 
-    A run without ``fidelity`` gets the configuration's (``families.run_fidelity``);
+    A run without ``fidelity`` gets the configuration's (``results.run_fidelity``);
     the bag of a flexible run ends in ``_flexible``.
     """
     requests = []

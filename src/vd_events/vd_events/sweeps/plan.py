@@ -107,7 +107,7 @@ class RunSpec:
     event: str
     model: str
     axle: str = ''
-    #: "" = the configuration's flexible switch (``families.run_fidelity``)
+    #: "" = the configuration's flexible switch (``results.run_fidelity``)
     fidelity: str = ''
     parameters: tuple[str, ...] = ()
 

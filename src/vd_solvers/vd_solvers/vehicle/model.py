@@ -88,7 +88,7 @@ from vd_solvers.analytical.params import SPIN_INERTIA_FACTOR
 from vd_solvers.chassis.from_config import chassis_systems
 from vd_solvers.constants import STANDARD_GRAVITY
 from vd_solvers.errors import SolverError
-from vd_solvers.families import run_fidelity
+from vd_solvers.results import run_fidelity
 from vd_solvers.road.arrays import RoadGrid
 from vd_solvers.road.from_config import road_of
 from vd_solvers.tire.magic_formula import MagicFormula
@@ -167,7 +167,7 @@ class VehicleModel:
         self.road = road if road is not None else road_of(config)
         self.options = options
         #: the K&C fidelity of the suspension maps: ``fidelity``, "" = the configuration's
-        #: flexible switch (``families.run_fidelity``)
+        #: flexible switch (``results.run_fidelity``)
         self.fidelity = run_fidelity('vehicle', config, fidelity)
         self.maps = maps if maps is not None else suspension_maps(config, self.fidelity)
         mass = config.group('mass')
