@@ -5,8 +5,8 @@ What a K&C run in a new process imports: no pint once its study is cached.
 
 pint is imported at the first unit conversion (a study from the cache converts nothing);
 numba at the first call of a compiled function (the K&C joints' primitives are compiled, so
-every K&C solve imports it and loads its machine code from the cache built at setup). The run's result is the same
-with the study loaded from the files and from the cache.
+every K&C solve imports it and loads its machine code from the cache built at setup). The
+run's result is the same with the study loaded from the files and from the cache.
 """
 from __future__ import annotations
 

@@ -270,7 +270,8 @@ def test_a_flexible_configuration_drives_on_flexible_maps_unless_told_rigid(seda
 
     sport = sedan['sport']
     default = run_vehicle_event(sport, 'step_steer')
-    goal = run_function('vehicle')(sport, SimpleNamespace(event='step_steer', parameters=[], fidelity=''), None)
+    goal = run_function('vehicle')(
+        sport, SimpleNamespace(event='step_steer', parameters=[], fidelity=''), None)
     flex = run_vehicle_event(sport, 'step_steer', [], fidelity='flexible')
     rigid = run_vehicle_event(sport, 'step_steer', [], fidelity='rigid')
     assert (default.fidelity, goal.fidelity, flex.fidelity, rigid.fidelity) == (

@@ -1,8 +1,6 @@
 # Copyright 2026 The vd authors
 # SPDX-License-Identifier: Apache-2.0
 """``python -m vd_events.cli``: the vd command-line tool (what ``./vd`` runs)."""
-import sys
+from vd_events.cli.main import exit_with, main
 
-from vd_events.cli.main import main
-
-sys.exit(main())
+exit_with(main())

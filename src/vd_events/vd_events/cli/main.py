@@ -18,8 +18,10 @@ import argparse
 from collections.abc import Callable, Sequence
 import importlib
 import json
+import os
 import signal
 import sys
+from typing import NoReturn
 
 from vd_data_server.errors import DataError
 from vd_events.cli.parsers import build_parser
@@ -71,8 +73,24 @@ def _report_error(message: str, want_json: bool) -> None:
         print(message, file=sys.stderr)
 
 
-__all__ = ['main', 'load_handler', 'EXIT_OK', 'EXIT_USAGE', 'EXIT_INTERRUPTED']
+__all__ = ['main', 'exit_with', 'load_handler', 'EXIT_OK', 'EXIT_USAGE', 'EXIT_INTERRUPTED']
+
+
+def exit_with(code: int) -> NoReturn:
+    """
+    End the process with ``code`` (the module entry points: ``python -m vd_events.cli``).
+
+    An interrupted run exits through ``os._exit`` once its output is flushed: CPython ends
+    a process by SIGINT, whatever the code, once a KeyboardInterrupt has left any code run
+    by ``exec`` of a string (namedtuple, dataclass and numba wrappers), even one ``main``
+    then handled, and the caller would see a signal instead of EXIT_INTERRUPTED.
+    """
+    if code == EXIT_INTERRUPTED:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)
 
 
 if __name__ == '__main__':
-    sys.exit(main())
+    exit_with(main())
