@@ -273,9 +273,10 @@ def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
     # command_timeout: each ros2 command below takes a core for a second or two, and the
     # vehicle must not give up on a command the loaded controller answers late
     launch = start(env, 'launch', 'vd_events', 'lockstep.launch.py', 'namespace:=/ls',
-                   'duration:=2.0', 'speed:=10.0', 'radius:=30.0', 'command_timeout:=30.0')
-    # odometry is a per-step stream (volatile): a plain echo, subscribed before the
-    # session starts (the vehicle builds its maps first), gets a step of the run
+                   'duration:=20.0', 'speed:=10.0', 'radius:=30.0', 'command_timeout:=30.0')
+    # odometry is a per-step stream (volatile): a plain echo started with the launch gets a
+    # step of the run; 20 s of steps (each answered over ROS by the controller) leave it
+    # seconds to subscribe however fast the lock-step runs
     echo = start(env, 'topic', 'echo', '--once', '/ls/vehicle/odom', 'nav_msgs/msg/Odometry')
     try:
         wanted = {'/ls/vehicle_solver', '/ls/path_follower'}
@@ -284,14 +285,14 @@ def test_lockstep_launch_drives_the_vehicle_in_its_namespace(env):
             'Double value is: 30.0'
         assert ros2(env, 'param', 'get', '/ls/vehicle_solver', 'frame_prefix').stdout.strip() \
             == 'String value is: ls/'
-        # 2 s of 5 ms steps, each one answered by the controller over ROS
+        # 20 s of 5 ms steps, each one answered by the controller over ROS
         deadline, status = time.monotonic() + HANG_GUARD, ''
         while time.monotonic() < deadline and not status.startswith('data: finished'):
             status = ros2(env, 'topic', 'echo', '--once', '--qos-durability',
                           'transient_local', '--qos-reliability', 'reliable',
                           '/ls/vehicle/lockstep_status').stdout.strip()
             time.sleep(2.0)
-        assert status.startswith('data: finished at t = 2.000000 s (400 steps)'), status
+        assert status.startswith('data: finished at t = 20.000000 s (4000 steps)'), status
         assert ros2(env, 'param', 'get', '/ls/vehicle_solver', 'command_timeout').stdout \
             .strip() == 'Double value is: 30.0'
         odom, _ = echo.communicate(timeout=HANG_GUARD)
