@@ -221,8 +221,40 @@ class CurvatureController:
         return float(np.clip(self._output, -self.max_angle, self.max_angle))
 
 
+class PathLookup:
+    """A path y(x) (earth frame, x increasing): its y, heading and curvature at any x."""
+
+    path_x: np.ndarray
+    path_y: np.ndarray
+
+    def _set_path(self, path_x, path_y) -> None:
+        """Check and keep the path's samples; heading and curvature by finite differences."""
+        x = np.asarray(path_x, dtype=float)
+        y = np.asarray(path_y, dtype=float)
+        if x.ndim != 1 or x.size < 3 or np.any(np.diff(x) <= 0.0) or y.shape != x.shape \
+                or not np.all(np.isfinite(y)):
+            raise SolverError('a path needs increasing x and one finite y per x (at least '
+                              'three points)')
+        self.path_x, self.path_y = x, y
+        slope = np.gradient(y, x)
+        self._heading = np.arctan(slope)
+        self._curvature = np.gradient(slope, x) / (1.0 + slope * slope) ** 1.5
+
+    def lateral(self, x: float) -> float:
+        """Return the path's y at x, m."""
+        return float(np.interp(x, self.path_x, self.path_y))
+
+    def heading(self, x: float) -> float:
+        """Return the path's heading at x, rad (0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._heading, left=0.0, right=0.0))
+
+    def curvature(self, x: float) -> float:
+        """Return the path's curvature at x, 1/m (+ left; 0 beyond its ends)."""
+        return float(np.interp(x, self.path_x, self._curvature, left=0.0, right=0.0))
+
+
 @dataclass
-class PreviewPathFollower:
+class PreviewPathFollower(PathLookup):
     """
     Two-level path follower on a path y(x) (earth frame, x increasing): Donges' driver.
 
@@ -267,28 +299,7 @@ class PreviewPathFollower:
     _curvature: np.ndarray = field(default_factory=lambda: np.zeros(0), init=False)
 
     def __post_init__(self) -> None:
-        x = np.asarray(self.path_x, dtype=float)
-        y = np.asarray(self.path_y, dtype=float)
-        if x.ndim != 1 or x.size < 3 or np.any(np.diff(x) <= 0.0) or y.shape != x.shape \
-                or not np.all(np.isfinite(y)):
-            raise SolverError('a path needs increasing x and one finite y per x (at least '
-                              'three points)')
-        self.path_x, self.path_y = x, y
-        slope = np.gradient(y, x)
-        self._heading = np.arctan(slope)
-        self._curvature = np.gradient(slope, x) / (1.0 + slope * slope) ** 1.5
-
-    def lateral(self, x: float) -> float:
-        """Return the path's y at x, m."""
-        return float(np.interp(x, self.path_x, self.path_y))
-
-    def heading(self, x: float) -> float:
-        """Return the path's heading at x, rad (0 beyond its ends)."""
-        return float(np.interp(x, self.path_x, self._heading, left=0.0, right=0.0))
-
-    def curvature(self, x: float) -> float:
-        """Return the path's curvature at x, 1/m (+ left; 0 beyond its ends)."""
-        return float(np.interp(x, self.path_x, self._curvature, left=0.0, right=0.0))
+        self._set_path(self.path_x, self.path_y)
 
     def steering_wheel_angle(self, obs: Observation, h: float) -> float:
         speed = max(obs.speed, 0.0)
@@ -317,7 +328,7 @@ class PreviewPathFollower:
         return float(np.clip(self._output, -self.max_angle, self.max_angle))
 
 
-class OptimalPreviewDriver:
+class OptimalPreviewDriver(PathLookup):
     """
     Optimal preview path follower on a path y(x) (earth frame, x increasing).
 
@@ -338,18 +349,11 @@ class OptimalPreviewDriver:
     def __init__(self, path_x: np.ndarray, path_y: np.ndarray, gains: PreviewGains,
                  steering_ratio: float, max_angle: float, lag: float, behind: float = 0.0,
                  cog_ahead: float = 0.0) -> None:
-        x = np.asarray(path_x, dtype=float)
-        y = np.asarray(path_y, dtype=float)
-        if x.ndim != 1 or x.size < 3 or np.any(np.diff(x) <= 0.0) or y.shape != x.shape \
-                or not np.all(np.isfinite(y)):
-            raise SolverError('a path needs increasing x and one finite y per x (at least '
-                              'three points)')
-        self.path_x, self.path_y, self.gains = x, y, gains
+        self._set_path(path_x, path_y)
+        x, y = self.path_x, self.path_y
+        self.gains = gains
         self.steering_ratio, self.max_angle, self.lag = steering_ratio, max_angle, lag
         self.behind, self.cog_ahead = behind, cog_ahead
-        slope = np.gradient(y, x)
-        self._heading = np.arctan(slope)
-        self._curvature = np.gradient(slope, x) / (1.0 + slope * slope) ** 1.5
         # arc length along the path, for the preview stations
         self._arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
         self._ahead = gains.spacing * np.arange(gains.preview.size)
@@ -357,18 +361,6 @@ class OptimalPreviewDriver:
         self._command = 0.0
         self._next = -math.inf  # time of the next sample
         self._yaw: float | None = None
-
-    def lateral(self, x: float) -> float:
-        """Return the path's y at x, m."""
-        return float(np.interp(x, self.path_x, self.path_y))
-
-    def heading(self, x: float) -> float:
-        """Return the path's heading at x, rad (0 beyond its ends)."""
-        return float(np.interp(x, self.path_x, self._heading, left=0.0, right=0.0))
-
-    def curvature(self, x: float) -> float:
-        """Return the path's curvature at x, 1/m (+ left; 0 beyond its ends)."""
-        return float(np.interp(x, self.path_x, self._curvature, left=0.0, right=0.0))
 
     def preview(self, x: float) -> np.ndarray:
         """Return the path's curvature at the preview stations from x on, 1/m."""
