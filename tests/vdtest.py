@@ -4,7 +4,10 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+import os
 from pathlib import Path
+import subprocess
+import sys
 import time
 
 
@@ -62,3 +65,24 @@ def line_no(path: Path, start: str) -> int:
     """1-based number of the first line of ``path`` that starts with ``start``."""
     lines = path.read_text(encoding='utf-8').splitlines()
     return next(n for n, line in enumerate(lines, start=1) if line.startswith(start))
+
+
+def run_uncompiled(source: str, function: str, argument: Path, tmp_path: Path) -> dict:
+    """
+    Run ``function(argument)`` of ``source`` in a child with VD_NO_JIT=1 (arrays by name).
+
+    ``source`` defines ``function`` and imports numpy as np; the child checks that nothing
+    is compiled and returns the function's dict of arrays through an .npz file.
+    """
+    import numpy as np
+
+    out = tmp_path / 'uncompiled.npz'
+    code = (source + '\nimport sys\nfrom vd_solvers import compiled\n'
+            'assert not compiled.ENABLED\n'
+            f'np.savez(sys.argv[2], **{function}(sys.argv[1]))\n')
+    env = dict(os.environ, VD_NO_JIT='1')
+    env['PYTHONPATH'] = os.pathsep.join(
+        [str(Path(p).resolve()) for p in sys.path if p] + [env.get('PYTHONPATH', '')])
+    subprocess.run([sys.executable, '-c', code, str(argument), str(out)], env=env, check=True)
+    with np.load(out) as data:
+        return {k: data[k] for k in data.files}

@@ -10,16 +10,14 @@ same channels (1e-9 of each channel's largest magnitude: the two differ in round
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
-import subprocess
-import sys
 
 import numpy as np
 import numpy.testing as npt
 import pytest
 
 from vd_solvers import compiled
+from vdtest import run_uncompiled
 
 STUDIES = Path(__file__).resolve().parents[3] / 'src' / 'vd_data_server' / 'data' / 'studies'
 RTOL = 1e-9
@@ -47,17 +45,7 @@ def _run_here() -> dict[str, np.ndarray]:
 
 
 def _run_uncompiled(tmp_path: Path) -> dict[str, np.ndarray]:
-    out = tmp_path / 'uncompiled.npz'
-    code = (RUN + '\nimport sys\nfrom vd_solvers import compiled\n'
-            'assert not compiled.ENABLED\n'
-            'np.savez(sys.argv[2], **run(sys.argv[1]))\n')
-    env = dict(os.environ, VD_NO_JIT='1')
-    env['PYTHONPATH'] = os.pathsep.join(
-        [str(Path(p).resolve()) for p in sys.path if p] + [env.get('PYTHONPATH', '')])
-    subprocess.run([sys.executable, '-c', code, str(STUDIES / 'sedan.yaml'), str(out)],
-                   env=env, check=True)
-    with np.load(out) as data:
-        return {k: data[k] for k in data.files}
+    return run_uncompiled(RUN, 'run', STUDIES / 'sedan.yaml', tmp_path)
 
 
 @pytest.mark.skipif(not compiled.ENABLED, reason='VD_NO_JIT is set: nothing compiled to compare')
